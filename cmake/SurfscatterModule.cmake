@@ -1,0 +1,48 @@
+# One static library per module of src/surfscatter/<module>/, so that the data flow
+# (math -> spectrum/material -> surface -> bsdf -> render -> photo) is enforced by the link graph.
+set(SURFSCATTER_WARNINGS -Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wno-sign-conversion)
+
+# surfscatter_module(<name> [DEPS <targets>...])
+function(surfscatter_module name)
+  cmake_parse_arguments(ARG "" "" "DEPS" ${ARGN})
+  file(GLOB_RECURSE sources CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/${name}/*.cpp")
+  set(target surfscatter_${name})
+  if(sources)
+    add_library(${target} STATIC ${sources})
+    target_include_directories(${target} PUBLIC "${PROJECT_SOURCE_DIR}/src")
+    target_compile_options(${target} PRIVATE ${SURFSCATTER_WARNINGS})
+    target_link_libraries(${target} PUBLIC ${ARG_DEPS})
+    target_compile_definitions(${target} PRIVATE
+      SURFSCATTER_SOURCE_DIR="${SURFSCATTER_SOURCE_DIR}")
+  else()
+    add_library(${target} INTERFACE)
+    target_include_directories(${target} INTERFACE "${PROJECT_SOURCE_DIR}/src")
+    target_link_libraries(${target} INTERFACE ${ARG_DEPS})
+  endif()
+  add_library(surfscatter::${name} ALIAS ${target})
+endfunction()
+
+# surfscatter_test(<module> [DEPS <targets>...] [LABELS <labels>...])
+# Every tests/<module>/*.cpp goes into one GoogleTest executable test_<module>.
+function(surfscatter_test name)
+  cmake_parse_arguments(ARG "" "" "DEPS;LABELS" ${ARGN})
+  file(GLOB sources CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/${name}/*.cpp")
+  if(NOT sources)
+    return()
+  endif()
+  set(target test_${name})
+  add_executable(${target} ${sources})
+  target_include_directories(${target} PRIVATE "${CMAKE_CURRENT_SOURCE_DIR}")
+  target_compile_options(${target} PRIVATE ${SURFSCATTER_WARNINGS})
+  target_link_libraries(${target} PRIVATE surfscatter::${name} ${ARG_DEPS} GTest::gtest GTest::gtest_main GTest::gmock)
+  target_compile_definitions(${target} PRIVATE
+    SURFSCATTER_SHARED_DATA="${SURFSCATTER_SHARED_DATA}"
+    SURFSCATTER_SOURCE_DIR="${SURFSCATTER_SOURCE_DIR}"
+    SURFSCATTER_CLI="$<TARGET_FILE:surfscatter>")
+  if(name STREQUAL "cli")
+    add_dependencies(${target} surfscatter)
+  endif()
+  gtest_discover_tests(${target}
+    PROPERTIES LABELS "${name};${ARG_LABELS}"
+    DISCOVERY_TIMEOUT 60)
+endfunction()

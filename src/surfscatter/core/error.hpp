@@ -1,0 +1,27 @@
+#pragma once
+// The one exception type of the library. Its message is a single line that names the bad value and where it
+// came from (parameter name, file:line); the CLI prints it as it is and exits with status 2.
+#include <stdexcept>
+#include <string>
+
+#include <fmt/format.h>
+
+namespace surfscatter {
+
+class Error : public std::runtime_error {
+public:
+    explicit Error(const std::string& message) : std::runtime_error(message) {}
+};
+
+// Throws Error with a fmt-formatted message: fail("gamma must be > 1, got {}", gamma).
+template <typename... Args>
+[[noreturn]] void fail(fmt::format_string<Args...> format, Args&&... args) {
+    throw Error(fmt::format(format, std::forward<Args>(args)...));
+}
+
+// Checks a user-supplied value; `what` names it as the user wrote it ("--sigma", "scene.xml:12 alpha").
+void require_finite(double value, const char* what);
+void require_positive(double value, const char* what);
+void require_non_negative(double value, const char* what);
+
+}  // namespace surfscatter

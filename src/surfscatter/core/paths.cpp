@@ -1,0 +1,51 @@
+#include "surfscatter/core/paths.hpp"
+
+#include <cstdlib>
+
+#include "surfscatter/core/error.hpp"
+
+namespace surfscatter {
+
+namespace {
+std::string env(const char* name) {
+    const char* v = std::getenv(name);
+    return v ? std::string(v) : std::string();
+}
+
+std::string shell_quote(const std::string& s) {
+    std::string out = "'";
+    for (char c : s) {
+        if (c == '\'') out += "'\\''";
+        else out += c;
+    }
+    return out + "'";
+}
+}  // namespace
+
+std::filesystem::path cache_directory() {
+    std::filesystem::path dir;
+    if (auto d = env("SURFSCATTER_CACHE_DIR"); !d.empty()) dir = d;
+    else if (auto x = env("XDG_CACHE_HOME"); !x.empty()) dir = std::filesystem::path(x) / "surfscatter";
+    else if (auto h = env("HOME"); !h.empty()) dir = std::filesystem::path(h) / ".cache" / "surfscatter";
+    else dir = std::filesystem::temp_directory_path() / "surfscatter-cache";
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec) fail("cannot create cache directory {}: {}", dir.string(), ec.message());
+    return dir;
+}
+
+std::filesystem::path plot_script_directory() {
+    if (auto d = env("SURFSCATTER_PLOT_SCRIPTS"); !d.empty()) return d;
+    return std::filesystem::path(SURFSCATTER_SOURCE_DIR) / "scripts" / "plot";
+}
+
+void run_plot_script(const std::string& script, const std::vector<std::string>& args) {
+    const auto path = plot_script_directory() / script;
+    if (!std::filesystem::exists(path)) fail("plot script not found: {}", path.string());
+    std::string cmd = "/usr/bin/python3 " + shell_quote(path.string());
+    for (const auto& a : args) cmd += " " + shell_quote(a);
+    const int status = std::system(cmd.c_str());
+    if (status != 0) fail("plot script {} failed (status {}); is python3-matplotlib installed?", script, status);
+}
+
+}  // namespace surfscatter

@@ -1,0 +1,46 @@
+#pragma once
+// Progress reporting for long jobs: percentage and ETA on stderr, safe to call from many threads.
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <mutex>
+#include <string>
+
+namespace surfscatter {
+
+class Progress {
+public:
+    // `total` work units; `label` is printed before the bar. Silent when `enabled` is false.
+    Progress(std::string label, std::uint64_t total, bool enabled = true);
+    ~Progress();
+    Progress(const Progress&) = delete;
+    Progress& operator=(const Progress&) = delete;
+
+    void advance(std::uint64_t units = 1);  // thread-safe; redraws at most ~10 times a second
+    void finish();                           // prints the final line (idempotent)
+    double fraction() const;
+
+private:
+    void draw(bool final_line);
+
+    std::string label_;
+    std::uint64_t total_;
+    bool enabled_;
+    std::atomic<std::uint64_t> done_{0};
+    std::chrono::steady_clock::time_point start_;
+    std::chrono::steady_clock::time_point last_draw_;
+    std::mutex draw_mutex_;
+    bool finished_ = false;
+};
+
+// Formats seconds as "1h02m", "3m05s" or "12.3s".
+std::string format_duration(double seconds);
+
+// Ctrl-C handling for jobs that must keep what they computed: after install_interrupt_handler(), the first
+// SIGINT/SIGTERM sets a flag that long loops poll with interrupt_requested(); they stop early and write out.
+void install_interrupt_handler();
+bool interrupt_requested();
+void clear_interrupt();  // for tests
+void request_interrupt();  // for tests: behave as if Ctrl-C had been pressed
+
+}  // namespace surfscatter
