@@ -1,0 +1,70 @@
+#pragma once
+// Every option of the scattering models, with one name per option shared by the CLI (kebab-case: --corr-length),
+// the renderer's XML plugins and this struct (snake_case: corr_length). Values of the enumerations are spelled
+// as in the CLI/XML ("ghs_ssa" and "ghs-ssa" are both accepted by the parse_* functions).
+// Units: wavelengths in nm, surface lengths (sigma, corr_length, smoothing) in micrometres.
+#include <string>
+#include <string_view>
+
+namespace surfscatter::bsdf {
+
+enum class ModelKind { ghs, ghs_ssa, ggx, two_scale };
+enum class GhsMethod { exact, refit };                   // exact: tabulated S_g; refit: Poisson series of KC refits
+enum class Truncation { three_sigma, poisson_mass };     // which orders the refit series keeps
+enum class FresnelMode { incident, half, rr };           // R(theta_i), F(theta_d), Rayleigh-Rice Q (THEORY 1.3)
+enum class SsaForm { energy, strict };                   // THEORY 1.4
+enum class AlphaFrom { none, measured, smoothed, kc_link };  // GGX roughness: given, or from the surface (THEORY 4)
+enum class MacroNdf { ggx, beckmann };                   // two-scale macro-roughness NDF
+enum class PsdKind { kc, gaussian, file };               // surface statistics source
+
+struct SurfaceOptions {
+    PsdKind psd = PsdKind::kc;
+    double sigma = 0;         // rms height, um (kc, gaussian)
+    double corr_length = 0;   // um: KC L, or Gaussian l in C = sigma^2 exp(-r^2/l^2)
+    double gamma = 0;         // KC exponent, > 1
+    std::string surface_file; // .gsf height map (psd = file)
+};
+
+struct ModelOptions {
+    ModelKind model = ModelKind::ghs;
+    // GHS
+    GhsMethod method = GhsMethod::exact;
+    Truncation truncation = Truncation::three_sigma;  // refit only; the paper's rule
+    double epsilon = 1e-6;                            // poisson_mass: dropped Poisson mass
+    FresnelMode fresnel = FresnelMode::incident;
+    bool renormalization = true;                      // false: sigma_h instead of sigma_rel and K = 1
+    // SSA
+    SsaForm ssa_form = SsaForm::energy;
+    // GGX
+    double alpha = 0;                                 // used when alpha_from = none
+    AlphaFrom alpha_from = AlphaFrom::none;
+    double smoothing = 0;                             // um, Gaussian smoothing std (alpha_from = smoothed)
+    // two-scale
+    double cutoff_wavelengths = 100;                  // N: macro/micro split at zeta_c = k / N
+    MacroNdf macro_ndf = MacroNdf::ggx;
+    // material and surface
+    std::string material = "perfect";                 // built-in metal, refractiveindex.info/CSV path, or "perfect"
+    SurfaceOptions surface;
+};
+
+// Parse an enumeration value as written in the CLI or XML; throw surfscatter::Error naming `what` otherwise.
+ModelKind parse_model(std::string_view text, const char* what = "model");
+GhsMethod parse_method(std::string_view text, const char* what = "method");
+Truncation parse_truncation(std::string_view text, const char* what = "truncation");
+FresnelMode parse_fresnel(std::string_view text, const char* what = "fresnel");
+SsaForm parse_ssa_form(std::string_view text, const char* what = "ssa_form");
+AlphaFrom parse_alpha_from(std::string_view text, const char* what = "alpha_from");
+MacroNdf parse_macro_ndf(std::string_view text, const char* what = "macro_ndf");
+PsdKind parse_psd(std::string_view text, const char* what = "psd");
+
+// Canonical (snake_case) names.
+std::string to_string(ModelKind v);
+std::string to_string(GhsMethod v);
+std::string to_string(Truncation v);
+std::string to_string(FresnelMode v);
+std::string to_string(SsaForm v);
+std::string to_string(AlphaFrom v);
+std::string to_string(MacroNdf v);
+std::string to_string(PsdKind v);
+
+}  // namespace surfscatter::bsdf
