@@ -1,0 +1,51 @@
+#pragma once
+// Hero-wavelength sampling (Wilkie et al. 2014, as in pbrt-v4): one uniform number u gives four wavelengths over
+// 360-830 nm, lambda_i = P^{-1}((u + i/4) mod 1), where P is the CDF of a density that follows the eye's sensitivity
+// (p(lambda) proportional to sech^2(0.0072 (lambda - 538)), pbrt-v4's SampleVisibleWavelengths). Each lambda_i on
+// its own is distributed with density p, and the set is the same whichever member is called the hero, which is
+// what the spectral MIS of the path tracer relies on.
+#include <array>
+
+namespace surfscatter::spectrum {
+
+inline constexpr int kSpectrumSamples = 4;
+inline constexpr double kSampledLambdaMin = 360.0;  // nm
+inline constexpr double kSampledLambdaMax = 830.0;  // nm
+
+// Four values, one per sampled wavelength, with element-wise arithmetic.
+struct SampledSpectrum {
+    std::array<double, kSpectrumSamples> v{};
+
+    SampledSpectrum() = default;
+    explicit SampledSpectrum(double c) { v.fill(c); }
+    double& operator[](int i) { return v[static_cast<std::size_t>(i)]; }
+    double operator[](int i) const { return v[static_cast<std::size_t>(i)]; }
+
+    SampledSpectrum& operator+=(const SampledSpectrum& o) { for (int i = 0; i < kSpectrumSamples; ++i) (*this)[i] += o[i]; return *this; }
+    SampledSpectrum& operator*=(const SampledSpectrum& o) { for (int i = 0; i < kSpectrumSamples; ++i) (*this)[i] *= o[i]; return *this; }
+    SampledSpectrum& operator*=(double s) { for (auto& x : v) x *= s; return *this; }
+    friend SampledSpectrum operator+(SampledSpectrum a, const SampledSpectrum& b) { return a += b; }
+    friend SampledSpectrum operator*(SampledSpectrum a, const SampledSpectrum& b) { return a *= b; }
+    friend SampledSpectrum operator*(SampledSpectrum a, double s) { return a *= s; }
+    friend SampledSpectrum operator*(double s, SampledSpectrum a) { return a *= s; }
+    double max_value() const;
+    double average() const;
+    bool is_black() const;
+};
+
+// Density of the visible-wavelength sampler in 1/nm (0 outside 360-830 nm); integrates to 1.
+double visible_wavelength_pdf(double lambda_nm);
+// Inverse CDF of visible_wavelength_pdf: u in [0, 1) -> lambda in [360, 830] nm.
+double sample_visible_wavelength(double u);
+
+struct SampledWavelengths {
+    std::array<double, kSpectrumSamples> lambda{};  // nm; lambda[0] is the hero
+    std::array<double, kSpectrumSamples> pdf{};     // marginal density of each lambda_i, 1/nm
+
+    // Four stratified wavelengths from the visible density (see the file comment).
+    static SampledWavelengths sample_visible(double u);
+    // Four stratified wavelengths, uniform over 360-830 nm (pdf = 1/470 each).
+    static SampledWavelengths sample_uniform(double u);
+};
+
+}  // namespace surfscatter::spectrum
