@@ -1,0 +1,32 @@
+#pragma once
+// Lens calibration from several views of a planar board (Zhang's method through cv::calibrateCamera).
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "surfscatter/photo/camera_model.hpp"
+#include "surfscatter/photo/markers.hpp"
+
+namespace surfscatter::photo {
+
+inline constexpr int kMinimumCalibrationViews = 3;
+
+struct CalibrationInput {
+    std::string name;  // how errors refer to the view (its file name)
+    cv::Mat gray;      // CV_8UC1
+};
+
+struct CalibrationResult {
+    CameraModel camera;
+    std::vector<std::string> used;       // views where the board was found
+    std::vector<std::string> rejected;   // views where it was not
+    std::vector<double> per_view_rms;    // pixels, same order as `used`
+};
+
+// Detects the board in every view, rejects the views without it and calibrates intrinsics and distortion
+// (k1 k2 p1 p2 k3). Throws Error if the views differ in size or fewer than kMinimumCalibrationViews remain
+// (naming the rejected ones).
+CalibrationResult calibrate_camera(const std::vector<CalibrationInput>& views, const BoardSpec& board);
+
+}  // namespace surfscatter::photo

@@ -1,0 +1,32 @@
+#pragma once
+// A calibrated pinhole camera with OpenCV's distortion model (k1, k2, p1, p2, k3): image x to the right, y down,
+// pixel centres at integer coordinates, the camera looking along +z. Stored as YAML through cv::FileStorage.
+#include <filesystem>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace surfscatter::photo {
+
+struct CameraModel {
+    cv::Size image_size;
+    cv::Matx33d matrix = cv::Matx33d::eye();  // [fx 0 cx; 0 fy cy; 0 0 1] in pixels
+    std::vector<double> distortion;           // k1 k2 p1 p2 k3 (OpenCV order)
+    double rms_reprojection_error = 0.0;      // pixels, from the calibration (0 if unknown)
+    int views = 0;                            // images the calibration used
+
+    double fx() const { return matrix(0, 0); }
+    double fy() const { return matrix(1, 1); }
+    double cx() const { return matrix(0, 2); }
+    double cy() const { return matrix(1, 2); }
+};
+
+// Writes image_width, image_height, camera_matrix, distortion_coefficients, rms_reprojection_error, views.
+void write_camera(const std::filesystem::path& path, const CameraModel& camera);
+// Throws Error naming the file and the missing or bad entry.
+CameraModel read_camera(const std::filesystem::path& path);
+
+// Throws Error if an image of `size` (from `what`) does not match the calibrated image size.
+void require_image_size(const CameraModel& camera, cv::Size size, const std::string& what);
+
+}  // namespace surfscatter::photo

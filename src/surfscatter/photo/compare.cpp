@@ -1,0 +1,167 @@
+#include "surfscatter/photo/compare.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/quality/qualityssim.hpp>
+
+#include "surfscatter/core/error.hpp"
+#include "surfscatter/photo/ciede2000.hpp"
+#include "surfscatter/photo/color_checker.hpp"
+#include "surfscatter/photo/colour_space.hpp"
+
+namespace surfscatter::photo {
+
+namespace {
+cv::Mat effective_mask(const cv::Mat& photo, const cv::Mat& render, const cv::Mat& mask) {
+    CV_Assert(photo.type() == CV_32FC3 && render.type() == CV_32FC3);
+    if (photo.size() != render.size())
+        fail("rendering is {}x{} pixels but the photo is {}x{}", render.cols, render.rows, photo.cols, photo.rows);
+    if (mask.empty()) return cv::Mat(photo.size(), CV_8UC1, cv::Scalar(255));
+    CV_Assert(mask.type() == CV_8UC1);
+    if (mask.size() != photo.size())
+        fail("mask is {}x{} pixels but the photo is {}x{}", mask.cols, mask.rows, photo.cols, photo.rows);
+    if (cv::countNonZero(mask) == 0) fail("mask selects no pixel");
+    return mask;
+}
+
+double peak_in_mask(const cv::Mat& photo, const cv::Mat& mask) {
+    double peak = 0.0;
+    for (int y = 0; y < photo.rows; ++y)
+        for (int x = 0; x < photo.cols; ++x)
+            if (mask.at<std::uint8_t>(y, x))
+                for (int c = 0; c < 3; ++c) peak = std::max(peak, double(photo.at<cv::Vec3f>(y, x)[c]));
+    if (!(peak > 0.0)) fail("the photo is black inside the mask");
+    return peak;
+}
+
+// sRGB-encoded, clipped, 0-255 float image of linear / peak (the range QualitySSIM's constants assume).
+cv::Mat encoded_for_ssim(const cv::Mat& linear, double peak) {
+    cv::Mat scaled = linear / peak;
+    cv::Mat clipped = cv::min(cv::max(scaled, 0.0), 1.0);
+    return srgb_encode_image(clipped) * 255.0;
+}
+}  // namespace
+
+double exposure_scale(const cv::Mat& photo, const cv::Mat& render, const cv::Mat& mask) {
+    const cv::Mat m = effective_mask(photo, render, mask);
+    double pr = 0.0, rr = 0.0;
+    for (int y = 0; y < photo.rows; ++y)
+        for (int x = 0; x < photo.cols; ++x)
+            if (m.at<std::uint8_t>(y, x)) {
+                const cv::Vec3f p = photo.at<cv::Vec3f>(y, x), r = render.at<cv::Vec3f>(y, x);
+                pr += double(p.dot(r));
+                rr += double(r.dot(r));
+            }
+    if (!(rr > 0.0)) fail("the rendering is black inside the mask; no exposure can match it");
+    return pr / rr;
+}
+
+ComparisonMetrics compare_to_photo(const cv::Mat& photo, const cv::Mat& render, const cv::Mat& mask,
+                                   const std::string& label) {
+    const cv::Mat m = effective_mask(photo, render, mask);
+    ComparisonMetrics out;
+    out.label = label;
+    out.exposure_scale = exposure_scale(photo, render, m);
+    const cv::Mat scaled = render * out.exposure_scale;
+    const double peak = peak_in_mask(photo, m);
+
+    double sum_sq = 0.0, sum_de = 0.0;
+    std::size_t count = 0;
+    for (int y = 0; y < photo.rows; ++y)
+        for (int x = 0; x < photo.cols; ++x) {
+            if (!m.at<std::uint8_t>(y, x)) continue;
+            const cv::Vec3f p = photo.at<cv::Vec3f>(y, x), r = scaled.at<cv::Vec3f>(y, x);
+            const cv::Vec3f d = p - r;
+            sum_sq += double(d.dot(d));
+            sum_de += ciede2000(linear_srgb_to_lab({p[0], p[1], p[2]}), linear_srgb_to_lab({r[0], r[1], r[2]}));
+            ++count;
+        }
+    const double mse = sum_sq / (3.0 * double(count));
+    out.rmse = std::sqrt(mse);
+    out.psnr_db = mse > 0.0 ? 10.0 * std::log10(peak * peak / mse) : std::numeric_limits<double>::infinity();
+    out.mean_ciede2000 = sum_de / double(count);
+
+    cv::Mat ssim_map;
+    cv::quality::QualitySSIM::compute(encoded_for_ssim(photo, peak), encoded_for_ssim(scaled, peak), ssim_map);
+    const cv::Scalar ssim = cv::mean(ssim_map, m);
+    out.ssim = (ssim[0] + ssim[1] + ssim[2]) / 3.0;
+    return out;
+}
+
+namespace {
+constexpr int kTileWidth = 480;
+constexpr int kLabelHeight = 64;
+
+cv::Mat fit_tile(const cv::Mat& bgr8, cv::Size tile) {
+    cv::Mat out;
+    cv::resize(bgr8, out, tile, 0, 0, cv::INTER_AREA);
+    return out;
+}
+
+void put_lines(cv::Mat& canvas, cv::Point origin, const std::vector<std::string>& lines) {
+    for (std::size_t i = 0; i < lines.size(); ++i)
+        cv::putText(canvas, lines[i], origin + cv::Point(6, 18 + 18 * static_cast<int>(i)), cv::FONT_HERSHEY_SIMPLEX,
+                    0.5, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
+}
+
+cv::Mat display(const cv::Mat& linear, double peak) {
+    cv::Mat encoded = encoded_for_ssim(linear, peak), bgr, out;
+    cv::cvtColor(encoded, bgr, cv::COLOR_RGB2BGR);
+    bgr.convertTo(out, CV_8U);
+    return out;
+}
+}  // namespace
+
+cv::Mat comparison_sheet(const cv::Mat& photo, const std::vector<cv::Mat>& renders, const cv::Mat& mask,
+                         const std::vector<ComparisonMetrics>& metrics) {
+    CV_Assert(renders.size() == metrics.size());
+    const cv::Mat m = effective_mask(photo, photo, mask);
+    const double peak = peak_in_mask(photo, m);
+    const int tile_h = std::max(1, static_cast<int>(std::lround(double(kTileWidth) * photo.rows / photo.cols)));
+    const cv::Size tile(kTileWidth, tile_h);
+    const int columns = static_cast<int>(renders.size()) + 1;
+    cv::Mat sheet(2 * (tile_h + kLabelHeight), columns * kTileWidth, CV_8UC3, cv::Scalar(32, 32, 32));
+
+    // Difference magnitudes |photo - k render| / peak, on one scale for all renderings.
+    std::vector<cv::Mat> differences;
+    double largest = 0.0;
+    for (std::size_t i = 0; i < renders.size(); ++i) {
+        cv::Mat diff = photo - renders[i] * metrics[i].exposure_scale, sq, magnitude;
+        cv::multiply(diff, diff, sq);
+        cv::transform(sq, magnitude, cv::Matx13f(1.0f, 1.0f, 1.0f));
+        cv::sqrt(magnitude, magnitude);
+        magnitude /= peak;
+        magnitude.setTo(0.0, m == 0);
+        double mx = 0.0;
+        cv::minMaxLoc(magnitude, nullptr, &mx);
+        largest = std::max(largest, mx);
+        differences.push_back(magnitude);
+    }
+    const double scale = largest > 0.0 ? 255.0 / largest : 0.0;
+
+    const auto place = [&](const cv::Mat& bgr8, int column, int row, const std::vector<std::string>& lines) {
+        const int x = column * kTileWidth, y = row * (tile_h + kLabelHeight);
+        put_lines(sheet, {x, y}, lines);
+        fit_tile(bgr8, tile).copyTo(sheet(cv::Rect(x, y + kLabelHeight, kTileWidth, tile_h)));
+    };
+    place(display(photo, peak), 0, 0, {"photo", fmt::format("peak {:.4g} (shown as white)", peak)});
+    put_lines(sheet, {0, tile_h + kLabelHeight},
+              {"difference |photo - k render| / peak", fmt::format("false colour (inferno) 0 .. {:.3g}", largest)});
+    for (std::size_t i = 0; i < renders.size(); ++i) {
+        const int column = static_cast<int>(i) + 1;
+        const auto& mi = metrics[i];
+        place(display(renders[i] * mi.exposure_scale, peak), column, 0,
+              {mi.label, fmt::format("k {:.4g}  RMSE {:.4g}  PSNR {:.2f} dB", mi.exposure_scale, mi.rmse, mi.psnr_db),
+               fmt::format("SSIM {:.4f}  mean dE00 {:.3f}", mi.ssim, mi.mean_ciede2000)});
+        cv::Mat diff8, coloured;
+        differences[i].convertTo(diff8, CV_8U, scale);
+        cv::applyColorMap(diff8, coloured, cv::COLORMAP_INFERNO);
+        place(coloured, column, 1, {mi.label + " difference"});
+    }
+    return sheet;
+}
+
+}  // namespace surfscatter::photo

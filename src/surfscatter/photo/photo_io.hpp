@@ -1,0 +1,38 @@
+#pragma once
+// Reading and writing photographs for the pipeline. In memory a photograph is a CV_32FC3 cv::Mat with channels in
+// R, G, B order (not OpenCV's usual B, G, R) holding LINEAR values, 1 = the file's full scale.
+//
+// Files: JPEG and 8/16-bit PNG/TIFF through OpenCV (sRGB-encoded unless told otherwise), OpenEXR through
+// surfscatter::io (linear). Camera RAW is not read: convert it to a linear 16-bit TIFF first (docs/PHOTO.md).
+#include <filesystem>
+#include <optional>
+
+#include <opencv2/core.hpp>
+
+namespace surfscatter::photo {
+
+// How the integer samples of a PNG/JPEG/TIFF are encoded. EXR is always linear.
+enum class Encoding { Srgb, Linear };
+
+struct Photo {
+    cv::Mat rgb;                             // CV_32FC3, linear, R G B
+    int bit_depth = 8;                       // of the file's samples (32 for EXR)
+    std::optional<double> focal_length_mm;   // EXIF FocalLength (JPEG/TIFF with EXIF), when present
+};
+
+// Throws Error naming the file when it is missing, unreadable, of an unknown type or not 1/3/4 channels.
+Photo read_photo(const std::filesystem::path& path, Encoding encoding = Encoding::Srgb);
+
+// Writes by extension: .png (16-bit), .tif/.tiff (16-bit), .jpg/.jpeg (8-bit), all sRGB-encoded unless
+// `encoding` is Linear; .exr as linear 32-bit float. Values outside [0, 1] are clipped for integer formats.
+void write_photo(const std::filesystem::path& path, const cv::Mat& linear_rgb, Encoding encoding = Encoding::Srgb);
+
+// 8-bit B, G, R sRGB-encoded view of a linear image (for detectors and for sheets), clipped to [0, 1].
+cv::Mat to_display_bgr8(const cv::Mat& linear_rgb);
+// 8-bit grey (sRGB-encoded luma) for marker and board detection.
+cv::Mat to_gray8(const cv::Mat& linear_rgb);
+
+// EXIF FocalLength (tag 0x920A) in millimetres from a JPEG's APP1 segment or a TIFF's Exif IFD, if present.
+std::optional<double> read_exif_focal_length(const std::filesystem::path& path);
+
+}  // namespace surfscatter::photo
