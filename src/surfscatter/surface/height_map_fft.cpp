@@ -1,0 +1,61 @@
+#include "surfscatter/surface/height_map_fft.hpp"
+
+#include <mutex>
+
+#include <fftw3.h>
+
+#include "surfscatter/core/error.hpp"
+
+namespace surfscatter::surface {
+
+namespace {
+// FFTW's planner is not thread-safe (fftw_execute is): plan creation and destruction are serialised.
+std::mutex& planner_mutex() {
+    static std::mutex mutex;
+    return mutex;
+}
+
+class Plan {
+public:
+    explicit Plan(fftw_plan plan) : plan_(plan) {
+        if (!plan_) fail("FFTW could not create a plan");
+    }
+    ~Plan() {
+        std::lock_guard lock(planner_mutex());
+        fftw_destroy_plan(plan_);
+    }
+    Plan(const Plan&) = delete;
+    Plan& operator=(const Plan&) = delete;
+    void execute() const { fftw_execute(plan_); }
+
+private:
+    fftw_plan plan_;
+};
+}  // namespace
+
+std::vector<std::complex<double>> forward_fft_2d(const std::vector<double>& data, std::size_t nx, std::size_t ny) {
+    std::vector<double> input = data;  // FFTW wants a mutable input array
+    std::vector<std::complex<double>> spectrum(ny * (nx / 2 + 1));
+    fftw_plan raw;
+    {
+        std::lock_guard lock(planner_mutex());
+        raw = fftw_plan_dft_r2c_2d(static_cast<int>(ny), static_cast<int>(nx), input.data(),
+                                   reinterpret_cast<fftw_complex*>(spectrum.data()), FFTW_ESTIMATE);
+    }
+    Plan(raw).execute();
+    return spectrum;
+}
+
+std::vector<double> inverse_fft_2d(std::vector<std::complex<double>> spectrum, std::size_t nx, std::size_t ny) {
+    std::vector<double> output(nx * ny);
+    fftw_plan raw;
+    {
+        std::lock_guard lock(planner_mutex());
+        raw = fftw_plan_dft_c2r_2d(static_cast<int>(ny), static_cast<int>(nx),
+                                   reinterpret_cast<fftw_complex*>(spectrum.data()), output.data(), FFTW_ESTIMATE);
+    }
+    Plan(raw).execute();
+    return output;
+}
+
+}  // namespace surfscatter::surface

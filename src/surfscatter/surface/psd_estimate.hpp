@@ -1,0 +1,64 @@
+#pragma once
+// PSD estimation from a height map, in the angular convention of THEORY.md section 0:
+// C(r) = integral of P(zeta) e^{i zeta.r} d2zeta, so the integral of P over the zeta-plane is the height variance.
+//
+// Estimator (windowed periodogram): remove the least-squares plane, multiply by a separable window
+// w(ix, iy) = w_x(ix) w_y(iy), FFT, and
+//     P(zeta_k) = |FFT(w h)_k|^2 dx dy / (4 pi^2 sum_n w_n^2),
+// which is the cyclic periodogram |H|^2 dx dy / N divided by 4 pi^2 (P_angular = PSD_f / 4 pi^2) with the window's
+// power loss sum w^2 / N undone. Parseval then holds exactly: sum_k P(zeta_k) dzeta_x dzeta_y =
+// sum_n (w_n h_n)^2 / sum_n w_n^2, the window-weighted variance of the tilt-removed map (windowed_variance()).
+// The Hann window w(i) = sin^2(pi (i + 1/2) / n) tapers the map to zero at its borders, so that the jump between
+// opposite edges of a non-periodic measurement does not leak power (as zeta^-2) into the high frequencies; its
+// price is a main lobe of +-2 bins, so the lowest few radial bins are smeared (kc_fit.hpp skips them).
+#include <cstddef>
+#include <vector>
+
+#include "surfscatter/surface/height_map.hpp"
+
+namespace surfscatter::surface {
+
+enum class Window { rectangular, hann };
+
+// Half-plane 2-D PSD (kx = 0 .. nx/2, all ky), values in um^4 (um^2 of height variance per (rad/um)^2).
+struct Psd2d {
+    std::size_t nx = 0, ny = 0;   // grid of the map it came from
+    double dzeta_x = 0.0;         // 2 pi / (nx dx), rad/um
+    double dzeta_y = 0.0;         // 2 pi / (ny dy)
+    std::vector<double> values;   // [ky * (nx/2 + 1) + kx]
+
+    std::size_t half_nx() const { return nx / 2 + 1; }
+    double zeta_x(std::size_t kx) const;  // rad/um, >= 0
+    double zeta_y(std::size_t ky) const;  // rad/um, signed
+    // How many points of the full zeta-plane the half-plane entry at column kx stands for (1 or 2).
+    double multiplicity(std::size_t kx) const;
+    // sum over the full plane of P dzeta_x dzeta_y (um^2).
+    double integral() const;
+};
+
+// Removes the tilt, applies the window, and returns the periodogram described above.
+Psd2d estimate_psd(const HeightMap& map, Window window = Window::hann);
+
+// sum (w h)^2 / sum w^2 of the tilt-removed map: what Psd2d::integral() of estimate_psd() equals.
+double windowed_variance(const HeightMap& map, Window window = Window::hann);
+
+// Window value for sample i of n.
+double window_value(Window window, std::size_t i, std::size_t n);
+
+// Azimuthal average over rings of width dzeta = max(dzeta_x, dzeta_y) centred on multiples of dzeta, from the
+// first ring (the DC ring 0 is dropped: it is what tilt removal and the window set) up to the smaller Nyquist
+// frequency pi / max(dx, dy), so that every ring is complete.
+struct RadialPsd {
+    double dzeta = 0.0;           // ring width, rad/um
+    std::vector<double> zeta;     // mean |zeta| of the ring's points, rad/um
+    std::vector<double> psd;      // mean P over the ring, um^4
+    std::vector<double> count;    // number of full-plane points in the ring
+};
+
+RadialPsd radial_average(const Psd2d& psd);
+
+// rms slope sqrt(sum |zeta|^2 P dzeta^2) from a 2-D PSD (THEORY.md 4.1): the slope of the band-limited map,
+// i.e. up to the Nyquist frequency of the grid.
+double rms_slope_from_psd(const Psd2d& psd);
+
+}  // namespace surfscatter::surface

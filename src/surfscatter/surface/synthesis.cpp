@@ -1,0 +1,59 @@
+#include "surfscatter/surface/synthesis.hpp"
+
+#include <cmath>
+#include <complex>
+#include <random>
+#include <vector>
+
+#include "surfscatter/core/error.hpp"
+#include "surfscatter/math/vec.hpp"
+#include "surfscatter/surface/height_map_fft.hpp"
+
+namespace surfscatter::surface {
+
+namespace {
+// n standard normal deviates from mt19937_64 by the Box-Muller transform (two per pair of uniforms).
+std::vector<double> white_noise(std::size_t n, std::uint64_t seed) {
+    std::mt19937_64 engine(seed);
+    auto uniform_open = [&engine] {  // in (0, 1): 53 random bits, centred in their cell
+        return (static_cast<double>(engine() >> 11) + 0.5) * 0x1.0p-53;
+    };
+    std::vector<double> noise(n);
+    for (std::size_t i = 0; i < n; i += 2) {
+        const double radius = std::sqrt(-2.0 * std::log(uniform_open()));
+        const double angle = 2.0 * kPi * uniform_open();
+        noise[i] = radius * std::cos(angle);
+        if (i + 1 < n) noise[i + 1] = radius * std::sin(angle);
+    }
+    return noise;
+}
+}  // namespace
+
+HeightMap synthesize_surface(const std::function<double(double)>& psd, const SynthesisGrid& grid,
+                             std::uint64_t seed) {
+    if (grid.nx < kMinHeightMapSize || grid.ny < kMinHeightMapSize)
+        fail("surface size must be at least {} samples per side, got {} x {}", kMinHeightMapSize, grid.nx, grid.ny);
+    if (!(std::isfinite(grid.spacing_um) && grid.spacing_um > 0.0))
+        fail("pixel spacing must be a positive number of um, got {}", grid.spacing_um);
+    const std::size_t nx = grid.nx, ny = grid.ny, total = nx * ny;
+    auto spectrum = forward_fft_2d(white_noise(total, seed), nx, ny);
+
+    const double dzx = 2.0 * kPi / (static_cast<double>(nx) * grid.spacing_um);
+    const double dzy = 2.0 * kPi / (static_cast<double>(ny) * grid.spacing_um);
+    // A_k / N with A_k = sqrt(N P dzeta^2): the 1/N of the inverse transform folded in.
+    const double scale = std::sqrt(dzx * dzy / static_cast<double>(total));
+    const std::size_t half = nx / 2 + 1;
+    for (std::size_t ky = 0; ky < ny; ++ky) {
+        const double zy = static_cast<double>(signed_frequency_index(ky, ny)) * dzy;
+        for (std::size_t kx = 0; kx < half; ++kx) {
+            const double zx = static_cast<double>(kx) * dzx;
+            const double p = (kx == 0 && ky == 0) ? 0.0 : psd(std::hypot(zx, zy));
+            if (!(std::isfinite(p) && p >= 0.0)) fail("PSD for synthesis is {} at zeta = {} rad/um", p, std::hypot(zx, zy));
+            spectrum[ky * half + kx] *= scale * std::sqrt(p);
+        }
+    }
+    return HeightMap(nx, ny, grid.spacing_um, grid.spacing_um, inverse_fft_2d(std::move(spectrum), nx, ny),
+                     "synthesized surface");
+}
+
+}  // namespace surfscatter::surface

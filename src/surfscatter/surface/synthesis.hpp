@@ -1,0 +1,32 @@
+#pragma once
+// Random Gaussian surfaces with a prescribed isotropic PSD, by spectral synthesis.
+//
+// White Gaussian noise n (unit variance per pixel) is transformed, multiplied by A_k = sqrt(N P(|zeta_k|) dzeta_x
+// dzeta_y) and transformed back with 1/N. The result is a periodic, stationary Gaussian field on the nx x ny grid
+// whose covariance is the lattice Fourier series of P: Var h = sum_k P(zeta_k) dzeta^2 over the grid's frequencies
+// up to Nyquist (the k = 0 term is set to zero, so the map has zero mean). This is slightly less than the model's
+// sigma_h^2: the PSD mass beyond Nyquist and inside the first frequency cell is absent (for KC with L = 10 dx and
+// gamma = 2, 3 % of the variance lies beyond Nyquist). Filtering white noise (instead of drawing complex
+// amplitudes) gives the Hermitian symmetry and the Nyquist rows for free.
+//
+// Deterministic: the noise comes from std::mt19937_64 (its output sequence is fixed by the C++ standard) through
+// a Box-Muller transform written here, because std::normal_distribution's algorithm is implementation-defined;
+// so the same seed gives a bit-identical surface with any standard library.
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+
+#include "surfscatter/surface/height_map.hpp"
+
+namespace surfscatter::surface {
+
+struct SynthesisGrid {
+    std::size_t nx = 0, ny = 0;  // samples, >= kMinHeightMapSize
+    double spacing_um = 0.0;     // pixel spacing (square pixels)
+};
+
+// psd(zeta) in um^4 for zeta in rad/um (angular convention, integral over the zeta-plane = variance).
+HeightMap synthesize_surface(const std::function<double(double)>& psd, const SynthesisGrid& grid,
+                             std::uint64_t seed);
+
+}  // namespace surfscatter::surface

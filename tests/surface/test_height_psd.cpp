@@ -1,0 +1,109 @@
+// Windowed PSD estimation: Parseval, a pure sinusoid, the normalisation convention.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "surfscatter/math/vec.hpp"
+#include "surfscatter/surface/height_map_fft.hpp"
+#include "surfscatter/surface/psd_estimate.hpp"
+
+namespace ss = surfscatter::surface;
+using surfscatter::kPi;
+
+namespace {
+ss::HeightMap noisy_map(std::size_t nx, std::size_t ny, double dx, double dy, unsigned seed) {
+    std::mt19937 engine(seed);
+    std::normal_distribution<double> normal(0.0, 0.3);
+    std::vector<double> h(nx * ny);
+    for (std::size_t i = 0; i < h.size(); ++i)
+        h[i] = normal(engine) + 0.05 * static_cast<double>(i % nx) + 0.5 * std::sin(0.3 * static_cast<double>(i / nx));
+    return ss::HeightMap(nx, ny, dx, dy, std::move(h));
+}
+
+// A cos(2 pi (mx ix / nx + my iy / ny) + phase): integer numbers of periods along both axes.
+ss::HeightMap sinusoid_map(std::size_t nx, std::size_t ny, double dx, double dy, int mx, int my, double amplitude) {
+    std::vector<double> h(nx * ny);
+    for (std::size_t iy = 0; iy < ny; ++iy)
+        for (std::size_t ix = 0; ix < nx; ++ix)
+            h[iy * nx + ix] = amplitude * std::cos(2.0 * kPi * (mx * static_cast<double>(ix) / static_cast<double>(nx) +
+                                                                my * static_cast<double>(iy) / static_cast<double>(ny)) +
+                                                   0.7);
+    return ss::HeightMap(nx, ny, dx, dy, std::move(h));
+}
+}  // namespace
+
+TEST(HeightPsd, ParsevalHoldsForBothWindows) {
+    for (auto [nx, ny] : {std::pair<std::size_t, std::size_t>{48, 40}, {33, 51}}) {
+        const ss::HeightMap map = noisy_map(nx, ny, 0.2, 0.35, 7);
+        for (ss::Window window : {ss::Window::rectangular, ss::Window::hann}) {
+            const ss::Psd2d psd = ss::estimate_psd(map, window);
+            EXPECT_NEAR(psd.integral() / ss::windowed_variance(map, window), 1.0, 1e-12);
+        }
+        // Rectangular window: the windowed variance is the plain variance of the tilt-removed map.
+        const double rms = ss::rms_height(map);
+        EXPECT_NEAR(ss::windowed_variance(map, ss::Window::rectangular) / (rms * rms), 1.0, 1e-12);
+    }
+}
+
+TEST(HeightPsd, HannWindowPowerIsThreeEighths) {
+    for (std::size_t n : {8u, 31u, 64u}) {
+        double sum = 0.0;
+        for (std::size_t i = 0; i < n; ++i) sum += std::pow(ss::window_value(ss::Window::hann, i, n), 2);
+        EXPECT_NEAR(sum / static_cast<double>(n), 3.0 / 8.0, 1e-14);
+    }
+}
+
+TEST(HeightPsd, SinusoidEnergyLandsAtItsFrequency) {
+    const std::size_t nx = 64, ny = 48;
+    const double dx = 0.5, dy = 0.25, amplitude = 0.2;
+    const int mx = 5, my = -3;
+    const ss::HeightMap map = sinusoid_map(nx, ny, dx, dy, mx, my, amplitude);
+    // Rectangular window: the whole variance A^2/2 sits in the one half-plane bin (5, -3) (plus its mirror).
+    const ss::Psd2d flat = ss::estimate_psd(map, ss::Window::rectangular);
+    const std::size_t peak = (ny - 3) * flat.half_nx() + 5;
+    EXPECT_NEAR(flat.values[peak] * flat.multiplicity(5) * flat.dzeta_x * flat.dzeta_y, amplitude * amplitude / 2,
+                1e-14);
+    EXPECT_NEAR(flat.zeta_x(5), 2 * kPi * 5 / (nx * dx), 1e-14);
+    EXPECT_NEAR(flat.zeta_y(ny - 3), -2 * kPi * 3 / (ny * dy), 1e-14);
+    for (std::size_t i = 0; i < flat.values.size(); ++i)
+        if (i != peak) {
+            EXPECT_LT(flat.values[i], 1e-25 * flat.values[peak]);
+        }
+
+    // Hann window: the energy is spread over the +-2-bin main lobe around the same frequency, nowhere else.
+    const ss::Psd2d hann = ss::estimate_psd(map, ss::Window::hann);
+    double near = 0.0, total = 0.0;
+    for (std::size_t ky = 0; ky < ny; ++ky)
+        for (std::size_t kx = 0; kx < hann.half_nx(); ++kx) {
+            const double e = hann.multiplicity(kx) * hann.values[ky * hann.half_nx() + kx];
+            total += e;
+            if (std::abs(static_cast<long>(kx) - 5) <= 2 && std::abs(ss::signed_frequency_index(ky, ny) + 3) <= 2)
+                near += e;
+        }
+    EXPECT_GT(near / total, 0.999);
+
+    // Radial average: the ring holding |zeta| of the sinusoid has the largest mean PSD.
+    const ss::RadialPsd radial = ss::radial_average(hann);
+    const double zeta = std::hypot(flat.zeta_x(5), flat.zeta_y(ny - 3));
+    std::size_t best = 0;
+    for (std::size_t i = 1; i < radial.psd.size(); ++i)
+        if (radial.psd[i] > radial.psd[best]) best = i;
+    EXPECT_NEAR(radial.zeta[best], zeta, 0.5 * radial.dzeta);
+}
+
+TEST(HeightPsd, RadialRingsCoverPlaneUpToNyquist) {
+    const ss::HeightMap map = noisy_map(64, 64, 0.1, 0.1, 3);
+    const ss::RadialPsd radial = ss::radial_average(ss::estimate_psd(map));
+    ASSERT_EQ(radial.zeta.size(), 31u);  // rings 1 .. 31 (ring 32 would cross pi/dx)
+    EXPECT_NEAR(radial.dzeta, 2 * kPi / 6.4, 1e-12);
+    for (std::size_t i = 0; i < radial.zeta.size(); ++i) {
+        EXPECT_NEAR(radial.zeta[i], static_cast<double>(i + 1) * radial.dzeta, 0.5 * radial.dzeta);
+        EXPECT_GT(radial.count[i], 0.0);
+        EXPECT_TRUE(std::isfinite(radial.psd[i]));
+    }
+    // Rings 1 .. 20 hold the lattice points with 0 < |k| < 20.5: about pi 20.5^2 - 1 of them (Gauss circle).
+    double points = 0.0;
+    for (std::size_t i = 0; i < 20; ++i) points += radial.count[i];
+    EXPECT_NEAR(points / (kPi * 20.5 * 20.5 - 1.0), 1.0, 0.02);
+}

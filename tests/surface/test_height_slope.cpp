@@ -1,0 +1,70 @@
+// rms slope from finite differences, raw and Gaussian smoothed.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "surfscatter/core/error.hpp"
+#include "surfscatter/math/vec.hpp"
+#include "surfscatter/surface/height_map_slope.hpp"
+
+namespace ss = surfscatter::surface;
+using surfscatter::kPi;
+
+namespace {
+// A cos(qx (x + dx/2)) cos(qy (y + dy/2)) with qx = pi mx / (nx dx): even about every edge (a DCT-II basis
+// function), so that mirror extension continues it smoothly; even mx, my also make it orthogonal to any plane.
+ss::HeightMap cosine_map(std::size_t n, double dx, int mx, int my, double amplitude, double tilt = 0.0) {
+    std::vector<double> h(n * n);
+    for (std::size_t iy = 0; iy < n; ++iy)
+        for (std::size_t ix = 0; ix < n; ++ix) {
+            const double u = (static_cast<double>(ix) + 0.5) / static_cast<double>(n);
+            const double v = (static_cast<double>(iy) + 0.5) / static_cast<double>(n);
+            h[iy * n + ix] = amplitude * std::cos(kPi * mx * u) * std::cos(kPi * my * v) +
+                             tilt * dx * (static_cast<double>(ix) - 2.0 * static_cast<double>(iy));
+        }
+    return ss::HeightMap(n, n, dx, dx, std::move(h));
+}
+}  // namespace
+
+TEST(HeightSlope, PlaneHasZeroSlope) {
+    const ss::HeightMap plane = cosine_map(32, 0.5, 2, 2, 0.0, 0.3);
+    EXPECT_NEAR(ss::rms_slope(plane), 0.0, 1e-13);
+    EXPECT_NEAR(ss::rms_slope_smoothed(plane, 1.0), 0.0, 1e-13);
+}
+
+TEST(HeightSlope, SinusoidMatchesAnalyticSlope) {
+    const std::size_t n = 256;
+    const double dx = 0.1, amplitude = 0.05;
+    const int mx = 10, my = 6;  // 51 and 85 samples per period
+    const double qx = kPi * mx / (n * dx), qy = kPi * my / (n * dx);
+    // <|grad h|^2> = A^2 (qx^2 + qy^2) / 4 for a product of cosines.
+    const double analytic = 0.5 * amplitude * std::hypot(qx, qy);
+    // Central differences see sin(q dx)/dx instead of q: -(q dx)^2/6 = -0.25 % (x) and -0.09 % (y) here.
+    const double central = 0.5 * amplitude * std::hypot(std::sin(qx * dx), std::sin(qy * dx)) / dx;
+    const double measured = ss::rms_slope(cosine_map(n, dx, mx, my, amplitude, 0.2));
+    EXPECT_NEAR(measured / central, 1.0, 2e-4);  // the rest: the border rows/columns left out of the mean
+    EXPECT_NEAR(measured / analytic, 1.0, 3e-3);
+    EXPECT_LT(measured, analytic);
+}
+
+TEST(HeightSlope, GaussianSmoothingScalesSinusoidByItsTransferFunction) {
+    const std::size_t n = 128;
+    const double dx = 0.2, amplitude = 0.1, s = 0.5;
+    const int mx = 10, my = 6;
+    const double qx = kPi * mx / (n * dx), qy = kPi * my / (n * dx);
+    const double transfer = std::exp(-0.5 * s * s * (qx * qx + qy * qy));
+    const ss::HeightMap map = cosine_map(n, dx, mx, my, amplitude, -0.1);
+    const ss::HeightMap flat = ss::remove_tilt(map);
+    const ss::HeightMap smoothed = ss::gaussian_smooth(map, s);
+    for (std::size_t i = 0; i < map.size(); ++i)
+        ASSERT_NEAR(smoothed.heights()[i], transfer * flat.heights()[i], 1e-13);
+    EXPECT_NEAR(ss::rms_slope_smoothed(map, s) / ss::rms_slope(map), transfer, 1e-12);
+    EXPECT_LT(transfer, 0.8);  // the test would notice a missing filter
+}
+
+TEST(HeightSlope, RejectsNonPositiveSmoothingScale) {
+    const ss::HeightMap map = cosine_map(16, 1.0, 2, 2, 1.0);
+    EXPECT_THROW(ss::gaussian_smooth(map, 0.0), surfscatter::Error);
+    EXPECT_THROW(ss::rms_slope_smoothed(map, -1.0), surfscatter::Error);
+    EXPECT_THROW(ss::rms_slope_smoothed(map, std::nan("")), surfscatter::Error);
+}
