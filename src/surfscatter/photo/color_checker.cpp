@@ -78,7 +78,6 @@ cv::Matx33d chart_homography(const std::array<cv::Point2f, 4>& corners) {
     return cv::Matx33d(cv::getPerspectiveTransform(chart, image));
 }
 
-double mean_gray(const Vec3d& v) { return (v[0] + v[1] + v[2]) / 3.0; }
 }  // namespace
 
 std::array<Vec3d, kChartPatches> sample_patches(const cv::Mat& linear_rgb, const std::array<cv::Point2f, 4>& corners) {
@@ -109,39 +108,31 @@ std::array<Vec3d, kChartPatches> sample_patches(const cv::Mat& linear_rgb, const
     return means;
 }
 
-std::array<cv::Point2f, 4> detect_chart(const cv::Mat& linear_rgb) {
+std::array<cv::Point2f, 4> detect_chart(const cv::Mat& linear_rgb, const ChartReference& reference) {
     const cv::Mat bgr8 = to_display_bgr8(linear_rgb);
     auto detector = cv::mcc::CCheckerDetector::create();
     if (!detector->process(bgr8, cv::mcc::MCC24, 1)) fail("no ColorChecker chart found in the image");
-    const auto checker = detector->getBestColorChecker();
-    const std::vector<cv::Point2f> box = checker->getBox();
+    const std::vector<cv::Point2f> box = detector->getBestColorChecker()->getBox();
     if (box.size() != 4) fail("no ColorChecker chart found in the image");
 
-    // mcc's box starts at an arbitrary corner: take the corner order whose sampled patches agree best with the
-    // per-patch means mcc measured itself (in its own chart order, column 1 of charts_rgb, 8-bit code values).
-    const cv::Mat profile = checker->getChartsRGB();
-    std::array<double, kChartPatches> mcc_gray{};
-    for (int i = 0; i < kChartPatches; ++i)
-        mcc_gray[static_cast<std::size_t>(i)] =
-            (profile.at<float>(3 * i, 1) + profile.at<float>(3 * i + 1, 1) + profile.at<float>(3 * i + 2, 1)) / 3.0;
+    // mcc's box starts at an arbitrary corner (and its per-patch profile is not usable in OpenCV 4.6): take the
+    // corner order, of the eight a quadrilateral admits, whose patches a 3x3 matrix maps best onto the reference.
     std::array<cv::Point2f, 4> best{};
     double best_error = std::numeric_limits<double>::infinity();
     for (int direction : {1, -1})
         for (int start = 0; start < 4; ++start) {
             std::array<cv::Point2f, 4> corners;
-            for (int k = 0; k < 4; ++k) corners[static_cast<std::size_t>(k)] = box[static_cast<std::size_t>((start + direction * k + 4) % 4)];
+            for (int k = 0; k < 4; ++k)
+                corners[static_cast<std::size_t>(k)] = box[static_cast<std::size_t>((start + direction * k + 4) % 4)];
             std::array<Vec3d, kChartPatches> patches;
             try {
                 patches = sample_patches(linear_rgb, corners);
+                const cv::Matx33d ccm = fit_ccm(patches, reference, CcmConstraint::None);
+                const double error = chart_delta_e(apply_ccm(patches, ccm), reference).mean;
+                if (error < best_error) best_error = error, best = corners;
             } catch (const Error&) {
-                continue;
+                continue;  // this corner order puts patches outside the image or is degenerate
             }
-            double error = 0.0;
-            for (std::size_t i = 0; i < patches.size(); ++i) {
-                const double d = 255.0 * srgb_encode(mean_gray(patches[i])) - mcc_gray[i];
-                error += d * d;
-            }
-            if (error < best_error) best_error = error, best = corners;
         }
     if (!std::isfinite(best_error)) fail("ColorChecker found but its patches lie outside the image");
     return best;
@@ -189,6 +180,15 @@ DeltaEStats chart_delta_e(const std::array<Vec3d, kChartPatches>& rgb, const Cha
         stats.max = std::max(stats.max, de);
     }
     return stats;
+}
+
+std::array<Vec3d, kChartPatches> apply_ccm(const std::array<Vec3d, kChartPatches>& rgb, const cv::Matx33d& ccm) {
+    std::array<Vec3d, kChartPatches> out;
+    for (std::size_t i = 0; i < rgb.size(); ++i) {
+        const cv::Vec3d v = ccm * cv::Vec3d(rgb[i][0], rgb[i][1], rgb[i][2]);
+        out[i] = {v[0], v[1], v[2]};
+    }
+    return out;
 }
 
 cv::Mat apply_ccm(const cv::Mat& linear_rgb, const cv::Matx33d& ccm) {

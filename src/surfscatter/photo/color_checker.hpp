@@ -35,8 +35,9 @@ struct ChartReference {
 ChartReference read_chart_reference(const std::filesystem::path& path = kArgyllColorChecker);
 
 // Finds the chart with OpenCV mcc (CCheckerDetector, MCC24) in a linear RGB photo and returns the patch-grid
-// corners in the order above. Throws Error if no chart is found.
-std::array<cv::Point2f, 4> detect_chart(const cv::Mat& linear_rgb);
+// corners in the order above (the orientation is the one that fits `reference` best). Throws Error if no chart is
+// found.
+std::array<cv::Point2f, 4> detect_chart(const cv::Mat& linear_rgb, const ChartReference& reference);
 
 // Mean linear RGB of the central half (in each direction) of every patch, through the homography of the corners.
 std::array<Vec3d, kChartPatches> sample_patches(const cv::Mat& linear_rgb, const std::array<cv::Point2f, 4>& corners);
@@ -59,7 +60,8 @@ struct DeltaEStats {
 };
 DeltaEStats chart_delta_e(const std::array<Vec3d, kChartPatches>& rgb, const ChartReference& reference);
 
-// corrected(x, y) = M * image(x, y) on a CV_32FC3 linear RGB image.
+// corrected = M * rgb for chart patches and for every pixel of a CV_32FC3 linear RGB image.
+std::array<Vec3d, kChartPatches> apply_ccm(const std::array<Vec3d, kChartPatches>& rgb, const cv::Matx33d& ccm);
 cv::Mat apply_ccm(const cv::Mat& linear_rgb, const cv::Matx33d& ccm);
 
 }  // namespace surfscatter::photo
