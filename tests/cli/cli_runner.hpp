@@ -1,0 +1,65 @@
+#pragma once
+// Runs the surfscatter CLI (SURFSCATTER_CLI) in a shell and captures stdout, stderr and the exit status, for the
+// end-to-end tests in tests/cli/. Arguments are single-quoted so paths with spaces work.
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <initializer_list>
+#include <sstream>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+namespace surfscatter::test {
+
+struct CliResult {
+    int exit_code = -1;
+    std::string out;  // stdout
+    std::string err;  // stderr
+
+    // Lines of stdout without the trailing newline.
+    std::vector<std::string> out_lines() const {
+        std::vector<std::string> lines;
+        std::istringstream in(out);
+        for (std::string line; std::getline(in, line);) lines.push_back(line);
+        return lines;
+    }
+};
+
+inline std::string shell_quote(const std::string& arg) {
+    std::string quoted = "'";
+    for (char c : arg) quoted += (c == '\'') ? std::string("'\\''") : std::string(1, c);
+    return quoted + "'";
+}
+
+inline std::string read_whole_file(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+// run_cli({"ior", "--material", "Au", "--wavelength", "550"})
+inline CliResult run_cli(std::initializer_list<std::string> args) {
+    char out_path[] = "/tmp/surfscatter_cli_out_XXXXXX";
+    char err_path[] = "/tmp/surfscatter_cli_err_XXXXXX";
+    const int out_fd = mkstemp(out_path);
+    const int err_fd = mkstemp(err_path);
+    if (out_fd >= 0) close(out_fd);
+    if (err_fd >= 0) close(err_fd);
+    std::string command = shell_quote(SURFSCATTER_CLI);
+    for (const auto& a : args) command += " " + shell_quote(a);
+    command += " >" + shell_quote(out_path) + " 2>" + shell_quote(err_path) + " </dev/null";
+    CliResult result;
+    const int status = std::system(command.c_str());
+    if (status != -1 && WIFEXITED(status)) result.exit_code = WEXITSTATUS(status);
+    result.out = read_whole_file(out_path);
+    result.err = read_whole_file(err_path);
+    std::remove(out_path);
+    std::remove(err_path);
+    return result;
+}
+
+}  // namespace surfscatter::test
