@@ -63,6 +63,7 @@ Psd2d estimate_psd(const HeightMap& map, Window window) {
     const std::vector<double> weighted = windowed_heights(map, window, window_power);
     const auto spectrum = forward_fft_2d(weighted, map.nx(), map.ny());
     Psd2d psd;
+    psd.window = window;
     psd.nx = map.nx();
     psd.ny = map.ny();
     psd.dzeta_x = 2.0 * kPi / map.width();
@@ -75,6 +76,7 @@ Psd2d estimate_psd(const HeightMap& map, Window window) {
 
 RadialPsd radial_average(const Psd2d& psd) {
     RadialPsd radial;
+    radial.window = psd.window;
     radial.dzeta = std::max(psd.dzeta_x, psd.dzeta_y);
     const double nyquist = std::min(psd.dzeta_x * static_cast<double>(psd.nx / 2),
                                     psd.dzeta_y * static_cast<double>(psd.ny / 2));
@@ -97,6 +99,11 @@ RadialPsd radial_average(const Psd2d& psd) {
         radial.count.push_back(count[ring]);
     }
     return radial;
+}
+
+double effective_samples(Window window, double count) {
+    const double correlation = window == Window::hann ? 35.0 / 18.0 : 1.0;
+    return count / (2.0 * correlation);
 }
 
 double rms_slope_from_psd(const Psd2d& psd) {

@@ -29,8 +29,7 @@ std::vector<double> white_noise(std::size_t n, std::uint64_t seed) {
 }
 }  // namespace
 
-HeightMap synthesize_surface(const std::function<double(double)>& psd, const SynthesisGrid& grid,
-                             std::uint64_t seed) {
+HeightMap synthesize_surface(const RadialStatistics& statistics, const SynthesisGrid& grid, std::uint64_t seed) {
     if (grid.nx < kMinHeightMapSize || grid.ny < kMinHeightMapSize)
         fail("surface size must be at least {} samples per side, got {} x {}", kMinHeightMapSize, grid.nx, grid.ny);
     if (!(std::isfinite(grid.spacing_um) && grid.spacing_um > 0.0))
@@ -47,8 +46,7 @@ HeightMap synthesize_surface(const std::function<double(double)>& psd, const Syn
         const double zy = static_cast<double>(signed_frequency_index(ky, ny)) * dzy;
         for (std::size_t kx = 0; kx < half; ++kx) {
             const double zx = static_cast<double>(kx) * dzx;
-            const double p = (kx == 0 && ky == 0) ? 0.0 : psd(std::hypot(zx, zy));
-            if (!(std::isfinite(p) && p >= 0.0)) fail("PSD for synthesis is {} at zeta = {} rad/um", p, std::hypot(zx, zy));
+            const double p = (kx == 0 && ky == 0) ? 0.0 : statistics.psd(std::hypot(zx, zy));
             spectrum[ky * half + kx] *= scale * std::sqrt(p);
         }
     }

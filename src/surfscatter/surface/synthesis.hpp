@@ -14,9 +14,9 @@
 // so the same seed gives a bit-identical surface with any standard library.
 #include <cstddef>
 #include <cstdint>
-#include <functional>
 
 #include "surfscatter/surface/height_map.hpp"
+#include "surfscatter/surface/radial_statistics.hpp"
 
 namespace surfscatter::surface {
 
@@ -25,8 +25,7 @@ struct SynthesisGrid {
     double spacing_um = 0.0;     // pixel spacing (square pixels)
 };
 
-// psd(zeta) in um^4 for zeta in rad/um (angular convention, integral over the zeta-plane = variance).
-HeightMap synthesize_surface(const std::function<double(double)>& psd, const SynthesisGrid& grid,
-                             std::uint64_t seed);
+// A surface with the PSD statistics.psd(zeta) (um^4, zeta in rad/um, e.g. KCorrelation or GaussianAcv).
+HeightMap synthesize_surface(const RadialStatistics& statistics, const SynthesisGrid& grid, std::uint64_t seed);
 
 }  // namespace surfscatter::surface

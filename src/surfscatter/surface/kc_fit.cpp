@@ -1,0 +1,151 @@
+#include "surfscatter/surface/kc_fit.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <Eigen/Core>
+#include <unsupported/Eigen/NonLinearOptimization>
+#include <unsupported/Eigen/NumericalDiff>
+
+#include "surfscatter/core/error.hpp"
+#include "surfscatter/math/vec.hpp"
+#include "surfscatter/surface/height_map_slope.hpp"
+#include "surfscatter/surface/radial_statistics.hpp"
+
+namespace surfscatter::surface {
+
+namespace {
+
+// Search box in (ln L, ln(gamma - 1)); a fit that ends on its boundary did not resolve the parameter.
+constexpr double kGammaMinusOneMin = 0.02, kGammaMinusOneMax = 14.0;
+
+struct RingData {
+    std::vector<double> zeta, log_psd, weight, log_bias;
+};
+
+// Residuals sqrt(nu_i) (ln Pbar_i - b_i - ln sigma^2 - ln P-hat_i) with ln sigma^2 profiled out; returns ln sigma^2.
+double profiled_residuals(const RingData& data, double log_l, double log_gm1, Eigen::VectorXd& residuals) {
+    const std::size_t n = data.zeta.size();
+    residuals.resize(static_cast<Eigen::Index>(n));
+    const KCorrelation model(1.0, std::exp(log_l), 1.0 + std::exp(log_gm1));
+    double sum_w = 0.0, sum_wd = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const double d = data.log_psd[i] - data.log_bias[i] - std::log(model.psd_unit(data.zeta[i]));
+        residuals[static_cast<Eigen::Index>(i)] = d;
+        sum_w += data.weight[i];
+        sum_wd += data.weight[i] * d;
+    }
+    const double log_variance = sum_wd / sum_w;
+    for (std::size_t i = 0; i < n; ++i) {
+        const auto k = static_cast<Eigen::Index>(i);
+        residuals[k] = std::sqrt(data.weight[i]) * (residuals[k] - log_variance);
+    }
+    return log_variance;
+}
+
+struct LogResidualFunctor {
+    using Scalar = double;
+    enum { InputsAtCompileTime = Eigen::Dynamic, ValuesAtCompileTime = Eigen::Dynamic };
+    using InputType = Eigen::VectorXd;
+    using ValueType = Eigen::VectorXd;
+    using JacobianType = Eigen::MatrixXd;
+
+    const RingData* data;
+    int inputs() const { return 2; }
+    int values() const { return static_cast<int>(data->zeta.size()); }
+    int operator()(const Eigen::VectorXd& x, Eigen::VectorXd& residuals) const {
+        profiled_residuals(*data, x[0], x[1], residuals);
+        return 0;
+    }
+};
+
+}  // namespace
+
+double nyquist_zeta(const HeightMap& map) { return kPi / std::max(map.spacing_x(), map.spacing_y()); }
+
+KcFit fit_kc(const RadialPsd& radial, double nyquist, const KcFitOptions& options) {
+    if (options.min_ring < 1) fail("KC fit: the first ring must be >= 1, got {}", options.min_ring);
+    if (!(options.max_nyquist_fraction > 0.0 && options.max_nyquist_fraction <= 1.0))
+        fail("KC fit: the upper band limit must be a fraction of Nyquist in (0, 1], got {}",
+             options.max_nyquist_fraction);
+    KcFit fit;
+    fit.zeta_min = (static_cast<double>(options.min_ring) - 0.5) * radial.dzeta;
+    fit.zeta_max = options.max_nyquist_fraction * nyquist;
+
+    RingData data;
+    for (std::size_t i = 0; i < radial.zeta.size(); ++i) {
+        if (radial.zeta[i] < fit.zeta_min || radial.zeta[i] > fit.zeta_max) continue;
+        if (!(radial.psd[i] > 0.0)) continue;  // exactly zero power (e.g. a synthetic band edge) has no log
+        const double nu = effective_samples(radial.window, radial.count[i]);
+        data.zeta.push_back(radial.zeta[i]);
+        data.log_psd.push_back(std::log(radial.psd[i]));
+        data.weight.push_back(nu);
+        data.log_bias.push_back(-1.0 / (2.0 * nu) - 1.0 / (12.0 * nu * nu));
+    }
+    fit.rings = data.zeta.size();
+    if (fit.rings < 8)
+        fail("KC fit: only {} PSD rings between {} and {} rad/um; the map is too small to fit (need >= 8)",
+             fit.rings, fit.zeta_min, fit.zeta_max);
+
+    // The knee 1/L must be resolvable: search L from 1/(4 zeta_max) to 4/zeta_min.
+    const double log_l_min = std::log(0.25 / fit.zeta_max), log_l_max = std::log(4.0 / fit.zeta_min);
+    const double log_g_min = std::log(kGammaMinusOneMin), log_g_max = std::log(kGammaMinusOneMax);
+    Eigen::VectorXd residuals;
+    Eigen::VectorXd best(2);
+    double best_cost = std::numeric_limits<double>::infinity();
+    constexpr int kGridL = 48, kGridGamma = 32;
+    for (int a = 0; a <= kGridL; ++a)
+        for (int b = 0; b <= kGridGamma; ++b) {
+            const double log_l = log_l_min + (log_l_max - log_l_min) * a / kGridL;
+            const double log_g = log_g_min + (log_g_max - log_g_min) * b / kGridGamma;
+            profiled_residuals(data, log_l, log_g, residuals);
+            const double cost = residuals.squaredNorm();
+            if (cost < best_cost) {
+                best_cost = cost;
+                best << log_l, log_g;
+            }
+        }
+
+    LogResidualFunctor functor{&data};
+    Eigen::NumericalDiff<LogResidualFunctor, Eigen::Central> numerical(functor);
+    Eigen::LevenbergMarquardt<Eigen::NumericalDiff<LogResidualFunctor, Eigen::Central>> solver(numerical);
+    solver.parameters.xtol = 1e-12;
+    solver.parameters.ftol = 1e-14;
+    solver.parameters.maxfev = 2000;
+    solver.minimize(best);
+
+    const double log_variance = profiled_residuals(data, best[0], best[1], residuals);
+    auto on_bound = [](double v, double lo, double hi) { return v < lo + 0.02 * (hi - lo) || v > hi - 0.02 * (hi - lo); };
+    const double l = std::exp(best[0]), gamma = 1.0 + std::exp(best[1]);
+    if (!std::isfinite(log_variance) || !std::isfinite(l) || !std::isfinite(gamma) ||
+        on_bound(best[0], log_l_min, log_l_max))
+        fail("KC fit: the correlation length is not resolved by the PSD between {} and {} rad/um (fit ran to "
+             "L_c = {} um); the map must span many correlation lengths, each several pixels long",
+             fit.zeta_min, fit.zeta_max, l);
+    if (on_bound(best[1], log_g_min, log_g_max))
+        fail("KC fit: gamma is not resolved by the PSD between {} and {} rad/um (fit ran to gamma = {})",
+             fit.zeta_min, fit.zeta_max, gamma);
+
+    double sum_w = 0.0;
+    for (double w : data.weight) sum_w += w;
+    fit.sigma_h_um = std::exp(0.5 * log_variance);
+    fit.corr_length_um = l;
+    fit.gamma = gamma;
+    fit.log_residual_rms = std::sqrt(residuals.squaredNorm() / sum_w);
+    return fit;
+}
+
+SurfaceFit fit_surface(const HeightMap& map, const KcFitOptions& options) {
+    SurfaceFit result;
+    const Psd2d psd = estimate_psd(map, Window::hann);
+    result.radial = radial_average(psd);
+    result.kc = fit_kc(result.radial, nyquist_zeta(map), options);
+    result.rms_height_um = rms_height(map);
+    result.rms_slope = rms_slope(map);
+    result.rms_slope_from_psd = rms_slope_from_psd(psd);
+    return result;
+}
+
+}  // namespace surfscatter::surface

@@ -1,0 +1,62 @@
+#pragma once
+// Fitting a K-correlation (KC) PSD, P(zeta) = sigma_h^2 P-hat(zeta; L_c, gamma) (THEORY.md 2.1), to a measured
+// height map.
+//
+// Estimator: weighted least squares in log space over the radial rings of the Hann-windowed periodogram
+// (psd_estimate.hpp) inside a band [zeta_min, zeta_max]:
+//     minimise sum_i nu_i (ln Pbar_i - b_i - ln sigma^2 - ln P-hat(zeta_i; L, gamma))^2,
+// nu_i = effective independent samples of ring i (the inverse variance of ln Pbar_i), b_i = psi(nu_i) - ln nu_i
+// ~ -1/(2 nu_i) - 1/(12 nu_i^2) the mean of the log of a mean of nu exponentials (without it the low rings, where
+// nu ~ 5-20, would read 2-10 % low and bias L_c). ln sigma^2 enters linearly and is solved in closed form for
+// each (L, gamma); (ln L, ln(gamma - 1)) are found by a coarse grid search and then Eigen's Levenberg-Marquardt.
+//
+// Why the fitted sigma_h and not the map's rms: a patch of side W contains no wavelength longer than W, and tilt
+// removal takes out part of the longest ones, and nothing beyond the Nyquist frequency is sampled; the rms of
+// the patch is the PSD integrated over the sampled band only. The fit instead estimates the parameter of the
+// process, which extrapolates the model below zeta_min and above zeta_max. Both are reported (SurfaceFit).
+//
+// The band: rings below min_ring are smeared by the Hann window's main lobe (+-2 rings) and by tilt removal;
+// above max_nyquist_fraction * pi/dx real instruments lose resolution and aliasing folds the tail back (for a
+// zeta^-(gamma+1) tail, at half Nyquist the folded power is ~3^-(gamma+1), 1 % for gamma = 3). The data resolve
+// L_c only if the knee zeta ~ 1/L_c lies well inside the band: a fit that runs to the bounds of the search is
+// reported as an Error rather than returned.
+#include <cstddef>
+
+#include "surfscatter/surface/height_map.hpp"
+#include "surfscatter/surface/psd_estimate.hpp"
+
+namespace surfscatter::surface {
+
+struct KcFitOptions {
+    std::size_t min_ring = 4;           // first ring used (1 = the lowest non-zero frequency)
+    double max_nyquist_fraction = 0.5;  // zeta_max = this * pi / max(dx, dy), in (0, 1]
+};
+
+struct KcFit {
+    double sigma_h_um = 0.0;
+    double corr_length_um = 0.0;
+    double gamma = 0.0;
+    double zeta_min = 0.0, zeta_max = 0.0;  // band used, rad/um
+    std::size_t rings = 0;                  // rings in the band
+    double log_residual_rms = 0.0;          // weighted rms of ln(data / model) (statistical floor ~ 1/sqrt(nu))
+};
+
+// Fits KC to the rings of `radial` (see above). Throws Error if the band holds fewer than 8 rings or if the
+// correlation length or gamma is not resolved.
+KcFit fit_kc(const RadialPsd& radial, double nyquist_zeta, const KcFitOptions& options = {});
+
+// Everything `surfscatter surface fit` reports about a height map.
+struct SurfaceFit {
+    KcFit kc;
+    double rms_height_um = 0.0;        // rms of the tilt-removed map (band-limited, see above)
+    double rms_slope = 0.0;            // central differences on the tilt-removed map (height_map_slope.hpp)
+    double rms_slope_from_psd = 0.0;   // sqrt(sum zeta^2 P dzeta^2) of the windowed periodogram
+    RadialPsd radial;                  // the data that were fitted
+};
+
+SurfaceFit fit_surface(const HeightMap& map, const KcFitOptions& options = {});
+
+// Nyquist angular frequency pi / max(dx, dy) of a map (rad/um).
+double nyquist_zeta(const HeightMap& map);
+
+}  // namespace surfscatter::surface
