@@ -16,7 +16,7 @@ std::string join(const std::vector<std::string>& names) {
 }
 }  // namespace
 
-CalibrationResult calibrate_camera(const std::vector<CalibrationInput>& views, const BoardSpec& board) {
+CalibrationResult calibrate_camera(const std::vector<CalibrationInput>& views, const BoardSpec& board, bool fit_k3) {
     validate(board);
     if (views.empty()) fail("calibration needs at least {} images, got none", kMinimumCalibrationViews);
     CalibrationResult result;
@@ -44,7 +44,7 @@ CalibrationResult calibrate_camera(const std::vector<CalibrationInput>& views, c
     std::vector<cv::Mat> rvecs, tvecs;
     const double rms = cv::calibrateCamera(
         object_points, image_points, size, matrix, distortion, rvecs, tvecs, std_intrinsics, std_extrinsics, per_view,
-        0, cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 100, 1e-12));
+        fit_k3 ? 0 : cv::CALIB_FIX_K3, cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 100, 1e-12));
     if (!std::isfinite(rms) || cv::checkRange(matrix) == false || cv::checkRange(distortion) == false)
         fail("calibration did not converge (views: {})", join(result.used));
 

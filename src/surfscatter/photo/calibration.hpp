@@ -25,8 +25,10 @@ struct CalibrationResult {
 };
 
 // Detects the board in every view, rejects the views without it and calibrates intrinsics and distortion
-// (k1 k2 p1 p2 k3). Throws Error if the views differ in size or fewer than kMinimumCalibrationViews remain
+// k1 k2 p1 p2, and k3 if `fit_k3` (off by default: unless the views reach well into the image corners, k3 is
+// poorly constrained and extrapolates badly there; on for wide-angle lenses). Throws Error if the views differ in size or fewer than kMinimumCalibrationViews remain
 // (naming the rejected ones).
-CalibrationResult calibrate_camera(const std::vector<CalibrationInput>& views, const BoardSpec& board);
+CalibrationResult calibrate_camera(const std::vector<CalibrationInput>& views, const BoardSpec& board,
+                                   bool fit_k3 = false);
 
 }  // namespace surfscatter::photo
