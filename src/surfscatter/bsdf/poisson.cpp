@@ -1,0 +1,78 @@
+#include "surfscatter/bsdf/poisson.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace surfscatter::bsdf {
+
+double poisson_pmf(int m, double mean) {
+    if (m < 0) return 0.0;
+    if (mean <= 0) return m == 0 ? 1.0 : 0.0;
+    return std::exp(m * std::log(mean) - mean - std::lgamma(m + 1.0));
+}
+
+PoissonWindow::PoissonWindow(double mean, int first, int last) : first_(std::max(0, first)) {
+    last = std::max(last, first_);
+    weights_.resize(last - first_ + 1);
+    for (int m = first_; m <= last; ++m) weights_[m - first_] = poisson_pmf(m, mean);
+    kept_mass_ = 0;
+    for (double w : weights_) kept_mass_ += w;
+    cdf_.resize(weights_.size());
+    double running = 0;
+    for (std::size_t i = 0; i < weights_.size(); ++i) {
+        // An all-underflow window (mean far from it) degenerates to its nearest order.
+        weights_[i] = kept_mass_ > 0 ? weights_[i] / kept_mass_
+                                     : (mean < first_ ? (i == 0 ? 1.0 : 0.0) : (i + 1 == weights_.size() ? 1.0 : 0.0));
+        running += weights_[i];
+        cdf_[i] = running;
+    }
+    cdf_.back() = 1.0;
+}
+
+PoissonWindow PoissonWindow::within_sigmas(double mean, double sigmas, int first_min) {
+    const double sd = std::sqrt(mean);
+    const int first = std::max(first_min, int(std::ceil(mean - sigmas * sd)));
+    const int last = std::max(first, int(std::floor(mean + sigmas * sd)));
+    return PoissonWindow(mean, first, last);
+}
+
+PoissonWindow PoissonWindow::by_mass(double mean, double epsilon, int first_min) {
+    // Grow from the mode both ways, always adding the larger neighbour, until the remaining mass < epsilon.
+    const double above_min = [&] {
+        double below = 0;
+        for (int m = 0; m < first_min; ++m) below += poisson_pmf(m, mean);
+        return 1.0 - below;
+    }();
+    int lo = std::max(first_min, int(std::floor(mean))), hi = lo;
+    double mass = poisson_pmf(lo, mean);
+    const int cap = int(mean + 40.0 * std::sqrt(mean) + 60.0);
+    while (mass < above_min * (1.0 - epsilon) && hi < cap) {
+        const double down = lo > first_min ? poisson_pmf(lo - 1, mean) : -1.0;
+        const double up = poisson_pmf(hi + 1, mean);
+        if (down > up) {
+            --lo;
+            mass += down;
+        } else {
+            ++hi;
+            mass += up;
+        }
+    }
+    return PoissonWindow(mean, lo, hi);
+}
+
+double PoissonWindow::weight(int m) const {
+    if (m < first_ || m > last()) return 0.0;
+    return weights_[m - first_];
+}
+
+int PoissonWindow::sample(double u) const {
+    const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), u);
+    return first_ + int(std::min<std::ptrdiff_t>(it - cdf_.begin(), std::ptrdiff_t(cdf_.size()) - 1));
+}
+
+int sample_poisson(double mean, double u) {
+    const double span = 12.0 * std::sqrt(mean) + 12.0;
+    return PoissonWindow(mean, int(std::floor(mean - span)), int(std::ceil(mean + span))).sample(u);
+}
+
+}  // namespace surfscatter::bsdf

@@ -1,0 +1,107 @@
+#include "surfscatter/bsdf/scatter_core.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "surfscatter/bsdf/poisson.hpp"
+
+namespace surfscatter::bsdf {
+
+// --- exact ---------------------------------------------------------------------------------------------------
+
+ExactScatterCore::ExactScatterCore(const surface::RadialStatistics& stats)
+    : table_(surface::ScatterLobeTable::get(stats)) {}
+
+double ExactScatterCore::density(double g, double zeta) const {
+    return table_->eval(std::min(g, surface::ScatterLobeTable::kMaxG), zeta);
+}
+
+double ExactScatterCore::sample_radius(double g_star, double zeta_max, double, double u) const {
+    g_star = std::min(g_star, surface::ScatterLobeTable::kMaxG);
+    const double f_max = table_->radial_cdf(g_star, zeta_max);
+    return std::min(zeta_max, table_->inverse_radial_cdf(g_star, u * f_max));
+}
+
+double ExactScatterCore::sample_density(double g_star, double zeta_max, double zeta) const {
+    g_star = std::min(g_star, surface::ScatterLobeTable::kMaxG);
+    if (zeta > zeta_max) return 0.0;
+    const double f_max = table_->radial_cdf(g_star, zeta_max);
+    return f_max > 0 ? table_->shape(g_star, zeta) / f_max : 0.0;
+}
+
+// --- refit ---------------------------------------------------------------------------------------------------
+
+RefitScatterCore::RefitScatterCore(const surface::KCorrelation& kc, double exponent_x, Truncation truncation,
+                                   double epsilon)
+    : length_(kc.correlation_length()), gamma_(kc.gamma()), exponent_x_(exponent_x), truncation_(truncation),
+      epsilon_(epsilon) {}
+
+double RefitScatterCore::order_length(int m) const { return length_ * std::pow(double(m), -exponent_x_); }
+
+PoissonWindow RefitScatterCore::window(double g) const {
+    return truncation_ == Truncation::three_sigma ? PoissonWindow::within_sigmas(g, 3.0, 1)
+                                                  : PoissonWindow::by_mass(g, epsilon_, 1);
+}
+
+double RefitScatterCore::density(double g, double zeta) const {
+    if (!(g > 0)) return 0.0;
+    const PoissonWindow w = window(g);
+    double sum = 0;
+    for (int m = w.first(); m <= w.last(); ++m)
+        sum += poisson_pmf(m, g) * surface::KCorrelation(1.0, order_length(m), gamma_).psd_unit(zeta);
+    return sum;
+}
+
+double RefitScatterCore::sample_radius(double g_star, double zeta_max, double u_order, double u) const {
+    const int m = window(g_star).sample(u_order);
+    const surface::KCorrelation kc(1.0, order_length(m), gamma_);
+    return std::min(zeta_max, kc.inverse_radial_cdf(u * kc.radial_cdf(zeta_max)));
+}
+
+double RefitScatterCore::sample_density(double g_star, double zeta_max, double zeta) const {
+    if (zeta > zeta_max) return 0.0;
+    const PoissonWindow w = window(g_star);
+    double sum = 0;
+    for (int m = w.first(); m <= w.last(); ++m) {
+        const surface::KCorrelation kc(1.0, order_length(m), gamma_);
+        sum += w.weight(m) * kc.psd_unit(zeta) / kc.radial_cdf(zeta_max);
+    }
+    return sum;
+}
+
+// --- first order ---------------------------------------------------------------------------------------------
+
+FirstOrderCore::FirstOrderCore(std::shared_ptr<const surface::RadialStatistics> stats, SsaForm form)
+    : stats_(std::move(stats)), form_(form) {}
+
+double FirstOrderCore::density(double g, double zeta) const {
+    const double weight = form_ == SsaForm::strict ? g : -std::expm1(-g);
+    return weight * stats_->psd_unit(zeta);
+}
+
+double FirstOrderCore::sample_radius(double, double zeta_max, double, double u) const {
+    return std::min(zeta_max, inverse_radial_cdf(*stats_, u * stats_->radial_cdf(zeta_max)));
+}
+
+double FirstOrderCore::sample_density(double, double zeta_max, double zeta) const {
+    if (zeta > zeta_max) return 0.0;
+    const double f_max = stats_->radial_cdf(zeta_max);
+    return f_max > 0 ? stats_->psd_unit(zeta) / f_max : 0.0;
+}
+
+double inverse_radial_cdf(const surface::RadialStatistics& stats, double u) {
+    if (const auto* kc = dynamic_cast<const surface::KCorrelation*>(&stats)) return kc->inverse_radial_cdf(u);
+    if (const auto* gauss = dynamic_cast<const surface::GaussianAcv*>(&stats)) return gauss->inverse_radial_cdf(u);
+    if (u <= 0) return 0.0;
+    // Bisection in log(zeta) after bracketing around the correlation length.
+    double lo = 1e-12 / stats.correlation_length(), hi = 1.0 / stats.correlation_length();
+    while (stats.radial_cdf(hi) < u && hi < 1e12) hi *= 4.0;
+    if (stats.radial_cdf(lo) >= u) return lo;
+    for (int i = 0; i < 200 && hi / lo > 1.0 + 1e-13; ++i) {
+        const double mid = std::sqrt(lo * hi);
+        (stats.radial_cdf(mid) < u ? lo : hi) = mid;
+    }
+    return std::sqrt(lo * hi);
+}
+
+}  // namespace surfscatter::bsdf

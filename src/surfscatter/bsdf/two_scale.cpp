@@ -1,0 +1,69 @@
+#include "surfscatter/bsdf/two_scale.hpp"
+
+#include <cmath>
+
+#include "surfscatter/bsdf/microfacet.hpp"
+#include "surfscatter/bsdf/wedge_sampling.hpp"
+
+namespace surfscatter::bsdf {
+
+TwoScaleBsdf::TwoScaleBsdf(material::Conductor material, MacroNdf ndf, double macro_alpha,
+                           std::unique_ptr<GhsBsdf> micro)
+    : material_(std::move(material)), ndf_(ndf), alpha_(macro_alpha), micro_(std::move(micro)) {}
+
+double TwoScaleBsdf::macro_eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
+    const Vec3 sum = wi + wo;
+    if (sum.length_squared() == 0) return 0.0;
+    const Vec3 h = normalize(sum);
+    const double cos_d = std::clamp(dot(wi, h), 0.0, 1.0);
+    const double a = 2.0 * wavenumber(lambda_nm) * micro_->sigma(cos_d, lambda_nm) * cos_d;
+    const double specular = std::exp(-a * a) * material_.reflectance(cos_d, lambda_nm);
+    const double dg = ndf_ == MacroNdf::ggx ? GgxDistribution(alpha_).D(h) * GgxDistribution(alpha_).G2(wi, wo)
+                                            : BeckmannDistribution(alpha_).D(h) * BeckmannDistribution(alpha_).G2(wi, wo);
+    return specular * dg / (4.0 * wi.z * wo.z);
+}
+
+double TwoScaleBsdf::macro_pdf(const Vec3& wi, const Vec3& wo) const {
+    const Vec3 sum = wi + wo;
+    if (sum.length_squared() == 0) return 0.0;
+    const Vec3 h = normalize(sum);
+    const double ph = ndf_ == MacroNdf::ggx ? GgxDistribution(alpha_).visible_density(wi, h)
+                                            : BeckmannDistribution(alpha_).projected_density(h);
+    return ph * reflection_jacobian(wo, h);
+}
+
+double TwoScaleBsdf::eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
+    if (wi.z <= 0 || wo.z <= 0) return 0.0;
+    const double f = macro_eval(wi, wo, lambda_nm) + micro_->eval(wi, wo, lambda_nm);
+    return std::isfinite(f) ? f : 0.0;
+}
+
+double TwoScaleBsdf::pdf(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
+    if (wi.z <= 0 || wo.z <= 0) return 0.0;
+    const double p = micro_->delta_probability(wi, lambda_nm) * macro_pdf(wi, wo) + micro_->pdf(wi, wo, lambda_nm);
+    return std::isfinite(p) ? p : 0.0;
+}
+
+std::optional<BsdfSample> TwoScaleBsdf::sample(const Vec3& wi, double lambda_nm, double u_lobe, Vec2 u) const {
+    if (wi.z <= 0) return std::nullopt;
+    Vec3 wo;
+    if (u_lobe < micro_->delta_probability(wi, lambda_nm)) {
+        const Vec3 h = ndf_ == MacroNdf::ggx ? GgxDistribution(alpha_).sample_visible(wi, u)
+                                             : BeckmannDistribution(alpha_).sample_projected(u);
+        wo = reflect(wi, h);
+    } else {
+        const auto s = micro_->sample(wi, lambda_nm, u_lobe, u);  // u_lobe above the delta probability: scatter
+        if (!s) return std::nullopt;
+        wo = s->wo;
+    }
+    if (wo.z <= 0) return std::nullopt;
+    BsdfSample out;
+    out.wo = wo;
+    out.pdf = pdf(wi, wo, lambda_nm);
+    if (!(out.pdf > 0) || !std::isfinite(out.pdf)) return std::nullopt;
+    out.weight = eval(wi, wo, lambda_nm) * wo.z / out.pdf;
+    if (!std::isfinite(out.weight)) return std::nullopt;
+    return out;
+}
+
+}  // namespace surfscatter::bsdf

@@ -1,0 +1,46 @@
+#pragma once
+// Two-scale model with the structure of Holzschuch & Pacanowski 2017 (THEORY 3):
+//   f_r = A_s(theta_d) F(theta_d) D(h) G2(i, o) / (4 cos theta_i cos theta_o)      macro (microfacet) part
+//       + f_GHS,micro(i, o)                                                        micro (diffraction) part
+// where the PSD is split at zeta_c = k_ref / N (psd_split.hpp, sharp low-pass): D is a GGX or Beckmann NDF with
+// alpha = rms slope of the low-pass part, f_GHS,micro the full GHS scattered lobe (exact S_g, K renormalised) of
+// the high-pass part, and A_s(theta_d) = exp(-(2 k sigma_rel,micro cos theta_d)^2) the fraction of light the micro
+// roughness leaves specular at the facet level (HP17's A_s). The micro GHS's coherent delta is what the macro
+// facets spread out, so there is no delta left.
+// Approximations (documented in docs/MODELS.md): the micro lobe is NOT convolved with the macro NDF (HP17's "Dirac"
+// case); the split uses the reference wavelength 550 nm for every query so that the macro NDF and micro statistics
+// are wavelength-independent (the micro lobe itself is evaluated at the query wavelength).
+// Sampling: the macro lobe with probability e^{-g0,micro} (the micro GHS's delta probability), else the micro GHS
+// sampler; the pdf is the exact mixture.
+#include <memory>
+
+#include "surfscatter/bsdf/ghs.hpp"
+#include "surfscatter/bsdf/model_options.hpp"
+
+namespace surfscatter::bsdf {
+
+class TwoScaleBsdf final : public Bsdf {
+public:
+    TwoScaleBsdf(material::Conductor material, MacroNdf ndf, double macro_alpha, std::unique_ptr<GhsBsdf> micro);
+
+    double eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const override;
+    std::optional<BsdfSample> sample(const Vec3& wi, double lambda_nm, double u_lobe, Vec2 u) const override;
+    double pdf(const Vec3& wi, const Vec3& wo, double lambda_nm) const override;
+    std::string name() const override { return "two_scale"; }
+
+    double macro_alpha() const { return alpha_; }
+
+private:
+    double macro_eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const;
+    double macro_pdf(const Vec3& wi, const Vec3& wo) const;  // density of the macro sampler alone
+
+    material::Conductor material_;
+    MacroNdf ndf_;
+    double alpha_;
+    std::unique_ptr<GhsBsdf> micro_;
+};
+
+// Reference wavelength of the macro/micro split (nm).
+inline constexpr double kTwoScaleReferenceWavelength = 550.0;
+
+}  // namespace surfscatter::bsdf
