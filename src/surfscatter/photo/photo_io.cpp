@@ -102,6 +102,12 @@ private:
 
 }  // namespace
 
+Encoding encoding_by_name(const std::string& name) {
+    if (name == "srgb") return Encoding::Srgb;
+    if (name == "linear") return Encoding::Linear;
+    fail("unknown sample encoding '{}' (expected srgb or linear)", name);
+}
+
 std::optional<double> read_exif_focal_length(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) return std::nullopt;

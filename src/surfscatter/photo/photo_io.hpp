@@ -6,6 +6,7 @@
 // surfscatter::io (linear). Camera RAW is not read: convert it to a linear 16-bit TIFF first (docs/PHOTO.md).
 #include <filesystem>
 #include <optional>
+#include <string>
 
 #include <opencv2/core.hpp>
 
@@ -13,6 +14,7 @@ namespace surfscatter::photo {
 
 // How the integer samples of a PNG/JPEG/TIFF are encoded. EXR is always linear.
 enum class Encoding { Srgb, Linear };
+Encoding encoding_by_name(const std::string& name);  // "srgb" | "linear"; throws Error otherwise
 
 struct Photo {
     cv::Mat rgb;                             // CV_32FC3, linear, R G B

@@ -1,0 +1,108 @@
+// surfscatter compare: a photograph against renderings on one exposure scale, with metrics and a sheet.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "command.hpp"
+#include "surfscatter/core/error.hpp"
+#include "surfscatter/photo/compare.hpp"
+#include "surfscatter/photo/photo_io.hpp"
+
+namespace surfscatter::cli {
+namespace {
+
+struct Options {
+    std::string photo;
+    std::vector<std::string> renders;
+    std::string mask;
+    std::vector<std::string> labels;
+    std::string encoding = "srgb";
+    std::string output;
+};
+
+cv::Mat read_mask(const std::string& path, cv::Size size) {
+    if (!std::filesystem::exists(path)) fail("mask '{}' does not exist", path);
+    cv::Mat mask = cv::imread(path, cv::IMREAD_GRAYSCALE);
+    if (mask.empty()) fail("mask '{}' could not be decoded", path);
+    if (mask.size() != size)
+        fail("mask '{}' is {}x{} pixels but the photo is {}x{}", path, mask.cols, mask.rows, size.width, size.height);
+    return mask;
+}
+
+void run(const Options& o) {
+    if (!o.labels.empty() && o.labels.size() != o.renders.size())
+        fail("--labels has {} entries for {} renderings", o.labels.size(), o.renders.size());
+    const auto encoding = photo::encoding_by_name(o.encoding);
+    const cv::Mat photo_rgb = photo::read_photo(o.photo, encoding).rgb;
+    const cv::Mat mask = o.mask.empty() ? cv::Mat() : read_mask(o.mask, photo_rgb.size());
+    std::vector<cv::Mat> renders;
+    std::vector<photo::ComparisonMetrics> metrics;
+    for (std::size_t i = 0; i < o.renders.size(); ++i) {
+        renders.push_back(photo::read_photo(o.renders[i], encoding).rgb);
+        const std::string label = o.labels.empty() ? std::filesystem::path(o.renders[i]).stem().string() : o.labels[i];
+        try {
+            metrics.push_back(photo::compare_to_photo(photo_rgb, renders.back(), mask, label));
+        } catch (const Error& e) {
+            fail("rendering '{}': {}", o.renders[i], e.what());
+        }
+    }
+    const cv::Mat sheet = photo::comparison_sheet(photo_rgb, renders, mask, metrics);
+    if (!cv::imwrite(o.output, sheet)) fail("output '{}' could not be written", o.output);
+
+    const std::filesystem::path stem = std::filesystem::path(o.output).replace_extension();
+    const std::string csv_path = stem.string() + ".csv", json_path = stem.string() + ".json";
+    const std::string header = "label,render,exposure_scale,rmse,psnr_db,ssim,mean_ciede2000";
+    std::ofstream csv(csv_path);
+    if (!csv) fail("output '{}' could not be written", csv_path);
+    csv << header << "\n";
+    std::printf("%s\n", header.c_str());
+    nlohmann::json j;
+    j["photo"] = o.photo;
+    j["mask"] = o.mask.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.mask);
+    j["renders"] = nlohmann::json::array();
+    for (std::size_t i = 0; i < metrics.size(); ++i) {
+        const auto& m = metrics[i];
+        const std::string row = m.label + "," + o.renders[i] + "," + format_number(m.exposure_scale) + "," +
+                                format_number(m.rmse) + "," + format_number(m.psnr_db) + "," + format_number(m.ssim) +
+                                "," + format_number(m.mean_ciede2000);
+        csv << row << "\n";
+        std::printf("%s\n", row.c_str());
+        j["renders"].push_back({{"label", m.label},
+                                {"file", o.renders[i]},
+                                {"exposure_scale", m.exposure_scale},
+                                {"rmse", m.rmse},
+                                {"psnr_db", m.psnr_db},
+                                {"ssim", m.ssim},
+                                {"mean_ciede2000", m.mean_ciede2000}});
+    }
+    std::ofstream json(json_path);
+    if (!json) fail("output '{}' could not be written", json_path);
+    json << j.dump(2) << "\n";
+    std::fprintf(stderr, "surfscatter: compare: %zu rendering(s) -> %s, %s, %s\n", metrics.size(), o.output.c_str(),
+                 csv_path.c_str(), json_path.c_str());
+}
+
+const Command command("compare", [](CLI::App& app) {
+    auto o = std::make_shared<Options>();
+    auto* sub = app.add_subcommand(
+        "compare",
+        "Compares a photograph with renderings: each rendering is scaled by the least-squares exposure factor on "
+        "the mask, then RMSE, PSNR, SSIM and mean CIEDE2000 inside the mask; writes a labelled sheet (PNG) with "
+        "false-colour differences and the metrics as <output>.csv and <output>.json (also printed as CSV).");
+    sub->add_option("photo", o->photo, "photograph (linear EXR or PNG/JPEG/TIFF), ideally colour-corrected")->required();
+    sub->add_option("renders", o->renders, "renderings of the same size")->required();
+    sub->add_option("--mask", o->mask, "8-bit image, non-zero = compared (default: everything)");
+    sub->add_option("--labels", o->labels, "one label per rendering, comma-separated")->delimiter(',');
+    sub->add_option("--input-encoding", o->encoding, "samples of PNG/JPEG/TIFF inputs: srgb or linear")
+        ->capture_default_str();
+    sub->add_option("-o,--output", o->output, "comparison sheet (.png)")->required();
+    sub->callback([o] { run(*o); });
+});
+
+}  // namespace
+}  // namespace surfscatter::cli
