@@ -1,0 +1,50 @@
+#include "surfscatter/render/camera.hpp"
+
+#include <cmath>
+
+#include "surfscatter/core/error.hpp"
+
+namespace surfscatter::render {
+
+Camera::Camera(const CameraSettings& settings, int width, int height)
+    : settings_(settings), width_(width), height_(height) {
+    if (!(settings.fov_degrees > 0 && settings.fov_degrees < 180)) fail("fov must be in (0, 180) degrees, got {}", settings.fov_degrees);
+    if (!(settings.near_clip > 0 && settings.far_clip > settings.near_clip))
+        fail("need 0 < near_clip < far_clip, got {} and {}", settings.near_clip, settings.far_clip);
+    const double t = std::tan(0.5 * settings.fov_degrees * kDegree);
+    const double w = width, h = height;
+    std::string axis = settings.fov_axis;
+    if (axis == "smaller") axis = width <= height ? "x" : "y";
+    if (axis == "larger") axis = width >= height ? "x" : "y";
+    if (axis == "x") {
+        tan_x_ = t;
+        tan_y_ = t * h / w;
+    } else if (axis == "y") {
+        tan_y_ = t;
+        tan_x_ = t * w / h;
+    } else if (axis == "diagonal") {
+        const double d = std::hypot(w, h);
+        tan_x_ = t * w / d;
+        tan_y_ = t * h / d;
+    } else {
+        fail("fov_axis must be x, y, diagonal, smaller or larger, got '{}'", settings.fov_axis);
+    }
+    origin_ = settings.to_world.point({0, 0, 0});
+}
+
+Ray Camera::generate_ray(double x, double y) const {
+    // Mitsuba 3: film position (u, v) is traced as if it were (u + offset_x, v + offset_y) of the centred frustum.
+    const double sx = 2.0 * (x / width_ + settings_.principal_point_offset_x) - 1.0;   // -1 left .. +1 right
+    const double sy = 2.0 * (y / height_ + settings_.principal_point_offset_y) - 1.0;  // -1 top .. +1 bottom
+    const Vec3 local(-sx * tan_x_, -sy * tan_y_, 1.0);
+    const double length = local.length();
+    Ray ray;
+    ray.origin = origin_;
+    ray.direction = normalize(settings_.to_world.vector(local / length));
+    // Clip planes are distances along the optical axis; along this ray they sit `length` times further.
+    ray.t_min = settings_.near_clip * length;
+    ray.t_max = settings_.far_clip * length;
+    return ray;
+}
+
+}  // namespace surfscatter::render

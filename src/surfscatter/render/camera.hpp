@@ -1,0 +1,42 @@
+#pragma once
+// Mitsuba's perspective sensor: local +z looks forward, +y is up, +x points to the image's left.
+#include <string>
+
+#include "surfscatter/render/transform.hpp"
+
+namespace surfscatter::render {
+
+struct Ray {
+    Vec3 origin;
+    Vec3 direction;  // unit length
+    double t_min = 0;
+    double t_max = 1e30;
+};
+
+struct CameraSettings {
+    Transform to_world;
+    double fov_degrees = 39.3077;
+    std::string fov_axis = "x";  // x, y, diagonal, smaller, larger
+    double near_clip = 0.01;
+    double far_clip = 10000;
+    // Fractions of the film width / height; the optical axis meets the film at u = 0.5 - offset_x (v likewise).
+    double principal_point_offset_x = 0;
+    double principal_point_offset_y = 0;
+};
+
+class Camera {
+public:
+    Camera() = default;
+    Camera(const CameraSettings& settings, int width, int height);
+    // Ray through film position (x, y) in pixels, (0, 0) the top-left corner of the image.
+    Ray generate_ray(double x, double y) const;
+    const CameraSettings& settings() const { return settings_; }
+
+private:
+    CameraSettings settings_;
+    int width_ = 1, height_ = 1;
+    double tan_x_ = 1, tan_y_ = 1;
+    Vec3 origin_;
+};
+
+}  // namespace surfscatter::render

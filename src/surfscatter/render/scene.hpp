@@ -1,0 +1,99 @@
+#pragma once
+// A loaded scene: shapes in an Embree 3 BVH, their materials and emitters, the camera, film, sampler and integrator
+// settings. Immutable after commit(); intersect() and occluded() may be called from many threads.
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "surfscatter/render/camera.hpp"
+#include "surfscatter/render/material.hpp"
+#include "surfscatter/render/mesh.hpp"
+
+namespace surfscatter::render {
+
+struct FilmSettings {
+    int width = 768;
+    int height = 576;
+    std::string filter = "gaussian";  // box (radius 1/2 pixel) or gaussian (stddev 0.5, radius 2 pixels)
+    double exposure = 0;              // stops: linear values are scaled by 2^exposure
+    std::string white_balance = "d65"; // "d65" (none), or a blackbody temperature in K such as "2700"
+};
+
+struct SamplerSettings {
+    int sample_count = 4;
+    std::uint64_t seed = 0;
+};
+
+struct IntegratorSettings {
+    int max_depth = -1;  // Mitsuba: -1 unbounded, 1 = emitters seen directly, 2 = direct lighting, ...
+    int rr_depth = 5;    // first depth at which Russian roulette may end a path
+    // Which strategies reach emitters: "mis" (both, combined), "bsdf" (BSDF sampling only), "emitter"
+    // (next-event estimation only, plus emitters seen through delta lobes). The last two exist to test the first.
+    std::string strategy = "mis";
+};
+
+struct Hit {
+    double t = 0;
+    Vec3 p;
+    Vec3 ng;  // geometric normal, unit, on the shape's outward side
+    Vec3 ns;  // shading normal (interpolated vertex normals or ng)
+    Vec2 uv;
+    int shape = -1;
+};
+
+struct EmitterSample {
+    Vec3 wi;            // unit direction from the shading point toward the emitter
+    double distance = 0;
+    SampledSpectrum radiance;  // incident radiance (area, environment) or intensity / distance^2 (point)
+    double pdf = 0;     // solid-angle density including the emitter choice; for point lights its choice probability
+    bool delta = false;
+};
+
+class Scene {
+public:
+    Scene();
+    ~Scene();
+    Scene(const Scene&) = delete;
+    Scene& operator=(const Scene&) = delete;
+
+    // `radiance` (may be null) makes the shape an area emitter on its front face.
+    void add_mesh(TriangleMesh mesh, MaterialPtr material, SpectrumPtr radiance);
+    void add_sphere(const Vec3& center, double radius, bool flip_normals, MaterialPtr material, SpectrumPtr radiance);
+    void add_point_light(const Vec3& position, SpectrumPtr intensity);
+    void set_environment(SpectrumPtr radiance);
+    void commit();
+
+    std::optional<Hit> intersect(const Ray& ray) const;
+    bool occluded(const Vec3& origin, const Vec3& direction, double t_max) const;
+
+    const Material* material(int shape) const;
+    // Radiance leaving shape `shape` toward -direction (0 if not an emitter or seen from its back).
+    SampledSpectrum emitted(const Hit& hit, const Vec3& direction, const SampledWavelengths& w) const;
+    // Solid-angle pdf that sample_emitter() produces a ray from `from` to `hit` (area emitters).
+    double emitter_pdf(const Vec3& from, const Hit& hit, const Vec3& direction) const;
+    bool has_environment() const { return environment_ != nullptr; }
+    SampledSpectrum environment(const SampledWavelengths& w) const;
+    double environment_pdf() const;
+    std::optional<EmitterSample> sample_emitter(const Vec3& p, double u_choice, Vec2 u, const SampledWavelengths& w) const;
+    std::size_t emitter_count() const;
+
+    // Offset origin for a ray leaving `hit` in `direction` (avoids re-hitting the surface).
+    static Vec3 offset_origin(const Hit& hit, const Vec3& direction);
+
+    CameraSettings camera;
+    FilmSettings film;
+    SamplerSettings sampler;
+    IntegratorSettings integrator;
+
+private:
+    struct Shape;
+    struct Emitter;
+    struct Embree;
+    std::vector<Shape> shapes_;
+    std::vector<Emitter> emitters_;
+    SpectrumPtr environment_;
+    std::unique_ptr<Embree> embree_;
+};
+
+}  // namespace surfscatter::render

@@ -1,0 +1,38 @@
+#pragma once
+// Spectra of the scene file: constant values, tabulated "lambda:value" lists, blackbodies and upsampled RGB.
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "surfscatter/spectrum/rgb_to_spectrum.hpp"
+#include "surfscatter/spectrum/wavelength_sampling.hpp"
+
+namespace surfscatter::render {
+
+using spectrum::SampledSpectrum;
+using spectrum::SampledWavelengths;
+
+class SpectrumSource {
+public:
+    virtual ~SpectrumSource() = default;
+    virtual double eval(double lambda_nm) const = 0;
+    SampledSpectrum eval(const SampledWavelengths& w) const {
+        SampledSpectrum s;
+        for (int i = 0; i < spectrum::kSpectrumSamples; ++i) s[i] = eval(w.lambda[static_cast<std::size_t>(i)]);
+        return s;
+    }
+};
+using SpectrumPtr = std::shared_ptr<const SpectrumSource>;
+
+SpectrumPtr make_constant_spectrum(double value);
+// Piecewise-linear through (lambda_nm, value) pairs (strictly increasing lambdas), constant beyond the ends.
+SpectrumPtr make_tabulated_spectrum(std::vector<double> lambda_nm, std::vector<double> values);
+// Planck's law at `temperature_k` (spectrum/blackbody.hpp units) times `scale`.
+SpectrumPtr make_blackbody_spectrum(double temperature_k, double scale);
+// A reflectance (bounded) from linear sRGB; channels above 1 are allowed and scale the bounded fit of rgb / max.
+SpectrumPtr make_rgb_reflectance(const std::array<double, 3>& linear_srgb);
+// An emission spectrum from linear sRGB: the upsampled colour times the D65 illuminant, normalised so that
+// rgb (1, 1, 1) has luminance Y = 1 (as Mitsuba's spectral variants do for RGB emitters).
+SpectrumPtr make_rgb_illuminant(const std::array<double, 3>& linear_srgb);
+
+}  // namespace surfscatter::render

@@ -1,0 +1,170 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+
+#include "render_test_util.hpp"
+#include "surfscatter/core/error.hpp"
+
+using namespace surfscatter;
+using namespace surfscatter::render;
+using namespace surfscatter::render::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+// The message of the Error that loading `xml` throws ("" if it loads).
+std::string load_error(const std::string& xml, const std::map<std::string, std::string>& defines = {}) {
+    try {
+        load_scene_from_string(xml, "scene.xml", defines);
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+// 1-based line of the first occurrence of `needle` in `text`.
+int line_of(const std::string& text, const std::string& needle) {
+    const auto pos = text.find(needle);
+    return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(pos), '\n'));
+}
+
+fs::path temp_dir() {
+    const fs::path dir = fs::temp_directory_path() / "surfscatter_test_xml";
+    fs::create_directories(dir);
+    return dir;
+}
+
+}  // namespace
+
+TEST(XmlLoader, LoadsSensorFilmSamplerIntegrator) {
+    const std::string xml = R"(<scene version="3.0.0">
+  <default name="spp" value="9"/>
+  <integrator type="path"><integer name="max_depth" value="4"/><integer name="rr_depth" value="3"/></integrator>
+  <sensor type="perspective">
+    <float name="fov" value="30"/><string name="fov_axis" value="y"/>
+    <float name="near_clip" value="0.1"/><float name="far_clip" value="50"/>
+    <float name="principal_point_offset_x" value="0.01"/>
+    <transform name="to_world"><lookat origin="1, 2, 3" target="0, 0, 0" up="0, 0, 1"/></transform>
+    <film type="hdrfilm"><integer name="width" value="40"/><integer name="height" value="30"/>
+      <rfilter type="gaussian"/></film>
+    <sampler type="independent"><integer name="sample_count" value="$spp"/><integer name="seed" value="5"/></sampler>
+  </sensor>
+</scene>)";
+    auto scene = load_scene_from_string(xml, "scene.xml");
+    EXPECT_EQ(scene->integrator.max_depth, 4);
+    EXPECT_EQ(scene->integrator.rr_depth, 3);
+    EXPECT_DOUBLE_EQ(scene->camera.fov_degrees, 30);
+    EXPECT_EQ(scene->camera.fov_axis, "y");
+    EXPECT_DOUBLE_EQ(scene->camera.near_clip, 0.1);
+    EXPECT_DOUBLE_EQ(scene->camera.principal_point_offset_x, 0.01);
+    EXPECT_EQ(scene->film.width, 40);
+    EXPECT_EQ(scene->film.filter, "gaussian");
+    EXPECT_EQ(scene->sampler.sample_count, 9);
+    EXPECT_EQ(scene->sampler.seed, 5u);
+    const Vec3 origin = scene->camera.to_world.point({0, 0, 0});
+    EXPECT_NEAR(origin.y, 2, 1e-12);
+    // -D overrides <default>.
+    auto overridden = load_scene_from_string(xml, "scene.xml", {{"spp", "3"}});
+    EXPECT_EQ(overridden->sampler.sample_count, 3);
+}
+
+TEST(XmlLoader, TransformsComposeInMitsubaOrder) {
+    const std::string body = R"(<shape type="rectangle">
+        <transform name="to_world"><scale x="2" y="1" z="1"/><rotate z="1" angle="90"/><translate x="5"/></transform>
+        </shape>)";
+    auto scene = load_scene_from_string(scene_xml(body), "scene.xml");
+    // Point (1, 0, 0) -> scale (2, 0, 0) -> rotate (0, 2, 0) -> translate (5, 2, 0): a ray down at (5, 1.9) hits.
+    Ray ray{{5, 1.9, 1}, {0, 0, -1}, 0, 10};
+    EXPECT_TRUE(scene->intersect(ray).has_value());
+    ray.origin = {5, 2.1, 1};
+    EXPECT_FALSE(scene->intersect(ray).has_value());
+}
+
+TEST(XmlLoader, IncludeAndReferences) {
+    const fs::path dir = temp_dir();
+    std::ofstream(dir / "materials.xml") << R"(<scene version="3.0.0">
+  <bsdf type="diffuse" id="grey"><float name="reflectance" value="0.3"/></bsdf>
+  <texture type="checkerboard" id="checks"/>
+</scene>)";
+    const std::string body = R"(<include filename="materials.xml"/>
+        <shape type="cube"><ref id="grey"/></shape>
+        <shape type="disk"><bsdf type="diffuse"><ref name="reflectance" id="checks"/></bsdf></shape>)";
+    std::ofstream(dir / "main.xml") << scene_xml(body);
+    EXPECT_NO_THROW(load_scene(dir / "main.xml"));
+}
+
+TEST(XmlLoader, ErrorsCarryFileAndLine) {
+    // Syntax error on line 3.
+    // A <float> left open: pugixml reports the mismatched end tag on line 4.
+    EXPECT_EQ(load_error("<scene version=\"3.0.0\">\n<sensor type=\"perspective\">\n<float name=\"fov\" value=\"3\">\n</scene>")
+                  .rfind("scene.xml:4: XML syntax error", 0), 0u);
+    EXPECT_NE(load_error("<scene>\n\n<sensor type=\"perspective\"\n</scene>").find("XML syntax error"), std::string::npos);
+
+    const std::string teapot = scene_xml("<shape type=\"teapot\"/>");
+    const std::string message = load_error(teapot);
+    EXPECT_NE(message.find(fmt::format("scene.xml:{}: unknown shape plugin 'teapot'", line_of(teapot, "teapot"))),
+              std::string::npos) << message;
+
+    const std::string roughness = scene_xml(
+        "<shape type=\"rectangle\">\n<bsdf type=\"diffuse\"><float name=\"roughness\" value=\"1\"/></bsdf></shape>");
+    const std::string unknown_param = load_error(roughness);
+    EXPECT_NE(unknown_param.find(fmt::format("scene.xml:{}: unknown parameter 'roughness' of bsdf 'diffuse'",
+                                             line_of(roughness, "roughness"))), std::string::npos)
+        << unknown_param;
+
+    const std::string nowhere = scene_xml("<shape type=\"obj\"><string name=\"filename\" value=\"nowhere.obj\"/></shape>");
+    const std::string missing = load_error(nowhere);
+    EXPECT_NE(missing.find(fmt::format("scene.xml:{}: file not found", line_of(nowhere, "nowhere"))), std::string::npos)
+        << missing;
+
+    const std::string undefined = load_error(scene_xml("<shape type=\"sphere\"><float name=\"radius\" value=\"$r\"/></shape>"));
+    EXPECT_NE(undefined.find("parameter $r is not defined"), std::string::npos) << undefined;
+
+    const std::string one_x = scene_xml("<shape type=\"sphere\"><float name=\"radius\" value=\"1x\"/></shape>");
+    const std::string bad_number = load_error(one_x);
+    EXPECT_NE(bad_number.find(fmt::format("scene.xml:{}: radius: '1x' is not a finite number", line_of(one_x, "1x"))),
+              std::string::npos) << bad_number;
+
+    EXPECT_NE(load_error(scene_xml("<shape type=\"cube\"><ref id=\"nothing\"/></shape>")).find("undefined id 'nothing'"),
+              std::string::npos);
+    EXPECT_NE(load_error("<scene version=\"3.0.0\"/>").find("no <sensor>"), std::string::npos);
+    EXPECT_NE(load_error(scene_xml("<emitter type=\"spot\"/>")).find("unknown emitter plugin 'spot'"), std::string::npos);
+    EXPECT_NE(load_error(scene_xml("<bogus/>")).find("unknown element <bogus>"), std::string::npos);
+}
+
+TEST(MeshFiles, ObjAndPlyLoad) {
+    const fs::path dir = temp_dir();
+    std::ofstream(dir / "quad.obj") << "# quad\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                                       "f 1/1 2/2 3/3 4/4\n";
+    const TriangleMesh obj = load_obj(dir / "quad.obj");
+    EXPECT_EQ(obj.triangles.size(), 2u);
+    EXPECT_EQ(obj.uvs.size(), 6u);
+    std::ofstream(dir / "tri.ply") << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                      "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                                      "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    const TriangleMesh ply = load_ply(dir / "tri.ply");
+    EXPECT_EQ(ply.triangles.size(), 1u);
+    EXPECT_EQ(ply.positions[1], Vec3(1, 0, 0));
+    // Binary little-endian with normals.
+    {
+        std::ofstream out(dir / "tri_bin.ply", std::ios::binary);
+        out << "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+               "property float z\nproperty float nx\nproperty float ny\nproperty float nz\nelement face 1\n"
+               "property list uchar uint vertex_indices\nend_header\n";
+        const float v[18] = {0, 0, 0, 0, 0, 1, 2, 0, 0, 0, 0, 1, 0, 2, 0, 0, 0, 1};
+        out.write(reinterpret_cast<const char*>(v), sizeof v);
+        const unsigned char n = 3;
+        const unsigned idx[3] = {0, 1, 2};
+        out.write(reinterpret_cast<const char*>(&n), 1);
+        out.write(reinterpret_cast<const char*>(idx), sizeof idx);
+    }
+    const TriangleMesh bin = load_ply(dir / "tri_bin.ply");
+    EXPECT_EQ(bin.positions[2], Vec3(0, 2, 0));
+    EXPECT_EQ(bin.normals.size(), 3u);
+    std::ofstream(dir / "bad.obj") << "v 0 0 0\nf 1 2 3\n";
+    EXPECT_THROW(load_obj(dir / "bad.obj"), Error);
+    std::ofstream(dir / "bad.ply") << "ply\nformat binary_big_endian 1.0\n";
+    EXPECT_THROW(load_ply(dir / "bad.ply"), Error);
+}
