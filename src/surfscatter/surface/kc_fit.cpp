@@ -121,11 +121,13 @@ KcFit fit_kc(const RadialPsd& radial, double nyquist, const KcFitOptions& option
     const double l = std::exp(best[0]), gamma = 1.0 + std::exp(best[1]);
     if (!std::isfinite(log_variance) || !std::isfinite(l) || !std::isfinite(gamma) ||
         on_bound(best[0], log_l_min, log_l_max))
-        fail("KC fit: the correlation length is not resolved by the PSD between {} and {} rad/um (fit ran to "
-             "L_c = {} um); the map must span many correlation lengths, each several pixels long",
+        fail("KC fit: no KC correlation length fits the PSD between {:.4g} and {:.4g} rad/um (the fit ran to the "
+             "search bound L_c = {:.4g} um): the map must span many correlation lengths, each a few pixels long, "
+             "and its PSD must have a KC-like plateau, knee and power-law tail",
              fit.zeta_min, fit.zeta_max, l);
     if (on_bound(best[1], log_g_min, log_g_max))
-        fail("KC fit: gamma is not resolved by the PSD between {} and {} rad/um (fit ran to gamma = {})",
+        fail("KC fit: gamma is not resolved by the PSD between {:.4g} and {:.4g} rad/um (the fit ran to the search "
+             "bound gamma = {:.4g}; a PSD falling faster than any power law, e.g. Gaussian, has no KC gamma)",
              fit.zeta_min, fit.zeta_max, gamma);
 
     double sum_w = 0.0;
