@@ -28,6 +28,8 @@ private:
     int n_;
     double step_, log_r0_, log_zeta0_;
     std::vector<double> phase_re_, phase_im_;  // u_m, m = 0..n/2
+    struct Plans;
+    std::unique_ptr<Plans> plans_;
 };
 
 // Log-spaced grid helper shared by the tables: n points, log spacing, values of ln(x).
