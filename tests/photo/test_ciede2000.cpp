@@ -60,7 +60,7 @@ TEST(Ciede2000, ZeroForIdenticalColoursAndFiniteForExtremes) {
 }
 
 TEST(Lab, WhiteIsHundredAndRoundTrips) {
-    const Lab white = xyz_to_lab(kWhiteD65, kWhiteD65);
+    const Lab white = xyz_to_lab(white_d65(), white_d65());
     EXPECT_NEAR(white.L, 100.0, 1e-12);
     EXPECT_NEAR(white.a, 0.0, 1e-12);
     EXPECT_NEAR(white.b, 0.0, 1e-12);
@@ -68,21 +68,24 @@ TEST(Lab, WhiteIsHundredAndRoundTrips) {
         const Vec3d back = lab_to_xyz(xyz_to_lab(xyz, kWhiteD50), kWhiteD50);
         for (int i = 0; i < 3; ++i) EXPECT_NEAR(back[i], xyz[i], 1e-12);
     }
-    // sRGB red (linear 1, 0, 0) is L* 53.2408, a* 80.0925, b* 67.2032 (published to 4 decimals).
-    const Lab red = xyz_to_lab(linear_srgb_to_xyz({1.0, 0.0, 0.0}), kWhiteD65);
-    EXPECT_NEAR(red.L, 53.2408, 2e-3);
-    EXPECT_NEAR(red.a, 80.0925, 2e-2);
-    EXPECT_NEAR(red.b, 67.2032, 2e-2);
+    // sRGB red (linear 1, 0, 0) is L* 53.2408, a* 80.0925, b* 67.2032 with the 4-digit IEC matrix; spectrum/ derives
+    // its matrix from the primaries' chromaticities, which moves these by ~0.01.
+    const Lab red = xyz_to_lab(linear_srgb_to_xyz({1.0, 0.0, 0.0}), white_d65());
+    EXPECT_NEAR(red.L, 53.2408, 0.02);
+    EXPECT_NEAR(red.a, 80.0925, 0.05);
+    EXPECT_NEAR(red.b, 67.2032, 0.05);
 }
 
-TEST(ColourSpace, SrgbTransferRoundTripsAndBradfordMapsWhites) {
-    for (double v : {0.0, 0.001, 0.04, 0.2, 0.5, 1.0, -0.3})
-        EXPECT_NEAR(srgb_decode(srgb_encode(v)), v, 1e-12);
-    EXPECT_NEAR(srgb_encode(0.18), 0.4613561, 1e-6);
-    const Vec3d w = bradford_adapt(kWhiteD50, kWhiteD50, kWhiteD65);
-    for (int i = 0; i < 3; ++i) EXPECT_NEAR(w[i], kWhiteD65[i], 1e-4);
-    const Vec3d rgb_white = xyz_to_linear_srgb(kWhiteD65);
-    for (int i = 0; i < 3; ++i) EXPECT_NEAR(rgb_white[i], 1.0, 1e-4);
+TEST(ColourSpace, AdaptersMapWhitesAndImagesRoundTrip) {
+    const Vec3d w = bradford_adapt(kWhiteD50, kWhiteD50, white_d65());
+    for (std::size_t i = 0; i < 3; ++i) EXPECT_NEAR(w[i], white_d65()[i], 1e-6);
+    const Vec3d rgb_white = xyz_to_linear_srgb(white_d65());
+    for (std::size_t i = 0; i < 3; ++i) EXPECT_NEAR(rgb_white[i], 1.0, 3e-4);
+    const cv::Mat image(2, 3, CV_32FC3, cv::Scalar(0.0, 0.18, 1.0));
+    const cv::Mat encoded = srgb_encode_image(image);
+    EXPECT_NEAR(encoded.at<cv::Vec3f>(1, 2)[1], 0.4613561, 1e-6);
+    const cv::Mat back = srgb_decode_image(encoded);
+    EXPECT_LT(cv::norm(back, image, cv::NORM_INF), 1e-6);
 }
 
 }  // namespace

@@ -62,9 +62,10 @@ ChartReference read_chart_reference(const std::filesystem::path& path) {
     }
     for (std::size_t i = 0; i < seen.size(); ++i)
         if (!seen[i]) fail("chart reference '{}' has no value for patch {}", path.string(), i + 1);
+    const Vec3d d65 = white_d65();
     for (std::size_t i = 0; i < seen.size(); ++i) {
-        const Vec3d xyz_d65 = bradford_adapt(lab_to_xyz(ref.lab_d50[i], kWhiteD50), kWhiteD50, kWhiteD65);
-        ref.lab_d65[i] = xyz_to_lab(xyz_d65, kWhiteD65);
+        const Vec3d xyz_d65 = bradford_adapt(lab_to_xyz(ref.lab_d50[i], kWhiteD50), kWhiteD50, d65);
+        ref.lab_d65[i] = xyz_to_lab(xyz_d65, d65);
         ref.linear_srgb[i] = xyz_to_linear_srgb(xyz_d65);
     }
     return ref;
@@ -169,7 +170,10 @@ cv::Matx33d fit_ccm(const std::array<Vec3d, kChartPatches>& measured, const Char
     return m;
 }
 
-Lab linear_srgb_to_lab(const Vec3d& rgb) { return xyz_to_lab(linear_srgb_to_xyz(rgb), kWhiteD65); }
+Lab linear_srgb_to_lab(const Vec3d& rgb) {
+    static const Vec3d white = white_d65();
+    return xyz_to_lab(linear_srgb_to_xyz(rgb), white);
+}
 
 DeltaEStats chart_delta_e(const std::array<Vec3d, kChartPatches>& rgb, const ChartReference& reference) {
     DeltaEStats stats;
