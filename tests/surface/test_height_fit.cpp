@@ -2,7 +2,8 @@
 //
 // Parameters the data resolve: L_c = 4 pixels on a 1024 pixel patch (256 L_c wide). The statistical error of a
 // single patch grows like L_c / W: measured over 20 seeds (docs/HEIGHTMAPS.md), sd(L_c) is 1.1-1.9 % and
-// sd(sigma_h) 0.7-1.3 % at L_c = 4 px, but 3-5 % and 2-3 % at L_c = 10 px, where a 5 % test would be a coin toss.
+// sd(sigma_h) 0.7-1.3 % at L_c = 4 px, but 2.5-4 % and 1.7-3.2 % at L_c = 10 px, where a 5 % test would fail for
+// about one seed in ten.
 // The fit band runs to Nyquist (max_nyquist_fraction = 1): a synthetic surface has no aliasing and no instrument
 // roll-off. The band then covers zeta L_c from 0.09 (plateau) through the knee to 12.6 (tail).
 #include <gtest/gtest.h>
