@@ -14,7 +14,7 @@ TEST(Poisson, PmfSumsToOneAndMatchesRecurrence) {
     for (double mean : {0.01, 1.0, 7.5, 700.0, 5000.0}) {
         double sum = 0;
         for (int m = 0; m < int(mean + 20 * std::sqrt(mean) + 40); ++m) sum += poisson_pmf(m, mean);
-        EXPECT_NEAR(sum, 1.0, 1e-12) << mean;
+        EXPECT_NEAR(sum, 1.0, 1e-10) << mean;
     }
     EXPECT_NEAR(poisson_pmf(3, 2.0), std::exp(-2.0) * 8.0 / 6.0, 1e-15);
 }
@@ -25,7 +25,7 @@ TEST(Poisson, MeanVarianceAndChiSquare) {
     std::mt19937_64 rng(11);
     std::uniform_real_distribution<double> uniform(0.0, 1.0);
     for (double mean : means) {
-        const int n = 200000;
+        const int n = mean > 1000 ? 20000 : 200000;
         std::vector<double> counts(int(mean + 12 * std::sqrt(mean) + 20), 0.0);
         double s1 = 0, s2 = 0;
         for (int i = 0; i < n; ++i) {

@@ -71,9 +71,9 @@ std::function<double(double)> ggx_alpha(const ModelOptions& o) {
                 const auto map = surface::read_height_map(s.surface_file, std::nullopt);
                 return constant(smoothing > 0 ? surface::rms_slope_smoothed(map, smoothing) : surface::rms_slope(map));
             }
-            const double slope2 =
-                statistics_of(s)->mean_square_slope(smoothing, std::numeric_limits<double>::infinity());
-            if (!std::isfinite(slope2))
+            // No low-pass cutoff: the largest finite frequency (the statistics reject an infinite one).
+            const double slope2 = statistics_of(s)->mean_square_slope(smoothing, std::numeric_limits<double>::max());
+            if (!std::isfinite(slope2) || !(slope2 > 0))
                 fail("alpha_from {}: the rms slope of this PSD diverges (KC needs gamma > 3, or smoothing > 0, or a "
                      "height map)", to_string(o.alpha_from));
             return constant(std::sqrt(slope2));  // alpha_GGX = alpha_Beckmann = rms slope (THEORY 4.2)

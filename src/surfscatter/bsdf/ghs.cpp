@@ -14,43 +14,8 @@ namespace surfscatter::bsdf {
 namespace {
 
 constexpr int kThetaNodes = 61;
-constexpr double kThetaMax = 89.5 * kDegree;     // last node; grazing queries use it (the lobe vanishes there)
-constexpr double kLambdaStep = 0.01;             // log-wavelength node spacing
-
-constexpr std::array<double, 4> kGaussX{-0.8611363115940526, -0.3399810435848563, 0.3399810435848563,
-                                        0.8611363115940526};
-constexpr std::array<double, 4> kGaussW{0.3478548451374538, 0.6521451548625461, 0.6521451548625461,
-                                        0.3478548451374538};
-constexpr int kAzimuthNodes = 12;  // Gauss-Legendre nodes over the half wedge
-
-struct GaussRule {
-    std::array<double, kAzimuthNodes> x{}, w{};
-    GaussRule() {
-        // Golub-Welsch-free Newton iteration on Legendre roots.
-        const int n = kAzimuthNodes;
-        for (int i = 0; i < n; ++i) {
-            double z = std::cos(kPi * (i + 0.75) / (n + 0.5)), pp = 1;
-            for (int it = 0; it < 100; ++it) {
-                double p1 = 1, p2 = 0;
-                for (int j = 1; j <= n; ++j) {
-                    const double p3 = p2;
-                    p2 = p1;
-                    p1 = ((2.0 * j - 1) * z * p2 - (j - 1.0) * p3) / j;
-                }
-                pp = n * (z * p1 - p2) / (z * z - 1);
-                const double dz = p1 / pp;
-                z -= dz;
-                if (std::abs(dz) < 1e-16) break;
-            }
-            x[i] = 0.5 * (1 - z);  // nodes on [0, 1]
-            w[i] = 1.0 / ((1 - z * z) * pp * pp);  // weights on [0, 1] (2/((1-z^2)p'^2) * 1/2)
-        }
-    }
-};
-const GaussRule& azimuth_rule() {
-    static const GaussRule rule;
-    return rule;
-}
+constexpr double kThetaMax = 89.5 * kDegree;  // last node; grazing queries use it (the lobe vanishes there)
+constexpr double kLambdaStep = 0.01;          // log-wavelength node spacing
 
 }  // namespace
 
@@ -195,62 +160,17 @@ GhsBsdf::Table GhsBsdf::build_table(double lambda_nm) const {
     return t;
 }
 
-// Integral of the core density over the visible disc, in polar coordinates about zeta = 0: radial composite
-// Gauss-Legendre on panels spaced in log(zeta) and graded geometrically toward the two circles where the wedge
-// half-angle has square-root kinks (q = 1 - s, q = 1 + s); azimuth phi = phi_max (1 - (1 - t)^2) to absorb the
-// square-root behaviour of cos(theta_o) at the wedge edge. Accuracy ~1e-6 relative (tested by the furnace test).
+// Integral of the core density over the visible disc (d^2 zeta = k^2 d^2 q).
 double GhsBsdf::scatter_mass(double theta_i, double lambda_nm, double sigma_um) const {
     const double k = wavenumber(lambda_nm);
     const double s = std::sin(theta_i), ci = std::cos(theta_i);
-    const double zeta_max = k * (1.0 + s), zeta_inner = k * (1.0 - s);
-    const double length = stats_->correlation_length();
-    const double zeta_lo = std::min(1e-5 / length, 1e-6 * zeta_max);
-    std::vector<double> breaks;
-    const double span = std::log(zeta_max / zeta_lo);
-    const int log_panels = std::max(8, int(std::ceil(span / 0.15)));
-    for (int i = 0; i <= log_panels; ++i) breaks.push_back(zeta_lo * std::exp(span * i / log_panels));
-    if (s > 0) {
-        const double width = zeta_max - zeta_inner;
-        for (int j = 1; j <= 30; ++j) {
-            const double d = width * std::ldexp(0.5, -j);
-            breaks.push_back(zeta_max - d);
-            breaks.push_back(zeta_inner + d);
-            if (zeta_inner - d > zeta_lo) breaks.push_back(zeta_inner - d);
-        }
-        breaks.push_back(zeta_inner);
-    }
-    std::sort(breaks.begin(), breaks.end());
-    breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
-    breaks.erase(std::remove_if(breaks.begin(), breaks.end(), [&](double z) { return z < zeta_lo || z > zeta_max; }),
-                 breaks.end());
-    const auto& rule = azimuth_rule();
-    const Vec2 i_xy(s, 0.0);  // azimuth of i set to 0: the disc is symmetric about it
-    auto ring = [&](double zeta) {
-        const double q = zeta / k;
-        const double phi_max = wedge_half_angle(q, s);
-        if (!(phi_max > 0)) return 0.0;
-        double sum = 0;
-        for (int a = 0; a < kAzimuthNodes; ++a) {
-            const double t = rule.x[a];
-            const double phi = phi_max * (1.0 - (1.0 - t) * (1.0 - t));
-            const double jac = 2.0 * phi_max * (1.0 - t);
-            const double ox = q * std::cos(phi) - i_xy.x, oy = q * std::sin(phi);
-            const double co = std::sqrt(std::max(0.0, 1.0 - ox * ox - oy * oy));
-            const double g = k * sigma_um * (ci + co);
-            sum += rule.w[a] * jac * core_->density(g * g, zeta);
-        }
-        return 2.0 * sum * zeta;  // both halves of the wedge, polar Jacobian
-    };
-    const double g_spec = 4.0 * k * k * sigma_um * sigma_um * ci * ci;
-    double total = kPi * zeta_lo * zeta_lo * core_->density(g_spec, 0.0);
-    for (std::size_t p = 0; p + 1 < breaks.size(); ++p) {
-        const double a = breaks[p], b = breaks[p + 1];
-        for (int q = 0; q < 4; ++q) {
-            const double zeta = 0.5 * (a + b) + 0.5 * (b - a) * kGaussX[q];
-            total += 0.5 * (b - a) * kGaussW[q] * ring(zeta);
-        }
-    }
-    return total;
+    const double q_lo = 1e-5 / (k * stats_->correlation_length());
+    return k * k * integrate_visible_disc(s, q_lo, [&](double q, double phi) {
+               const double ox = q * std::cos(phi) - s, oy = q * std::sin(phi);
+               const double co = std::sqrt(std::max(0.0, 1.0 - ox * ox - oy * oy));
+               const double a = k * sigma_um * (ci + co);
+               return core_->density(a * a, k * q);
+           });
 }
 
 }  // namespace surfscatter::bsdf

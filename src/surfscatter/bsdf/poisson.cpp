@@ -14,7 +14,11 @@ double poisson_pmf(int m, double mean) {
 PoissonWindow::PoissonWindow(double mean, int first, int last) : first_(std::max(0, first)) {
     last = std::max(last, first_);
     weights_.resize(last - first_ + 1);
-    for (int m = first_; m <= last; ++m) weights_[m - first_] = poisson_pmf(m, mean);
+    // pmf(first) in log space, then the ratio pmf(m+1)/pmf(m) = mean/(m+1); restarted in log space if it underflows.
+    for (int m = first_; m <= last; ++m) {
+        const double prev = m > first_ ? weights_[m - first_ - 1] : 0.0;
+        weights_[m - first_] = prev > 1e-280 ? prev * mean / m : poisson_pmf(m, mean);
+    }
     kept_mass_ = 0;
     for (double w : weights_) kept_mass_ += w;
     cdf_.resize(weights_.size());
@@ -71,7 +75,7 @@ int PoissonWindow::sample(double u) const {
 }
 
 int sample_poisson(double mean, double u) {
-    const double span = 12.0 * std::sqrt(mean) + 12.0;
+    const double span = 9.0 * std::sqrt(mean) + 12.0;
     return PoissonWindow(mean, int(std::floor(mean - span)), int(std::ceil(mean + span))).sample(u);
 }
 

@@ -31,7 +31,7 @@ private:
     double kept_mass_ = 0;
 };
 
-// An unrestricted Poisson(mean) draw from one uniform u in [0, 1) (window of +-12 sd, dropped mass < 1e-30).
+// An unrestricted Poisson(mean) draw from one uniform u in [0, 1) (window of +-9 sd + 12, dropped mass < 1e-15).
 int sample_poisson(double mean, double u);
 
 }  // namespace surfscatter::bsdf

@@ -1,6 +1,9 @@
 #include "surfscatter/bsdf/wedge_sampling.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <vector>
 
 namespace surfscatter::bsdf {
 
@@ -26,6 +29,82 @@ std::optional<Vec3> wedge_direction(const Vec3& wi, double q, double u) {
 double wedge_pdf(double k, double cos_theta_o, double density_2d, double phi_max) {
     if (!(phi_max > 0) || cos_theta_o <= 0) return 0.0;
     return k * k * cos_theta_o * kPi * density_2d / phi_max;
+}
+
+namespace {
+
+constexpr std::array<double, 4> kGaussX{-0.8611363115940526, -0.3399810435848563, 0.3399810435848563,
+                                        0.8611363115940526};
+constexpr std::array<double, 4> kGaussW{0.3478548451374538, 0.6521451548625461, 0.6521451548625461,
+                                        0.3478548451374538};
+constexpr int kAzimuthNodes = 12;
+
+// Gauss-Legendre nodes and weights on [0, 1] (Newton iteration on the Legendre roots).
+struct AzimuthRule {
+    std::array<double, kAzimuthNodes> x{}, w{};
+    AzimuthRule() {
+        const int n = kAzimuthNodes;
+        for (int i = 0; i < n; ++i) {
+            double z = std::cos(kPi * (i + 0.75) / (n + 0.5)), dp = 1;
+            for (int it = 0; it < 100; ++it) {
+                double p1 = 1, p2 = 0;
+                for (int j = 1; j <= n; ++j) {
+                    const double p3 = p2;
+                    p2 = p1;
+                    p1 = ((2.0 * j - 1) * z * p2 - (j - 1.0) * p3) / j;
+                }
+                dp = n * (z * p1 - p2) / (z * z - 1);
+                const double step = p1 / dp;
+                z -= step;
+                if (std::abs(step) < 1e-16) break;
+            }
+            x[i] = 0.5 * (1 - z);
+            w[i] = 1.0 / ((1 - z * z) * dp * dp);
+        }
+    }
+};
+
+}  // namespace
+
+double integrate_visible_disc(double s, double q_lo, const std::function<double(double, double)>& f) {
+    static const AzimuthRule rule;
+    const double q_max = 1.0 + s, q_inner = 1.0 - s;
+    q_lo = std::min(q_lo, 1e-3 * q_max);
+    std::vector<double> breaks;
+    const double span = std::log(q_max / q_lo);
+    const int log_panels = std::max(8, int(std::ceil(span / 0.15)));
+    for (int i = 0; i <= log_panels; ++i) breaks.push_back(q_lo * std::exp(span * i / log_panels));
+    // cos(theta_o) has a square-root edge at q_max (the horizon) for every s; for s > 0 so has phi_max at q_inner.
+    const double width = s > 0 ? q_max - q_inner : 0.5;
+    for (int j = 1; j <= 30; ++j) {
+        const double d = width * std::ldexp(0.5, -j);
+        breaks.push_back(q_max - d);
+        if (s > 0) {
+            breaks.push_back(q_inner + d);
+            if (q_inner - d > q_lo) breaks.push_back(q_inner - d);
+        }
+    }
+    if (s > 0) breaks.push_back(q_inner);
+    std::sort(breaks.begin(), breaks.end());
+    breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
+    breaks.erase(std::remove_if(breaks.begin(), breaks.end(), [&](double q) { return q < q_lo || q > q_max; }),
+                 breaks.end());
+    auto ring = [&](double q) {
+        const double phi_max = wedge_half_angle(q, s);
+        if (!(phi_max > 0)) return 0.0;
+        double sum = 0;
+        for (int a = 0; a < kAzimuthNodes; ++a) {
+            const double t = rule.x[a];
+            sum += rule.w[a] * 2.0 * phi_max * (1.0 - t) * f(q, phi_max * (1.0 - (1.0 - t) * (1.0 - t)));
+        }
+        return 2.0 * sum * q;  // both halves of the wedge, polar Jacobian
+    };
+    double total = kPi * q_lo * q_lo * f(0.0, 0.0);
+    for (std::size_t p = 0; p + 1 < breaks.size(); ++p) {
+        const double a = breaks[p], b = breaks[p + 1];
+        for (int i = 0; i < 4; ++i) total += 0.5 * (b - a) * kGaussW[i] * ring(0.5 * (a + b) + 0.5 * (b - a) * kGaussX[i]);
+    }
+    return total;
 }
 
 }  // namespace surfscatter::bsdf

@@ -3,6 +3,7 @@
 // (rad/um), the visible disc |zeta/k - i_xy| <= 1 of propagating directions, and the azimuthal-wedge sampler of the
 // supplemental's eqs 5-7: for a radius |zeta| drawn from an isotropic 2-D density, the azimuth is uniform over the
 // part of the circle |zeta| that lies inside the disc, phi_i +- phi_max(|zeta|).
+#include <functional>
 #include <optional>
 
 #include "surfscatter/math/vec.hpp"
@@ -26,5 +27,13 @@ std::optional<Vec3> wedge_direction(const Vec3& wi, double q, double u);
 // Solid-angle pdf of such a direction when |zeta| was drawn with the isotropic 2-D density `density_2d` (per
 // (rad/um)^2, already divided by the mass of its truncation to the disc): k^2 cos(theta_o) pi density / phi_max.
 double wedge_pdf(double k, double cos_theta_o, double density_2d, double phi_max);
+
+// Integral over the visible disc {|q - i_xy| <= 1} of f(q, phi) d^2q, q = zeta/k in polar coordinates about 0 and
+// phi measured from the azimuth of i, for integrands symmetric in phi (isotropic lobes): composite Gauss-Legendre in
+// q on panels spaced in log(q) from q_lo and graded geometrically toward the circles q = 1 - s and q = 1 + s, where
+// the wedge half-angle has square-root kinks; azimuth phi = phi_max (1 - (1 - t)^2), which absorbs the
+// square-root behaviour of cos(theta_o) at the wedge edge. The disc q < q_lo counts as pi q_lo^2 f(0, 0).
+// Relative accuracy ~1e-6 for lobes wider than a few q_lo (tested through the white furnace).
+double integrate_visible_disc(double sin_theta_i, double q_lo, const std::function<double(double q, double phi)>& f);
 
 }  // namespace surfscatter::bsdf

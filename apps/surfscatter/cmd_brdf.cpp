@@ -1,0 +1,225 @@
+// surfscatter brdf eval | albedo | sample | slice: the scattering models of docs/MODELS.md from the command line.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "command.hpp"
+#include "surfscatter/bsdf/albedo.hpp"
+#include "surfscatter/bsdf/factory.hpp"
+#include "surfscatter/core/error.hpp"
+#include "surfscatter/core/paths.hpp"
+
+namespace surfscatter::cli {
+
+namespace {
+
+// Options as typed; turned into bsdf::ModelOptions (same names, snake_case) by model_options().
+struct BrdfArgs {
+    std::string model = "ghs", method = "exact", truncation = "three_sigma", fresnel = "incident";
+    std::string ssa_form = "energy", alpha_from = "none", macro_ndf = "ggx", material = "perfect";
+    double epsilon = 1e-6, alpha = 0, smoothing = 0, cutoff_wavelengths = 100;
+    bool no_renormalization = false;
+    std::string psd, surface_file;
+    double sigma = 0, corr_length = 0, gamma = 0;
+    double wavelength = 0, phi_i = 0;
+    std::vector<double> theta_i;
+    // eval
+    std::vector<double> theta_o, phi_o;
+    // sample
+    long long count = 1000;
+    unsigned long long seed = 1;
+    // slice
+    std::vector<std::string> models;
+    std::string plot, csv;
+};
+
+void require_theta(double t, const char* what) {
+    require_finite(t, what);
+    if (t < 0 || t >= 90) fail("{} must be in [0, 90) degrees, got {}", what, t);
+}
+
+bsdf::ModelOptions model_options(const BrdfArgs& a, const std::string& model) {
+    bsdf::ModelOptions o;
+    o.model = bsdf::parse_model(model, "--model");
+    o.method = bsdf::parse_method(a.method, "--method");
+    o.truncation = bsdf::parse_truncation(a.truncation, "--truncation");
+    o.epsilon = a.epsilon;
+    o.fresnel = bsdf::parse_fresnel(a.fresnel, "--fresnel");
+    o.renormalization = !a.no_renormalization;
+    o.ssa_form = bsdf::parse_ssa_form(a.ssa_form, "--ssa-form");
+    o.alpha = a.alpha;
+    o.alpha_from = bsdf::parse_alpha_from(a.alpha_from, "--alpha-from");
+    o.smoothing = a.smoothing;
+    o.cutoff_wavelengths = a.cutoff_wavelengths;
+    o.macro_ndf = bsdf::parse_macro_ndf(a.macro_ndf, "--macro-ndf");
+    o.material = a.material;
+    const bool needs_surface = o.model != bsdf::ModelKind::ggx || o.alpha_from != bsdf::AlphaFrom::none;
+    if (!a.surface_file.empty()) {
+        if (!a.psd.empty() && a.psd != "file") fail("give either --psd or --surface, not both");
+        o.surface.psd = bsdf::PsdKind::file;
+        o.surface.surface_file = a.surface_file;
+    } else if (!a.psd.empty()) {
+        o.surface.psd = bsdf::parse_psd(a.psd, "--psd");
+        if (o.surface.psd == bsdf::PsdKind::file) fail("--psd file needs --surface h.gsf");
+        if (o.surface.psd == bsdf::PsdKind::gaussian && a.gamma != 0) fail("--gamma applies to --psd kc only");
+        if (o.surface.psd == bsdf::PsdKind::kc && a.gamma == 0) fail("--psd kc needs --gamma");
+        o.surface.sigma = a.sigma;
+        o.surface.corr_length = a.corr_length;
+        o.surface.gamma = a.gamma;
+    } else if (needs_surface) {
+        fail("missing surface for --model {}: give --psd kc --sigma S --corr-length L --gamma G, "
+             "--psd gaussian --sigma S --corr-length l, or --surface h.gsf", model);
+    }
+    return o;
+}
+
+void check_common(const BrdfArgs& a) {
+    require_finite(a.wavelength, "--wavelength");
+    if (!(a.wavelength > 0)) fail("--wavelength must be > 0 nm, got {}", a.wavelength);
+    if (a.theta_i.empty()) fail("--theta-i is required");
+    for (double t : a.theta_i) require_theta(t, "--theta-i");
+    require_finite(a.phi_i, "--phi-i");
+}
+
+Vec3 incident(double theta_deg, double phi_deg) { return spherical_direction(theta_deg * kDegree, phi_deg * kDegree); }
+
+void eval(const BrdfArgs& a) {
+    check_common(a);
+    if (a.theta_i.size() != 1) fail("--theta-i takes one angle for brdf eval, got {}", a.theta_i.size());
+    if (a.theta_o.empty()) fail("--theta-o is required");
+    for (double t : a.theta_o) require_theta(t, "--theta-o");
+    const auto model = bsdf::make_bsdf(model_options(a, a.model));
+    const std::vector<double> phis = a.phi_o.empty() ? std::vector<double>{a.phi_i + 180.0} : a.phi_o;
+    const Vec3 wi = incident(a.theta_i[0], a.phi_i);
+    std::printf("theta_o,phi_o,brdf\n");
+    for (double t : a.theta_o)
+        for (double p : phis) {
+            require_finite(p, "--phi-o");
+            const double f = model->eval(wi, incident(t, p), a.wavelength);
+            std::printf("%s,%s,%s\n", format_number(t).c_str(), format_number(p).c_str(), format_number(f).c_str());
+        }
+}
+
+void albedo(const BrdfArgs& a) {
+    check_common(a);
+    if (a.theta_i.size() != 1) fail("--theta-i takes one angle for brdf albedo, got {}", a.theta_i.size());
+    const auto model = bsdf::make_bsdf(model_options(a, a.model));
+    const auto r = bsdf::directional_albedo(*model, a.theta_i[0] * kDegree, a.wavelength);
+    std::printf("albedo = %s\nspecular = %s\n", format_number(r.total()).c_str(), format_number(r.specular).c_str());
+}
+
+void sample(const BrdfArgs& a) {
+    check_common(a);
+    if (a.theta_i.size() != 1) fail("--theta-i takes one angle for brdf sample, got {}", a.theta_i.size());
+    if (a.count <= 0) fail("--count must be > 0, got {}", a.count);
+    const auto model = bsdf::make_bsdf(model_options(a, a.model));
+    const Vec3 wi = incident(a.theta_i[0], a.phi_i);
+    std::mt19937_64 rng(a.seed);
+    std::uniform_real_distribution<double> uniform(0.0, 1.0);
+    std::printf("x,y,z,weight,pdf,delta\n");
+    for (long long n = 0; n < a.count; ++n) {
+        const double ul = uniform(rng), u1 = uniform(rng), u2 = uniform(rng);
+        const auto s = model->sample(wi, a.wavelength, ul, Vec2(u1, u2));
+        if (!s) continue;  // no direction drawn (below the horizon): the estimator counts it as zero
+        std::printf("%s,%s,%s,%s,%s,%d\n", format_number(s->wo.x).c_str(), format_number(s->wo.y).c_str(),
+                    format_number(s->wo.z).c_str(), format_number(s->weight).c_str(),
+                    format_number(s->pdf).c_str(), s->delta ? 1 : 0);
+    }
+}
+
+void slice(const BrdfArgs& a) {
+    check_common(a);
+    if (a.plot.empty() && a.csv.empty()) fail("brdf slice needs --plot out.png and/or --csv out.csv");
+    const std::vector<std::string> names = a.models.empty() ? std::vector<std::string>{a.model} : a.models;
+    std::vector<std::unique_ptr<bsdf::Bsdf>> models;
+    for (const auto& n : names) models.push_back(bsdf::make_bsdf(model_options(a, n)));
+    std::string csv = a.csv;
+    if (csv.empty()) csv = std::filesystem::path(a.plot).replace_extension(".csv").string();
+    std::ofstream out(csv);
+    if (!out) fail("--csv: cannot open '{}' for writing", csv);
+    // Signed in-plane angle: positive on the specular side (phi_o = phi_i + 180).
+    out << "model,theta_i,theta_o_signed,brdf,specular\n";
+    for (std::size_t m = 0; m < models.size(); ++m)
+        for (double ti : a.theta_i) {
+            const Vec3 wi = incident(ti, a.phi_i);
+            const double spec = models[m]->delta_reflectance(wi, a.wavelength);
+            for (int j = -1790; j <= 1790; j += 5) {
+                const double t = 0.05 * j;
+                const Vec3 wo = incident(std::abs(t), a.phi_i + (t >= 0 ? 180.0 : 0.0));
+                out << names[m] << ',' << format_number(ti) << ',' << format_number(t) << ','
+                    << format_number(models[m]->eval(wi, wo, a.wavelength)) << ',' << format_number(spec) << '\n';
+            }
+        }
+    out.close();
+    if (!a.plot.empty())
+        run_plot_script("brdf_slice.py", {csv, a.plot, fmt::format("{} nm", format_number(a.wavelength))});
+    std::printf("wrote %s%s%s\n", csv.c_str(), a.plot.empty() ? "" : " and ", a.plot.c_str());
+}
+
+void add_model_options(CLI::App* cmd, BrdfArgs& a, bool several_thetas) {
+    cmd->add_option("--model", a.model, "ghs | ghs-ssa | ggx | two-scale (default ghs)");
+    cmd->add_option("--method", a.method, "GHS lobe: exact (tabulated S_g, default) | refit (paper's KC series)");
+    cmd->add_option("--truncation", a.truncation, "refit orders: three-sigma (default) | poisson-mass");
+    cmd->add_option("--epsilon", a.epsilon, "poisson-mass: Poisson mass left out (default 1e-6)");
+    cmd->add_option("--fresnel", a.fresnel, "incident (R(theta_i), default) | half (F(theta_d)) | rr (Rayleigh-Rice)");
+    cmd->add_flag("--no-renormalization", a.no_renormalization, "sigma_h instead of sigma_rel and K = 1");
+    cmd->add_option("--ssa-form", a.ssa_form, "ghs-ssa: energy (default) | strict");
+    cmd->add_option("--alpha", a.alpha, "ggx roughness (with --alpha-from none)");
+    cmd->add_option("--alpha-from", a.alpha_from, "ggx roughness: none | measured | smoothed | kc-link");
+    cmd->add_option("--smoothing", a.smoothing, "Gaussian smoothing std (um) for --alpha-from smoothed");
+    cmd->add_option("--cutoff-wavelengths", a.cutoff_wavelengths, "two-scale: split at zeta_c = k/N (default 100)");
+    cmd->add_option("--macro-ndf", a.macro_ndf, "two-scale macro NDF: ggx (default) | beckmann");
+    cmd->add_option("--material", a.material, "built-in metal (Au, Ag, Al, Cu, ...), n,k file, or perfect");
+    cmd->add_option("--psd", a.psd, "surface statistics: kc | gaussian");
+    cmd->add_option("--sigma", a.sigma, "rms height (um)");
+    cmd->add_option("--corr-length", a.corr_length, "correlation length (um): KC L, or Gaussian l");
+    cmd->add_option("--gamma", a.gamma, "KC exponent gamma > 1");
+    cmd->add_option("--surface", a.surface_file, "height map (.gsf): KC fitted to it");
+    cmd->add_option("--wavelength", a.wavelength, "wavelength (nm)")->required();
+    if (several_thetas)
+        cmd->add_option("--theta-i", a.theta_i, "incidence angles (deg), comma separated")->delimiter(',')->required();
+    else
+        cmd->add_option("--theta-i", a.theta_i, "incidence angle (deg)")->required();
+    cmd->add_option("--phi-i", a.phi_i, "incidence azimuth (deg, default 0)");
+}
+
+const Command command("brdf", [](CLI::App& app) {
+    CLI::App* brdf_cmd = app.add_subcommand("brdf", "Scattering models: evaluate, albedo, sample, plot slices");
+    brdf_cmd->require_subcommand(1);
+    auto a = std::make_shared<BrdfArgs>();
+
+    CLI::App* eval_cmd = brdf_cmd->add_subcommand("eval", "CSV theta_o,phi_o,brdf for every (theta_o, phi_o)");
+    add_model_options(eval_cmd, *a, false);
+    eval_cmd->add_option("--theta-o", a->theta_o, "outgoing angles (deg), comma separated")->delimiter(',')->required();
+    eval_cmd->add_option("--phi-o", a->phi_o, "outgoing azimuths (deg, default phi_i + 180: specular side)")
+        ->delimiter(',');
+    eval_cmd->callback([a] { eval(*a); });
+
+    CLI::App* albedo_cmd = brdf_cmd->add_subcommand("albedo", "directional albedo and its specular (delta) part");
+    add_model_options(albedo_cmd, *a, false);
+    albedo_cmd->callback([a] { albedo(*a); });
+
+    CLI::App* sample_cmd = brdf_cmd->add_subcommand("sample", "CSV x,y,z,weight,pdf,delta of sampled directions");
+    add_model_options(sample_cmd, *a, false);
+    sample_cmd->add_option("--count", a->count, "number of samples (default 1000)");
+    sample_cmd->add_option("--seed", a->seed, "random seed (default 1)");
+    sample_cmd->callback([a] { sample(*a); });
+
+    CLI::App* slice_cmd = brdf_cmd->add_subcommand("slice", "in-plane log-scale slices of several models (CSV + PNG)");
+    add_model_options(slice_cmd, *a, true);
+    slice_cmd->add_option("--models", a->models, "models to overlay, comma separated")->delimiter(',');
+    slice_cmd->add_option("--plot", a->plot, "output PNG");
+    slice_cmd->add_option("--csv", a->csv, "output CSV (default: the PNG path with .csv)");
+    slice_cmd->callback([a] { slice(*a); });
+});
+
+}  // namespace
+
+}  // namespace surfscatter::cli

@@ -1,0 +1,48 @@
+#!/usr/bin/python3
+"""In-plane BRDF slices written by `surfscatter brdf slice`: one panel per incidence angle, one curve per model,
+log scale; the delta (specular) part is printed in the legend. Usage: brdf_slice.py slices.csv out.png [title]"""
+import csv
+import sys
+from collections import defaultdict
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def main():
+    path, out = sys.argv[1], sys.argv[2]
+    title = sys.argv[3] if len(sys.argv) > 3 else ""
+    data = defaultdict(lambda: ([], []))
+    specular = {}
+    with open(path) as f:
+        for row in csv.DictReader(f):
+            key = (float(row["theta_i"]), row["model"])
+            data[key][0].append(float(row["theta_o_signed"]))
+            data[key][1].append(float(row["brdf"]))
+            specular[key] = float(row["specular"])
+    thetas = sorted({k[0] for k in data})
+    models = list(dict.fromkeys(k[1] for k in data))
+    fig, axes = plt.subplots(1, len(thetas), figsize=(4.2 * len(thetas), 3.6), squeeze=False)
+    for ax, ti in zip(axes[0], thetas):
+        for m in models:
+            x, y = data[(ti, m)]
+            y = [v if v > 0 else float("nan") for v in y]
+            label = m if specular[(ti, m)] == 0 else f"{m} (delta {specular[(ti, m)]:.3g})"
+            ax.semilogy(x, y, label=label, lw=1.3)
+        ax.axvline(ti, color="0.7", lw=0.8, ls=":")
+        ax.set_title(f"theta_i = {ti:g} deg")
+        ax.set_xlabel("theta_o (deg, + = specular side)")
+        ax.set_xlim(-90, 90)
+        ax.grid(True, which="major", alpha=0.3)
+    axes[0][0].set_ylabel("BRDF (1/sr)")
+    axes[0][-1].legend(fontsize=7)
+    if title:
+        fig.suptitle(title, fontsize=10)
+    fig.tight_layout()
+    fig.savefig(out, dpi=90)
+
+
+if __name__ == "__main__":
+    main()
