@@ -1,0 +1,91 @@
+// End-to-end: `surfscatter render` and `surfscatter compare-models` through the binary.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "cli_runner.hpp"
+#include "surfscatter/io/image.hpp"
+
+namespace fs = std::filesystem;
+using surfscatter::test::run_cli;
+
+namespace {
+
+fs::path temp_dir() {
+    const fs::path dir = fs::temp_directory_path() / "surfscatter_test_cli_render";
+    fs::create_directories(dir);
+    return dir;
+}
+
+// A small valid scene: a diffuse plane under a point light; $size sets the film size.
+const char* kScene = R"(<scene version="3.0.0">
+  <default name="size" value="12"/>
+  <sensor type="perspective">
+    <float name="fov" value="40"/>
+    <transform name="to_world"><lookat origin="0, -2, 2" target="0, 0, 0" up="0, 0, 1"/></transform>
+    <film type="hdrfilm"><integer name="width" value="$size"/><integer name="height" value="$size"/></film>
+    <sampler type="independent"><integer name="sample_count" value="4"/></sampler>
+  </sensor>
+  <shape type="rectangle"><bsdf type="diffuse"><rgb name="reflectance" value="0.7, 0.5, 0.3"/></bsdf></shape>
+  <emitter type="point"><point name="position" x="0" y="0" z="1"/>
+    <spectrum name="intensity" type="blackbody"><float name="temperature" value="2700"/>
+    <float name="scale" value="0.01"/></spectrum></emitter>
+</scene>
+)";
+
+fs::path write(const std::string& name, const std::string& text) {
+    const fs::path path = temp_dir() / name;
+    std::ofstream(path) << text;
+    return path;
+}
+
+}  // namespace
+
+TEST(CliRender, WritesExrAndPngWithDefines) {
+    const fs::path scene = write("ok.xml", kScene);
+    const fs::path exr = temp_dir() / "ok.exr", png = temp_dir() / "ok.png";
+    fs::remove(exr);
+    fs::remove(png);
+    const auto result = run_cli({"render", scene.string(), "-D", "size=10", "--spp", "2", "--threads", "1", "--seed",
+                                 "3", "--quiet", "-o", exr.string()});
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    const auto image = surfscatter::io::read_image(exr);
+    EXPECT_EQ(image.width, 10);
+    EXPECT_EQ(image.height, 10);
+    EXPECT_TRUE(fs::exists(png));
+    double sum = 0;
+    for (float v : image.pixels) sum += v;
+    EXPECT_GT(sum, 0.0);
+}
+
+TEST(CliRender, BadScenesExitTwoWithFileAndLine) {
+    const fs::path unknown = write("unknown.xml", std::string(kScene).replace(std::string(kScene).find("rectangle"), 9, "teapot"));
+    auto result = run_cli({"render", unknown.string(), "--quiet", "-o", (temp_dir() / "x.exr").string()});
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_NE(result.err.find(unknown.string() + ":12: unknown shape plugin 'teapot'"), std::string::npos) << result.err;
+
+    const fs::path syntax = write("syntax.xml", "<scene version=\"3.0.0\">\n  <sensor type=\"perspective\">\n</scene>\n");
+    result = run_cli({"render", syntax.string(), "--quiet", "-o", (temp_dir() / "x.exr").string()});
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_NE(result.err.find(syntax.string() + ":3: XML syntax error"), std::string::npos) << result.err;
+
+    const fs::path texture = write("texture.xml", std::string(kScene).replace(
+        std::string(kScene).find("<rgb name=\"reflectance\" value=\"0.7, 0.5, 0.3\"/>"), 47,
+        "<texture name=\"reflectance\" type=\"bitmap\"><string name=\"filename\" value=\"missing.png\"/></texture>"));
+    result = run_cli({"render", texture.string(), "--quiet", "-o", (temp_dir() / "x.exr").string()});
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_NE(result.err.find(texture.string() + ":12: file not found"), std::string::npos) << result.err;
+
+    result = run_cli({"render", (temp_dir() / "no_such_scene.xml").string(), "-o", (temp_dir() / "x.exr").string()});
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_NE(result.err.find("scene file not found"), std::string::npos) << result.err;
+
+    result = run_cli({"render", write("ok2.xml", kScene).string(), "-D", "size", "-o", (temp_dir() / "x.exr").string()});
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_NE(result.err.find("-D expects name=value"), std::string::npos) << result.err;
+
+    result = run_cli({"render", write("ok3.xml", kScene).string(), "-o", (temp_dir() / "x.png").string()});
+    EXPECT_EQ(result.exit_code, 2);
+}
