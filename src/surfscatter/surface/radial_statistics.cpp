@@ -42,13 +42,18 @@ double RadialStatistics::acv(double r) const { return sigma_h() * sigma_h() * ac
 
 double RadialStatistics::mean_square_slope(double smoothing_um, double cutoff_zeta) const {
     require_non_negative(smoothing_um, "smoothing scale");
-    require_positive(cutoff_zeta, "cutoff frequency");
+    if (!(cutoff_zeta > 0.0)) fail("cutoff frequency must be > 0 (or +inf for none), got {}", cutoff_zeta);
     // int zeta^2 e^{-s^2 zeta^2} P 2 pi zeta d zeta over y = ln(1 + zeta L).
     const double l = correlation_length(), s2 = smoothing_um * smoothing_um;
-    const double y_max = std::min(std::log1p(cutoff_zeta * l), 250.0);
+    // zeta L up to e^100 (the PSD must not underflow before a divergent tail shows).
+    double y_max = std::min(std::log1p(cutoff_zeta * l), 100.0);
+    if (s2 > 0.0) y_max = std::min(y_max, std::log1p(40.0 * l / smoothing_um));  // e^{-1600} beyond
+    // Evaluated in logs so that huge zeta never overflows: zeta^3 e^{-s^2 zeta^2} P(zeta) (d zeta/dy).
     auto integrand = [&](double y) {
         const double zeta = std::expm1(y) / l;
-        return 2.0 * kPi * zeta * zeta * zeta * std::exp(-s2 * zeta * zeta) * psd(zeta) * std::exp(y) / l;
+        const double p = psd(zeta);
+        if (!(p > 0.0) || zeta == 0.0) return 0.0;
+        return 2.0 * kPi * std::exp(3.0 * std::log(zeta) - s2 * zeta * zeta + std::log(p) + y - std::log(l));
     };
     const double value = math::integrate_adaptive(integrand, 0.0, y_max, 1e-10);
     // A tail that still carries weight at the end of a y range that was not cut off means divergence.
@@ -94,6 +99,7 @@ double KCorrelation::acv_normalized(double r) const {
     if (gamma_ == 4.0) return (1.0 + x) * std::exp(-x);
     if (gamma_ == 6.0) return (1.0 + x + x * x / 3.0) * std::exp(-x);
     if (x > 700.0) return 0.0;
+    if (x == 0.0) return 1.0;
     if (x < 1e-8) {
         // Small-x expansion (THEORY.md 1.5): 1 + x^2/(4(1-nu)) - Gamma(1-nu)/Gamma(1+nu) (x/2)^{2 nu}.
         if (nu_ == std::round(nu_)) {
@@ -112,7 +118,7 @@ std::string KCorrelation::cache_key() const {
 
 double KCorrelation::mean_square_slope(double smoothing_um, double cutoff_zeta) const {
     require_non_negative(smoothing_um, "smoothing scale");
-    require_positive(cutoff_zeta, "cutoff frequency");
+    if (!(cutoff_zeta > 0.0)) fail("cutoff frequency must be > 0 (or +inf for none), got {}", cutoff_zeta);
     const double b = smoothing_um * smoothing_um / (length_ * length_);
     const double u_c = std::isinf(cutoff_zeta) ? kInf : length_ * length_ * cutoff_zeta * cutoff_zeta;
     const double integral = kc_slope_integral(0.5 * (gamma_ + 1.0), b, u_c);
@@ -148,7 +154,7 @@ std::string GaussianAcv::cache_key() const {
 
 double GaussianAcv::mean_square_slope(double smoothing_um, double cutoff_zeta) const {
     require_non_negative(smoothing_um, "smoothing scale");
-    require_positive(cutoff_zeta, "cutoff frequency");
+    if (!(cutoff_zeta > 0.0)) fail("cutoff frequency must be > 0 (or +inf for none), got {}", cutoff_zeta);
     // (l^2/2) int_0^{zc} zeta^3 e^{-a zeta^2} d zeta, a = l^2/4 + s^2.
     const double a = 0.25 * length_ * length_ + smoothing_um * smoothing_um;
     const double t = std::isinf(cutoff_zeta) ? kInf : a * cutoff_zeta * cutoff_zeta;

@@ -26,7 +26,8 @@ public:
     // <|grad h|^2> = int |zeta|^2 |H(zeta)|^2 P(zeta) d2zeta (dimensionless), with Gaussian smoothing of standard
     // deviation `smoothing_um` (|H|^2 = exp(-s^2 zeta^2); 0 = none) and a sharp low-pass at `cutoff_zeta` (rad/um;
     // +inf = none). Returns +inf when the integral diverges (e.g. KC gamma <= 3 without smoothing or cutoff).
-    // Default: adaptive Gauss-Kronrod quadrature of the radial integral, relative accuracy ~1e-9.
+    // Default: adaptive Gauss-Kronrod quadrature in ln(1 + zeta L) up to zeta L = e^100, relative accuracy ~1e-9;
+    // +inf if the integrand has not decayed there (tails at least as slow as zeta^-4 count as divergent).
     virtual double mean_square_slope(double smoothing_um, double cutoff_zeta) const;
 
     // Total integrated scatter of the GHS lobe at normal incidence for wavelength lambda (nm), perfect conductor:
@@ -73,8 +74,9 @@ private:
 };
 
 // Isotropic statistics defined numerically by a radial P(zeta) function: sigma_h^2 = int P d2zeta, rho = 2pi H0{P-hat}
-// computed once by FFTLog on a log grid and interpolated (cubic in log r; relative accuracy ~1e-7 where
-// rho > 1e-10, absolute 1e-12 beyond). Base of TabulatedPsd and of the filtered parts of psd_split.hpp.
+// computed once by FFTLog on a log grid (256 points per decade, 22 decades around the support) and interpolated
+// (cubic in ln r; absolute accuracy ~5e-8, tested against KC). The radial CDF comes from a 4-point cumulative rule
+// (~1e-9). The length scale is the inverse median radius of P-hat. Base of TabulatedPsd and FilteredStatistics.
 class NumericalRadialStatistics : public RadialStatistics {
 public:
     double sigma_h() const override { return sigma_; }
@@ -94,6 +96,7 @@ private:
     double sigma_ = 0, length_ = 0;
     std::string key_;
     std::vector<double> log_r_, rho_;             // rho on the FFTLog grid
+    double r_valid_lo_ = 0, r_valid_hi_ = 0;      // ln r range away from the transform's ringing ends
     std::vector<double> log_zeta_, cdf_;          // radial CDF on a log grid
 };
 
