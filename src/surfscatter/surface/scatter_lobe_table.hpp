@@ -1,11 +1,16 @@
 #pragma once
 // The full GHS scatter lobe without any series (THEORY.md 1.2):
 //   S_g(zeta) = (1/2pi) H0{exp(-g(1 - rho)) - exp(-g)} = e^{-g} sum_{m>=1} g^m/m! P-hat^{*m}(zeta),
-// whose mass over the zeta-plane is 1 - e^{-g}. Tabulated once per statistics as the shape
-// s_g = S_g / (1 - e^{-g}) (unit mass), over ln g (8 nodes per decade, g in [1e-4, 1e6]) x ln zeta (grid of
-// FFTLog outputs), with bicubic interpolation in (ln g, ln zeta) of ln s_g. For g < 1e-4 the lobe is
-// (g P-hat + g^2/2 P-hat^{*2})/(1-e^{-g}) (first two series terms, exact to O(g^2)).
-// Accuracy: see docs/SURFACE.md; tested ~1e-6 relative against the Poisson series over zeta*L in [1e-3, 2000].
+// whose mass over the zeta-plane is 1 - e^{-g}. Generic over RadialStatistics (KC, Gaussian ACV, high-pass parts).
+// Tabulated once per statistics as the unit-mass shape s_g = S_g / (1 - e^{-g}): rows at g -> 0 (= P-hat) and at
+// 48 log-spaced g per decade over [1e-4, 1e6]; each row is ln s_g on a log zeta grid (128 points per decade, covering
+// zeta from ~1e-4/L up to where the row has decayed; see radial_table.hpp) with its radial CDF. Lookup: cubic
+// Lagrange in ln zeta and across the 4 nearest g rows (in ln g); g < 1e-4 linear in g between the g -> 0 row and the
+// first node (error O(g^2)). Beyond a row's zeta window the tail is c P-hat (1 + eps (zeta/zeta_top)^kappa), the
+// algebraic asymptotics S_g -> g P-hat of the m = 1 term, so every zeta (up to 1e300) gives a finite value.
+// Accuracy (tests, KC gamma 2.5 and 3, zeta*L in [1e-3, 2000], g in [1e-5, 42] incl. between nodes): |S_g / series
+// - 1| < 4e-7 against e^{-g} sum g^m/m! P-hat^{*m}; unit mass to < 1e-5 for every g including gamma = 1.5 and the
+// Gaussian ACV. Building: ~0.1-0.3 s per statistics (docs/SURFACE.md), then cached on disk.
 #include <memory>
 
 #include "surfscatter/surface/radial_statistics.hpp"
@@ -20,7 +25,7 @@ public:
     // Built once per statistics (process cache + disk cache under cache_directory()), thread-safe.
     static std::shared_ptr<const ScatterLobeTable> get(const RadialStatistics&);
 
-    double eval(double g, double zeta) const;             // S_g(zeta), um^2; g >= 0 (0 at g = 0); g <= kMaxG
+    double eval(double g, double zeta) const;             // S_g(zeta), um^2; g in [0, kMaxG] (else Error); 0 at g = 0
     double shape(double g, double zeta) const;            // S_g / (1 - e^{-g}), unit mass
     double radial_cdf(double g, double zeta) const;       // int_{|zeta'|<=zeta} S_g / (1 - e^{-g})
     double inverse_radial_cdf(double g, double u) const;  // radius for u in [0, 1)

@@ -1,0 +1,101 @@
+// surfscatter selfconv: self-convolutions of the unit-mass KC PSD and the supplemental's refit L_m = L m^-x
+// (THEORY.md 2.4): prints "x = <value>" and a CSV m,L_m,misfit; --plot reproduces the supplemental's Fig. 2.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "command.hpp"
+#include "surfscatter/core/error.hpp"
+#include "surfscatter/core/paths.hpp"
+#include "surfscatter/surface/refit.hpp"
+#include "surfscatter/surface/self_convolution_table.hpp"
+
+namespace surfscatter::cli {
+namespace {
+
+constexpr int kMaxOrders = 5000;
+
+struct SelfconvArgs {
+    double gamma = 0, corr_length = 0;
+    int orders = 0;
+    std::string out, plot;
+};
+
+void write_table(const surface::RefitResult& fit, std::FILE* file) {
+    std::fprintf(file, "m,L_m,misfit\n");
+    for (std::size_t i = 0; i < fit.corr_length_m.size(); ++i)
+        std::fprintf(file, "%zu,%s,%s\n", i + 1, format_number(fit.corr_length_m[i]).c_str(),
+                     format_number(fit.misfit_m[i]).c_str());
+}
+
+// Curves for the figure: P-hat^{*m} and its refit for a few orders, on a log zeta grid.
+void write_curves(const surface::KCorrelation& kc, const surface::RefitResult& fit, int orders, const std::string& path) {
+    const auto table = surface::SelfConvolutionTable::get(kc, orders);
+    std::vector<int> shown;
+    for (int m : {1, 2, 3, 5, 8, 13, 21, 34, 55, 89, 144, 233, 377, 610, 987})
+        if (m <= orders) shown.push_back(m);
+    std::ofstream out(path);
+    if (!out) fail("--plot: cannot write '{}'", path);
+    out << "zeta";
+    for (int m : shown) out << ",true_" << m << ",fit_" << m;
+    out << '\n';
+    const double l = kc.correlation_length();
+    for (int j = 0; j <= 240; ++j) {
+        const double z = 1e-2 / l * std::pow(10.0, j / 40.0);
+        out << format_number(z);
+        for (int m : shown) {
+            const surface::KCorrelation refit(1.0, fit.corr_length_m[m - 1], kc.gamma());
+            out << ',' << format_number(table->eval(m, z)) << ',' << format_number(refit.psd_unit(z));
+        }
+        out << '\n';
+    }
+    if (!out) fail("--plot: write error on '{}'", path);
+}
+
+void run(const SelfconvArgs& args) {
+    require_finite(args.gamma, "--gamma");
+    if (!(args.gamma > 1.0)) fail("--gamma must be > 1, got {}", args.gamma);
+    require_positive(args.corr_length, "--corr-length");
+    if (args.orders < 1 || args.orders > kMaxOrders) fail("--orders must be in [1, {}], got {}", kMaxOrders, args.orders);
+    const surface::KCorrelation kc(1.0, args.corr_length, args.gamma);
+    const surface::RefitResult fit = surface::refit_self_convolutions(kc, args.orders);
+    std::printf("x = %s\n", format_number(fit.exponent_x).c_str());
+    write_table(fit, stdout);
+    if (!args.out.empty()) {
+        std::FILE* file = std::fopen(args.out.c_str(), "w");
+        if (!file) fail("--out: cannot open '{}' for writing", args.out);
+        write_table(fit, file);
+        if (std::fclose(file) != 0) fail("--out: write error on '{}'", args.out);
+    }
+    if (!args.plot.empty()) {
+        const std::string base = std::filesystem::path(args.plot).replace_extension("").string();
+        const std::string curves = base + "_curves.csv", table = base + "_table.csv";
+        write_curves(kc, fit, args.orders, curves);
+        std::FILE* file = std::fopen(table.c_str(), "w");
+        if (!file) fail("--plot: cannot write '{}'", table);
+        write_table(fit, file);
+        std::fclose(file);
+        run_plot_script("selfconv.py", {curves, table, args.plot,
+                                        fmt::format("KC self-convolutions, gamma = {:g}, L = {:g} um: x = {:.4f}",
+                                                    args.gamma, args.corr_length, fit.exponent_x)});
+    }
+}
+
+const Command command("selfconv", [](CLI::App& app) {
+    auto args = std::make_shared<SelfconvArgs>();
+    CLI::App* cmd = app.add_subcommand(
+        "selfconv", "Self-convolutions of the KC PSD, refit L_m = L m^-x: prints 'x = ...' and CSV m,L_m,misfit");
+    cmd->add_option("--gamma", args->gamma, "KC exponent gamma > 1")->required();
+    cmd->add_option("--corr-length", args->corr_length, "correlation length L (um)")->required();
+    cmd->add_option("--orders", args->orders, "highest order M (1..5000)")->required();
+    cmd->add_option("--out", args->out, "also write the m,L_m,misfit table to this CSV file");
+    cmd->add_option("--plot", args->plot, "write the supplemental's Fig. 2 (convolved PSDs, inset L_m) as PNG");
+    cmd->callback([args] { run(*args); });
+});
+
+}  // namespace
+}  // namespace surfscatter::cli

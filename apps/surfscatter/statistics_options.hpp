@@ -1,0 +1,27 @@
+#pragma once
+// Options shared by `surfscatter psd` and `surfscatter acv`: the statistics model (--model kc|gaussian, --sigma,
+// --corr-length, --gamma) and a comma-separated list of abscissae.
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "surfscatter/surface/radial_statistics.hpp"
+
+namespace surfscatter::cli {
+
+struct StatisticsOptions {
+    std::string model = "kc";
+    double sigma = 0, corr_length = 0;
+    std::optional<double> gamma;
+
+    void add_to(CLI::App& cmd);
+    std::unique_ptr<surface::RadialStatistics> make() const;  // throws Error naming the bad option
+};
+
+// Parses "x1,x2,..." of finite non-negative numbers; `option` names the flag in errors.
+std::vector<double> parse_number_list(const std::string& text, const char* option);
+
+}  // namespace surfscatter::cli
