@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 
 #include "surfscatter/bsdf/poisson.hpp"
 
@@ -16,17 +17,33 @@ double ExactScatterCore::density(double g, double zeta) const {
     return table_->eval(std::min(g, surface::ScatterLobeTable::kMaxG), zeta);
 }
 
+const RadialProposal& ExactScatterCore::proposal(double g_star) const {
+    constexpr double kNodesPerDecade = 16.0;
+    const double g_min = surface::ScatterLobeTable::kMinG;
+    const int node = int(std::lround(kNodesPerDecade * std::log10(std::clamp(g_star, g_min, surface::ScatterLobeTable::kMaxG))));
+    {
+        std::shared_lock lock(mutex_);
+        const auto it = proposals_.find(node);
+        if (it != proposals_.end()) return *it->second;
+    }
+    const double g = std::pow(10.0, node / kNodesPerDecade);
+    auto built = std::make_unique<RadialProposal>([&](double z) { return table_->radial_cdf(g, z); },
+                                                  [&](double u) { return table_->inverse_radial_cdf(g, u); },
+                                                  [&](double z) { return table_->shape(g, z); });
+    std::unique_lock lock(mutex_);
+    return *proposals_.emplace(node, std::move(built)).first->second;
+}
+
 double ExactScatterCore::sample_radius(double g_star, double zeta_max, double, double u) const {
-    g_star = std::min(g_star, surface::ScatterLobeTable::kMaxG);
-    const double f_max = table_->radial_cdf(g_star, zeta_max);
-    return std::min(zeta_max, table_->inverse_radial_cdf(g_star, u * f_max));
+    const RadialProposal& p = proposal(g_star);
+    return std::min(zeta_max, p.inverse(u * p.cdf(zeta_max)));
 }
 
 double ExactScatterCore::sample_density(double g_star, double zeta_max, double zeta) const {
-    g_star = std::min(g_star, surface::ScatterLobeTable::kMaxG);
     if (zeta > zeta_max) return 0.0;
-    const double f_max = table_->radial_cdf(g_star, zeta_max);
-    return f_max > 0 ? table_->shape(g_star, zeta) / f_max : 0.0;
+    const RadialProposal& p = proposal(g_star);
+    const double f_max = p.cdf(zeta_max);
+    return f_max > 0 ? p.density_2d(zeta) / f_max : 0.0;
 }
 
 // --- refit ---------------------------------------------------------------------------------------------------

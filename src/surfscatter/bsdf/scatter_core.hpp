@@ -4,7 +4,9 @@
 // surface engine's S_g table, or by the paper's KC-refit series), or a first-order lobe (SSA). Densities are per
 // (rad/um)^2; the BRDF is k^2 times a density (THEORY 0). Each core also draws |zeta| <= zeta_max from the lobe at a
 // fixed g* and reports the exact 2-D density of what it draws, for the wedge sampler (wedge_sampling.hpp).
+#include <map>
 #include <memory>
+#include <shared_mutex>
 
 namespace surfscatter::bsdf {
 
@@ -24,14 +26,17 @@ public:
 
 #include "surfscatter/bsdf/model_options.hpp"
 #include "surfscatter/bsdf/poisson.hpp"
+#include "surfscatter/bsdf/radial_proposal.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
 #include "surfscatter/surface/refit.hpp"
 #include "surfscatter/surface/scatter_lobe_table.hpp"
 
 namespace surfscatter::bsdf {
 
-// The full lobe from the surface engine's S_g table: no series, cost independent of g. Sampling draws straight
-// from S_{g*} truncated to |zeta| <= zeta_max. g above ScatterLobeTable::kMaxG (1e6) is evaluated at kMaxG.
+// The full lobe from the surface engine's S_g table: no series, cost independent of g. Sampling draws from a
+// RadialProposal of S_{g_q}, g_q = g* rounded to 16 nodes per decade (proposals cached, thread-safe), truncated to
+// |zeta| <= zeta_max; the pdf is that proposal's exact density. g above ScatterLobeTable::kMaxG (1e6) is evaluated
+// at kMaxG.
 class ExactScatterCore final : public ScatterCore {
 public:
     explicit ExactScatterCore(const surface::RadialStatistics& stats);
@@ -40,7 +45,10 @@ public:
     double sample_density(double g_star, double zeta_max, double zeta) const override;
 
 private:
+    const RadialProposal& proposal(double g_star) const;
     std::shared_ptr<const surface::ScatterLobeTable> table_;
+    mutable std::shared_mutex mutex_;
+    mutable std::map<int, std::unique_ptr<RadialProposal>> proposals_;
 };
 
 // The paper's method (supplemental eqs 1-2): Poisson series over the orders kept by the truncation rule, each

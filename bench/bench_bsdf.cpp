@@ -1,0 +1,100 @@
+// eval / sample / pdf of every scattering model at g0 = 0.1, 10, 1000 (normal incidence, 550 nm, KC gamma = 3,
+// L = 1 um, perfect conductor). The per-wavelength tables (sigma_rel, K) are built before timing.
+// Run: build/bench/bench_bsdf --benchmark_min_time=0.2
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <map>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "surfscatter/bsdf/factory.hpp"
+
+using namespace surfscatter;
+using namespace surfscatter::bsdf;
+
+namespace {
+
+constexpr double kLambda = 550.0;
+constexpr double kThetaI = 30.0 * kDegree;
+
+ModelOptions options_for(int model, double g) {
+    ModelOptions o;
+    o.surface.psd = PsdKind::kc;
+    o.surface.gamma = 3.0;
+    o.surface.corr_length = 1.0;
+    o.surface.sigma = std::sqrt(g) / (2.0 * kTwoPi / (kLambda * 1e-3));
+    switch (model) {
+        case 0: o.model = ModelKind::ghs; break;
+        case 1: o.model = ModelKind::ghs; o.method = GhsMethod::refit; break;
+        case 2: o.model = ModelKind::ghs_ssa; break;
+        case 3: o.model = ModelKind::ggx; o.alpha_from = AlphaFrom::smoothed; o.smoothing = 0.1; break;
+        default: o.model = ModelKind::two_scale; o.cutoff_wavelengths = 50; break;
+    }
+    return o;
+}
+
+const Bsdf& model(int m, double g) {
+    static std::map<std::pair<int, double>, std::unique_ptr<Bsdf>> cache;
+    auto& b = cache[{m, g}];
+    if (!b) {
+        b = make_bsdf(options_for(m, g));
+        b->eval(spherical_direction(kThetaI, 0), Vec3(0, 0, 1), kLambda);  // build the tables
+    }
+    return *b;
+}
+
+// Outgoing directions from the model's own sampler: the queries a renderer makes.
+std::vector<Vec3> directions(const Bsdf& b, const Vec3& wi) {
+    std::mt19937_64 rng(3);
+    std::uniform_real_distribution<double> u(0, 1);
+    std::vector<Vec3> out;
+    while (out.size() < 1024) {
+        const auto s = b.sample(wi, kLambda, 0.999999 * u(rng) + 1e-6, Vec2(u(rng), u(rng)));
+        if (s && !s->delta) out.push_back(s->wo);
+        if (!s || s->delta) out.push_back(spherical_direction(std::acos(u(rng)), kTwoPi * u(rng)));
+    }
+    return out;
+}
+
+const char* kNames[] = {"ghs_exact", "ghs_refit", "ghs_ssa", "ggx", "two_scale"};
+
+void BM_eval(benchmark::State& state) {
+    const Bsdf& b = model(int(state.range(0)), std::pow(10.0, double(state.range(1)) - 1));
+    const Vec3 wi = spherical_direction(kThetaI, 0);
+    const auto wos = directions(b, wi);
+    std::size_t i = 0;
+    for (auto _ : state) benchmark::DoNotOptimize(b.eval(wi, wos[i++ & 1023], kLambda));
+    state.SetLabel(kNames[state.range(0)]);
+}
+
+void BM_pdf(benchmark::State& state) {
+    const Bsdf& b = model(int(state.range(0)), std::pow(10.0, double(state.range(1)) - 1));
+    const Vec3 wi = spherical_direction(kThetaI, 0);
+    const auto wos = directions(b, wi);
+    std::size_t i = 0;
+    for (auto _ : state) benchmark::DoNotOptimize(b.pdf(wi, wos[i++ & 1023], kLambda));
+    state.SetLabel(kNames[state.range(0)]);
+}
+
+void BM_sample(benchmark::State& state) {
+    const Bsdf& b = model(int(state.range(0)), std::pow(10.0, double(state.range(1)) - 1));
+    const Vec3 wi = spherical_direction(kThetaI, 0);
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> u(0, 1);
+    for (auto _ : state) benchmark::DoNotOptimize(b.sample(wi, kLambda, u(rng), Vec2(u(rng), u(rng))));
+    state.SetLabel(kNames[state.range(0)]);
+}
+
+// Arguments: model index, log10(g) + 1 (0 -> g = 0.1, 2 -> 10, 4 -> 1000).
+void models_and_g(benchmark::internal::Benchmark* b) {
+    for (int m = 0; m < 5; ++m)
+        for (int lg : {0, 2, 4}) b->Args({m, lg});
+}
+
+}  // namespace
+
+BENCHMARK(BM_eval)->Apply(models_and_g);
+BENCHMARK(BM_pdf)->Apply(models_and_g);
+BENCHMARK(BM_sample)->Apply(models_and_g);
