@@ -2,8 +2,10 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 
+#include "command.hpp"
 #include "surfscatter/core/error.hpp"
 
 namespace surfscatter::cli {
@@ -48,6 +50,26 @@ std::vector<double> parse_number_list(const std::string& text, const char* optio
         start = comma + 1;
     }
     return values;
+}
+
+void add_statistics_table_command(CLI::App& app, const std::string& name, const std::string& description,
+                                  const std::string& x_name, const std::string& x_help, const std::string& value_name,
+                                  StatisticsFunction value) {
+    struct Args {
+        StatisticsOptions model;
+        std::string list;
+    };
+    auto args = std::make_shared<Args>();
+    CLI::App* cmd = app.add_subcommand(name, description);
+    args->model.add_to(*cmd);
+    const std::string flag = "--" + x_name;
+    cmd->add_option(flag, args->list, x_help)->required();
+    cmd->callback([args, flag, x_name, value_name, value] {
+        const auto stats = args->model.make();
+        const auto xs = parse_number_list(args->list, flag.c_str());
+        std::printf("%s,%s\n", x_name.c_str(), value_name.c_str());
+        for (double x : xs) std::printf("%s,%s\n", format_number(x).c_str(), format_number(value(*stats, x)).c_str());
+    });
 }
 
 }  // namespace surfscatter::cli

@@ -24,4 +24,10 @@ struct StatisticsOptions {
 // Parses "x1,x2,..." of finite non-negative numbers; `option` names the flag in errors.
 std::vector<double> parse_number_list(const std::string& text, const char* option);
 
+// Adds a subcommand that prints CSV "<x>,<value>" for a list given as --<x> x1,x2,...: `value(stats, x)`.
+using StatisticsFunction = double (*)(const surface::RadialStatistics&, double);
+void add_statistics_table_command(CLI::App& app, const std::string& name, const std::string& description,
+                                  const std::string& x_name, const std::string& x_help, const std::string& value_name,
+                                  StatisticsFunction value);
+
 }  // namespace surfscatter::cli

@@ -5,8 +5,11 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <map>
+#include <mutex>
 
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include "surfscatter/core/paths.hpp"
 #include "surfscatter/math/vec.hpp"
@@ -258,6 +261,22 @@ double RadialFamily::inverse_cdf(int row, double u) const {
     return std::exp(0.5 * (a + b));
 }
 
+std::shared_ptr<const RadialFamily> cached_family(const std::string& key, std::size_t rows,
+                                                  const std::function<RadialFamily()>& build) {
+    static std::mutex mutex;
+    static std::map<std::string, std::weak_ptr<const RadialFamily>> families;
+    std::lock_guard lock(mutex);
+    if (auto existing = families[key].lock()) return existing;
+    auto family = std::make_shared<RadialFamily>();
+    std::vector<double> extra;
+    if (!load_family(key, *family, extra) || family->rows.size() != rows) {
+        *family = build();
+        save_family(key, *family, {});
+    }
+    families[key] = family;
+    return family;
+}
+
 std::filesystem::path cache_file(const std::string& key) {
     const std::uint64_t h = fnv1a(key.data(), key.size());
     return cache_directory() / fmt::format("radial-table-v{}-{:016x}.bin", kFormatVersion, h);
@@ -280,7 +299,7 @@ void save_family(const std::string& key, const RadialFamily& family, const std::
     }
     try {
         const auto path = cache_file(key);
-        const auto tmp = path.string() + fmt::format(".tmp{}", fnv1a(&payload, sizeof(payload)));
+        const auto tmp = path.string() + fmt::format(".tmp{}", static_cast<long>(getpid()));  // per-process name
         {
             std::ofstream out(tmp, std::ios::binary);
             const std::uint64_t key_size = key.size(), count = payload.size();

@@ -60,6 +60,11 @@ RadialRow make_row(const TransformSetup& setup, const std::vector<double>& f, do
                    const LogGrid& stored);
 LogGrid stored_grid(const TransformSetup& setup);
 
+// The family for `key`: from this process's cache, else the disk cache (if it has `rows` rows), else `build()`
+// (then written to disk). Thread-safe; families are shared while any table uses them.
+std::shared_ptr<const RadialFamily> cached_family(const std::string& key, std::size_t rows,
+                                                  const std::function<RadialFamily()>& build);
+
 // Disk cache: a binary file per key under cache_directory(); returns false (and never throws) if absent/corrupt.
 bool load_family(const std::string& key, RadialFamily& family, std::vector<double>& extra);
 void save_family(const std::string& key, const RadialFamily& family, const std::vector<double>& extra);

@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <map>
-#include <mutex>
 
 #include <fmt/format.h>
 
@@ -29,24 +27,24 @@ double lobe_integrand(double g, double rho) {
 }  // namespace
 
 struct ScatterLobeTable::Data {
-    detail::RadialFamily family;  // row 0: g -> 0 limit (P-hat); row k >= 1: g = node_g(k - 1)
+    std::shared_ptr<const detail::RadialFamily> family;  // row 0: g -> 0 limit (P-hat); row k >= 1: g = node_g(k - 1)
 };
 
 namespace {
 
-std::shared_ptr<const ScatterLobeTable::Data> build(const RadialStatistics& stats) {
-    auto data = std::make_shared<ScatterLobeTable::Data>();
+detail::RadialFamily build(const RadialStatistics& stats) {
+    detail::RadialFamily family;
     const detail::TransformSetup setup = detail::make_transform_setup(stats, ScatterLobeTable::kMaxG);
-    data->family.grid = detail::stored_grid(setup);
-    data->family.set_base(stats);
-    data->family.rows.push_back(detail::make_row(setup, setup.rho, 1.0, 1.0, data->family.grid));
+    family.grid = detail::stored_grid(setup);
+    family.set_base(stats);
+    family.rows.push_back(detail::make_row(setup, setup.rho, 1.0, 1.0, family.grid));
     std::vector<double> f(setup.rho.size());
     for (int k = 0; k < kGNodes; ++k) {
         const double g = node_g(k);
         for (std::size_t j = 0; j < f.size(); ++j) f[j] = lobe_integrand(g, setup.rho[j]);
-        data->family.rows.push_back(detail::make_row(setup, f, -std::expm1(-g), g, data->family.grid));
+        family.rows.push_back(detail::make_row(setup, f, -std::expm1(-g), g, family.grid));
     }
-    return data;
+    return family;
 }
 
 void check_g(double g) {
@@ -62,7 +60,7 @@ Stencil stencil(double g) {
     const double t = (std::log(g) - kLogGMin) / kGStep;
     int i = std::clamp(static_cast<int>(std::floor(t)), 1, kGNodes - 3);
     const double u = t - i;
-    return {i - 1 + 1,  // +1: row 0 is the g -> 0 limit
+    return {i,  // rows i .. i+3 hold nodes i-1 .. i+2 (row 0 is the g -> 0 limit)
             {-u * (u - 1.0) * (u - 2.0) / 6.0, (u + 1.0) * (u - 1.0) * (u - 2.0) / 2.0,
              -(u + 1.0) * u * (u - 2.0) / 2.0, (u + 1.0) * u * (u - 1.0) / 6.0}};
 }
@@ -73,26 +71,13 @@ ScatterLobeTable::ScatterLobeTable(std::shared_ptr<const Data> data) : data_(std
 
 std::shared_ptr<const ScatterLobeTable> ScatterLobeTable::get(const RadialStatistics& stats) {
     const std::string key = fmt::format("lobe:{}:g={}..{}x{}", stats.cache_key(), kMinG, kMaxG, kNodesPerDecade);
-    static std::mutex mutex;
-    static std::map<std::string, std::weak_ptr<const ScatterLobeTable>> tables;
-    std::lock_guard lock(mutex);
-    if (auto existing = tables[key].lock()) return existing;
-    auto data = std::make_shared<Data>();
-    std::vector<double> extra;
-    if (!detail::load_family(key, data->family, extra) ||
-        static_cast<int>(data->family.rows.size()) != kGNodes + 1) {
-        auto built = build(stats);
-        detail::save_family(key, built->family, {});
-        data = std::const_pointer_cast<Data>(built);
-    }
-    auto table = std::make_shared<const ScatterLobeTable>(data);
-    tables[key] = table;
-    return table;
+    auto family = detail::cached_family(key, kGNodes + 1, [&] { return build(stats); });
+    return std::make_shared<const ScatterLobeTable>(std::make_shared<const Data>(Data{std::move(family)}));
 }
 
 double ScatterLobeTable::shape(double g, double zeta) const {
     check_g(g);
-    const detail::RadialFamily& f = data_->family;
+    const detail::RadialFamily& f = *data_->family;
     if (!(zeta >= 0.0) || std::isinf(zeta)) return 0.0;
     const double log_zeta = zeta > 0.0 ? std::log(zeta) : -1e300;
     if (g < kMinG) {
@@ -116,7 +101,7 @@ double ScatterLobeTable::eval(double g, double zeta) const {
 
 double ScatterLobeTable::radial_cdf(double g, double zeta) const {
     check_g(g);
-    const detail::RadialFamily& f = data_->family;
+    const detail::RadialFamily& f = *data_->family;
     if (g < kMinG) return std::clamp(f.cdf(0, zeta) + (g / kMinG) * (f.cdf(1, zeta) - f.cdf(0, zeta)), 0.0, 1.0);
     const Stencil s = stencil(g);
     double c = 0.0;
@@ -128,7 +113,7 @@ double ScatterLobeTable::inverse_radial_cdf(double g, double u) const {
     check_g(g);
     if (!(u > 0.0)) return 0.0;
     u = std::min(u, 1.0 - 1e-16);
-    const detail::RadialFamily& f = data_->family;
+    const detail::RadialFamily& f = *data_->family;
     // Bracket with the neighbouring rows' own inverses, then bisection in ln zeta on the interpolated CDF.
     double lo = 1e300, hi = 0.0;
     const int first = g < kMinG ? 0 : stencil(g).first;
