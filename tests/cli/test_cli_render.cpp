@@ -64,7 +64,7 @@ TEST(CliRender, BadScenesExitTwoWithFileAndLine) {
     const fs::path unknown = write("unknown.xml", std::string(kScene).replace(std::string(kScene).find("rectangle"), 9, "teapot"));
     auto result = run_cli({"render", unknown.string(), "--quiet", "-o", (temp_dir() / "x.exr").string()});
     EXPECT_EQ(result.exit_code, 2);
-    EXPECT_NE(result.err.find(unknown.string() + ":12: unknown shape plugin 'teapot'"), std::string::npos) << result.err;
+    EXPECT_NE(result.err.find(unknown.string() + ":9: unknown shape plugin 'teapot'"), std::string::npos) << result.err;
 
     const fs::path syntax = write("syntax.xml", "<scene version=\"3.0.0\">\n  <sensor type=\"perspective\">\n</scene>\n");
     result = run_cli({"render", syntax.string(), "--quiet", "-o", (temp_dir() / "x.exr").string()});
@@ -76,7 +76,7 @@ TEST(CliRender, BadScenesExitTwoWithFileAndLine) {
         "<texture name=\"reflectance\" type=\"bitmap\"><string name=\"filename\" value=\"missing.png\"/></texture>"));
     result = run_cli({"render", texture.string(), "--quiet", "-o", (temp_dir() / "x.exr").string()});
     EXPECT_EQ(result.exit_code, 2);
-    EXPECT_NE(result.err.find(texture.string() + ":12: file not found"), std::string::npos) << result.err;
+    EXPECT_NE(result.err.find(texture.string() + ":9: file not found"), std::string::npos) << result.err;
 
     result = run_cli({"render", (temp_dir() / "no_such_scene.xml").string(), "-o", (temp_dir() / "x.exr").string()});
     EXPECT_EQ(result.exit_code, 2);
