@@ -62,8 +62,8 @@ TEST(CliHeightmap, SynthThenFitRecoversParameters) {
 TEST(CliHeightmap, SameSeedSameFile) {
     const std::string a = (temp_dir() / "a.gsf").string(), b = (temp_dir() / "b.gsf").string();
     for (const std::string& out : {a, b})
-        ASSERT_EQ(run_cli({"surface", "synth", "--model", "kc", "--sigma", "0.1", "--corr-length", "3", "--gamma", "2.5",
-                           "--size", "64", "--spacing", "0.5", "--seed", "3", "-o", out})
+        ASSERT_EQ(run_cli({"surface", "synth", "--model", "kc", "--sigma", "0.1", "--corr-length", "3", "--gamma",
+                           "2.5", "--size", "64", "--spacing", "0.5", "--seed", "3", "-o", out})
                       .exit_code,
                   0);
     EXPECT_EQ(surfscatter::test::read_whole_file(a), surfscatter::test::read_whole_file(b));

@@ -17,7 +17,8 @@ ss::HeightMap noisy_map(std::size_t nx, std::size_t ny, double dx, double dy, un
     std::normal_distribution<double> normal(0.0, 0.3);
     std::vector<double> h(nx * ny);
     for (std::size_t i = 0; i < h.size(); ++i)
-        h[i] = normal(engine) + 0.05 * static_cast<double>(i % nx) + 0.5 * std::sin(0.3 * static_cast<double>(i / nx));
+        h[i] = normal(engine) + 0.05 * static_cast<double>(i % nx) +
+               0.5 * std::sin(0.3 * static_cast<double>(i / nx));
     return ss::HeightMap(nx, ny, dx, dy, std::move(h));
 }
 
@@ -25,10 +26,11 @@ ss::HeightMap noisy_map(std::size_t nx, std::size_t ny, double dx, double dy, un
 ss::HeightMap sinusoid_map(std::size_t nx, std::size_t ny, double dx, double dy, int mx, int my, double amplitude) {
     std::vector<double> h(nx * ny);
     for (std::size_t iy = 0; iy < ny; ++iy)
-        for (std::size_t ix = 0; ix < nx; ++ix)
-            h[iy * nx + ix] = amplitude * std::cos(2.0 * kPi * (mx * static_cast<double>(ix) / static_cast<double>(nx) +
-                                                                my * static_cast<double>(iy) / static_cast<double>(ny)) +
-                                                   0.7);
+        for (std::size_t ix = 0; ix < nx; ++ix) {
+            const double phase = mx * static_cast<double>(ix) / static_cast<double>(nx) +
+                                 my * static_cast<double>(iy) / static_cast<double>(ny);
+            h[iy * nx + ix] = amplitude * std::cos(2.0 * kPi * phase + 0.7);
+        }
     return ss::HeightMap(nx, ny, dx, dy, std::move(h));
 }
 }  // namespace

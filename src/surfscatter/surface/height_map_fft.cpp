@@ -1,19 +1,17 @@
 #include "surfscatter/surface/height_map_fft.hpp"
 
-#include <mutex>
-
 #include <fftw3.h>
 
 #include "surfscatter/core/error.hpp"
 
 namespace surfscatter::surface {
 
-namespace {
-// FFTW's planner is not thread-safe (fftw_execute is): plan creation and destruction are serialised.
-std::mutex& planner_mutex() {
+std::mutex& fftw_planner_mutex() {
     static std::mutex mutex;
     return mutex;
 }
+
+namespace {
 
 class Plan {
 public:
@@ -21,7 +19,7 @@ public:
         if (!plan_) fail("FFTW could not create a plan");
     }
     ~Plan() {
-        std::lock_guard lock(planner_mutex());
+        std::lock_guard lock(fftw_planner_mutex());
         fftw_destroy_plan(plan_);
     }
     Plan(const Plan&) = delete;
@@ -38,7 +36,7 @@ std::vector<std::complex<double>> forward_fft_2d(const std::vector<double>& data
     std::vector<std::complex<double>> spectrum(ny * (nx / 2 + 1));
     fftw_plan raw;
     {
-        std::lock_guard lock(planner_mutex());
+        std::lock_guard lock(fftw_planner_mutex());
         raw = fftw_plan_dft_r2c_2d(static_cast<int>(ny), static_cast<int>(nx), input.data(),
                                    reinterpret_cast<fftw_complex*>(spectrum.data()), FFTW_ESTIMATE);
     }
@@ -50,7 +48,7 @@ std::vector<double> inverse_fft_2d(std::vector<std::complex<double>> spectrum, s
     std::vector<double> output(nx * ny);
     fftw_plan raw;
     {
-        std::lock_guard lock(planner_mutex());
+        std::lock_guard lock(fftw_planner_mutex());
         raw = fftw_plan_dft_c2r_2d(static_cast<int>(ny), static_cast<int>(nx),
                                    reinterpret_cast<fftw_complex*>(spectrum.data()), output.data(), FFTW_ESTIMATE);
     }

@@ -117,7 +117,9 @@ KcFit fit_kc(const RadialPsd& radial, double nyquist, const KcFitOptions& option
     solver.minimize(best);
 
     const double log_variance = profiled_residuals(data, best[0], best[1], residuals);
-    auto on_bound = [](double v, double lo, double hi) { return v < lo + 0.02 * (hi - lo) || v > hi - 0.02 * (hi - lo); };
+    auto on_bound = [](double v, double lo, double hi) {
+        return v < lo + 0.02 * (hi - lo) || v > hi - 0.02 * (hi - lo);
+    };
     const double l = std::exp(best[0]), gamma = 1.0 + std::exp(best[1]);
     if (!std::isfinite(log_variance) || !std::isfinite(l) || !std::isfinite(gamma) ||
         on_bound(best[0], log_l_min, log_l_max))

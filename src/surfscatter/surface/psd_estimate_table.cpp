@@ -47,7 +47,8 @@ PsdSamples binned_psd_samples(const RadialPsd& radial, double nyquist, const Psd
 }
 
 TabulatedPsd tabulated_psd(const HeightMap& map, const PsdTableOptions& options) {
-    PsdSamples samples = binned_psd_samples(radial_average(estimate_psd(map, Window::hann)), nyquist_zeta(map), options);
+    PsdSamples samples =
+        binned_psd_samples(radial_average(estimate_psd(map, Window::hann)), nyquist_zeta(map), options);
     return TabulatedPsd(std::move(samples.zeta), std::move(samples.psd));
 }
 
