@@ -141,6 +141,9 @@ TEST(HeightIo, MalformedGsfNamesFileAndProblem) {
               std::string::npos);
     EXPECT_NE(message_for(hand_made_gsf("XRes = -8\nYRes = 8\nXYUnits = m\nZUnits = m\n", data)).find("XRes"),
               std::string::npos);
+    EXPECT_NE(message_for(hand_made_gsf("XRes = 99999999999\nYRes = 99999999999\nXYUnits = m\nZUnits = m\n", data))
+                  .find("larger than"),
+              std::string::npos);
     EXPECT_NE(message_for(hand_made_gsf("XRes = 8\nYRes = 8\nZUnits = m\n", data)).find("XYUnits"),
               std::string::npos);
     EXPECT_NE(message_for(hand_made_gsf("XRes = 8\nYRes = 8\nXYUnits = V\nZUnits = m\n", data)).find("'V'"),

@@ -121,6 +121,10 @@ HeightMap read_gsf(const std::filesystem::path& file) {
 
     const std::size_t nx = parse_resolution(path, header, "XRes");
     const std::size_t ny = parse_resolution(path, header, "YRes");
+    // Bounds the byte count below (no overflow) and any allocation to what a real file could hold.
+    constexpr std::size_t kMaxSide = std::size_t{1} << 20;
+    if (nx > kMaxSide || ny > kMaxSide || nx * ny > (std::size_t{1} << 32))
+        fail("{}: XRes x YRes = {} x {} is larger than any height map this reads (2^32 samples)", path, nx, ny);
     const std::uint64_t expected = static_cast<std::uint64_t>(data_start) +
                                    4ull * static_cast<std::uint64_t>(nx) * static_cast<std::uint64_t>(ny);
     if (bytes.size() != expected)
