@@ -34,7 +34,10 @@ function(surfscatter_test name)
   add_executable(${target} ${sources})
   target_include_directories(${target} PRIVATE "${CMAKE_CURRENT_SOURCE_DIR}")
   target_compile_options(${target} PRIVATE ${SURFSCATTER_WARNINGS})
-  target_link_libraries(${target} PRIVATE surfscatter::${name} ${ARG_DEPS} GTest::gtest GTest::gtest_main GTest::gmock)
+  if(TARGET surfscatter::${name})
+    target_link_libraries(${target} PRIVATE surfscatter::${name})
+  endif()
+  target_link_libraries(${target} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main GTest::gmock)
   target_compile_definitions(${target} PRIVATE
     SURFSCATTER_SHARED_DATA="${SURFSCATTER_SHARED_DATA}"
     SURFSCATTER_SOURCE_DIR="${SURFSCATTER_SOURCE_DIR}"
