@@ -12,13 +12,14 @@
 #include <vector>
 
 #include "cli_runner.hpp"
+#include "spectrum/test_data.hpp"
 #include "surfscatter/material/refractive_index.hpp"
 
 using surfscatter::test::run_cli;
+using surfscatter::test::shared_data;
+using surfscatter::test::write_temp_file;
 
 namespace {
-
-std::string data(const std::string& relative) { return std::string(SURFSCATTER_SHARED_DATA) + "/" + relative; }
 
 // The single-line error contract: exit 2, nothing on stdout, one line on stderr containing `needle`.
 void expect_bad_input(std::initializer_list<std::string> args, const std::string& needle) {
@@ -41,24 +42,24 @@ TEST(CliIor, PrintsBuiltInLorentzDrude) {
     double lambda, n, k;
     ASSERT_EQ(std::sscanf(lines[2].c_str(), "%lf,%lf,%lf", &lambda, &n, &k), 3);
     EXPECT_EQ(lambda, 500.0);
-    std::ifstream in(data("optical_constants/rakic1998_ld/gold.csv"));
-    for (std::string line; std::getline(in, line);)
-        if (line.rfind("500,", 0) == 0) {
-            double l2, n2, k2;
-            ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf", &l2, &n2, &k2), 3);
-            EXPECT_NEAR(n, n2, 1e-6);
-            EXPECT_NEAR(k, k2, 1e-6);
-        }
+    int matched = 0;
+    for (const auto& row : surfscatter::test::read_shared_csv("optical_constants/rakic1998_ld/gold.csv")) {
+        if (row[0] != 500.0) continue;
+        EXPECT_NEAR(n, row[1], 1e-6);
+        EXPECT_NEAR(k, row[2], 1e-6);
+        ++matched;
+    }
+    EXPECT_EQ(matched, 1);
 }
 
 TEST(CliIor, ReadsYamlAndCsvFiles) {
-    auto r = run_cli({"ior", "--material", data("refractiveindex/SiO2_Malitson.yml"), "--wavelength", "587.5618"});
+    auto r = run_cli({"ior", "--material", shared_data("refractiveindex/SiO2_Malitson.yml"), "--wavelength", "587.5618"});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     double lambda, n, k;
     ASSERT_EQ(std::sscanf(r.out_lines().at(1).c_str(), "%lf,%lf,%lf", &lambda, &n, &k), 3);
     EXPECT_NEAR(n, 1.45846, 2e-5);
     EXPECT_EQ(k, 0.0);
-    r = run_cli({"ior", "--material", data("optical_constants/gold.csv"), "--wavelength", "354.2"});
+    r = run_cli({"ior", "--material", shared_data("optical_constants/gold.csv"), "--wavelength", "354.2"});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(r.out_lines().at(1), "354.2,1.5,1.866");
 }
@@ -66,15 +67,15 @@ TEST(CliIor, ReadsYamlAndCsvFiles) {
 TEST(CliIor, BadInputExitsWith2) {
     expect_bad_input({"ior", "--material", "Unobtainium", "--wavelength", "500"}, "unknown material 'Unobtainium'");
     expect_bad_input({"ior", "--material", "Au", "--wavelength", "100"}, "wavelength 100 nm is outside the range");
-    expect_bad_input({"ior", "--material", data("optical_constants/gold.csv"), "--wavelength", "1000"},
+    expect_bad_input({"ior", "--material", shared_data("optical_constants/gold.csv"), "--wavelength", "1000"},
                      "outside the range 354.2-892 nm");
     expect_bad_input({"ior", "--material", "Au", "--wavelength", "0"}, "--wavelength must be positive");
     expect_bad_input({"ior", "--material", "Au", "--wavelength", "nan"}, "--wavelength");
     expect_bad_input({"ior", "--material", "Au", "--wavelength", "abc"}, "abc");
     expect_bad_input({"ior", "--material", "/nonexistent/x.yml", "--wavelength", "500"}, "/nonexistent/x.yml");
-    const std::string bad = (std::filesystem::temp_directory_path() / "surfscatter_cli_bad.csv").string();
-    std::ofstream(bad) << "wavelength_nm,n,k\n400,1,2\n500,oops,2\n";
-    expect_bad_input({"ior", "--material", bad, "--wavelength", "450"}, "surfscatter_cli_bad.csv:3:");
+    const std::string bad = write_temp_file("wavelength_nm,n,k\n400,1,2\n500,oops,2\n", ".csv");
+    expect_bad_input({"ior", "--material", bad, "--wavelength", "450"}, bad + ":3:");
+    std::remove(bad.c_str());
     std::filesystem::remove(bad);
 }
 

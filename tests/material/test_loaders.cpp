@@ -6,9 +6,8 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <unistd.h>
 
-#include "shared_data.hpp"
+#include "spectrum/test_data.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/material/refractive_index.hpp"
 #include "surfscatter/material/refractiveindex_info.hpp"
@@ -17,22 +16,13 @@
 namespace sm = surfscatter::material;
 using surfscatter::test::read_shared_csv;
 using surfscatter::test::shared_data;
+using surfscatter::test::write_temp_file;
 
 namespace {
 
-std::string write_temp(const std::string& text, const std::string& extension) {
-    char path[] = "/tmp/surfscatter_ior_XXXXXX";
-    const int fd = mkstemp(path);
-    if (fd >= 0) close(fd);
-    std::remove(path);
-    const std::string named = std::string(path) + extension;
-    std::ofstream(named) << text;
-    return named;
-}
-
 // Message of the Error thrown by loading `text` as a file with `extension`; "" if none.
 std::string load_error(const std::string& text, const std::string& extension) {
-    const std::string path = write_temp(text, extension);
+    const std::string path = write_temp_file(text, extension);
     std::string message;
     try {
         sm::load_refractive_index(path);
@@ -125,7 +115,7 @@ TEST(RefractiveIndexInfo, SeparateNAndKEntries) {
     const std::string text =
         "DATA:\n  - type: formula 2\n    wavelength_range: 0.3 1.0\n    coefficients: 1.0\n"
         "  - type: tabulated k\n    data: |\n        0.4 0.1\n        0.8 0.3\n";
-    const std::string path = write_temp(text, ".yml");
+    const std::string path = write_temp_file(text, ".yml");
     const auto ior = sm::load_refractive_index(path);
     EXPECT_NEAR(ior->at(600).real(), std::sqrt(2.0), 1e-14);
     EXPECT_NEAR(ior->at(600).imag(), 0.2, 1e-14);
@@ -153,7 +143,7 @@ TEST(RefractiveIndexInfo, MalformedFilesNameTheProblem) {
 }
 
 TEST(CsvIndex, ReadsCommentsHeaderAndRows) {
-    const std::string path = write_temp("# comment\nwavelength_nm,n,k\n400,1.0,2.0\n\n500,1.2,3.0E+00\n", ".csv");
+    const std::string path = write_temp_file("# comment\nwavelength_nm,n,k\n400,1.0,2.0\n\n500,1.2,3.0E+00\n", ".csv");
     const auto ior = sm::load_refractive_index(path);
     EXPECT_NEAR(ior->at(450).real(), 1.1, 1e-14);
     EXPECT_NEAR(ior->at(450).imag(), 2.5, 1e-14);

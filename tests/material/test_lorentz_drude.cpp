@@ -7,7 +7,7 @@
 #include <map>
 #include <sstream>
 
-#include "shared_data.hpp"
+#include "spectrum/test_data.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/material/lorentz_drude.hpp"
 #include "surfscatter/material/refractive_index.hpp"

@@ -2,48 +2,19 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdio>
-#include <fstream>
-#include <sstream>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/spectrum/cie.hpp"
 #include "surfscatter/spectrum/color.hpp"
+#include "spectrum/test_data.hpp"
 
 namespace ss = surfscatter::spectrum;
 using surfscatter::Vec3;
 
-namespace {
-
-// Rows of a shared-data CSV (after the '#' comments and the header).
-std::vector<std::vector<double>> read_csv(const std::string& path) {
-    std::ifstream in(path);
-    EXPECT_TRUE(in) << path;
-    std::vector<std::vector<double>> rows;
-    bool header = true;
-    for (std::string line; std::getline(in, line);) {
-        if (line.empty() || line[0] == '#') continue;
-        if (header) { header = false; continue; }
-        std::vector<double> row;
-        std::stringstream fields(line);
-        for (std::string f; std::getline(fields, f, ',');) row.push_back(std::stod(f));
-        rows.push_back(row);
-    }
-    return rows;
-}
-
-std::string write_temp(const std::string& text) {
-    char path[] = "/tmp/surfscatter_cgats_XXXXXX";
-    const int fd = mkstemp(path);
-    if (fd >= 0) close(fd);
-    std::ofstream(path) << text;
-    return path;
-}
-
-}  // namespace
+using surfscatter::test::read_shared_csv;
+using surfscatter::test::write_temp_file;
 
 TEST(Cie, RangeIs360To830) {
     EXPECT_DOUBLE_EQ(ss::cie1931().min_wavelength_nm(), 360.0);
@@ -61,7 +32,7 @@ TEST(Cie, SumOfYbarAt1nm) {
 }
 
 TEST(Cie, AgreesWithCie1nmTable) {
-    const auto rows = read_csv(std::string(SURFSCATTER_SHARED_DATA) + "/cie/cie1931_2deg_xyz.csv");
+    const auto rows = read_shared_csv("cie/cie1931_2deg_xyz.csv");
     ASSERT_EQ(rows.size(), 471u);
     double max_knot_error = 0, max_between_error = 0;
     for (const auto& r : rows) {
@@ -83,7 +54,7 @@ TEST(Cie, D65WhitePoint) {
     EXPECT_NEAR(xy.x, 0.3127, 1e-4);
     EXPECT_NEAR(xy.y, 0.3290, 1e-4);
     // And the colord D65 equals the CIE 1 nm table of shared data on the 5 nm knots.
-    const auto rows = read_csv(std::string(SURFSCATTER_SHARED_DATA) + "/cie/d65.csv");
+    const auto rows = read_shared_csv("cie/d65.csv");
     for (const auto& r : rows) {
         if (static_cast<int>(r[0]) % 5 != 0) continue;
         EXPECT_NEAR(ss::cie_illuminant("d65")(r[0]) * 100.0, r[1], 1e-3 * r[1] + 1e-4) << r[0];
@@ -114,7 +85,7 @@ TEST(Cie, UnknownIlluminantNamesTheValue) {
 TEST(Cie, MalformedCgatsFilesGiveClearErrors) {
     EXPECT_THROW(ss::read_cgats_spectra("/nonexistent/file.cmf"), surfscatter::Error);
     const std::string good_head = "CMF\nSPECTRAL_START_NM\t400.0\nSPECTRAL_END_NM 420\nBEGIN_DATA_FORMAT\n SPEC_400 SPEC_410 SPEC_420\nEND_DATA_FORMAT\n";
-    const auto ok = ss::read_cgats_spectra(write_temp(good_head + "BEGIN_DATA\n 1 2 3\nEND_DATA\n"));
+    const auto ok = ss::read_cgats_spectra(write_temp_file(good_head + "BEGIN_DATA\n 1 2 3\nEND_DATA\n"));
     EXPECT_DOUBLE_EQ(ok.start_nm, 400);
     EXPECT_DOUBLE_EQ(ok.step_nm, 10);
     EXPECT_EQ(ok.sets.at(0).at(2), 3.0);
@@ -127,7 +98,7 @@ TEST(Cie, MalformedCgatsFilesGiveClearErrors) {
         "CMF\nSPECTRAL_START_NM 400\nSPECTRAL_END_NM 420\nSPECTRAL_BANDS 4\nBEGIN_DATA_FORMAT\n SPEC_400 SPEC_410 SPEC_420\nEND_DATA_FORMAT\nBEGIN_DATA\n 1 2 3\nEND_DATA\n",  // band count
     };
     for (const auto& text : bad) {
-        const std::string path = write_temp(text);
+        const std::string path = write_temp_file(text);
         try {
             ss::CieTable::load(path);
             ADD_FAILURE() << text;

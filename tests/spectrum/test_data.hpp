@@ -1,5 +1,9 @@
 #pragma once
-// Reads the '#'-commented CSV files of ../shared/data (one header row, then numbers).
+// Test helpers for the spectrum, material and CLI tests: the '#'-commented CSV files of ../shared/data (one header
+// row, then numbers) and temporary input files.
+#include <unistd.h>
+
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -25,6 +29,20 @@ inline std::vector<std::vector<double>> read_shared_csv(const std::string& relat
         rows.push_back(row);
     }
     return rows;
+}
+
+// Writes `text` to a new file /tmp/surfscatter_test_XXXXXX<extension> and returns its path (the caller removes it).
+inline std::string write_temp_file(const std::string& text, const std::string& extension = "") {
+    char path[] = "/tmp/surfscatter_test_XXXXXX";
+    const int fd = mkstemp(path);
+    if (fd >= 0) close(fd);
+    std::string named = path;
+    if (!extension.empty()) {
+        std::remove(path);
+        named += extension;
+    }
+    std::ofstream(named) << text;
+    return named;
 }
 
 }  // namespace surfscatter::test
