@@ -82,7 +82,8 @@ TEST(Models, NoModelExceedsOne) {
             const double albedo = test::directional_albedo(*bsdf, wi, lambda, 240, 180);
             EXPECT_LE(albedo, 1.0 + 5e-3) << bsdf->name() << " sigma " << o.surface.sigma << " gamma "
                                           << o.surface.gamma << " alpha " << o.alpha << " theta_i " << t;
-            EXPECT_GT(albedo, 0.2) << bsdf->name();
+            // The GHS family carries exactly R (perfect conductor: 1); microfacet parts lose energy at grazing.
+            if (o.model == ModelKind::ghs || o.model == ModelKind::ghs_ssa) EXPECT_NEAR(albedo, 1.0, 5e-3) << bsdf->name();
         }
     }
 }
@@ -130,16 +131,18 @@ TEST(Ggx, AlphaFromSurfaceStatistics) {
 // No NaN or Inf leaves eval, sample or pdf, whatever the inputs.
 TEST(Models, ExtremeInputsStayFinite) {
     std::vector<ModelOptions> models;
-    for (ModelKind m : {ModelKind::ghs, ModelKind::ghs_ssa, ModelKind::two_scale})
-        for (auto [sigma, length] : {std::pair{1e-5, 0.05}, std::pair{50.0, 500.0}, std::pair{0.3, 1.0}}) {
-            auto o = test::kc_options(m, sigma, length, m == ModelKind::two_scale ? 3.0 : 2.2);
-            models.push_back(o);
-        }
+    // Tiny and huge sigma and L (g from ~1e-14 to beyond the table's 1e6), a fractal gamma; the refit series with
+    // Rayleigh-Rice Fresnel; GGX nearly smooth and very rough; two-scale.
+    for (ModelKind m : {ModelKind::ghs, ModelKind::ghs_ssa})
+        for (auto [sigma, length] : {std::pair{1e-5, 0.05}, std::pair{50.0, 500.0}})
+            models.push_back(test::kc_options(m, sigma, length, 2.2));
     {
         auto o = test::kc_options(ModelKind::ghs, 0.5, 2.0, 3.0);
         o.method = GhsMethod::refit;
         o.fresnel = FresnelMode::rr;
-        o.material = "perfect";
+        models.push_back(o);
+        o = test::kc_options(ModelKind::two_scale, 0.3, 1.0, 3.0);
+        o.cutoff_wavelengths = 5;
         models.push_back(o);
     }
     for (double alpha : {1e-4, 1.0}) {

@@ -13,9 +13,9 @@ namespace surfscatter::bsdf {
 
 namespace {
 
-constexpr int kThetaNodes = 61;
+constexpr int kThetaNodes = 46;
 constexpr double kThetaMax = 89.5 * kDegree;  // last node; grazing queries use it (the lobe vanishes there)
-constexpr double kLambdaStep = 0.01;          // log-wavelength node spacing
+constexpr double kLambdaStep = 0.02;          // log-wavelength node spacing (2 %)
 
 }  // namespace
 

@@ -7,7 +7,7 @@ std::unique_ptr<GhsBsdf> make_ghs_ssa(std::shared_ptr<const surface::RadialStati
     GhsSettings settings;
     settings.name = "ghs_ssa";
     settings.fresnel = fresnel;
-    settings.normalization = form == SsaForm::energy ? LobeNormalization::disc_mass : LobeNormalization::none;
+    settings.normalization = form == SsaForm::energy ? LobeNormalization::albedo : LobeNormalization::none;
     settings.relevant_roughness = form == SsaForm::energy;
     auto core = std::make_shared<FirstOrderCore>(stats, form);
     return std::make_unique<GhsBsdf>(std::move(stats), std::move(core), std::move(material), settings);

@@ -16,8 +16,7 @@ double TwoScaleBsdf::macro_eval(const Vec3& wi, const Vec3& wo, double lambda_nm
     if (sum.length_squared() == 0) return 0.0;
     const Vec3 h = normalize(sum);
     const double cos_d = std::clamp(dot(wi, h), 0.0, 1.0);
-    const double a = 2.0 * wavenumber(lambda_nm) * micro_->sigma(cos_d, lambda_nm) * cos_d;
-    const double specular = std::exp(-a * a) * material_.reflectance(cos_d, lambda_nm);
+    const double specular = micro_->delta_probability(wi, lambda_nm) * material_.reflectance(cos_d, lambda_nm);
     const double dg = ndf_ == MacroNdf::ggx ? GgxDistribution(alpha_).D(h) * GgxDistribution(alpha_).G2(wi, wo)
                                             : BeckmannDistribution(alpha_).D(h) * BeckmannDistribution(alpha_).G2(wi, wo);
     return specular * dg / (4.0 * wi.z * wo.z);

@@ -37,7 +37,7 @@ constexpr std::array<double, 4> kGaussX{-0.8611363115940526, -0.3399810435848563
                                         0.8611363115940526};
 constexpr std::array<double, 4> kGaussW{0.3478548451374538, 0.6521451548625461, 0.6521451548625461,
                                         0.3478548451374538};
-constexpr int kAzimuthNodes = 12;
+constexpr int kAzimuthNodes = 10;
 
 // Gauss-Legendre nodes and weights on [0, 1] (Newton iteration on the Legendre roots).
 struct AzimuthRule {

@@ -1,0 +1,91 @@
+// End-to-end tests of `surfscatter brdf eval | albedo | sample | slice` (exit codes, CSV headers, values).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+#include <string>
+
+#include "cli_runner.hpp"
+
+using surfscatter::test::run_cli;
+
+namespace {
+double field(const std::string& line, int index) {
+    std::stringstream in(line);
+    std::string cell;
+    for (int i = 0; i <= index; ++i) std::getline(in, cell, ',');
+    return std::stod(cell);
+}
+}  // namespace
+
+TEST(CliBrdf, EvalPrintsEveryCombination) {
+    const auto r = run_cli({"brdf", "eval", "--model", "ghs", "--psd", "kc", "--sigma", "0.05", "--corr-length", "2",
+                            "--gamma", "3", "--material", "perfect", "--wavelength", "550", "--theta-i", "30",
+                            "--theta-o", "0,30,60", "--phi-o", "180,90"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto lines = r.out_lines();
+    ASSERT_EQ(lines.size(), 7u);
+    EXPECT_EQ(lines[0], "theta_o,phi_o,brdf");
+    for (std::size_t i = 1; i < lines.size(); ++i) EXPECT_GT(field(lines[i], 2), 0.0) << lines[i];
+    // Specular side (30, 180) is the peak of the lobe.
+    EXPECT_GT(field(lines[3], 2), field(lines[1], 2));
+}
+
+TEST(CliBrdf, AlbedoOfThePerfectConductorGhsIsOne) {
+    const auto r = run_cli({"brdf", "albedo", "--model", "ghs", "--psd", "gaussian", "--sigma", "2.27",
+                            "--corr-length", "20.9", "--wavelength", "10600", "--theta-i", "40"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto lines = r.out_lines();
+    ASSERT_EQ(lines.size(), 2u);
+    ASSERT_EQ(lines[0].rfind("albedo = ", 0), 0u);
+    ASSERT_EQ(lines[1].rfind("specular = ", 0), 0u);
+    EXPECT_NEAR(std::stod(lines[0].substr(9)), 1.0, 5e-3);
+    EXPECT_GE(std::stod(lines[1].substr(11)), 0.0);
+}
+
+TEST(CliBrdf, SamplePrintsDirectionsWeightsPdfs) {
+    const auto r = run_cli({"brdf", "sample", "--model", "ggx", "--alpha", "0.3", "--material", "perfect",
+                            "--wavelength", "550", "--theta-i", "45", "--count", "200", "--seed", "3"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto lines = r.out_lines();
+    ASSERT_GT(lines.size(), 150u);
+    EXPECT_EQ(lines[0], "x,y,z,weight,pdf,delta");
+    for (std::size_t i = 1; i < lines.size(); ++i) {
+        EXPECT_GT(field(lines[i], 2), 0.0);
+        EXPECT_GT(field(lines[i], 4), 0.0);
+        EXPECT_LE(field(lines[i], 3), 1.0 + 1e-9);  // perfect conductor: F G2 / G1 <= 1
+    }
+}
+
+TEST(CliBrdf, SliceWritesCsvAndPng) {
+    const std::string dir = std::filesystem::temp_directory_path() / "surfscatter_cli_brdf_slice";
+    std::filesystem::create_directories(dir);
+    const auto r = run_cli({"brdf", "slice", "--models", "ghs,ghs-ssa,ggx", "--alpha-from", "kc-link", "--psd", "kc",
+                            "--sigma", "0.03", "--corr-length", "1", "--gamma", "3", "--wavelength", "550",
+                            "--theta-i", "0,60", "--plot", dir + "/slice.png"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(std::filesystem::exists(dir + "/slice.csv"));
+    EXPECT_GT(std::filesystem::file_size(dir + "/slice.png"), 1000u);
+    std::filesystem::remove_all(dir);
+}
+
+TEST(CliBrdf, BadParametersExitWithStatus2) {
+    const auto expect_bad = [](std::initializer_list<std::string> args, const std::string& text) {
+        const auto r = run_cli(args);
+        EXPECT_EQ(r.exit_code, 2) << text;
+        EXPECT_NE(r.err.find(text), std::string::npos) << r.err;
+    };
+    expect_bad({"brdf", "eval", "--psd", "kc", "--sigma", "0.1", "--corr-length", "1", "--gamma", "3",
+                "--wavelength", "550", "--theta-i", "95", "--theta-o", "10"},
+               "--theta-i must be in [0, 90) degrees, got 95");
+    expect_bad({"brdf", "eval", "--psd", "kc", "--sigma", "0.1", "--corr-length", "1", "--gamma", "3",
+                "--wavelength", "0", "--theta-i", "10", "--theta-o", "10"},
+               "--wavelength must be > 0 nm");
+    expect_bad({"brdf", "albedo", "--model", "ghs", "--wavelength", "550", "--theta-i", "10"}, "missing surface");
+    expect_bad({"brdf", "albedo", "--model", "phong", "--wavelength", "550", "--theta-i", "10"},
+               "--model must be one of");
+    expect_bad({"brdf", "albedo", "--psd", "kc", "--sigma", "0.1", "--corr-length", "1", "--gamma", "0.8",
+                "--wavelength", "550", "--theta-i", "10"},
+               "gamma must be > 1, got 0.8");
+}
