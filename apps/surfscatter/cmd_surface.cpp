@@ -57,7 +57,7 @@ std::unique_ptr<surface::RadialStatistics> synthesis_model(const SynthArgs& args
 
 void synth(const SynthArgs& args) {
     const auto model = synthesis_model(args);
-    require_positive(args.spacing, "--spacing");
+    surface::require_valid_spacing(args.spacing, "--spacing");
     if (args.size < static_cast<long long>(surface::kMinHeightMapSize))
         fail("--size must be at least {} samples, got {}", surface::kMinHeightMapSize, args.size);
     if (std::filesystem::path(args.output).extension() != ".gsf")
@@ -86,7 +86,7 @@ void write_psd_csv(const surface::SurfaceFit& fit, const std::string& path) {
 }
 
 void fit(const FitArgs& args) {
-    if (args.spacing) require_positive(*args.spacing, "--spacing");
+    if (args.spacing) surface::require_valid_spacing(*args.spacing, "--spacing");
     if (args.height_unit) require_positive(*args.height_unit, "--height-unit");
     if (args.smoothing) require_positive(*args.smoothing, "--smoothing");
     const surface::HeightMap map = surface::read_height_map(args.input, args.spacing, args.height_unit);

@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/surface/kc_fit.hpp"
@@ -96,4 +97,31 @@ TEST(HeightFit, UnresolvableDataGiveErrors) {
     ss::KcFitOptions bad;
     bad.max_nyquist_fraction = 1.5;
     EXPECT_THROW(ss::fit_surface(ss::synthesize_surface(kc, {64, 64, 0.5}, 1), bad), surfscatter::Error);
+}
+
+// Units sweep: the same surface in pm-sized and m-sized units gives the same fit relative to its scale (to
+// rounding), all finite, and spacings outside 1 pm .. 1 m are refused instead of overflowing. (A 256^2 patch is
+// only 64 L_c wide: its parameters scatter by ~5 %, so the truth is checked loosely here.)
+TEST(HeightFit, ScaleInvariantOverExtremeUnits) {
+    ss::KcFitOptions options;
+    options.max_nyquist_fraction = 1.0;
+    std::vector<ss::SurfaceFit> fits;
+    const std::vector<double> scales = {1e-5, 1.0, 1e5};
+    for (double scale : scales) {
+        const ss::KCorrelation kc(0.05 * scale, 2.0 * scale, 3.0);
+        fits.push_back(ss::fit_surface(ss::synthesize_surface(kc, {256, 256, 0.5 * scale}, 4), options));
+        EXPECT_TRUE(std::isfinite(fits.back().rms_slope) && std::isfinite(fits.back().rms_slope_from_psd));
+    }
+    for (std::size_t i = 0; i < fits.size(); ++i) {
+        EXPECT_NEAR(fits[i].kc.sigma_h_um / scales[i] / fits[1].kc.sigma_h_um, 1.0, 1e-6);
+        EXPECT_NEAR(fits[i].kc.corr_length_um / scales[i] / fits[1].kc.corr_length_um, 1.0, 1e-6);
+        EXPECT_NEAR(fits[i].kc.gamma / fits[1].kc.gamma, 1.0, 1e-6);
+        EXPECT_NEAR(fits[i].rms_slope / fits[1].rms_slope, 1.0, 1e-6);
+    }
+    EXPECT_NEAR(fits[1].kc.sigma_h_um / 0.05, 1.0, 0.2);
+    EXPECT_NEAR(fits[1].kc.corr_length_um / 2.0, 1.0, 0.2);
+    EXPECT_NEAR(fits[1].kc.gamma / 3.0, 1.0, 0.05);
+    const ss::KCorrelation kc(0.05, 2.0, 3.0);
+    EXPECT_THROW(ss::synthesize_surface(kc, {64, 64, 1e-7}, 1), surfscatter::Error);
+    EXPECT_THROW(ss::synthesize_surface(kc, {64, 64, 1e7}, 1), surfscatter::Error);
 }

@@ -6,16 +6,19 @@
 
 namespace surfscatter::surface {
 
+void require_valid_spacing(double spacing_um, const std::string& what) {
+    if (!(spacing_um >= kMinSpacingUm && spacing_um <= kMaxSpacingUm))
+        fail("{} must be between {} and {} um, got {}", what, kMinSpacingUm, kMaxSpacingUm, spacing_um);
+}
+
 HeightMap::HeightMap(std::size_t nx, std::size_t ny, double spacing_x_um, double spacing_y_um,
                      std::vector<double> heights_um, const std::string& origin)
     : nx_(nx), ny_(ny), spacing_x_(spacing_x_um), spacing_y_(spacing_y_um), heights_(std::move(heights_um)) {
     if (nx < kMinHeightMapSize || ny < kMinHeightMapSize)
         fail("{}: grid is {} x {} samples; at least {} x {} are needed", origin, nx, ny, kMinHeightMapSize,
              kMinHeightMapSize);
-    if (!(std::isfinite(spacing_x_um) && spacing_x_um > 0.0))
-        fail("{}: x pixel spacing must be a positive number of um, got {}", origin, spacing_x_um);
-    if (!(std::isfinite(spacing_y_um) && spacing_y_um > 0.0))
-        fail("{}: y pixel spacing must be a positive number of um, got {}", origin, spacing_y_um);
+    require_valid_spacing(spacing_x_um, origin + ": x pixel spacing");
+    require_valid_spacing(spacing_y_um, origin + ": y pixel spacing");
     if (heights_.size() != nx * ny)
         fail("{}: {} heights given for a {} x {} grid", origin, heights_.size(), nx, ny);
     for (std::size_t i = 0; i < heights_.size(); ++i)

@@ -12,6 +12,12 @@ namespace surfscatter::surface {
 
 // Smallest grid side accepted anywhere (a tilt fit and a PSD need a few samples per axis).
 inline constexpr std::size_t kMinHeightMapSize = 8;
+// Accepted pixel spacings (um): 1 pm to 1 m. Beyond that, products like dx dy dzeta^2 leave the double range.
+inline constexpr double kMinSpacingUm = 1e-6;
+inline constexpr double kMaxSpacingUm = 1e6;
+
+// Throws Error "<what> must be between 1e-06 and 1000000 um, got <spacing>" unless the spacing is accepted.
+void require_valid_spacing(double spacing_um, const std::string& what);
 
 class HeightMap {
 public:

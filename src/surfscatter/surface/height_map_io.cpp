@@ -184,8 +184,7 @@ void write_gsf(const HeightMap& map, const std::filesystem::path& file) {
 
 HeightMap read_text_grid(const std::filesystem::path& file, double spacing_um, double height_unit_um) {
     const std::string path = file.string();
-    if (!(std::isfinite(spacing_um) && spacing_um > 0.0))
-        fail("{}: pixel spacing must be a positive number of um, got {}", path, spacing_um);
+    require_valid_spacing(spacing_um, path + ": pixel spacing");
     if (!(std::isfinite(height_unit_um) && height_unit_um > 0.0))
         fail("{}: height unit must be a positive number of um, got {}", path, height_unit_um);
     const std::string bytes = read_file_bytes(file);

@@ -32,8 +32,7 @@ std::vector<double> white_noise(std::size_t n, std::uint64_t seed) {
 HeightMap synthesize_surface(const RadialStatistics& statistics, const SynthesisGrid& grid, std::uint64_t seed) {
     if (grid.nx < kMinHeightMapSize || grid.ny < kMinHeightMapSize)
         fail("surface size must be at least {} samples per side, got {} x {}", kMinHeightMapSize, grid.nx, grid.ny);
-    if (!(std::isfinite(grid.spacing_um) && grid.spacing_um > 0.0))
-        fail("pixel spacing must be a positive number of um, got {}", grid.spacing_um);
+    require_valid_spacing(grid.spacing_um, "pixel spacing");
     const std::size_t nx = grid.nx, ny = grid.ny, total = nx * ny;
     auto spectrum = forward_fft_2d(white_noise(total, seed), nx, ny);
 
