@@ -234,6 +234,17 @@ double RadialFamily::cdf(int row, double zeta) const {
     return std::clamp(cubic_interpolate(r.cdf.data(), n, t), 0.0, 1.0);
 }
 
+void RadialFamily::bracket(int row, double u, double& lo, double& hi) const {
+    const RadialRow& r = rows[row];
+    if (u <= r.cdf.front() || u >= r.cdf.back()) {
+        lo = hi = std::log(std::max(inverse_cdf(row, u), 1e-300));
+        return;
+    }
+    const int k = static_cast<int>(std::upper_bound(r.cdf.begin(), r.cdf.end(), u) - r.cdf.begin()) - 1;
+    lo = grid.log_x0 + (r.lo + k) * grid.step;
+    hi = lo + grid.step;
+}
+
 double RadialFamily::inverse_cdf(int row, double u) const {
     const RadialRow& r = rows[row];
     if (!(u > 0.0)) return 0.0;

@@ -39,6 +39,8 @@ struct RadialFamily {
     double value(int row, double zeta) const;
     double cdf(int row, double zeta) const;
     double inverse_cdf(int row, double u) const;
+    // ln zeta bracket [lo, hi] of the row's CDF = u from its nodes (cheap; exact inverse only in the extensions).
+    void bracket(int row, double u, double& lo, double& hi) const;
 };
 
 // The transform set-up for one statistics: an FFTLog grid wide enough for f = F(rho) whose width in r is set by

@@ -114,18 +114,20 @@ double ScatterLobeTable::inverse_radial_cdf(double g, double u) const {
     if (!(u > 0.0)) return 0.0;
     u = std::min(u, 1.0 - 1e-16);
     const detail::RadialFamily& f = *data_->family;
-    // Bracket with the neighbouring rows' own inverses, then bisection in ln zeta on the interpolated CDF.
-    double lo = 1e300, hi = 0.0;
+    // Bracket from the neighbouring rows' node intervals, then bisection in ln zeta on the interpolated CDF.
+    double a = 1e300, b = -1e300;
     const int first = g < kMinG ? 0 : stencil(g).first;
     for (int i = 0; i < (g < kMinG ? 2 : 4); ++i) {
-        const double z = f.inverse_cdf(first + i, u);
-        lo = std::min(lo, z);
-        hi = std::max(hi, z);
+        double lo, hi;
+        f.bracket(first + i, u, lo, hi);
+        a = std::min(a, lo);
+        b = std::max(b, hi);
     }
-    double a = std::log(std::max(lo, 1e-300)) - 0.1, b = std::log(std::max(hi, 1e-300)) + 0.1;
+    a -= 0.05;
+    b += 0.05;
     for (int it = 0; it < 40 && radial_cdf(g, std::exp(a)) > u; ++it) a -= 1.0;
     for (int it = 0; it < 40 && radial_cdf(g, std::exp(b)) < u; ++it) b += 1.0;
-    for (int it = 0; it < 60; ++it) {
+    for (int it = 0; it < 48; ++it) {
         const double mid = 0.5 * (a + b);
         (radial_cdf(g, std::exp(mid)) < u ? a : b) = mid;
     }
