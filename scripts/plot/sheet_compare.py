@@ -2,7 +2,7 @@
 """Lays rendered PNGs out as one labelled comparison sheet (the layout of the supplemental's Figures 3-8).
 
 usage: sheet_compare.py OUTPUT.png TITLE COLUMNS LABEL=IMAGE.png [LABEL=IMAGE.png ...]
-Panels fill rows of COLUMNS from the top left; a label "-" leaves a panel empty.
+Panels fill rows of COLUMNS from the top left; a label "-" leaves a panel empty. Panels keep their own aspect.
 """
 import sys
 
@@ -22,7 +22,7 @@ def main(argv):
         label, _, path = item.partition("=")
         panels.append((label, path))
     rows = (len(panels) + columns - 1) // columns
-    first = next(mpimg.imread(p) for label, p in panels if label != "-")
+    first = mpimg.imread(next(p for label, p in panels if label != "-"))
     aspect = first.shape[0] / first.shape[1]
     width = 3.2 * columns
     fig, axes = plt.subplots(rows, columns, figsize=(width, 3.2 * aspect * rows + 0.7), squeeze=False)

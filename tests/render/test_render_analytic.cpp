@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "render_test_util.hpp"
+#include "surfscatter/core/error.hpp"
 #include "surfscatter/material/fresnel.hpp"
 #include "surfscatter/spectrum/cie.hpp"
 
@@ -101,4 +102,28 @@ TEST(RenderDeterminism, SameImageForOneAndTwoThreads) {
             differs |= !(one.xyz(x, y) == other_seed.xyz(x, y));
         }
     EXPECT_TRUE(differs);
+}
+
+TEST(RenderDeterminism, CropWindowReproducesThePixelsOfTheFullFilm) {
+    const std::string body = R"(
+        <shape type="rectangle"><transform name="to_world"><scale value="3"/></transform>
+            <bsdf type="diffuse"><texture name="reflectance" type="checkerboard"/></bsdf></shape>
+        <emitter type="constant"><float name="radiance" value="1"/></emitter>)";
+    const std::string xml = scene_xml(body, "0, -3, 2", "0, 0, 0", 40, 20);
+    auto scene = load_scene_from_string(xml, "test.xml");
+    RenderOptions options;
+    options.spp = 4;
+    options.progress = false;
+    const Film full = surfscatter::render::render(*scene, options);
+    scene->film.crop_offset_x = 5;
+    scene->film.crop_offset_y = 7;
+    scene->film.crop_width = 9;
+    scene->film.crop_height = 4;
+    const Film crop = surfscatter::render::render(*scene, options);
+    ASSERT_EQ(crop.width(), 9);
+    ASSERT_EQ(crop.height(), 4);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 9; ++x) ASSERT_EQ(crop.xyz(x, y), full.xyz(x + 5, y + 7));
+    scene->film.crop_width = 30;
+    EXPECT_THROW(surfscatter::render::render(*scene, options), surfscatter::Error);
 }

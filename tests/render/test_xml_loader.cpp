@@ -168,3 +168,20 @@ TEST(MeshFiles, ObjAndPlyLoad) {
     std::ofstream(dir / "bad.ply") << "ply\nformat binary_big_endian 1.0\n";
     EXPECT_THROW(load_ply(dir / "bad.ply"), Error);
 }
+
+TEST(Camera, ProjectInvertsGenerateRay) {
+    CameraSettings settings;
+    settings.to_world = Transform::look_at({0.3, -1, 0.8}, {0, 0, 0}, {0, 0, 1});
+    settings.fov_degrees = 50;
+    settings.principal_point_offset_x = 0.02;
+    settings.principal_point_offset_y = -0.03;
+    const Camera camera(settings, 64, 48);
+    for (const Vec2 pixel : {Vec2(0.5, 0.5), Vec2(10.25, 40.75), Vec2(63.5, 1.5)}) {
+        const Ray ray = camera.generate_ray(pixel.x, pixel.y);
+        const auto back = camera.project(ray.origin + ray.direction * 2.0);
+        ASSERT_TRUE(back.has_value());
+        EXPECT_NEAR(back->x, pixel.x, 1e-9);
+        EXPECT_NEAR(back->y, pixel.y, 1e-9);
+    }
+    EXPECT_FALSE(camera.project({0.6, -2, 1.6}).has_value());  // behind the camera
+}

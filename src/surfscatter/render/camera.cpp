@@ -30,6 +30,16 @@ Camera::Camera(const CameraSettings& settings, int width, int height)
         fail("fov_axis must be x, y, diagonal, smaller or larger, got '{}'", settings.fov_axis);
     }
     origin_ = settings.to_world.point({0, 0, 0});
+    to_local_ = settings.to_world.inverse();
+}
+
+std::optional<Vec2> Camera::project(const Vec3& p) const {
+    const Vec3 local = to_local_.point(p);
+    if (!(local.z > 0)) return std::nullopt;
+    // Inverse of generate_ray.
+    const double sx = -local.x / (local.z * tan_x_), sy = -local.y / (local.z * tan_y_);
+    return Vec2(((sx + 1) / 2 - settings_.principal_point_offset_x) * width_,
+                ((sy + 1) / 2 - settings_.principal_point_offset_y) * height_);
 }
 
 Ray Camera::generate_ray(double x, double y) const {

@@ -1,5 +1,6 @@
 #pragma once
 // Mitsuba's perspective sensor: local +z looks forward, +y is up, +x points to the image's left.
+#include <optional>
 #include <string>
 
 #include "surfscatter/render/transform.hpp"
@@ -30,6 +31,8 @@ public:
     Camera(const CameraSettings& settings, int width, int height);
     // Ray through film position (x, y) in pixels, (0, 0) the top-left corner of the image.
     Ray generate_ray(double x, double y) const;
+    // Film position (pixels) where world point `p` appears, or nothing if it is behind the camera.
+    std::optional<Vec2> project(const Vec3& p) const;
     const CameraSettings& settings() const { return settings_; }
 
 private:
@@ -37,6 +40,7 @@ private:
     int width_ = 1, height_ = 1;
     double tan_x_ = 1, tan_y_ = 1;
     Vec3 origin_;
+    Transform to_local_;
 };
 
 }  // namespace surfscatter::render

@@ -155,8 +155,10 @@ struct PathTracer {
 }  // namespace
 
 Film render(const Scene& scene, const RenderOptions& options, RenderStats* stats) {
-    const int width = scene.film.width, height = scene.film.height;
-    const Camera camera(scene.camera, width, height);
+    scene.film.check_crop();
+    const Camera camera(scene.camera, scene.film.width, scene.film.height);
+    const int width = scene.film.output_width(), height = scene.film.output_height();
+    const int offset_x = scene.film.crop_offset_x, offset_y = scene.film.crop_offset_y;
     const int spp = options.spp > 0 ? options.spp : scene.sampler.sample_count;
     if (spp <= 0) fail("sample count must be positive, got {}", spp);
     const std::uint64_t seed = options.seed.value_or(scene.sampler.seed);
@@ -172,7 +174,12 @@ Film render(const Scene& scene, const RenderOptions& options, RenderStats* stats
 
     Film film(width, height);
     std::vector<Sampler> samplers(static_cast<std::size_t>(width) * height);
-    for (std::size_t i = 0; i < samplers.size(); ++i) samplers[i] = Sampler(seed, i);
+    // Streams are indexed by full-film pixel, so a crop reproduces the same pixels of the full render.
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x)
+            samplers[static_cast<std::size_t>(y) * width + x] =
+                Sampler(seed, static_cast<std::uint64_t>(y + offset_y) * static_cast<std::uint64_t>(scene.film.width) +
+                                  static_cast<std::uint64_t>(x + offset_x));
 
     const int tiles_x = (width + kTileSize - 1) / kTileSize, tiles_y = (height + kTileSize - 1) / kTileSize;
     const int per_pass = std::max(1, spp / 16);
@@ -200,7 +207,8 @@ Film render(const Scene& scene, const RenderOptions& options, RenderStats* stats
                             for (int s = 0; s < count; ++s) {
                                 const SampledWavelengths w = SampledWavelengths::sample_visible(sampler.next());
                                 const Vec2 offset = sample_filter(scene.film.filter, sampler);
-                                const Ray ray = camera.generate_ray(x + 0.5 + offset.x, y + 0.5 + offset.y);
+                                const Ray ray = camera.generate_ray(x + offset_x + 0.5 + offset.x,
+                                                                                   y + offset_y + 0.5 + offset.y);
                                 const SampledSpectrum l = tracer.li(ray, w, sampler);
                                 Vec3 xyz;
                                 for (int k = 0; k < kN; ++k) {

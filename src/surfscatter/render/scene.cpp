@@ -38,6 +38,13 @@ struct Scene::Embree {
     }
 };
 
+void FilmSettings::check_crop() const {
+    if (crop_width < 0 || crop_height < 0 || crop_offset_x < 0 || crop_offset_y < 0 ||
+        crop_offset_x + output_width() > width || crop_offset_y + output_height() > height)
+        fail("crop window {}x{} at ({}, {}) does not fit the {}x{} film", output_width(), output_height(), crop_offset_x,
+             crop_offset_y, width, height);
+}
+
 Scene::Scene() : embree_(std::make_unique<Embree>()) {
     embree_->device = rtcNewDevice(nullptr);
     if (!embree_->device) fail("cannot create the Embree device (error {})", static_cast<int>(rtcGetDeviceError(nullptr)));

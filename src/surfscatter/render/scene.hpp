@@ -18,6 +18,12 @@ struct FilmSettings {
     std::string filter = "gaussian";  // box (radius 1/2 pixel) or gaussian (stddev 0.5, radius 2 pixels)
     double exposure = 0;              // stops: linear values are scaled by 2^exposure
     std::string white_balance = "d65"; // "d65" (none), or a blackbody temperature in K such as "2700"
+    // Mitsuba's crop window: only pixels [crop_offset, crop_offset + crop_size) of the full film are rendered, and
+    // the output image is the crop. crop_width = crop_height = 0 means the whole film.
+    int crop_offset_x = 0, crop_offset_y = 0, crop_width = 0, crop_height = 0;
+    int output_width() const { return crop_width > 0 ? crop_width : width; }
+    int output_height() const { return crop_height > 0 ? crop_height : height; }
+    void check_crop() const;  // throws Error if the window leaves the film
 };
 
 struct SamplerSettings {

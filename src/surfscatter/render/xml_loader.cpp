@@ -672,6 +672,15 @@ private:
         f.width = props.get_int("width", f.width);
         f.height = props.get_int("height", f.height);
         if (f.width <= 0 || f.height <= 0) fail_at(node, "film size must be positive, got {}x{}", f.width, f.height);
+        f.crop_offset_x = props.get_int("crop_offset_x", 0);
+        f.crop_offset_y = props.get_int("crop_offset_y", 0);
+        f.crop_width = props.get_int("crop_width", 0);
+        f.crop_height = props.get_int("crop_height", 0);
+        try {
+            f.check_crop();
+        } catch (const Error& e) {
+            fail_at(node, "{}", e.what());
+        }
         f.exposure = props.get_float("exposure", f.exposure);
         f.white_balance = props.get_string("white_balance", f.white_balance);
         const std::string format = props.get_string("pixel_format", "rgb");
