@@ -89,3 +89,15 @@ TEST(CliRender, BadScenesExitTwoWithFileAndLine) {
     result = run_cli({"render", write("ok3.xml", kScene).string(), "-o", (temp_dir() / "x.png").string()});
     EXPECT_EQ(result.exit_code, 2);
 }
+
+TEST(CliCompareModels, BadOptionsExitTwo) {
+    // The full sheet (seven renders with GHS tables) runs in `make demo`; here only the option checking.
+    auto result = run_cli({"compare-models", "--view", "4", "-o", (temp_dir() / "cmp").string()});
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_NE(result.err.find("--view must be 1, 2 or 3"), std::string::npos) << result.err;
+    result = run_cli({"compare-models", "--scene", (temp_dir() / "absent.xml").string(), "-o", (temp_dir() / "cmp").string()});
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_NE(result.err.find("scene file not found"), std::string::npos) << result.err;
+    result = run_cli({"compare-models", "--focus", "0,0", "-o", (temp_dir() / "cmp").string()});
+    EXPECT_EQ(result.exit_code, 2);
+}
