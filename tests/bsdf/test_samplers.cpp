@@ -57,7 +57,7 @@ TEST(Samplers, GhsExact) {
     run(cases_for(ModelKind::ghs, GhsMethod::exact, {2.5, 4.0}, {0.01, 3, 1000}), 200000);
 }
 
-TEST(Samplers, GhsRefit) { run(cases_for(ModelKind::ghs, GhsMethod::refit, {2.5, 4.0}, {0.01, 3, 30}), 200000); }
+TEST(Samplers, GhsRefit) { run(cases_for(ModelKind::ghs, GhsMethod::refit, {2.5, 4.0}, {0.01, 10}), 150000); }
 
 TEST(Samplers, GhsSsa) { run(cases_for(ModelKind::ghs_ssa, GhsMethod::exact, {2.5, 3.0}, {0.01, 1, 30}), 200000); }
 

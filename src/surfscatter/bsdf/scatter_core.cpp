@@ -51,7 +51,14 @@ double ExactScatterCore::sample_density(double g_star, double zeta_max, double z
 RefitScatterCore::RefitScatterCore(const surface::KCorrelation& kc, double exponent_x, Truncation truncation,
                                    double epsilon)
     : length_(kc.correlation_length()), gamma_(kc.gamma()), exponent_x_(exponent_x), truncation_(truncation),
-      epsilon_(epsilon) {}
+      epsilon_(epsilon) {
+    orders_.reserve(kOrders);
+    for (int m = 1; m <= kOrders; ++m) orders_.emplace_back(1.0, order_length(m), gamma_);
+}
+
+surface::KCorrelation RefitScatterCore::order_statistics(int m) const {
+    return m <= kOrders ? orders_[m - 1] : surface::KCorrelation(1.0, order_length(m), gamma_);
+}
 
 double RefitScatterCore::order_length(int m) const { return length_ * std::pow(double(m), -exponent_x_); }
 
@@ -65,13 +72,12 @@ double RefitScatterCore::density(double g, double zeta) const {
     const PoissonWindow w = window(g);
     double sum = 0;
     for (int m = w.first(); m <= w.last(); ++m)
-        sum += poisson_pmf(m, g) * surface::KCorrelation(1.0, order_length(m), gamma_).psd_unit(zeta);
+        sum += w.weight(m) * w.kept_mass() * order_statistics(m).psd_unit(zeta);
     return sum;
 }
 
 double RefitScatterCore::sample_radius(double g_star, double zeta_max, double u_order, double u) const {
-    const int m = window(g_star).sample(u_order);
-    const surface::KCorrelation kc(1.0, order_length(m), gamma_);
+    const surface::KCorrelation kc = order_statistics(window(g_star).sample(u_order));
     return std::min(zeta_max, kc.inverse_radial_cdf(u * kc.radial_cdf(zeta_max)));
 }
 
@@ -80,7 +86,7 @@ double RefitScatterCore::sample_density(double g_star, double zeta_max, double z
     const PoissonWindow w = window(g_star);
     double sum = 0;
     for (int m = w.first(); m <= w.last(); ++m) {
-        const surface::KCorrelation kc(1.0, order_length(m), gamma_);
+        const surface::KCorrelation kc = order_statistics(m);
         sum += w.weight(m) * kc.psd_unit(zeta) / kc.radial_cdf(zeta_max);
     }
     return sum;

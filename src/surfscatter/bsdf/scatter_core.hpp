@@ -5,6 +5,7 @@
 // (rad/um)^2; the BRDF is k^2 times a density (THEORY 0). Each core also draws |zeta| <= zeta_max from the lobe at a
 // fixed g* and reports the exact 2-D density of what it draws, for the wedge sampler (wedge_sampling.hpp).
 #include <map>
+#include <vector>
 #include <memory>
 #include <shared_mutex>
 
@@ -64,7 +65,10 @@ public:
 
 private:
     PoissonWindow window(double g) const;
+    surface::KCorrelation order_statistics(int m) const;  // unit-sigma KC of order m (precomputed up to kOrders)
+    static constexpr int kOrders = 2048;
     double length_, gamma_, exponent_x_;
+    std::vector<surface::KCorrelation> orders_;  // index m - 1
     Truncation truncation_;
     double epsilon_;
 };
