@@ -12,6 +12,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
+import matplotlib.ticker
 import numpy as np
 
 
@@ -46,6 +47,7 @@ def main():
         inset.loglog(m, lm[0] * m ** (-x), "-", color="k", lw=1, label=rf"$L\,m^{{-{x:.3f}}}$")
     inset.set_xlabel("m", fontsize=8)
     inset.set_ylabel(r"$L_m$ [$\mu$m]", fontsize=8)
+    inset.yaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
     inset.tick_params(labelsize=7)
     inset.legend(fontsize=7)
     fig.tight_layout()
