@@ -28,13 +28,13 @@ public:
     }
 
     SampledSpectrum eval(Vec2, const Vec3& wi, const Vec3& wo, const SampledWavelengths& w,
-                         SampledSpectrum& pdf) const override {
+                         SampledSpectrum* pdf) const override {
         SampledSpectrum f;
         for (int k = 0; k < 4; ++k) {
             const double lambda = w.lambda[k];
             const double p = wo.z > 0 ? lobe_pdf(wi, lambda) : 0.0;
             f[k] = wi.z > 0 ? kRho * p / wi.z : 0.0;
-            pdf[k] = (1 - delta_probability(lambda)) * p;
+            if (pdf) (*pdf)[k] = (1 - delta_probability(lambda)) * p;
         }
         return f;
     }
@@ -55,7 +55,7 @@ public:
         const double cos_theta = std::pow(u.x, 1 / (exponent(w.lambda[0]) + 1));
         s.wi = spherical_direction(std::acos(cos_theta), kTwoPi * u.y);
         SampledSpectrum pdf;
-        s.f = eval({}, s.wi, wo, w, pdf);
+        s.f = eval({}, s.wi, wo, w, &pdf);
         s.pdf = pdf;
         return s;
     }

@@ -100,7 +100,8 @@ struct PathTracer {
                 if (e) {
                     const Vec3 wi = frame.to_local(e->wi);
                     SampledSpectrum pdf_bsdf;
-                    const SampledSpectrum f = material->eval(hit->uv, wi, wo, w, pdf_bsdf);
+                    const bool need_pdf = !e->delta && use_bsdf_hits;
+                    const SampledSpectrum f = material->eval(hit->uv, wi, wo, w, need_pdf ? &pdf_bsdf : nullptr);
                     if (!f.is_black() && dot(e->wi, hit->ng) * dot(-ray.direction, hit->ng) > 0) {
                         ++rays;
                         const Vec3 origin = Scene::offset_origin(*hit, e->wi);

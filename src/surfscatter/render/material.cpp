@@ -34,12 +34,12 @@ public:
     explicit Diffuse(TexturePtr reflectance) : reflectance_(std::move(reflectance)) {}
 
     SampledSpectrum eval(Vec2 uv, const Vec3& wi, const Vec3& wo, const SampledWavelengths& w,
-                         SampledSpectrum& pdf) const override {
+                         SampledSpectrum* pdf) const override {
         if (wi.z <= 0 || wo.z <= 0) {
-            pdf = SampledSpectrum(0.0);
+            if (pdf) *pdf = SampledSpectrum(0.0);
             return SampledSpectrum(0.0);
         }
-        pdf = SampledSpectrum(wi.z * kInvPi);
+        if (pdf) *pdf = SampledSpectrum(wi.z * kInvPi);
         return reflectance_->eval(uv, w) * kInvPi;
     }
 
@@ -73,8 +73,8 @@ public:
     }
 
     SampledSpectrum eval(Vec2, const Vec3&, const Vec3&, const SampledWavelengths&,
-                         SampledSpectrum& pdf) const override {
-        pdf = SampledSpectrum(0.0);
+                         SampledSpectrum* pdf) const override {
+        if (pdf) *pdf = SampledSpectrum(0.0);
         return SampledSpectrum(0.0);
     }
 
@@ -115,11 +115,11 @@ public:
     explicit ModelMaterial(std::shared_ptr<const bsdf::Bsdf> model) : model_(std::move(model)) {}
 
     SampledSpectrum eval(Vec2, const Vec3& wi, const Vec3& wo, const SampledWavelengths& w,
-                         SampledSpectrum& pdf) const override {
+                         SampledSpectrum* pdf) const override {
         SampledSpectrum f;
         for (int i = 0; i < kN; ++i) {
             f[i] = model_->eval(wi, wo, lambda_at(w, i));
-            pdf[i] = model_->pdf(wo, wi, lambda_at(w, i));
+            if (pdf) (*pdf)[i] = model_->pdf(wo, wi, lambda_at(w, i));
         }
         return f;
     }
@@ -158,7 +158,7 @@ public:
     explicit TwoSided(MaterialPtr nested) : nested_(std::move(nested)) {}
 
     SampledSpectrum eval(Vec2 uv, const Vec3& wi, const Vec3& wo, const SampledWavelengths& w,
-                         SampledSpectrum& pdf) const override {
+                         SampledSpectrum* pdf) const override {
         if (wo.z < 0) return nested_->eval(uv, flip(wi), flip(wo), w, pdf);
         return nested_->eval(uv, wi, wo, w, pdf);
     }

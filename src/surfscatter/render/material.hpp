@@ -27,9 +27,10 @@ struct MaterialSample {
 class Material {
 public:
     virtual ~Material() = default;
-    // f(wi, wo) per wavelength; `pdf` receives each wavelength's sampling density of wi given wo.
+    // f(wi, wo) per wavelength; `pdf` (if not null) receives each wavelength's sampling density of wi given wo.
+    // Light from point emitters needs no density, and for the scattering models the density costs as much as f.
     virtual SampledSpectrum eval(Vec2 uv, const Vec3& wi, const Vec3& wo, const SampledWavelengths& w,
-                                 SampledSpectrum& pdf) const = 0;
+                                 SampledSpectrum* pdf) const = 0;
     virtual std::optional<MaterialSample> sample(Vec2 uv, const Vec3& wo, const SampledWavelengths& w, double u_lobe,
                                                  Vec2 u) const = 0;
     // False for pure mirrors: next-event estimation is skipped.
