@@ -26,6 +26,7 @@ def main():
     models = list(dict.fromkeys(k[1] for k in data))
     fig, axes = plt.subplots(1, len(thetas), figsize=(4.2 * len(thetas), 3.6), squeeze=False)
     for ax, ti in zip(axes[0], thetas):
+        peak = max(max(data[(ti, m)][1]) for m in models)
         for m in models:
             x, y = data[(ti, m)]
             y = [v if v > 0 else float("nan") for v in y]
@@ -35,6 +36,7 @@ def main():
         ax.set_title(f"theta_i = {ti:g} deg")
         ax.set_xlabel("theta_o (deg, + = specular side)")
         ax.set_xlim(-90, 90)
+        ax.set_ylim(peak * 1e-9, peak * 3)  # nine decades below the peak: deeper tails are not visible anyway
         ax.grid(True, which="major", alpha=0.3)
     axes[0][0].set_ylabel("BRDF (1/sr)")
     axes[0][-1].legend(fontsize=7)
