@@ -2,11 +2,11 @@
 
 #include <cmath>
 #include <complex>
-#include <mutex>
 
 #include <fftw3.h>
 
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/surface/fftw_planner.hpp"
 #include "surfscatter/math/vec.hpp"
 
 namespace surfscatter::surface {
@@ -27,11 +27,6 @@ std::complex<double> log_gamma(std::complex<double> z) {
 
 // Phase of U_0(i eta) = 2^{i eta} Gamma((1 + i eta)/2) / Gamma((1 - i eta)/2) (a unit complex number).
 double u0_phase(double eta) { return eta * std::log(2.0) + 2.0 * log_gamma({0.5, 0.5 * eta}).imag(); }
-
-std::mutex& planner_mutex() {
-    static std::mutex m;  // FFTW's planner is not thread-safe
-    return m;
-}
 
 }  // namespace
 
@@ -61,13 +56,13 @@ FftLogHankel::FftLogHankel(double r_min, double r_max, int n) : n_(n), plans_(st
     }
     std::vector<double> real(n);
     std::vector<fftw_complex> spectrum(half + 1);
-    std::lock_guard lock(planner_mutex());
+    std::lock_guard lock(fftw_planner_mutex());
     plans_->forward = fftw_plan_dft_r2c_1d(n, real.data(), spectrum.data(), FFTW_ESTIMATE | FFTW_UNALIGNED);
     plans_->backward = fftw_plan_dft_c2r_1d(n, spectrum.data(), real.data(), FFTW_ESTIMATE | FFTW_UNALIGNED);
 }
 
 FftLogHankel::~FftLogHankel() {
-    std::lock_guard lock(planner_mutex());
+    std::lock_guard lock(fftw_planner_mutex());
     fftw_destroy_plan(plans_->forward);
     fftw_destroy_plan(plans_->backward);
 }

@@ -3,13 +3,9 @@
 #include <fftw3.h>
 
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/surface/fftw_planner.hpp"
 
 namespace surfscatter::surface {
-
-std::mutex& fftw_planner_mutex() {
-    static std::mutex mutex;
-    return mutex;
-}
 
 namespace {
 

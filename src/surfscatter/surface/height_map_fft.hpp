@@ -4,7 +4,6 @@
 // [ky * (nx/2 + 1) + kx], unnormalised (forward sum_n h_n e^{-2 pi i k.n/N}; inverse without the 1/N).
 #include <complex>
 #include <cstddef>
-#include <mutex>
 #include <vector>
 
 namespace surfscatter::surface {
@@ -13,10 +12,6 @@ std::vector<std::complex<double>> forward_fft_2d(const std::vector<double>& data
 
 // Consumes the spectrum (FFTW's complex-to-real transform overwrites its input).
 std::vector<double> inverse_fft_2d(std::vector<std::complex<double>> spectrum, std::size_t nx, std::size_t ny);
-
-// FFTW's planner (plan creation and destruction) is not thread-safe, fftw_execute is: every FFTW user in the
-// module should hold this one mutex while planning.
-std::mutex& fftw_planner_mutex();
 
 // Signed frequency index of DFT bin k for a transform of length n: 0, 1, ..., n/2, -(n - n/2 - 1), ..., -1.
 inline long signed_frequency_index(std::size_t k, std::size_t n) {
