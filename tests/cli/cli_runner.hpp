@@ -50,8 +50,16 @@ inline CliResult run_cli(std::initializer_list<std::string> args) {
     if (out_fd >= 0) close(out_fd);
     if (err_fd >= 0) close(err_fd);
     std::string command = shell_quote(SURFSCATTER_CLI);
-    for (const auto& a : args) command += " " + shell_quote(a);
-    command += " >" + shell_quote(out_path) + " 2>" + shell_quote(err_path) + " </dev/null";
+    // Appended piece by piece: `" " + std::string` trips g++ 12's false -Wrestrict warning.
+    for (const auto& a : args) {
+        command += ' ';
+        command += shell_quote(a);
+    }
+    command += " >";
+    command += shell_quote(out_path);
+    command += " 2>";
+    command += shell_quote(err_path);
+    command += " </dev/null";
     CliResult result;
     const int status = std::system(command.c_str());
     if (status != -1 && WIFEXITED(status)) result.exit_code = WEXITSTATUS(status);
