@@ -42,9 +42,13 @@ std::filesystem::path plot_script_directory() {
 void run_plot_script(const std::string& script, const std::vector<std::string>& args) {
     const auto path = plot_script_directory() / script;
     if (!std::filesystem::exists(path)) fail("plot script not found: {}", path.string());
-    std::string cmd = "/usr/bin/python3 ";  // appended, not operator+: g++ 12 warns falsely (-Wrestrict) there
+    // Appended piece by piece: `" " + std::string` trips g++ 12's false -Wrestrict warning.
+    std::string cmd = "/usr/bin/python3 ";
     cmd += shell_quote(path.string());
-    for (const auto& a : args) cmd += " " + shell_quote(a);
+    for (const auto& a : args) {
+        cmd += ' ';
+        cmd += shell_quote(a);
+    }
     const int status = std::system(cmd.c_str());
     if (status != 0) fail("plot script {} failed (status {}); is python3-matplotlib installed?", script, status);
 }
