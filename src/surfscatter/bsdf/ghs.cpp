@@ -111,7 +111,8 @@ GhsBsdf::Node GhsBsdf::lookup(double cos_theta_i, double lambda_nm) const {
     const int l0 = int(std::floor(x));
     const double tl = x - l0;
     const double theta = std::acos(std::clamp(cos_theta_i, 0.0, 1.0));
-    const double y = std::min(theta, kThetaMax) / kThetaMax * (kThetaNodes - 1);
+    // Nodes uniform in u = 1 - sqrt(1 - theta/theta_max): dense toward grazing, where sigma_rel and K vary fastest.
+    const double y = (1.0 - std::sqrt(1.0 - std::min(theta, kThetaMax) / kThetaMax)) * (kThetaNodes - 1);
     const int t0 = std::min(kThetaNodes - 2, int(y));
     const double tt = y - t0;
     const Table& a = table(l0);
@@ -142,7 +143,8 @@ GhsBsdf::Table GhsBsdf::build_table(double lambda_nm) const {
     t.nodes.resize(kThetaNodes);
     const double sigma_h = stats_->sigma_h();
     for (int j = 0; j < kThetaNodes; ++j) {
-        const double theta = kThetaMax * j / (kThetaNodes - 1);
+        const double u = double(j) / (kThetaNodes - 1);
+        const double theta = kThetaMax * (1.0 - (1.0 - u) * (1.0 - u));
         Node& n = t.nodes[j];
         const double disc_mass = surface::visible_disc_mass(*stats_, theta, lambda_nm);
         n.sigma = settings_.relevant_roughness ? sigma_h * std::sqrt(disc_mass) : sigma_h;

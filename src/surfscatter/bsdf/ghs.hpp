@@ -5,7 +5,7 @@
 // where sigma is the relevant roughness sigma_rel(theta_i, lambda) or sigma_h, F the Fresnel factor
 // (incident / half / rr), and N the lobe normalisation: K(theta_i, lambda) making the directional albedo exactly R
 // (full GHS, THEORY 1.1 eq 20, and the SSA energy form), sigma_h^2 / sigma_rel^2 (the visible-disc mass) or 1.
-// sigma and N are tabulated per wavelength node (log-spaced, 2 %) over theta_i (46 nodes to 89.5 deg), built lazily,
+// sigma and N are tabulated per wavelength node (log-spaced, 2 %) over theta_i (46 nodes to 89.5 deg, denser toward grazing), built lazily,
 // thread-safe, and interpolated linearly in theta_i and log lambda.
 // Sampling: the delta with probability e^{-g0}; otherwise |zeta| from the core at g* = g0 and the azimuth over the
 // visible wedge; the pdf is exact (wedge_pdf).
