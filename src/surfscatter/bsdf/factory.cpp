@@ -71,8 +71,8 @@ std::function<double(double)> ggx_alpha(const ModelOptions& o) {
                 const auto map = surface::read_height_map(s.surface_file, std::nullopt);
                 return constant(smoothing > 0 ? surface::rms_slope_smoothed(map, smoothing) : surface::rms_slope(map));
             }
-            // No low-pass cutoff: the largest finite frequency (the statistics reject an infinite one).
-            const double slope2 = statistics_of(s)->mean_square_slope(smoothing, std::numeric_limits<double>::max());
+            const double no_cutoff = std::numeric_limits<double>::infinity();
+            const double slope2 = statistics_of(s)->mean_square_slope(smoothing, no_cutoff);
             if (!std::isfinite(slope2) || !(slope2 > 0))
                 fail("alpha_from {}: the rms slope of this PSD diverges (KC needs gamma > 3, or smoothing > 0, or a "
                      "height map)", to_string(o.alpha_from));
