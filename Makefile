@@ -18,12 +18,15 @@ configure: deps
 build: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 
+# Tests keep their lobe tables in the build tree, never in the user's cache, so a stale cache cannot hide a bug.
+TEST_ENV = SURFSCATTER_CACHE_DIR=$(abspath $(BUILD_DIR))/test-table-cache
+
 test: build
-	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+	cd $(BUILD_DIR) && $(TEST_ENV) ctest --output-on-failure -j $(JOBS)
 
 # Everything but the suites labelled "slow" (chi-square sweeps, renders).
 test-fast: build
-	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS) -LE slow
+	cd $(BUILD_DIR) && $(TEST_ENV) ctest --output-on-failure -j $(JOBS) -LE slow
 
 demo: build
 	scripts/demo $(BUILD_DIR)
