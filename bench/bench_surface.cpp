@@ -28,7 +28,7 @@ double unique_length() {
 }
 
 void BM_ScatterLobeTableBuild(benchmark::State& state) {
-    const double gamma = state.range(0) / 10.0;
+    const double gamma = static_cast<double>(state.range(0)) / 10.0;
     for (auto _ : state) {
         const KCorrelation kc(1.0, unique_length(), gamma);
         benchmark::DoNotOptimize(ScatterLobeTable::get(kc));

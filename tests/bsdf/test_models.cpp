@@ -83,7 +83,7 @@ TEST(Models, NoModelExceedsOne) {
             EXPECT_LE(albedo, 1.0 + 5e-3) << bsdf->name() << " sigma " << o.surface.sigma << " gamma "
                                           << o.surface.gamma << " alpha " << o.alpha << " theta_i " << t;
             // The GHS family carries exactly R (perfect conductor: 1); microfacet parts lose energy at grazing.
-            if (o.model == ModelKind::ghs || o.model == ModelKind::ghs_ssa) EXPECT_NEAR(albedo, 1.0, 5e-3) << bsdf->name();
+            if (o.model == ModelKind::ghs || o.model == ModelKind::ghs_ssa) { EXPECT_NEAR(albedo, 1.0, 5e-3) << bsdf->name(); }
         }
     }
 }

@@ -56,7 +56,7 @@ TEST(Poisson, MeanVarianceAndChiSquare) {
             chi2 += (pooled_obs - pooled_exp) * (pooled_obs - pooled_exp) / pooled_exp;
             ++cells;
         }
-        if (cells > 1) EXPECT_GT(surfscatter::bsdf::test::gamma_q(0.5 * (cells - 1), 0.5 * chi2), level) << mean;
+        if (cells > 1) { EXPECT_GT(surfscatter::bsdf::test::gamma_q(0.5 * (cells - 1), 0.5 * chi2), level) << mean; }
     }
 }
 

@@ -52,7 +52,7 @@ TEST(Refit, DISABLED_DistanceToTheExactLobe) {
                 std::printf(" %.3g |", d);
                 EXPECT_TRUE(std::isfinite(d));
                 // Exactly stable: x = 1, so only the truncation differs from the exact lobe.
-                if (gamma == 2.0 && truncation == Truncation::poisson_mass) EXPECT_LT(d, 0.01) << "g " << g;
+                if (gamma == 2.0 && truncation == Truncation::poisson_mass) { EXPECT_LT(d, 0.01) << "g " << g; }
             }
             std::printf("\n");
         }

@@ -422,8 +422,8 @@ TEST_F(RenderedPhotoPipeline, DISABLED_CalibratePoseUndistortColorcorrectCompare
     const auto vec = [](const nlohmann::json& a) { return cv::Vec3d(a[0], a[1], a[2]); };
     const auto column = [](const nlohmann::json& m, int c) { return cv::Vec3d(m[0][c], m[1][c], m[2][c]); };
     const cv::Vec3d position = vec(j["camera_position_m"]), reference = vec(r["camera_position_m"]);
-    const auto angle = [](const cv::Vec3d& a, const cv::Vec3d& b) {
-        return std::acos(std::clamp(a.dot(b), -1.0, 1.0)) * 180.0 / M_PI;
+    const auto angle = [](const cv::Vec3d& u, const cv::Vec3d& v) {
+        return std::acos(std::clamp(u.dot(v), -1.0, 1.0)) * 180.0 / M_PI;
     };
     const double axis_error = angle(column(j["mitsuba"]["to_world"], 2), column(r["mitsuba"]["to_world"], 2));
     const double up_error = angle(column(j["mitsuba"]["to_world"], 1), column(r["mitsuba"]["to_world"], 1));

@@ -101,6 +101,6 @@ TEST(SpectralMis, WavelengthDependentLobesUnderUniformSky) {
         const double mean = sum / seeds;
         const double standard_error = std::sqrt(std::max(0.0, sum2 / seeds - mean * mean) / (seeds - 1));
         EXPECT_NEAR(mean, expected_y, 4 * standard_error) << strategy;
-        if (std::string(strategy) != "emitter") EXPECT_NEAR(mean, expected_y, 0.01 * expected_y) << strategy;
+        if (std::string(strategy) != "emitter") { EXPECT_NEAR(mean, expected_y, 0.01 * expected_y) << strategy; }
     }
 }

@@ -17,7 +17,7 @@ TEST(HeightTable, BinnedSamplesAreIncreasingPositiveAndLogSpaced) {
     ASSERT_GE(samples.zeta.size(), 4u);
     for (std::size_t i = 0; i < samples.zeta.size(); ++i) {
         EXPECT_GT(samples.psd[i], 0.0);
-        if (i > 0) EXPECT_GT(samples.zeta[i], samples.zeta[i - 1]);
+        if (i > 0) { EXPECT_GT(samples.zeta[i], samples.zeta[i - 1]); }
     }
     // Rings 2 .. 127 span log10(127.5 / 1.5) = 1.93 decades: at most 20 per decade (+1 partial bin).
     EXPECT_LE(samples.zeta.size(), 40u);

@@ -33,7 +33,7 @@ TEST(KCorrelation, UnitMassCdfAndInverse) {
         for (double z : {1e-3, 0.1, 1.0, 10.0, 1e3}) {
             const double cdf = math::integrate_adaptive([&](double t) { return 2.0 * M_PI * t * kc.psd_unit(t); }, 0.0, z, 1e-13);
             EXPECT_NEAR(kc.radial_cdf(z), cdf, 1e-11) << gamma << " " << z;
-            if (kc.radial_cdf(z) < 1.0 - 1e-6) EXPECT_NEAR(kc.inverse_radial_cdf(kc.radial_cdf(z)), z, 1e-9 * z);
+            if (kc.radial_cdf(z) < 1.0 - 1e-6) { EXPECT_NEAR(kc.inverse_radial_cdf(kc.radial_cdf(z)), z, 1e-9 * z); }
         }
         EXPECT_EQ(kc.inverse_radial_cdf(0.0), 0.0);
         EXPECT_TRUE(std::isinf(kc.inverse_radial_cdf(1.0)));

@@ -125,9 +125,9 @@ RadialRow make_row(const TransformSetup& setup, const std::vector<double>& f, do
             row.cdf.push_back(cumulative);
         }
         if (j < end) {
-            const double a = integrand(std::max(j - 1, 0)), b = integrand(j), c = integrand(j + 1),
-                         d = integrand(std::min(j + 2, h.size() - 1));
-            cumulative += dy * (-a + 13.0 * b + 13.0 * c - d) / 24.0;
+            const double f0 = integrand(std::max(j - 1, 0)), f1 = integrand(j), f2 = integrand(j + 1),
+                         f3 = integrand(std::min(j + 2, h.size() - 1));
+            cumulative += dy * (-f0 + 13.0 * f1 + 13.0 * f2 - f3) / 24.0;
         }
     }
     // Tail slope over the last half decade of the row (clamped below -2 so the tail mass is finite).
