@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <initializer_list>
 #include <sstream>
@@ -13,6 +14,13 @@
 #include <vector>
 
 namespace surfscatter::test {
+
+// A per-suite scratch directory under the system temp directory (created if missing).
+inline std::filesystem::path scratch_directory(const std::string& name) {
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / name;
+    std::filesystem::create_directories(dir);
+    return dir;
+}
 
 struct CliResult {
     int exit_code = -1;

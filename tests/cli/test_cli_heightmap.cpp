@@ -14,11 +14,7 @@ using surfscatter::test::run_cli;
 
 namespace {
 
-fs::path temp_dir() {
-    const fs::path dir = fs::temp_directory_path() / "surfscatter_test_cli_heightmap";
-    fs::create_directories(dir);
-    return dir;
-}
+fs::path temp_dir() { return surfscatter::test::scratch_directory("surfscatter_test_cli_heightmap"); }
 
 // "name = value" lines of stdout.
 std::map<std::string, double> parse_values(const surfscatter::test::CliResult& result) {

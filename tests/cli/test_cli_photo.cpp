@@ -30,13 +30,6 @@ namespace {
 using test::run_cli;
 namespace fs = std::filesystem;
 
-CameraModel true_camera() {
-    CameraModel c;
-    c.image_size = {960, 720};
-    c.matrix = cv::Matx33d(1010.0, 0.0, 487.5, 0.0, 1006.0, 352.2, 0.0, 0.0, 1.0);
-    c.distortion = {-0.16, 0.09, 0.0012, -0.0008, 0.0};
-    return c;
-}
 constexpr double kMarkerLength = 0.05;
 const cv::Vec3d kPhotoEye{0.06, -0.22, 0.27};
 
@@ -48,7 +41,7 @@ protected:
     static void SetUpTestSuite() {
         dir = fs::temp_directory_path() / ("surfscatter_photo_cli_" + std::to_string(::getpid()));
         fs::create_directories(dir);
-        const CameraModel camera = true_camera();
+        const CameraModel camera = synthetic::true_camera();
         const cv::Mat rays = synthetic::sub_pixel_rays(camera);
         // Calibration views of a 10x7 ChArUco board (30 mm squares, 22 mm markers).
         const auto board = synthetic::charuco_texture(10, 7, 0.03, 0.022);
@@ -174,7 +167,7 @@ TEST_F(PhotoPipeline, ColorcorrectRemovesACastBelowTwoCiede2000) {
 
 TEST_F(PhotoPipeline, CompareRanksTheWrongRenderingBelowTheRightOne) {
     // "Renderings" of the marker photo: the right one at another exposure, the wrong one from a camera 1 cm off.
-    const CameraModel camera = true_camera();
+    const CameraModel camera = synthetic::true_camera();
     const cv::Mat rays = synthetic::sub_pixel_rays(camera);
     const auto marker = synthetic::marker_texture(11, kMarkerLength);
     const auto photo_view = synthetic::look_at(kPhotoEye, {0, 0, 0}, {0, 1, 0});

@@ -13,11 +13,7 @@ using surfscatter::test::run_cli;
 
 namespace {
 
-fs::path temp_dir() {
-    const fs::path dir = fs::temp_directory_path() / "surfscatter_test_cli_render";
-    fs::create_directories(dir);
-    return dir;
-}
+fs::path temp_dir() { return surfscatter::test::scratch_directory("surfscatter_test_cli_render"); }
 
 // A small valid scene: a diffuse plane under a point light; $size sets the film size.
 const char* kScene = R"(<scene version="3.0.0">

@@ -17,6 +17,15 @@
 
 namespace surfscatter::photo::synthetic {
 
+// The camera the photo tests photograph with: known intrinsics and a realistic barrel distortion.
+inline CameraModel true_camera() {
+    CameraModel c;
+    c.image_size = {960, 720};
+    c.matrix = cv::Matx33d(1010.0, 0.0, 487.5, 0.0, 1006.0, 352.2, 0.0, 0.0, 1.0);
+    c.distortion = {-0.16, 0.09, 0.0012, -0.0008, 0.0};
+    return c;
+}
+
 inline constexpr int kSupersample = 3;
 
 // World -> OpenCV camera (rvec, tvec) of a camera at `eye` looking at `target` with `up` pointing up in the image.

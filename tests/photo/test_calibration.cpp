@@ -11,16 +11,8 @@
 namespace surfscatter::photo {
 namespace {
 
-CameraModel true_camera() {
-    CameraModel c;
-    c.image_size = {960, 720};
-    c.matrix = cv::Matx33d(1010.0, 0.0, 487.5, 0.0, 1006.0, 352.2, 0.0, 0.0, 1.0);
-    c.distortion = {-0.16, 0.09, 0.0012, -0.0008, 0.0};
-    return c;
-}
-
 const cv::Mat& rays() {
-    static const cv::Mat r = synthetic::sub_pixel_rays(true_camera());
+    static const cv::Mat r = synthetic::sub_pixel_rays(synthetic::true_camera());
     return r;
 }
 
@@ -79,7 +71,7 @@ void expect_recovers(const CameraModel& truth, const CalibrationResult& result, 
 }
 
 TEST(Calibration, CharucoRecoversKnownIntrinsicsAndDistortionDespiteOcclusion) {
-    const CameraModel truth = true_camera();
+    const CameraModel truth = synthetic::true_camera();
     const auto board = synthetic::charuco_texture(10, 7, 0.03, 0.022);
     std::vector<CalibrationInput> inputs;
     int index = 0;
@@ -99,7 +91,7 @@ TEST(Calibration, CharucoRecoversKnownIntrinsicsAndDistortionDespiteOcclusion) {
 }
 
 TEST(Calibration, ChessboardRecoversKnownIntrinsics) {
-    const CameraModel truth = true_camera();
+    const CameraModel truth = synthetic::true_camera();
     const auto board = synthetic::chessboard_texture(8, 6, 0.025);
     std::vector<CalibrationInput> inputs;
     int index = 0;
@@ -116,7 +108,7 @@ TEST(Calibration, ChessboardRecoversKnownIntrinsics) {
 }
 
 TEST(Calibration, TooFewViewsNamesTheRejectedImages) {
-    const CameraModel truth = true_camera();
+    const CameraModel truth = synthetic::true_camera();
     const auto board = synthetic::charuco_texture(10, 7, 0.03, 0.022);
     const auto v = views();
     std::vector<CalibrationInput> inputs{
