@@ -62,29 +62,6 @@ TEST(PhotoIo, SixteenBitLinearTiffIsReadAsLinear) {
     std::filesystem::remove(path);
 }
 
-TEST(PhotoIo, ExifFocalLengthIsRead) {
-    // A minimal JPEG with an APP1 Exif segment: big-endian TIFF, IFD0 -> Exif IFD -> FocalLength 35/1.
-    const unsigned char tiff[] = {'M', 'M', 0, 42, 0, 0, 0, 8,
-                                  0, 1, 0x87, 0x69, 0, 4, 0, 0, 0, 1, 0, 0, 0, 26, 0, 0, 0, 0,  // IFD0 (ends at 26)
-                                  0, 1, 0x92, 0x0A, 0, 5, 0, 0, 0, 1, 0, 0, 0, 44, 0, 0, 0, 0,  // Exif IFD (ends 44)
-                                  0, 0, 0, 35, 0, 0, 0, 1};
-    std::string app1 = "Exif";
-    app1 += '\0';
-    app1 += '\0';
-    app1.append(reinterpret_cast<const char*>(tiff), sizeof(tiff));
-    const auto path = temp("exif.jpg");
-    {
-        std::ofstream out(path, std::ios::binary);
-        const std::size_t length = app1.size() + 2;
-        out << char(0xFF) << char(0xD8) << char(0xFF) << char(0xE1) << char(length >> 8) << char(length & 0xFF) << app1
-            << char(0xFF) << char(0xD9);
-    }
-    const auto focal = read_exif_focal_length(path);
-    ASSERT_TRUE(focal.has_value());
-    EXPECT_DOUBLE_EQ(*focal, 35.0);
-    std::filesystem::remove(path);
-}
-
 TEST(PhotoIo, BadFilesAreReported) {
     EXPECT_THROW(read_photo("/nonexistent/photo.png"), Error);
     const auto path = temp("garbage.png");

@@ -1,18 +1,23 @@
 #include "surfscatter/photo/photo_io.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
-#include <cstdint>
-#include <fstream>
-#include <iterator>
+#include <cmath>
+#include <cstdarg>
+#include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include <libexif/exif-data.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <tiffio.h>
 
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/io/image.hpp"
+#include "surfscatter/photo/camera_raw.hpp"
 #include "surfscatter/photo/colour_space.hpp"
 
 namespace surfscatter::photo {
@@ -29,6 +34,13 @@ bool is_exr(const std::string& ext) { return ext == ".exr"; }
 bool is_opencv_format(const std::string& ext) {
     return ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".tif" || ext == ".tiff";
 }
+// Extensions of the camera RAW formats LibRaw reads (it recognises a file by its content; this only routes).
+bool is_camera_raw(const std::string& ext) {
+    static constexpr std::array<std::string_view, 25> kExtensions{
+        ".dng", ".cr2", ".cr3", ".crw", ".nef", ".nrw", ".arw", ".srf", ".sr2", ".raf", ".orf", ".rw2", ".rwl",
+        ".pef", ".srw", ".3fr", ".fff", ".iiq", ".erf", ".kdc", ".dcr", ".mef", ".mos", ".mrw", ".raw"};
+    return std::find(kExtensions.begin(), kExtensions.end(), ext) != kExtensions.end();
+}
 
 Photo read_exr(const std::filesystem::path& path) {
     const io::Image image = io::read_image(path);
@@ -43,62 +55,45 @@ Photo read_exr(const std::filesystem::path& path) {
     return photo;
 }
 
-// ---- EXIF: just enough of TIFF to find FocalLength (a RATIONAL in the Exif sub-IFD, sometimes in IFD0).
-class TiffReader {
-public:
-    TiffReader(const std::uint8_t* data, std::size_t size) : data_(data), size_(size) {}
+// ---- EXIF FocalLength (tag 0x920A, a RATIONAL in the Exif IFD): libexif for JPEG, libtiff for TIFF.
+std::optional<double> positive(double focal_mm) {
+    if (std::isfinite(focal_mm) && focal_mm > 0.0) return focal_mm;
+    return std::nullopt;
+}
 
-    std::optional<double> focal_length() const {
-        if (size_ < 8) return std::nullopt;
-        if (data_[0] == 'I' && data_[1] == 'I') little_ = true;
-        else if (data_[0] == 'M' && data_[1] == 'M') little_ = false;
-        else return std::nullopt;
-        const auto ifd0 = u32(4);
-        if (!ifd0) return std::nullopt;
-        if (auto f = find_rational(*ifd0, 0x920A)) return f;
-        const auto exif_ifd = find_long(*ifd0, 0x8769);
-        if (!exif_ifd) return std::nullopt;
-        return find_rational(*exif_ifd, 0x920A);
-    }
+std::optional<double> jpeg_focal_length(const std::filesystem::path& path) {
+    const std::unique_ptr<ExifData, void (*)(ExifData*)> exif(exif_data_new_from_file(path.c_str()), &exif_data_unref);
+    if (!exif) return std::nullopt;
+    const ExifEntry* entry = exif_content_get_entry(exif->ifd[EXIF_IFD_EXIF], EXIF_TAG_FOCAL_LENGTH);
+    if (!entry || entry->format != EXIF_FORMAT_RATIONAL || entry->components < 1) return std::nullopt;
+    const ExifRational r = exif_get_rational(entry->data, exif_data_get_byte_order(exif.get()));
+    if (r.denominator == 0) return std::nullopt;
+    return positive(double(r.numerator) / double(r.denominator));
+}
 
-private:
-    std::optional<std::uint32_t> u16(std::size_t at) const {
-        if (at + 2 > size_) return std::nullopt;
-        return little_ ? std::uint32_t(data_[at] | data_[at + 1] << 8) : std::uint32_t(data_[at] << 8 | data_[at + 1]);
-    }
-    std::optional<std::uint32_t> u32(std::size_t at) const {
-        const auto lo = u16(little_ ? at : at + 2), hi = u16(little_ ? at + 2 : at);
-        if (!lo || !hi) return std::nullopt;
-        return *hi << 16 | *lo;
-    }
-    // Offset of the value field of the entry `tag` in the IFD at `ifd`.
-    std::optional<std::size_t> find_entry(std::size_t ifd, std::uint32_t tag) const {
-        const auto count = u16(ifd);
-        if (!count) return std::nullopt;
-        for (std::uint32_t i = 0; i < *count; ++i) {
-            const std::size_t entry = ifd + 2 + 12 * std::size_t(i);
-            const auto t = u16(entry);
-            if (!t) return std::nullopt;
-            if (*t == tag) return entry + 8;
-        }
+// libtiff prints its warnings and errors unless a handler says it dealt with them.
+int quiet_tiff_handler(TIFF*, void*, const char*, const char*, va_list) { return 1; }
+
+std::optional<double> tiff_focal_length(const std::filesystem::path& path) {
+    TIFFOpenOptions* options = TIFFOpenOptionsAlloc();
+    TIFFOpenOptionsSetErrorHandlerExtR(options, quiet_tiff_handler, nullptr);
+    TIFFOpenOptionsSetWarningHandlerExtR(options, quiet_tiff_handler, nullptr);
+    const std::unique_ptr<TIFF, void (*)(TIFF*)> tiff(TIFFOpenExt(path.c_str(), "r", options), &TIFFClose);
+    TIFFOpenOptionsFree(options);
+    if (!tiff) return std::nullopt;
+    toff_t exif_offset = 0;
+    if (!TIFFGetField(tiff.get(), TIFFTAG_EXIFIFD, &exif_offset) || !TIFFReadEXIFDirectory(tiff.get(), exif_offset))
         return std::nullopt;
+    // libtiff hands a RATIONAL back as float or double depending on its version's field table: ask it which.
+    const TIFFField* field = TIFFFindField(tiff.get(), EXIFTAG_FOCALLENGTH, TIFF_ANY);
+    if (!field) return std::nullopt;
+    if (TIFFFieldSetGetSize(field) == int(sizeof(double))) {
+        double focal = 0.0;
+        return TIFFGetField(tiff.get(), EXIFTAG_FOCALLENGTH, &focal) ? positive(focal) : std::nullopt;
     }
-    std::optional<std::uint32_t> find_long(std::size_t ifd, std::uint32_t tag) const {
-        const auto value = find_entry(ifd, tag);
-        return value ? u32(*value) : std::nullopt;
-    }
-    std::optional<double> find_rational(std::size_t ifd, std::uint32_t tag) const {
-        const auto offset = find_long(ifd, tag);
-        if (!offset) return std::nullopt;
-        const auto num = u32(*offset), den = u32(*offset + 4);
-        if (!num || !den || *den == 0) return std::nullopt;
-        return double(*num) / double(*den);
-    }
-
-    const std::uint8_t* data_;
-    std::size_t size_;
-    mutable bool little_ = true;
-};
+    float focal = 0.0f;
+    return TIFFGetField(tiff.get(), EXIFTAG_FOCALLENGTH, &focal) ? positive(focal) : std::nullopt;
+}
 
 }  // namespace
 
@@ -109,23 +104,9 @@ Encoding encoding_by_name(const std::string& name) {
 }
 
 std::optional<double> read_exif_focal_length(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return std::nullopt;
-    const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     const std::string ext = lower_extension(path);
-    if (ext == ".tif" || ext == ".tiff") return TiffReader(bytes.data(), bytes.size()).focal_length();
-    // JPEG: walk the marker segments up to the image data looking for APP1 "Exif\0\0".
-    std::size_t at = 2;
-    if (bytes.size() < 4 || bytes[0] != 0xFF || bytes[1] != 0xD8) return std::nullopt;
-    while (at + 4 <= bytes.size() && bytes[at] == 0xFF) {
-        const std::uint8_t marker = bytes[at + 1];
-        const std::size_t length = std::size_t(bytes[at + 2]) << 8 | bytes[at + 3];
-        if (marker == 0xDA || length < 2 || at + 2 + length > bytes.size()) break;
-        const std::uint8_t* segment = bytes.data() + at + 4;
-        if (marker == 0xE1 && length >= 8 && std::equal(segment, segment + 6, "Exif\0\0"))
-            return TiffReader(segment + 6, length - 8).focal_length();
-        at += 2 + length;
-    }
+    if (ext == ".jpg" || ext == ".jpeg") return jpeg_focal_length(path);
+    if (ext == ".tif" || ext == ".tiff") return tiff_focal_length(path);
     return std::nullopt;
 }
 
@@ -133,11 +114,21 @@ Photo read_photo(const std::filesystem::path& path, Encoding encoding) {
     if (!std::filesystem::exists(path)) fail("image '{}' does not exist", path.string());
     const std::string ext = lower_extension(path);
     if (is_exr(ext)) return read_exr(path);
+    if (is_camera_raw(ext)) {
+        if (auto photo = read_camera_raw(path)) return *std::move(photo);
+        fail("camera RAW '{}' could not be opened by LibRaw (a format it does not know, or a damaged header)",
+             path.string());
+    }
     if (!is_opencv_format(ext))
-        fail("image '{}': unsupported type '{}' (expected .png, .jpg, .jpeg, .tif, .tiff or .exr)", path.string(), ext);
+        fail("image '{}': unsupported type '{}' (expected .png, .jpg, .jpeg, .tif, .tiff, .exr or camera RAW such as "
+             ".dng, .cr2, .nef, .arw)", path.string(), ext);
 
     const cv::Mat raw = cv::imread(path.string(), cv::IMREAD_UNCHANGED | cv::IMREAD_IGNORE_ORIENTATION);
-    if (raw.empty()) fail("image '{}' could not be decoded", path.string());
+    if (raw.empty()) {
+        // A camera RAW file under an image extension is still read.
+        if (auto photo = read_camera_raw(path)) return *std::move(photo);
+        fail("image '{}' could not be decoded", path.string());
+    }
     double scale = 0.0;
     Photo photo;
     switch (raw.depth()) {

@@ -3,7 +3,8 @@
 // R, G, B order (not OpenCV's usual B, G, R) holding LINEAR values, 1 = the file's full scale.
 //
 // Files: JPEG and 8/16-bit PNG/TIFF through OpenCV (sRGB-encoded unless told otherwise), OpenEXR through
-// surfscatter::io (linear). Camera RAW is not read: convert it to a linear 16-bit TIFF first (docs/PHOTO.md).
+// surfscatter::io (linear), camera RAW (.dng, .cr2, .nef, .arw, .raf, ...) through LibRaw as linear sRGB
+// (camera_raw.hpp states the processing). docs/PHOTO.md, "Images".
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -12,17 +13,18 @@
 
 namespace surfscatter::photo {
 
-// How the integer samples of a PNG/JPEG/TIFF are encoded. EXR is always linear.
+// How the integer samples of a PNG/JPEG/TIFF are encoded. EXR and camera RAW are always linear.
 enum class Encoding { Srgb, Linear };
 Encoding encoding_by_name(const std::string& name);  // "srgb" | "linear"; throws Error otherwise
 
 struct Photo {
     cv::Mat rgb;                             // CV_32FC3, linear, R G B
-    int bit_depth = 8;                       // of the file's samples (32 for EXR)
-    std::optional<double> focal_length_mm;   // EXIF FocalLength (JPEG/TIFF with EXIF), when present
+    int bit_depth = 8;                       // of the decoded samples (32 for EXR, 16 for camera RAW)
+    std::optional<double> focal_length_mm;   // EXIF FocalLength (JPEG, TIFF, camera RAW), when present
 };
 
-// Throws Error naming the file when it is missing, unreadable, of an unknown type or not 1/3/4 channels.
+// Throws Error naming the file when it is missing, unreadable, of an unknown type or not 1/3/4 channels. A file
+// with an image extension that OpenCV cannot decode is offered to LibRaw before giving up.
 Photo read_photo(const std::filesystem::path& path, Encoding encoding = Encoding::Srgb);
 
 // Writes by extension: .png (16-bit), .tif/.tiff (16-bit), .jpg/.jpeg (8-bit), all sRGB-encoded unless
@@ -34,7 +36,8 @@ cv::Mat to_display_bgr8(const cv::Mat& linear_rgb);
 // 8-bit grey (sRGB-encoded luma) for marker and board detection.
 cv::Mat to_gray8(const cv::Mat& linear_rgb);
 
-// EXIF FocalLength (tag 0x920A) in millimetres from a JPEG's APP1 segment or a TIFF's Exif IFD, if present.
+// EXIF FocalLength (tag 0x920A) in millimetres from a JPEG's APP1 segment (libexif) or a TIFF's Exif IFD
+// (libtiff), if present and positive. Camera RAW files get theirs from LibRaw in read_photo.
 std::optional<double> read_exif_focal_length(const std::filesystem::path& path);
 
 }  // namespace surfscatter::photo
