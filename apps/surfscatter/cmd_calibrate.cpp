@@ -47,7 +47,7 @@ void run(const Options& o) {
     photo::validate(spec);
 
     std::vector<photo::CalibrationInput> views;
-    for (const auto& path : o.images) views.push_back({path, photo::to_gray8(photo::read_photo(path).rgb)});
+    for (const auto& path : o.images) views.push_back({path, photo::read_photo(path).rgb});
     const photo::CalibrationResult result = photo::calibrate_camera(views, spec, o.fit_k3);
     photo::write_camera(o.output, result.camera);
 

@@ -40,7 +40,7 @@ void run(const Options& o) {
     options.marker_length = o.marker_length;
     options.dictionary = o.dictionary;
     options.marker_id = o.marker_id;
-    const photo::MarkerPose pose = photo::estimate_marker_pose(photo::to_gray8(image.rgb), camera, options);
+    const photo::MarkerPose pose = photo::estimate_marker_pose(image.rgb, camera, options);
     const double distance = cv::norm(pose.position);
     const photo::MitsubaSensor sensor = photo::mitsuba_sensor(camera, pose.camera_to_world, distance);
 
@@ -54,7 +54,8 @@ void run(const Options& o) {
                    {"length_m", o.marker_length},
                    {"markers_detected", pose.markers_detected},
                    {"corners_px", {{pose.corners[0].x, pose.corners[0].y}, {pose.corners[1].x, pose.corners[1].y},
-                                   {pose.corners[2].x, pose.corners[2].y}, {pose.corners[3].x, pose.corners[3].y}}}};
+                                   {pose.corners[2].x, pose.corners[2].y}, {pose.corners[3].x, pose.corners[3].y}}},
+                   {"corner_refinement", pose.edge_refined ? "edges, linear light" : "detector (cornerSubPix)"}};
     j["reprojection_rms_px"] = pose.reprojection_rms;
     j["camera_position_m"] = vec_json(pose.position);
     j["distance_to_marker_m"] = distance;
@@ -84,6 +85,10 @@ void run(const Options& o) {
                  "reprojection error %.3f px -> %s\n",
                  pose.marker_id, pose.position[0], pose.position[1], pose.position[2], distance,
                  pose.reprojection_rms, o.output.c_str());
+    if (!pose.edge_refined)
+        std::fprintf(stderr,
+                     "surfscatter: pose: note: the marker's edges could not be measured (marker under 4 px per cell, "
+                     "cut by the image border or occluded); using the detector's corners, which are less accurate\n");
     if (std::abs(sensor.pixel_aspect - 1.0) > 1e-3)
         std::fprintf(stderr, "surfscatter: pose: note: fy/fx = %.5f; Mitsuba assumes square pixels (fov set from fx)\n",
                      sensor.pixel_aspect);

@@ -13,7 +13,9 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "surfscatter/photo/colour_space.hpp"
 #include "surfscatter/photo/markers.hpp"
+#include "surfscatter/spectrum/color.hpp"
 
 namespace surfscatter::photo::synthetic {
 
@@ -37,10 +39,18 @@ inline Extrinsics look_at(const cv::Vec3d& eye, const cv::Vec3d& target, const c
 // Normalised undistorted image coordinates (x/z, y/z) of every sub-pixel of the camera's (distorted) image.
 inline cv::Mat sub_pixel_rays(const CameraModel& camera);
 
-// The camera's view of `texture` (CV_8UC1) lying on z = 0, centred at the origin, `width` x `height` metres, its top
-// row towards +y. Background (outside the texture or behind the camera) = `background` (0-255). Returns CV_8UC1.
+// The camera's view of `texture` (CV_8UC1, sRGB code values) lying on z = 0, centred at the origin, `width` x
+// `height` metres, its top row towards +y. Background (outside the texture or behind the camera) = `background`
+// (0-255 code value). Sub-pixels are averaged in linear light, as a sensor does. Returns CV_32FC1 linear light.
+inline cv::Mat render_plane_linear(const cv::Mat& texture, double width, double height, const CameraModel& camera,
+                                   const cv::Mat& rays, const Extrinsics& pose, double background);
+// The same, as the 8-bit sRGB-encoded photograph a camera would write (CV_8UC1).
 inline cv::Mat render_plane(const cv::Mat& texture, double width, double height, const CameraModel& camera,
                      const cv::Mat& rays, const Extrinsics& pose, double background);
+// sRGB encoding of a CV_32FC1 linear image to CV_8UC1, and the decoding of CV_8UC1 to CV_32FC3 linear RGB (what
+// read_photo gives for an 8-bit photograph).
+inline cv::Mat srgb8_from_linear(const cv::Mat& linear);
+inline cv::Mat linear_rgb_from_srgb8(const cv::Mat& encoded);
 
 // An ArUco marker whose black square is `marker_length` metres, on a white square twice as wide.
 struct MarkerTexture {
@@ -90,8 +100,8 @@ inline cv::Mat sub_pixel_rays(const CameraModel& camera) {
     return rays.reshape(2, h);
 }
 
-inline cv::Mat render_plane(const cv::Mat& texture, double width, double height, const CameraModel& camera,
-                     const cv::Mat& rays, const Extrinsics& pose, double background) {
+inline cv::Mat render_plane_linear(const cv::Mat& texture, double width, double height, const CameraModel& camera,
+                                   const cv::Mat& rays, const Extrinsics& pose, double background) {
     cv::Matx33d r;
     cv::Rodrigues(pose.rvec, r);
     const cv::Matx33d rt = r.t();
@@ -111,10 +121,36 @@ inline cv::Mat render_plane(const cv::Mat& texture, double width, double height,
             map_x.at<float>(y, x) = u;
             map_y.at<float>(y, x) = v;
         }
-    cv::Mat fine, out;
-    cv::remap(texture, fine, map_x, map_y, cv::INTER_LINEAR, cv::BORDER_CONSTANT, cv::Scalar::all(background));
+    cv::Mat linear_texture(texture.size(), CV_32FC1), fine, out;
+    for (int y = 0; y < texture.rows; ++y)
+        for (int x = 0; x < texture.cols; ++x)
+            linear_texture.at<float>(y, x) = static_cast<float>(spectrum::srgb_decode(texture.at<std::uint8_t>(y, x) / 255.0));
+    cv::remap(linear_texture, fine, map_x, map_y, cv::INTER_LINEAR, cv::BORDER_CONSTANT,
+              cv::Scalar::all(spectrum::srgb_decode(background / 255.0)));
     cv::resize(fine, out, camera.image_size, 0, 0, cv::INTER_AREA);
     return out;
+}
+
+inline cv::Mat render_plane(const cv::Mat& texture, double width, double height, const CameraModel& camera,
+                     const cv::Mat& rays, const Extrinsics& pose, double background) {
+    return srgb8_from_linear(render_plane_linear(texture, width, height, camera, rays, pose, background));
+}
+
+inline cv::Mat srgb8_from_linear(const cv::Mat& linear) {
+    CV_Assert(linear.type() == CV_32FC1);
+    cv::Mat out(linear.size(), CV_8UC1);
+    for (int y = 0; y < linear.rows; ++y)
+        for (int x = 0; x < linear.cols; ++x)
+            out.at<std::uint8_t>(y, x) = cv::saturate_cast<std::uint8_t>(255.0 * spectrum::srgb_encode(linear.at<float>(y, x)));
+    return out;
+}
+
+inline cv::Mat linear_rgb_from_srgb8(const cv::Mat& encoded) {
+    CV_Assert(encoded.type() == CV_8UC1);
+    cv::Mat rgb8, f;
+    cv::cvtColor(encoded, rgb8, cv::COLOR_GRAY2RGB);
+    rgb8.convertTo(f, CV_32FC3, 1.0 / 255.0);
+    return srgb_decode_image(f);
 }
 
 inline MarkerTexture marker_texture(int id, double marker_length, const char* dictionary) {

@@ -16,6 +16,12 @@ const cv::Mat& rays() {
     return r;
 }
 
+// The board as an 8-bit sRGB photograph read back to linear light, as `surfscatter calibrate` reads a PNG.
+cv::Mat photograph(const cv::Mat& texture, double width, double height, const CameraModel& camera,
+                   const synthetic::Extrinsics& view) {
+    return synthetic::linear_rgb_from_srgb8(synthetic::render_plane(texture, width, height, camera, rays(), view, 150));
+}
+
 // Camera positions around a board at the origin: varied tilt, roll and distance so that the views fill the frame.
 std::vector<synthetic::Extrinsics> views() {
     const std::vector<std::pair<cv::Vec3d, cv::Vec3d>> eyes_ups{
@@ -76,12 +82,12 @@ TEST(Calibration, CharucoRecoversKnownIntrinsicsAndDistortionDespiteOcclusion) {
     std::vector<CalibrationInput> inputs;
     int index = 0;
     for (const auto& view : views()) {
-        cv::Mat image = synthetic::render_plane(board.image, board.width, board.height, truth, rays(), view, 150);
-        if (index == 3) image(cv::Rect(0, 0, 480, 360)).setTo(90);  // a hand over a quarter of the board
+        cv::Mat image = photograph(board.image, board.width, board.height, truth, view);
+        if (index == 3) image(cv::Rect(0, 0, 480, 360)).setTo(cv::Scalar::all(0.1));  // a hand over a quarter of the board
         if (index == 5) cv::GaussianBlur(image, image, cv::Size(), 1.2);
         inputs.push_back({"view" + std::to_string(index++) + ".png", image});
     }
-    inputs.push_back({"empty.png", cv::Mat(720, 960, CV_8UC1, cv::Scalar(120))});
+    inputs.push_back({"empty.png", cv::Mat(720, 960, CV_32FC3, cv::Scalar::all(0.2))});
     BoardSpec spec;
     spec.type = BoardType::Charuco;
     spec.squares_x = 10, spec.squares_y = 7, spec.square_length = 0.03, spec.marker_length = 0.022;
@@ -97,7 +103,7 @@ TEST(Calibration, ChessboardRecoversKnownIntrinsics) {
     int index = 0;
     for (const auto& view : views()) {
         inputs.push_back({"chess" + std::to_string(index++) + ".png",
-                          synthetic::render_plane(board.image, board.width, board.height, truth, rays(), view, 150)});
+                          photograph(board.image, board.width, board.height, truth, view)});
     }
     BoardSpec spec;
     spec.type = BoardType::Chessboard;
@@ -112,9 +118,9 @@ TEST(Calibration, TooFewViewsNamesTheRejectedImages) {
     const auto board = synthetic::charuco_texture(10, 7, 0.03, 0.022);
     const auto v = views();
     std::vector<CalibrationInput> inputs{
-        {"a.png", synthetic::render_plane(board.image, board.width, board.height, truth, rays(), v[0], 150)},
-        {"b.png", synthetic::render_plane(board.image, board.width, board.height, truth, rays(), v[1], 150)},
-        {"blank.png", cv::Mat(720, 960, CV_8UC1, cv::Scalar(200))}};
+        {"a.png", photograph(board.image, board.width, board.height, truth, v[0])},
+        {"b.png", photograph(board.image, board.width, board.height, truth, v[1])},
+        {"blank.png", cv::Mat(720, 960, CV_32FC3, cv::Scalar::all(0.6))}};
     BoardSpec spec;
     spec.squares_x = 10, spec.squares_y = 7, spec.square_length = 0.03, spec.marker_length = 0.022;
     try {

@@ -46,8 +46,10 @@ TEST_P(MarkerPoseRecovery, CameraPositionWithin2mmAndRotationWithinHalfDegree) {
     static const cv::Mat rays = synthetic::sub_pixel_rays(camera);
     const auto texture = synthetic::marker_texture(7, kMarkerLength);
     const auto truth = synthetic::look_at(pc.eye, {0.01, -0.005, 0.0}, pc.up);
-    cv::Mat image = synthetic::render_plane(texture.image, texture.size, texture.size, camera, rays, truth, 160.0);
-    if (pc.blur_sigma > 0.0) cv::GaussianBlur(image, image, cv::Size(), pc.blur_sigma);
+    // Defocus blurs the light (linear); the camera then writes sRGB code values, with sensor noise.
+    cv::Mat linear = synthetic::render_plane_linear(texture.image, texture.size, texture.size, camera, rays, truth, 160.0);
+    if (pc.blur_sigma > 0.0) cv::GaussianBlur(linear, linear, cv::Size(), pc.blur_sigma);
+    cv::Mat image = synthetic::srgb8_from_linear(linear);
     if (pc.noise_sigma > 0.0) {
         cv::Mat noise(image.size(), CV_32F);
         cv::RNG rng(1234);
@@ -60,15 +62,17 @@ TEST_P(MarkerPoseRecovery, CameraPositionWithin2mmAndRotationWithinHalfDegree) {
 
     MarkerPoseOptions options;
     options.marker_length = kMarkerLength;
-    const MarkerPose pose = estimate_marker_pose(image, camera, options);
+    const MarkerPose pose = estimate_marker_pose(synthetic::linear_rgb_from_srgb8(image), camera, options);
     EXPECT_EQ(pose.marker_id, 7);
+    EXPECT_TRUE(pose.edge_refined);
     EXPECT_LT(pose.reprojection_rms, 0.5);
-    EXPECT_LT(cv::norm(pose.position - pc.eye), 0.002) << pose.position << " vs " << pc.eye;
+    // The issue asks for 2 mm and 0.5 degree; the edge-based corners give well under a tenth of that.
+    EXPECT_LT(cv::norm(pose.position - pc.eye), 0.0005) << pose.position << " vs " << pc.eye;
     cv::Matx33d r_true, r_est;
     cv::Rodrigues(truth.rvec, r_true);
     cv::Rodrigues(pose.rvec, r_est);
     const double rotation_error = rotation_error_degrees(r_true, r_est);
-    EXPECT_LT(rotation_error, 0.5);
+    EXPECT_LT(rotation_error, 0.05);
     std::printf("[ measured ] position error %.4f mm, rotation error %.4f deg, reprojection %.3f px\n",
                 1e3 * cv::norm(pose.position - pc.eye), rotation_error, pose.reprojection_rms);
 }
@@ -118,7 +122,7 @@ TEST(MarkerPose, NoMarkerGivesAClearError) {
     CameraModel camera = test_camera(false);
     camera.image_size = {640, 480};
     try {
-        estimate_marker_pose(blank, camera, options);
+        estimate_marker_pose(synthetic::linear_rgb_from_srgb8(blank), camera, options);
         FAIL() << "expected an error";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("no ArUco marker"), std::string::npos);
@@ -130,7 +134,8 @@ TEST(MarkerPose, WrongIdAndUnknownDictionaryAreReported) {
     static const cv::Mat rays = synthetic::sub_pixel_rays(camera);
     const auto texture = synthetic::marker_texture(3, kMarkerLength);
     const auto truth = synthetic::look_at({0.0, -0.1, 0.3}, {0, 0, 0}, {0, 1, 0});
-    const cv::Mat image = synthetic::render_plane(texture.image, texture.size, texture.size, camera, rays, truth, 128);
+    const cv::Mat image = synthetic::linear_rgb_from_srgb8(
+        synthetic::render_plane(texture.image, texture.size, texture.size, camera, rays, truth, 128));
     MarkerPoseOptions options;
     options.marker_length = kMarkerLength;
     options.marker_id = 5;

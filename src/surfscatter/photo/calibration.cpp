@@ -20,14 +20,14 @@ CalibrationResult calibrate_camera(const std::vector<CalibrationInput>& views, c
     validate(board);
     if (views.empty()) fail("calibration needs at least {} images, got none", kMinimumCalibrationViews);
     CalibrationResult result;
-    const cv::Size size = views.front().gray.size();
+    const cv::Size size = views.front().linear_rgb.size();
     std::vector<std::vector<cv::Point3f>> object_points;
     std::vector<std::vector<cv::Point2f>> image_points;
     for (const auto& view : views) {
-        if (view.gray.size() != size)
-            fail("calibration image '{}' is {}x{} pixels but '{}' is {}x{}", view.name, view.gray.cols,
-                 view.gray.rows, views.front().name, size.width, size.height);
-        if (auto found = detect_board(view.gray, board)) {
+        if (view.linear_rgb.size() != size)
+            fail("calibration image '{}' is {}x{} pixels but '{}' is {}x{}", view.name, view.linear_rgb.cols,
+                 view.linear_rgb.rows, views.front().name, size.width, size.height);
+        if (auto found = detect_board(view.linear_rgb, board)) {
             object_points.push_back(std::move(found->object_points));
             image_points.push_back(std::move(found->image_points));
             result.used.push_back(view.name);

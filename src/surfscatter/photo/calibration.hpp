@@ -14,7 +14,7 @@ inline constexpr int kMinimumCalibrationViews = 3;
 
 struct CalibrationInput {
     std::string name;  // how errors refer to the view (its file name)
-    cv::Mat gray;      // CV_8UC1
+    cv::Mat linear_rgb;  // CV_32FC3 linear light (read_photo)
 };
 
 struct CalibrationResult {

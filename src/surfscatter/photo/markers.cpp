@@ -10,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/photo/photo_io.hpp"
 
 namespace surfscatter::photo {
 
@@ -83,6 +84,20 @@ cv::Ptr<cv::aruco::CharucoBoard> make_charuco_board(const BoardSpec& board) {
 }
 
 namespace {
+// OpenCV 4.6's interpolated ChArUco corners carry a bias of about half a pixel (measured on exactly rendered boards,
+// tests/photo/test_calibration.cpp), and any corner found on a gamma-encoded image is displaced by the tone curve; a
+// final cornerSubPix on the linear luminance removes both. The window stays well inside one square: 30% of the
+// smallest corner spacing.
+void refine_board_corners(const cv::Mat& linear_gray, std::vector<cv::Point2f>& corners) {
+    double spacing = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < corners.size(); ++i)
+        for (std::size_t j = i + 1; j < corners.size(); ++j)
+            spacing = std::min(spacing, double(cv::norm(corners[i] - corners[j])));
+    const int half_window = std::clamp(static_cast<int>(0.3 * spacing), 2, 10);
+    cv::cornerSubPix(linear_gray, corners, cv::Size(half_window, half_window), cv::Size(-1, -1),
+                     cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 100, 1e-4));
+}
+
 std::optional<BoardView> detect_charuco(const cv::Mat& gray, const BoardSpec& spec) {
     const auto board = make_charuco_board(spec);
     std::vector<std::vector<cv::Point2f>> marker_corners, rejected;
@@ -97,16 +112,6 @@ std::optional<BoardView> detect_charuco(const cv::Mat& gray, const BoardSpec& sp
     constexpr int kMinimumCorners = 6;
     if (static_cast<int>(ids.size()) < kMinimumCorners) return std::nullopt;
     if (cv::aruco::testCharucoCornersCollinear(board, ids)) return std::nullopt;
-    // OpenCV 4.6's interpolated corners carry a bias of about half a pixel (measured on exactly rendered boards,
-    // tests/photo/test_calibration.cpp); a final cornerSubPix on the image removes it. The window stays well inside
-    // one square: 30% of the smallest corner spacing.
-    double spacing = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < corners.size(); ++i)
-        for (std::size_t j = i + 1; j < corners.size(); ++j)
-            spacing = std::min(spacing, double(cv::norm(corners[i] - corners[j])));
-    const int half_window = std::clamp(static_cast<int>(0.3 * spacing), 2, 10);
-    cv::cornerSubPix(gray, corners, cv::Size(half_window, half_window), cv::Size(-1, -1),
-                     cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 100, 1e-4));
     BoardView view;
     view.image_points = corners;
     for (int id : ids) view.object_points.push_back(board->chessboardCorners[static_cast<std::size_t>(id)]);
@@ -129,9 +134,16 @@ std::optional<BoardView> detect_chessboard(const cv::Mat& gray, const BoardSpec&
 }
 }  // namespace
 
-std::optional<BoardView> detect_board(const cv::Mat& gray, const BoardSpec& board) {
-    CV_Assert(gray.type() == CV_8UC1);
-    return board.type == BoardType::Charuco ? detect_charuco(gray, board) : detect_chessboard(gray, board);
+std::optional<BoardView> detect_board(const cv::Mat& linear_rgb, const BoardSpec& board) {
+    CV_Assert(linear_rgb.type() == CV_32FC3);
+    const cv::Mat gray = to_gray8(linear_rgb);
+    auto view = board.type == BoardType::Charuco ? detect_charuco(gray, board) : detect_chessboard(gray, board);
+    if (view) {
+        cv::Mat linear_gray;
+        cv::cvtColor(linear_rgb, linear_gray, cv::COLOR_RGB2GRAY);
+        refine_board_corners(linear_gray, view->image_points);
+    }
+    return view;
 }
 
 }  // namespace surfscatter::photo

@@ -39,8 +39,10 @@ struct BoardView {
     std::vector<cv::Point2f> image_points;
 };
 
-// Finds the board in an 8-bit grey image with sub-pixel corners; nullopt when it is not found (for ChArUco:
-// fewer than 6 interpolated corners, or all of them on one line).
-std::optional<BoardView> detect_board(const cv::Mat& gray, const BoardSpec& board);
+// Finds the board in a photograph (CV_32FC3 linear light) with sub-pixel corners; nullopt when it is not found (for
+// ChArUco: fewer than 6 interpolated corners, or all of them on one line). The board is found on the display
+// encoding; the corners are refined on the linear luminance, where a blurred corner is not displaced by the tone
+// curve (on sRGB-encoded boards the calibrated principal point moved by about 2 px).
+std::optional<BoardView> detect_board(const cv::Mat& linear_rgb, const BoardSpec& board);
 
 }  // namespace surfscatter::photo

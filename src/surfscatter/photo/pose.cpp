@@ -5,9 +5,12 @@
 #include <fmt/format.h>
 #include <opencv2/aruco.hpp>
 #include <opencv2/calib3d.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/photo/marker_corners.hpp"
 #include "surfscatter/photo/markers.hpp"
+#include "surfscatter/photo/photo_io.hpp"
 
 namespace surfscatter::photo {
 
@@ -39,13 +42,13 @@ double reprojection_rms(const std::vector<cv::Point3d>& object, const std::vecto
 }
 }  // namespace
 
-MarkerPose estimate_marker_pose(const cv::Mat& gray, const CameraModel& camera, const MarkerPoseOptions& options) {
-    CV_Assert(gray.type() == CV_8UC1);
+MarkerPose estimate_marker_pose(const cv::Mat& linear_rgb, const CameraModel& camera, const MarkerPoseOptions& options) {
+    CV_Assert(linear_rgb.type() == CV_32FC3);
     require_positive(options.marker_length, "--marker-length");
     const auto dictionary = dictionary_by_name(options.dictionary);
     std::vector<std::vector<cv::Point2f>> corners;
     std::vector<int> ids;
-    cv::aruco::detectMarkers(gray, dictionary, corners, ids, marker_detector_parameters());
+    cv::aruco::detectMarkers(to_gray8(linear_rgb), dictionary, corners, ids, marker_detector_parameters());
     if (ids.empty()) fail("no ArUco marker of dictionary {} found in the image", options.dictionary);
 
     std::size_t chosen = ids.size();
@@ -63,6 +66,12 @@ MarkerPose estimate_marker_pose(const cv::Mat& gray, const CameraModel& camera, 
     pose.marker_id = ids[chosen];
     pose.markers_detected = static_cast<int>(ids.size());
     pose.corners = corners[chosen];
+    cv::Mat linear_gray;
+    cv::cvtColor(linear_rgb, linear_gray, cv::COLOR_RGB2GRAY);
+    if (auto refined = refine_marker_corners(linear_gray, pose.corners, camera, dictionary->markerSize + 2)) {
+        pose.corners = std::move(*refined);
+        pose.edge_refined = true;
+    }
     const auto object = marker_object_points(options.marker_length);
 
     // IPPE gives the two poses a square admits; keep the one that reprojects better, then refine it.

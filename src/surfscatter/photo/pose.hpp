@@ -24,15 +24,19 @@ struct MarkerPoseOptions {
 struct MarkerPose {
     int marker_id = -1;
     int markers_detected = 0;
-    std::vector<cv::Point2f> corners;   // detected, clockwise from the marker's top-left
+    std::vector<cv::Point2f> corners;   // clockwise from the marker's top-left, as used for the pose
+    bool edge_refined = false;          // corners from the marker's edges in linear light (marker_corners.hpp);
+                                        // false: the detector's own sub-pixel corners (marker too small or cut)
     cv::Vec3d rvec, tvec;               // world -> OpenCV camera (Rodrigues vector, metres)
     cv::Matx44d camera_to_world;        // OpenCV camera axes
     cv::Vec3d position;                 // camera centre in the world frame, metres
     double reprojection_rms = 0.0;      // pixels, over the four corners after refinement
 };
 
-// Throws Error if no marker (or not the requested one) is found or several are found and none was chosen.
-MarkerPose estimate_marker_pose(const cv::Mat& gray, const CameraModel& camera, const MarkerPoseOptions& options);
+// `linear_rgb`: the photograph as CV_32FC3 linear light (read_photo). Markers are detected on its display encoding
+// and their corners refined on its linear luminance. Throws Error if no marker (or not the requested one) is found
+// or several are found and none was chosen.
+MarkerPose estimate_marker_pose(const cv::Mat& linear_rgb, const CameraModel& camera, const MarkerPoseOptions& options);
 
 struct MitsubaSensor {
     double fov_x_deg = 0.0;                    // fov with fov_axis = "x"
