@@ -79,6 +79,80 @@ TEST(ColorCorrection, KnownCastIsRemovedFromGivenCorners) {
     }
 }
 
+// A camera a 3x3 matrix cannot fully undo: the cast, then a mildly non-linear response per channel.
+std::array<Vec3d, kChartPatches> nonlinear_camera(const std::array<Vec3d, kChartPatches>& in) {
+    auto out = cast(in);
+    for (auto& v : out)
+        for (auto& c : v) c = std::pow(std::max(c, 0.0), 0.85);
+    return out;
+}
+
+TEST(ColorCorrection, Ciede2000FitLowersTheMeanErrorTheLeastSquaresFitLeaves) {
+    const auto measured = nonlinear_camera(reference_patches());
+    for (const CcmConstraint constraint : {CcmConstraint::None, CcmConstraint::PreserveWhite}) {
+        const auto least_squares = apply_ccm(measured, fit_ccm(measured, reference(), constraint));
+        const auto ciede = apply_ccm(measured, fit_ccm(measured, reference(), constraint, CcmObjective::Ciede2000));
+        const double ls = chart_delta_e(least_squares, reference()).mean;
+        const double de = chart_delta_e(ciede, reference()).mean;
+        std::printf("[ measured ] non-linear camera (%s): mean dE00 least squares %.3f, CIEDE2000 fit %.3f\n",
+                    constraint == CcmConstraint::None ? "free" : "white preserved", ls, de);
+        EXPECT_GT(ls, 1.0);
+        // Preserving the white leaves the fit 6 of its 9 degrees of freedom, and less to gain.
+        EXPECT_LT(de, (constraint == CcmConstraint::None ? 0.8 : 0.95) * ls);
+        if (constraint == CcmConstraint::PreserveWhite) {
+            for (std::size_t c = 0; c < 3; ++c)
+                EXPECT_NEAR(ciede[kWhitePatch][c], reference().linear_srgb[kWhitePatch][c], 1e-9);
+        }
+    }
+    // On a purely linear cast the least-squares fit is the exact inverse (the error left is the reference's clipping
+    // into the gamut) and the CIEDE2000 fit does not make it worse.
+    const auto linear = cast(reference_patches());
+    const double exact = chart_delta_e(apply_ccm(linear, fit_ccm(linear, reference(), CcmConstraint::None)),
+                                       reference()).mean;
+    EXPECT_LE(chart_delta_e(apply_ccm(linear, fit_ccm(linear, reference(), CcmConstraint::None,
+                                                      CcmObjective::Ciede2000)),
+                            reference()).mean,
+              exact + 1e-12);
+    EXPECT_EQ(ccm_objective_by_name("least-squares"), CcmObjective::LeastSquares);
+    EXPECT_THROW(ccm_objective_by_name("l2"), Error);
+}
+
+TEST(ColorCorrection, FlatFieldUndoesUnevenLighting) {
+    // Light falling off across the chart by up to 35 %, tinted (the lamp's and a coloured bounce).
+    const auto even = cast(reference_patches());
+    std::array<Vec3d, kChartPatches> uneven, flat;
+    for (std::size_t i = 0; i < even.size(); ++i) {
+        const double column = static_cast<double>(i % 6), row = static_cast<double>(i / 6);
+        const Vec3d light{1.0 - 0.05 * column - 0.04 * row, 1.0 - 0.06 * column - 0.03 * row, 0.95 - 0.05 * column};
+        for (std::size_t c = 0; c < 3; ++c) {
+            uneven[i][c] = even[i][c] * light[c];
+            flat[i][c] = 0.18 * 0.7 * light[c];
+        }
+    }
+    const auto evened = flatten_patches(uneven, flat);
+    // The flat field restores the even chart up to one gain per channel, which the matrix absorbs.
+    for (std::size_t i = 0; i < even.size(); ++i)
+        for (std::size_t c = 0; c < 3; ++c)
+            EXPECT_NEAR(evened[i][c] / even[i][c], evened[0][c] / even[0][c], 1e-12) << "patch " << i + 1;
+    const double without = chart_delta_e(apply_ccm(uneven, fit_ccm(uneven, reference(), CcmConstraint::None)),
+                                         reference()).mean;
+    const double with = chart_delta_e(apply_ccm(evened, fit_ccm(evened, reference(), CcmConstraint::None)),
+                                      reference()).mean;
+    const double evenly_lit = chart_delta_e(apply_ccm(even, fit_ccm(even, reference(), CcmConstraint::None)),
+                                            reference()).mean;
+    std::printf("[ measured ] uneven lighting: mean dE00 %.3f without the flat field, %.3f with it (evenly lit: %.3f)\n",
+                without, with, evenly_lit);
+    EXPECT_GT(without, 2.0);
+    EXPECT_NEAR(with, evenly_lit, 1e-9);
+    flat[7][1] = 0.0;
+    try {
+        flatten_patches(uneven, flat);
+        FAIL() << "expected an error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("patch 8"), std::string::npos) << e.what();
+    }
+}
+
 TEST(ColorCorrection, ApplyCcmMultipliesEveryPixel) {
     cv::Mat image(2, 2, CV_32FC3, cv::Scalar(0.2, 0.4, 0.6));
     const cv::Matx33d m(1, 0, 0, 0, 2, 0, 0.5, 0, 1);

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include <opencv2/calib3d.hpp>
+#include <opencv2/core/optim.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/mcc.hpp>
 
@@ -139,8 +140,9 @@ std::array<cv::Point2f, 4> detect_chart(const cv::Mat& linear_rgb, const ChartRe
     return best;
 }
 
-cv::Matx33d fit_ccm(const std::array<Vec3d, kChartPatches>& measured, const ChartReference& reference,
-                    CcmConstraint constraint) {
+namespace {
+cv::Matx33d least_squares_ccm(const std::array<Vec3d, kChartPatches>& measured, const ChartReference& reference,
+                              CcmConstraint constraint) {
     // Each row m_r of M solves min |A m_r - b_r|^2 with A = measured (24x3), b_r = reference channel r.
     cv::Matx33d ata = cv::Matx33d::zeros();
     cv::Matx33d atb = cv::Matx33d::zeros();  // column r = A^T b_r
@@ -168,6 +170,95 @@ cv::Matx33d fit_ccm(const std::array<Vec3d, kChartPatches>& measured, const Char
         for (int c = 0; c < 3; ++c) m(r, c) = row[c];
     }
     return m;
+}
+
+// M = start + sum_k x_k B_k over a basis B_k of the allowed changes: every entry, or (white preserved) per row the
+// two directions orthogonal to the measured white.
+class MeanDeltaE : public cv::MinProblemSolver::Function {
+public:
+    MeanDeltaE(const std::array<Vec3d, kChartPatches>& measured, const ChartReference& reference, cv::Matx33d start,
+               CcmConstraint constraint)
+        : measured_(measured), reference_(reference), start_(start) {
+        if (constraint == CcmConstraint::None) {
+            for (int r = 0; r < 3; ++r)
+                for (int c = 0; c < 3; ++c) {
+                    cv::Matx33d b = cv::Matx33d::zeros();
+                    b(r, c) = 1;
+                    basis_.push_back(b);
+                }
+            return;
+        }
+        const Vec3d& white = measured[kWhitePatch];
+        const cv::Vec3d w = cv::normalize(cv::Vec3d(white[0], white[1], white[2]));
+        cv::Vec3d u = w.cross(cv::Vec3d(0, 0, 1));
+        if (cv::norm(u) < 1e-6) u = w.cross(cv::Vec3d(1, 0, 0));
+        u = cv::normalize(u);
+        const cv::Vec3d v = w.cross(u);
+        for (int r = 0; r < 3; ++r)
+            for (const cv::Vec3d& d : {u, v}) {
+                cv::Matx33d b = cv::Matx33d::zeros();
+                for (int c = 0; c < 3; ++c) b(r, c) = d[c];
+                basis_.push_back(b);
+            }
+    }
+    int getDims() const override { return static_cast<int>(basis_.size()); }
+    double calc(const double* x) const override { return chart_delta_e(apply_ccm(measured_, matrix(x)), reference_).mean; }
+    cv::Matx33d matrix(const double* x) const {
+        cv::Matx33d m = start_;
+        for (std::size_t k = 0; k < basis_.size(); ++k) m += x[k] * basis_[k];
+        return m;
+    }
+
+private:
+    const std::array<Vec3d, kChartPatches>& measured_;
+    const ChartReference& reference_;
+    cv::Matx33d start_;
+    std::vector<cv::Matx33d> basis_;
+};
+}  // namespace
+
+CcmObjective ccm_objective_by_name(const std::string& name) {
+    if (name == "ciede2000") return CcmObjective::Ciede2000;
+    if (name == "least-squares") return CcmObjective::LeastSquares;
+    fail("unknown colour-correction fit '{}' (expected ciede2000 or least-squares)", name);
+}
+
+cv::Matx33d fit_ccm(const std::array<Vec3d, kChartPatches>& measured, const ChartReference& reference,
+                    CcmConstraint constraint, CcmObjective objective) {
+    const cv::Matx33d start = least_squares_ccm(measured, reference, constraint);
+    if (objective == CcmObjective::LeastSquares) return start;
+    const auto problem = cv::makePtr<MeanDeltaE>(measured, reference, start, constraint);
+    const int dims = problem->getDims();
+    // Steps of 0.05 in the matrix entries (the least-squares matrix is near the optimum, entries of order 1);
+    // Nelder-Mead can stall on a non-smooth objective, so it restarts from its result until that stops helping.
+    auto solver = cv::DownhillSolver::create(problem, cv::Mat(1, dims, CV_64F, cv::Scalar(0.05)),
+                                             cv::TermCriteria(cv::TermCriteria::MAX_ITER + cv::TermCriteria::EPS,
+                                                              20000, 1e-10));
+    cv::Mat x = cv::Mat::zeros(1, dims, CV_64F);
+    double best = problem->calc(x.ptr<double>());
+    for (int restart = 0; restart < 10; ++restart) {
+        cv::Mat trial = x.clone();
+        const double value = solver->minimize(trial);
+        if (!(value < best - 1e-9)) break;
+        best = value, x = trial;
+    }
+    return problem->matrix(x.ptr<double>());
+}
+
+std::array<Vec3d, kChartPatches> flatten_patches(const std::array<Vec3d, kChartPatches>& measured,
+                                                 const std::array<Vec3d, kChartPatches>& flat) {
+    Vec3d mean{0, 0, 0};
+    for (std::size_t i = 0; i < flat.size(); ++i)
+        for (std::size_t c = 0; c < 3; ++c) {
+            if (!(flat[i][c] > 0) || !std::isfinite(flat[i][c]))
+                fail("the flat field is not positive at patch {} (channel {}: {}): is the grey card in the chart's place?",
+                     i + 1, "RGB"[c], flat[i][c]);
+            mean[c] += flat[i][c] / kChartPatches;
+        }
+    std::array<Vec3d, kChartPatches> out;
+    for (std::size_t i = 0; i < flat.size(); ++i)
+        for (std::size_t c = 0; c < 3; ++c) out[i][c] = measured[i][c] * mean[c] / flat[i][c];
+    return out;
 }
 
 Lab linear_srgb_to_lab(const Vec3d& rgb) {

@@ -47,9 +47,23 @@ enum class CcmConstraint {
     PreserveWhite,  // least squares subject to M * measured_white = reference_white (white balance kept exact)
 };
 
-// 3x3 matrix M (row-major) with corrected = M * measured, least squares in linear RGB against the reference.
+enum class CcmObjective {
+    LeastSquares,  // squared error in linear RGB: closed form, dominated by the bright patches
+    Ciede2000,     // mean CIEDE2000 over the patches (the figure reported), from the least-squares start
+};
+CcmObjective ccm_objective_by_name(const std::string& name);  // "ciede2000" | "least-squares"; throws Error
+
+// 3x3 matrix M (row-major) with corrected = M * measured against the reference in linear sRGB. The CIEDE2000
+// objective is minimised by Nelder-Mead (cv::DownhillSolver, restarted until it stops improving) over the 9 entries,
+// or over the 6 that keep M * measured_white = reference_white.
 cv::Matx33d fit_ccm(const std::array<Vec3d, kChartPatches>& measured, const ChartReference& reference,
-                    CcmConstraint constraint);
+                    CcmConstraint constraint, CcmObjective objective = CcmObjective::LeastSquares);
+
+// Evens out the light across the chart: every patch divided, channel by channel, by a flat field (the patch means of
+// a photograph of a uniform grey card in the chart's place, same camera, position and light) normalised to its mean
+// over the patches. Throws Error naming the patch if the flat field is not positive there.
+std::array<Vec3d, kChartPatches> flatten_patches(const std::array<Vec3d, kChartPatches>& measured,
+                                                 const std::array<Vec3d, kChartPatches>& flat);
 
 // Linear RGB (sRGB primaries, D65) -> CIELAB relative to D65 with Y_white = 1.
 Lab linear_srgb_to_lab(const Vec3d& rgb);
