@@ -58,10 +58,11 @@ void run(const Options& o) {
     for (const auto& name : result.rejected) std::printf("%s,no,\n", name.c_str());
     for (const auto& name : result.rejected)
         std::fprintf(stderr, "surfscatter: calibrate: board not found in '%s' (image not used)\n", name.c_str());
+    const auto& sd = c.intrinsics_std_dev;
     std::fprintf(stderr,
-                 "surfscatter: calibrate: %dx%d, fx %.3f fy %.3f cx %.3f cy %.3f px, distortion [%s], RMS "
-                 "reprojection error %.4f px over %zu images -> %s\n",
-                 c.image_size.width, c.image_size.height, c.fx(), c.fy(), c.cx(), c.cy(),
+                 "surfscatter: calibrate: %dx%d, fx %.3f +- %.3f, fy %.3f +- %.3f, cx %.3f +- %.3f, cy %.3f +- %.3f px "
+                 "(one standard deviation), distortion [%s], RMS reprojection error %.4f px over %zu images -> %s\n",
+                 c.image_size.width, c.image_size.height, c.fx(), sd[0], c.fy(), sd[1], c.cx(), sd[2], c.cy(), sd[3],
                  fmt::format("{:.6g}", fmt::join(c.distortion, ", ")).c_str(), c.rms_reprojection_error,
                  result.used.size(), o.output.c_str());
 }

@@ -411,9 +411,15 @@ TEST_F(RenderedPhotoPipeline, CalibratePoseUndistortColorcorrectCompareOnRendere
                               "--square-length", "0.03", "--marker-length", "0.022", "-o", rpath("camera.yml")});
     ASSERT_EQ(cal.exit_code, 0) << cal.err;
     const CameraModel camera = read_camera(rpath("camera.yml"));
-    std::printf("[ measured ] rendered boards: fx %.2f fy %.2f cx %.2f cy %.2f (true %.2f, %.2f, %.2f), RMS %.3f px\n",
-                camera.fx(), camera.fy(), camera.cx(), camera.cy(), lens.fx(), lens.cx(), lens.cy(),
-                camera.rms_reprojection_error);
+    const auto& sd = camera.intrinsics_std_dev;
+    ASSERT_EQ(sd.size(), 4 + camera.distortion.size());
+    std::printf("[ measured ] rendered boards: fx %.2f +- %.2f fy %.2f +- %.2f cx %.2f +- %.2f cy %.2f +- %.2f (true "
+                "%.2f, %.2f, %.2f), RMS %.3f px\n",
+                camera.fx(), sd[0], camera.fy(), sd[1], camera.cx(), sd[2], camera.cy(), sd[3], lens.fx(), lens.cx(),
+                lens.cy(), camera.rms_reprojection_error);
+    EXPECT_LT(std::abs(camera.fx() - lens.fx()), 3 * sd[0]);
+    EXPECT_LT(std::abs(camera.cx() - lens.cx()), 3 * sd[2]);
+    EXPECT_LT(std::abs(camera.cy() - lens.cy()), 3 * sd[3]);
 
     // 2. The photograph: view 2 of the photo set-up through the lens, with a colour cast; and its flat field (a grey
     // card in the chart's place, same camera and light).

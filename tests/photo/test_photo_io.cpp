@@ -84,15 +84,21 @@ TEST(CameraFile, RoundTripsAndRejectsBadFiles) {
     c.distortion = {-0.1, 0.05, 0.001, -0.002, 0.0};
     c.rms_reprojection_error = 0.123;
     c.views = 12;
+    c.intrinsics_std_dev = {0.4, 0.41, 0.5, 0.52, 1e-3, 2e-3, 1e-4, 1.1e-4, 3e-3};
     const auto path = temp("camera.yml");
     write_camera(path, c);
     const CameraModel back = read_camera(path);
+    EXPECT_EQ(back.intrinsics_std_dev, c.intrinsics_std_dev);
     EXPECT_EQ(back.image_size, c.image_size);
     EXPECT_EQ(back.distortion, c.distortion);
     EXPECT_DOUBLE_EQ(back.fx(), 1370);
     EXPECT_DOUBLE_EQ(back.cy(), 480.25);
     EXPECT_DOUBLE_EQ(back.rms_reprojection_error, 0.123);
     EXPECT_EQ(back.views, 12);
+    // A standard-deviation list that does not match the model is an error, not ignored.
+    c.intrinsics_std_dev.pop_back();
+    write_camera(path, c);
+    EXPECT_THROW(read_camera(path), Error);
     std::ofstream(path) << "%YAML:1.0\n---\nimage_width: 10\n";
     EXPECT_THROW(read_camera(path), Error);
     std::filesystem::remove(path);

@@ -54,6 +54,9 @@ CalibrationResult calibrate_camera(const std::vector<CalibrationInput>& views, c
     result.camera.rms_reprojection_error = rms;
     result.camera.views = static_cast<int>(result.used.size());
     result.per_view_rms.assign(per_view.begin<double>(), per_view.end<double>());
+    // OpenCV orders them fx fy cx cy k1 k2 p1 p2 k3 ...: the first 4 + distortion entries are this model's.
+    const auto estimated = static_cast<long>(4 + result.camera.distortion.size());
+    result.camera.intrinsics_std_dev.assign(std_intrinsics.begin<double>(), std_intrinsics.begin<double>() + estimated);
     return result;
 }
 

@@ -20,6 +20,7 @@ void write_camera(const std::filesystem::path& path, const CameraModel& camera) 
     fs << "distortion_coefficients" << cv::Mat(camera.distortion).reshape(1, 1);
     fs << "rms_reprojection_error" << camera.rms_reprojection_error;
     fs << "views" << camera.views;
+    if (!camera.intrinsics_std_dev.empty()) fs << "intrinsics_std_dev" << cv::Mat(camera.intrinsics_std_dev).reshape(1, 1);
 }
 
 CameraModel read_camera(const std::filesystem::path& path) {
@@ -52,6 +53,15 @@ CameraModel read_camera(const std::filesystem::path& path) {
              camera.distortion.size());
     if (!fs["rms_reprojection_error"].empty()) camera.rms_reprojection_error = fs["rms_reprojection_error"];
     if (!fs["views"].empty()) camera.views = fs["views"];
+    if (!fs["intrinsics_std_dev"].empty()) {
+        cv::Mat std_dev;
+        fs["intrinsics_std_dev"] >> std_dev;
+        std_dev.convertTo(std_dev, CV_64F);
+        camera.intrinsics_std_dev.assign(std_dev.begin<double>(), std_dev.end<double>());
+        if (camera.intrinsics_std_dev.size() != 4 + camera.distortion.size())
+            fail("camera file '{}': intrinsics_std_dev must have {} entries (fx fy cx cy and the distortion), got {}",
+                 path.string(), 4 + camera.distortion.size(), camera.intrinsics_std_dev.size());
+    }
     if (camera.image_size.width <= 0 || camera.image_size.height <= 0)
         fail("camera file '{}': image size {}x{} is not positive", path.string(), camera.image_size.width,
              camera.image_size.height);

@@ -14,6 +14,9 @@ struct CameraModel {
     std::vector<double> distortion;           // k1 k2 p1 p2 k3 (OpenCV order)
     double rms_reprojection_error = 0.0;      // pixels, from the calibration (0 if unknown)
     int views = 0;                            // images the calibration used
+    // One standard deviation of fx, fy, cx, cy and each distortion coefficient, from the calibration's covariance
+    // (cv::calibrateCamera); empty if unknown.
+    std::vector<double> intrinsics_std_dev;
 
     double fx() const { return matrix(0, 0); }
     double fy() const { return matrix(1, 1); }
@@ -21,7 +24,8 @@ struct CameraModel {
     double cy() const { return matrix(1, 2); }
 };
 
-// Writes image_width, image_height, camera_matrix, distortion_coefficients, rms_reprojection_error, views.
+// Writes image_width, image_height, camera_matrix, distortion_coefficients, rms_reprojection_error, views and, when
+// known, intrinsics_std_dev.
 void write_camera(const std::filesystem::path& path, const CameraModel& camera);
 // Throws Error naming the file and the missing or bad entry.
 CameraModel read_camera(const std::filesystem::path& path);

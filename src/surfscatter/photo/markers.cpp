@@ -86,14 +86,18 @@ cv::Ptr<cv::aruco::CharucoBoard> make_charuco_board(const BoardSpec& board) {
 namespace {
 // OpenCV 4.6's interpolated ChArUco corners carry a bias of about half a pixel (measured on exactly rendered boards,
 // tests/photo/test_calibration.cpp), and any corner found on a gamma-encoded image is displaced by the tone curve; a
-// final cornerSubPix on the linear luminance removes both. The window stays well inside one square: 30% of the
-// smallest corner spacing.
-void refine_board_corners(const cv::Mat& linear_gray, std::vector<cv::Point2f>& corners) {
+// final cornerSubPix on the linear luminance removes both. The window must hold the corner's four squares and nothing
+// else: at most 30 % of the smallest corner spacing, and on a ChArUco board it must stop short of the markers, which
+// start (square - marker) / 2 from the corner (a window reaching them biased fx by 0.2 %).
+void refine_board_corners(const cv::Mat& linear_gray, const BoardSpec& board, std::vector<cv::Point2f>& corners) {
     double spacing = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < corners.size(); ++i)
         for (std::size_t j = i + 1; j < corners.size(); ++j)
             spacing = std::min(spacing, double(cv::norm(corners[i] - corners[j])));
-    const int half_window = std::clamp(static_cast<int>(0.3 * spacing), 2, 10);
+    double fraction = 0.3;
+    if (board.type == BoardType::Charuco)
+        fraction = std::min(fraction, 0.8 * 0.5 * (board.square_length - board.marker_length) / board.square_length);
+    const int half_window = std::clamp(static_cast<int>(fraction * spacing), 2, 10);
     cv::cornerSubPix(linear_gray, corners, cv::Size(half_window, half_window), cv::Size(-1, -1),
                      cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 100, 1e-4));
 }
@@ -141,7 +145,7 @@ std::optional<BoardView> detect_board(const cv::Mat& linear_rgb, const BoardSpec
     if (view) {
         cv::Mat linear_gray;
         cv::cvtColor(linear_rgb, linear_gray, cv::COLOR_RGB2GRAY);
-        refine_board_corners(linear_gray, view->image_points);
+        refine_board_corners(linear_gray, board, view->image_points);
     }
     return view;
 }
