@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -139,6 +140,25 @@ TEST(ScatterLobe, UnitMassAndSamplingInverse) {
             }
         }
     }
+}
+
+// eval_at_logs (the BSDF's path: one set of zeta weights for the 4 x 4 stencil, ln(1 - e^{-g}) interpolated with the
+// rows) against eval (exact 1 - e^{-g}) over a dense (g, zeta) sweep between nodes, including the tails.
+TEST(ScatterLobe, EvalAtLogsMatchesEval) {
+    const KCorrelation kc(1.0, 1.3, 3.0);
+    const auto lobe = ScatterLobeTable::get(kc);
+    double worst = 0.0;
+    for (double g : log_points(1.37e-5, 9.9e5, 700))
+        for (double zl : log_points(1e-5, 1e5, 400)) {
+            const double z = zl / 1.3, exact = lobe->eval(g, z);
+            if (exact < 1e-300) continue;
+            worst = std::max(worst, std::abs(lobe->eval_at_logs(std::log(g), std::log(z)) / exact - 1.0));
+        }
+    EXPECT_LT(worst, 1e-7);
+    std::printf("eval_at_logs vs eval: max relative difference %.3g\n", worst);
+    EXPECT_EQ(lobe->eval_at_logs(std::log(1e7), std::log(2.0)), lobe->eval(1e6, 2.0));  // beyond kMaxG: at kMaxG
+    EXPECT_EQ(lobe->eval_at_logs(std::log(2.0), -std::numeric_limits<double>::infinity()),
+              lobe->eval_at_logs(std::log(2.0), -1e300));  // zeta = 0: the flat extension
 }
 
 TEST(ScatterLobe, CorruptCacheIsRebuilt) {

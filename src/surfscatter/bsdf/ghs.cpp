@@ -3,32 +3,90 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <mutex>
+#include <limits>
 
+#include "surfscatter/bsdf/node_axis.hpp"
 #include "surfscatter/bsdf/rayleigh_rice.hpp"
 #include "surfscatter/bsdf/wedge_sampling.hpp"
+#include "surfscatter/core/error.hpp"
+#include "surfscatter/surface/fast_math.hpp"
 #include "surfscatter/surface/relevant_roughness.hpp"
 
 namespace surfscatter::bsdf {
 
 namespace {
 
-constexpr int kThetaNodes = 46;
-constexpr double kThetaMax = 89.5 * kDegree;  // last node; grazing queries use it (the lobe vanishes there)
-constexpr double kLambdaStep = 0.02;          // log-wavelength node spacing (2 %)
+// Incidence nodes, in cos(theta_i): theta_j = 89.5 deg (1 - (1 - j / (kThetaNodes - 1))^2), dense toward grazing where
+// sigma_rel and K vary fastest (grazing queries use the last node, where the lobe vanishes); wavelength nodes 2 %
+// apart over [kMinWavelength, kMaxWavelength]. NodeAxis moves them to its cell edges (by at most 0.2 %).
+NodeAxis incidence_axis() {
+    std::vector<double> cosines;
+    for (int j = GhsBsdf::kThetaNodes - 1; j >= 0; --j) {
+        const double u = double(j) / (GhsBsdf::kThetaNodes - 1);
+        cosines.push_back(j == 0 ? 1.0 : std::cos(89.5 * kDegree * (1.0 - (1.0 - u) * (1.0 - u))));
+    }
+    return NodeAxis(cosines);
+}
+NodeAxis wavelength_axis() {
+    std::vector<double> lambdas{GhsBsdf::kMinWavelength};
+    while (lambdas.back() < GhsBsdf::kMaxWavelength) lambdas.push_back(lambdas.back() * std::exp(0.02));
+    return NodeAxis(lambdas);
+}
+const NodeAxis kIncidenceAxis = incidence_axis();
+const NodeAxis kWavelengthAxis = wavelength_axis();
 
 }  // namespace
 
 GhsBsdf::GhsBsdf(std::shared_ptr<const surface::RadialStatistics> stats, std::shared_ptr<const ScatterCore> core,
                  material::Conductor material, GhsSettings settings)
     : stats_(std::move(stats)), core_(std::move(core)), material_(std::move(material)),
-      settings_(std::move(settings)) {}
+      settings_(std::move(settings)), exact_(dynamic_cast<const ExactScatterCore*>(core_.get())),
+      tables_(std::size_t(kWavelengthAxis.size())) {
+    if (kIncidenceAxis.size() != kThetaNodes)
+        fail("internal: {} incidence nodes, expected {}", kIncidenceAxis.size(), kThetaNodes);
+}
+
+GhsBsdf::Incidence GhsBsdf::lookup(double cos_theta_i, double lambda_nm) const {
+    if (!(lambda_nm >= kMinWavelength && lambda_nm <= kMaxWavelength))
+        fail("wavelength {} nm outside [{}, {}] nm", lambda_nm, kMinWavelength, kMaxWavelength);
+    const NodeAxis::Position l = kWavelengthAxis.position(lambda_nm);
+    const NodeAxis::Position c = kIncidenceAxis.position(std::clamp(cos_theta_i, kIncidenceAxis.node(0), 1.0));
+    auto table = [&](int slot) -> const Table& {
+        return tables_.get(std::size_t(slot), [&] { return build_table(kWavelengthAxis.node(slot)); });
+    };
+    const Table& a = table(l.interval);
+    const Table& b = table(l.interval + 1);
+    const int j = c.interval;
+    // Bilinear, weights first: the four products do not wait for one another.
+    const double w00 = (1.0 - l.t) * (1.0 - c.t), w01 = (1.0 - l.t) * c.t, w10 = l.t * (1.0 - c.t), w11 = l.t * c.t;
+    return {wavenumber(lambda_nm),
+            (w00 * a[j].log_sigma + w01 * a[j + 1].log_sigma) + (w10 * b[j].log_sigma + w11 * b[j + 1].log_sigma),
+            (w00 * a[j].norm + w01 * a[j + 1].norm) + (w10 * b[j].norm + w11 * b[j + 1].norm)};
+}
 
 double GhsBsdf::core_lobe(const Vec3& wi, const Vec3& wo, double lambda_nm, double sigma_um) const {
     if (wi.z <= 0 || wo.z <= 0) return 0.0;
     const double k = wavenumber(lambda_nm);
-    const double a = k * sigma_um * (wi.z + wo.z);
-    return k * k * core_->density(a * a, k * scatter_radius(wi, wo));
+    return k * k * density(LobeLogs(wi, wo, k), std::log(sigma_um));
+}
+
+// ln g = 2 ln(k sigma (cos i + cos o)) but for its 2 ln sigma, which the lookup interpolates, and ln zeta,
+// zeta = k |i_xy + o_xy|: computed before the lookup, they do not wait for it.
+GhsBsdf::LobeLogs::LobeLogs(const Vec3& wi, const Vec3& wo, double k) {
+    const double x = wi.x + wo.x, y = wi.y + wo.y;
+    log_g_over_sigma2 = 2.0 * surface::fast_log(k * (wi.z + wo.z));
+    log_zeta = 0.5 * surface::fast_log(k * k * (x * x + y * y));
+}
+
+// The core's density; the exact core is called without virtual dispatch.
+double GhsBsdf::density(const LobeLogs& logs, double log_sigma) const {
+    const double log_g = logs.log_g_over_sigma2 + 2.0 * log_sigma;
+    return exact_ ? exact_->density_at_logs(log_g, logs.log_zeta) : core_->density_at_logs(log_g, logs.log_zeta);
+}
+
+double GhsBsdf::specular_exponent(const Incidence& in, double cos_theta_i) {
+    const double a = 2.0 * in.k * cos_theta_i;
+    return a * a * surface::fast_exp(2.0 * in.log_sigma);
 }
 
 double GhsBsdf::fresnel(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
@@ -49,15 +107,16 @@ double GhsBsdf::fresnel(const Vec3& wi, const Vec3& wo, double lambda_nm) const 
 
 double GhsBsdf::eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
     if (wi.z <= 0 || wo.z <= 0) return 0.0;
-    const Node n = lookup(wi.z, lambda_nm);
-    const double f = fresnel(wi, wo, lambda_nm) * n.norm * core_lobe(wi, wo, lambda_nm, n.sigma);
+    const double k = wavenumber(lambda_nm);
+    const LobeLogs logs(wi, wo, k);
+    const Incidence in = lookup(wi.z, lambda_nm);
+    const double f = fresnel(wi, wo, lambda_nm) * in.norm * k * k * density(logs, in.log_sigma);
     return std::isfinite(f) ? f : 0.0;
 }
 
 double GhsBsdf::delta_probability(const Vec3& wi, double lambda_nm) const {
     if (wi.z <= 0) return 0.0;
-    const double a = 2.0 * wavenumber(lambda_nm) * lookup(wi.z, lambda_nm).sigma * wi.z;
-    return std::exp(-a * a);
+    return std::exp(-specular_exponent(lookup(wi.z, lambda_nm), wi.z));
 }
 
 double GhsBsdf::delta_reflectance(const Vec3& wi, double lambda_nm) const {
@@ -67,22 +126,20 @@ double GhsBsdf::delta_reflectance(const Vec3& wi, double lambda_nm) const {
 
 double GhsBsdf::pdf(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
     if (wi.z <= 0 || wo.z <= 0) return 0.0;
-    const double k = wavenumber(lambda_nm);
-    const double sigma = lookup(wi.z, lambda_nm).sigma;
-    const double a = 2.0 * k * sigma * wi.z, g0 = a * a;
+    const Incidence in = lookup(wi.z, lambda_nm);
+    const double k = in.k, g0 = specular_exponent(in, wi.z);
     const double s = sin_theta(wi);
     const double q = scatter_radius(wi, wo);
     const double zeta_max = k * (1.0 + s);
-    const double p = -std::expm1(-g0) *
+    const double p = surface::one_minus_exp(g0) *
                      wedge_pdf(k, wo.z, core_->sample_density(g0, zeta_max, k * q), wedge_half_angle(q, s));
     return std::isfinite(p) ? p : 0.0;
 }
 
 std::optional<BsdfSample> GhsBsdf::sample(const Vec3& wi, double lambda_nm, double u_lobe, Vec2 u) const {
     if (wi.z <= 0) return std::nullopt;
-    const double k = wavenumber(lambda_nm);
-    const double sigma = lookup(wi.z, lambda_nm).sigma;
-    const double a = 2.0 * k * sigma * wi.z, g0 = a * a;
+    const Incidence in = lookup(wi.z, lambda_nm);
+    const double k = in.k, g0 = specular_exponent(in, wi.z);
     const double p_delta = std::exp(-g0);
     BsdfSample out;
     if (u_lobe < p_delta) {
@@ -106,60 +163,29 @@ std::optional<BsdfSample> GhsBsdf::sample(const Vec3& wi, double lambda_nm, doub
     return out;
 }
 
-GhsBsdf::Node GhsBsdf::lookup(double cos_theta_i, double lambda_nm) const {
-    const double x = std::log(lambda_nm) / kLambdaStep;
-    const int l0 = int(std::floor(x));
-    const double tl = x - l0;
-    const double theta = std::acos(std::clamp(cos_theta_i, 0.0, 1.0));
-    // Nodes uniform in u = 1 - sqrt(1 - theta/theta_max): dense toward grazing, where sigma_rel and K vary fastest.
-    const double y = (1.0 - std::sqrt(1.0 - std::min(theta, kThetaMax) / kThetaMax)) * (kThetaNodes - 1);
-    const int t0 = std::min(kThetaNodes - 2, int(y));
-    const double tt = y - t0;
-    const Table& a = table(l0);
-    const Table& b = table(l0 + 1);
-    auto at = [&](const Table& t) {
-        const Node& n0 = t.nodes[t0];
-        const Node& n1 = t.nodes[t0 + 1];
-        return Node{n0.sigma + tt * (n1.sigma - n0.sigma), n0.norm + tt * (n1.norm - n0.norm)};
-    };
-    const Node na = at(a), nb = at(b);
-    return {na.sigma + tl * (nb.sigma - na.sigma), na.norm + tl * (nb.norm - na.norm)};
-}
-
-const GhsBsdf::Table& GhsBsdf::table(int lambda_node) const {
-    {
-        std::shared_lock lock(mutex_);
-        const auto it = tables_.find(lambda_node);
-        if (it != tables_.end()) return *it->second;
-    }
-    auto built = std::make_unique<Table>(build_table(std::exp(lambda_node * kLambdaStep)));
-    std::unique_lock lock(mutex_);
-    auto [it, inserted] = tables_.emplace(lambda_node, std::move(built));
-    return *it->second;
-}
-
 GhsBsdf::Table GhsBsdf::build_table(double lambda_nm) const {
     Table t;
-    t.nodes.resize(kThetaNodes);
-    const double sigma_h = stats_->sigma_h();
     for (int j = 0; j < kThetaNodes; ++j) {
-        const double u = double(j) / (kThetaNodes - 1);
-        const double theta = kThetaMax * (1.0 - (1.0 - u) * (1.0 - u));
-        Node& n = t.nodes[j];
-        const double disc_mass = surface::visible_disc_mass(*stats_, theta, lambda_nm);
-        n.sigma = settings_.relevant_roughness ? sigma_h * std::sqrt(disc_mass) : sigma_h;
-        switch (settings_.normalization) {
-            case LobeNormalization::none: n.norm = 1.0; break;
-            case LobeNormalization::disc_mass: n.norm = 1.0 / disc_mass; break;
-            case LobeNormalization::albedo: {
-                const double a = 2.0 * wavenumber(lambda_nm) * n.sigma * std::cos(theta);
-                const double mass = scatter_mass(theta, lambda_nm, n.sigma);
-                n.norm = mass > 0 ? -std::expm1(-a * a) / mass : 1.0;
-                break;
-            }
-        }
+        const Direct d = direct(std::acos(kIncidenceAxis.node(j)), lambda_nm);
+        // ln sigma finite even for sigma = 0, for the interpolation.
+        t[j] = {std::log(std::max(d.sigma, std::numeric_limits<double>::min())), d.norm};
     }
     return t;
+}
+
+GhsBsdf::Direct GhsBsdf::direct(double theta_i, double lambda_nm) const {
+    const double disc_mass = surface::visible_disc_mass(*stats_, theta_i, lambda_nm);
+    const double sigma = settings_.relevant_roughness ? stats_->sigma_h() * std::sqrt(disc_mass) : stats_->sigma_h();
+    switch (settings_.normalization) {
+        case LobeNormalization::none: return {sigma, 1.0};
+        case LobeNormalization::disc_mass: return {sigma, 1.0 / disc_mass};
+        case LobeNormalization::albedo: {
+            const double a = 2.0 * wavenumber(lambda_nm) * sigma * std::cos(theta_i);
+            const double mass = scatter_mass(theta_i, lambda_nm, sigma);
+            return {sigma, mass > 0 ? -std::expm1(-a * a) / mass : 1.0};
+        }
+    }
+    return {sigma, 1.0};
 }
 
 // Integral of the core density over the visible disc (d^2 zeta = k^2 d^2 q).

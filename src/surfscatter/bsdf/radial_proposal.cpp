@@ -4,12 +4,14 @@
 #include <cmath>
 
 #include "surfscatter/math/vec.hpp"
+#include "surfscatter/surface/fast_math.hpp"
 
 namespace surfscatter::bsdf {
 
 namespace {
 
 constexpr int kNodes = 256;
+constexpr std::size_t kCells = 1024;
 constexpr double kLogitRange = 23.0;  // u from 1e-10 to 1 - 1e-10
 
 // Cubic Hermite on t in [0, 1]: value and derivative (d/dt) from end values f0, f1 and end derivatives m0, m1 (d/dt).
@@ -42,6 +44,14 @@ RadialProposal::RadialProposal(const std::function<double(double)>& cdf, const s
         cdf_[j] /= total;
         slope_[j] /= total;
     }
+    zeta_front_ = std::exp(log_zeta_.front());
+    // Segment index at the start of each of kCells uniform cells in ln zeta (replaces a branchy binary search).
+    const double width = (log_zeta_.back() - log_zeta_.front()) / kCells;
+    inverse_cell_ = 1.0 / width;
+    for (std::size_t c = 0, j = 0; c < kCells; ++c) {
+        while (j + 2 < log_zeta_.size() && log_zeta_[j + 1] <= log_zeta_.front() + static_cast<double>(c) * width) ++j;
+        cell_start_.push_back(static_cast<std::uint16_t>(j));
+    }
     // Fritsch-Carlson: limit the node slopes so that every cubic segment is monotone.
     for (std::size_t j = 0; j + 1 < cdf_.size(); ++j) {
         const double secant = (cdf_[j + 1] - cdf_[j]) / (log_zeta_[j + 1] - log_zeta_[j]);
@@ -55,13 +65,17 @@ RadialProposal::RadialProposal(const std::function<double(double)>& cdf, const s
     }
 }
 
+// Last node <= lz, for lz inside (front, back): from the node at the start of lz's cell, a step or two up.
 std::size_t RadialProposal::segment(double lz) const {
-    return std::size_t(std::upper_bound(log_zeta_.begin(), log_zeta_.end(), lz) - log_zeta_.begin()) - 1;
+    const auto cell = std::min(std::size_t((lz - log_zeta_.front()) * inverse_cell_), cell_start_.size() - 1);
+    std::size_t j = cell_start_[cell];
+    while (log_zeta_[j + 1] <= lz) ++j;
+    return j;
 }
 
 double RadialProposal::cdf(double zeta) const {
     if (!(zeta > 0)) return 0.0;
-    const double lz = std::log(zeta);
+    const double lz = surface::fast_log(zeta);
     if (lz <= log_zeta_.front()) return cdf_.front() * std::exp(2.0 * (lz - log_zeta_.front()));
     if (lz >= log_zeta_.back()) return 1.0;
     const std::size_t j = segment(lz);
@@ -95,9 +109,8 @@ double RadialProposal::inverse(double u) const {
 
 double RadialProposal::density_2d(double zeta) const {
     if (!(zeta >= 0)) return 0.0;
-    const double z0 = std::exp(log_zeta_.front());
-    if (zeta <= z0) return cdf_.front() / (kPi * z0 * z0);
-    const double lz = std::log(zeta);
+    if (zeta <= zeta_front_) return cdf_.front() / (kPi * zeta_front_ * zeta_front_);
+    const double lz = surface::fast_log(zeta);
     if (lz >= log_zeta_.back()) return 0.0;
     const std::size_t j = segment(lz);
     const double h = log_zeta_[j + 1] - log_zeta_[j];

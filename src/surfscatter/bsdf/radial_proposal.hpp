@@ -6,6 +6,7 @@
 // within ~1e-4 of the true one; below the first node the density is uniform over the disc, and the mass beyond the
 // last node (< 1e-10) is not proposed. Inversion: safeguarded Newton on the cubic. The density it reports is exactly
 // that of what it draws, so pdfs stay exact.
+#include <cstdint>
 #include <functional>
 #include <vector>
 
@@ -24,6 +25,9 @@ public:
 private:
     std::size_t segment(double log_zeta) const;
     std::vector<double> log_zeta_, cdf_, slope_;  // slope_ = dF / d ln(zeta) at the nodes
+    double zeta_front_;                           // exp(log_zeta_.front())
+    std::vector<std::uint16_t> cell_start_;       // see segment()
+    double inverse_cell_;
 };
 
 }  // namespace surfscatter::bsdf

@@ -2,36 +2,39 @@
 
 #include <algorithm>
 #include <cmath>
-#include <mutex>
+#include <numbers>
 
 #include "surfscatter/bsdf/poisson.hpp"
+#include "surfscatter/surface/fast_math.hpp"
 
 namespace surfscatter::bsdf {
 
 // --- exact ---------------------------------------------------------------------------------------------------
 
+namespace {
+constexpr double kProposalsPerDecade = 16.0;
+const int kFirstProposal = int(std::lround(kProposalsPerDecade * std::log10(surface::ScatterLobeTable::kMinG)));
+const int kLastProposal = int(std::lround(kProposalsPerDecade * std::log10(surface::ScatterLobeTable::kMaxG)));
+}  // namespace
+
 ExactScatterCore::ExactScatterCore(const surface::RadialStatistics& stats)
-    : table_(surface::ScatterLobeTable::get(stats)) {}
+    : table_(surface::ScatterLobeTable::get(stats)), proposals_(std::size_t(kLastProposal - kFirstProposal + 1)) {}
 
 double ExactScatterCore::density(double g, double zeta) const {
     return table_->eval(std::min(g, surface::ScatterLobeTable::kMaxG), zeta);
 }
 
 const RadialProposal& ExactScatterCore::proposal(double g_star) const {
-    constexpr double kNodesPerDecade = 16.0;
     const double g_min = surface::ScatterLobeTable::kMinG;
-    const int node = int(std::lround(kNodesPerDecade * std::log10(std::clamp(g_star, g_min, surface::ScatterLobeTable::kMaxG))));
-    {
-        std::shared_lock lock(mutex_);
-        const auto it = proposals_.find(node);
-        if (it != proposals_.end()) return *it->second;
-    }
-    const double g = std::pow(10.0, node / kNodesPerDecade);
-    auto built = std::make_unique<RadialProposal>([&](double z) { return table_->radial_cdf(g, z); },
-                                                  [&](double u) { return table_->inverse_radial_cdf(g, u); },
-                                                  [&](double z) { return table_->shape(g, z); });
-    std::unique_lock lock(mutex_);
-    return *proposals_.emplace(node, std::move(built)).first->second;
+    const double log_g = surface::fast_log(std::clamp(g_star, g_min, surface::ScatterLobeTable::kMaxG));
+    // Nearest node, rounding by truncation of a positive number (lround is a libm call).
+    const int node = int(kProposalsPerDecade / std::numbers::ln10 * log_g - kFirstProposal + 0.5) + kFirstProposal;
+    return proposals_.get(std::size_t(node - kFirstProposal), [&] {
+        const double g = std::pow(10.0, node / kProposalsPerDecade);
+        return RadialProposal([&](double z) { return table_->radial_cdf(g, z); },
+                              [&](double u) { return table_->inverse_radial_cdf(g, u); },
+                              [&](double z) { return table_->shape(g, z); });
+    });
 }
 
 double ExactScatterCore::sample_radius(double g_star, double zeta_max, double, double u) const {
@@ -98,7 +101,7 @@ FirstOrderCore::FirstOrderCore(std::shared_ptr<const surface::RadialStatistics> 
     : stats_(std::move(stats)), form_(form) {}
 
 double FirstOrderCore::density(double g, double zeta) const {
-    const double weight = form_ == SsaForm::strict ? g : -std::expm1(-g);
+    const double weight = form_ == SsaForm::strict ? g : surface::one_minus_exp(g);
     return weight * stats_->psd_unit(zeta);
 }
 

@@ -4,10 +4,10 @@
 // surface engine's S_g table, or by the paper's KC-refit series), or a first-order lobe (SSA). Densities are per
 // (rad/um)^2; the BRDF is k^2 times a density (THEORY 0). Each core also draws |zeta| <= zeta_max from the lobe at a
 // fixed g* and reports the exact 2-D density of what it draws, for the wedge sampler (wedge_sampling.hpp).
-#include <map>
-#include <vector>
 #include <memory>
-#include <shared_mutex>
+#include <vector>
+
+#include "surfscatter/surface/fast_math.hpp"
 
 namespace surfscatter::bsdf {
 
@@ -16,6 +16,11 @@ public:
     virtual ~ScatterCore() = default;
     // Lobe density at exponent g and radius zeta (rad/um).
     virtual double density(double g, double zeta) const = 0;
+    // density(e^{log_g}, e^{log_zeta}): the BSDF has g and zeta as logarithms, which the exact core's log-spaced
+    // table uses directly.
+    virtual double density_at_logs(double log_g, double log_zeta) const {
+        return density(surface::fast_exp(log_g), surface::fast_exp(log_zeta));
+    }
     // Draws a radius in [0, zeta_max] for the lobe at g_star; u_order (may be unused) and u in [0, 1).
     virtual double sample_radius(double g_star, double zeta_max, double u_order, double u) const = 0;
     // 2-D density (per (rad/um)^2, unit mass over |zeta| <= zeta_max) of sample_radius followed by a uniform
@@ -25,6 +30,7 @@ public:
 
 }  // namespace surfscatter::bsdf
 
+#include "surfscatter/bsdf/lazy_slots.hpp"
 #include "surfscatter/bsdf/model_options.hpp"
 #include "surfscatter/bsdf/poisson.hpp"
 #include "surfscatter/bsdf/radial_proposal.hpp"
@@ -35,21 +41,23 @@ public:
 namespace surfscatter::bsdf {
 
 // The full lobe from the surface engine's S_g table: no series, cost independent of g. Sampling draws from a
-// RadialProposal of S_{g_q}, g_q = g* rounded to 16 nodes per decade (proposals cached, thread-safe), truncated to
-// |zeta| <= zeta_max; the pdf is that proposal's exact density. g above ScatterLobeTable::kMaxG (1e6) is evaluated
-// at kMaxG.
+// RadialProposal of S_{g_q}, g_q = g* rounded to 16 nodes per decade (proposals built once, read lock-free),
+// truncated to |zeta| <= zeta_max; the pdf is that proposal's exact density. g above ScatterLobeTable::kMaxG (1e6) is
+// evaluated at kMaxG.
 class ExactScatterCore final : public ScatterCore {
 public:
     explicit ExactScatterCore(const surface::RadialStatistics& stats);
     double density(double g, double zeta) const override;
+    double density_at_logs(double log_g, double log_zeta) const override {
+        return table_->eval_at_logs(log_g, log_zeta);
+    }
     double sample_radius(double g_star, double zeta_max, double u_order, double u) const override;
     double sample_density(double g_star, double zeta_max, double zeta) const override;
 
 private:
     const RadialProposal& proposal(double g_star) const;
     std::shared_ptr<const surface::ScatterLobeTable> table_;
-    mutable std::shared_mutex mutex_;
-    mutable std::map<int, std::unique_ptr<RadialProposal>> proposals_;
+    LazySlots<RadialProposal> proposals_;  // per g* node
 };
 
 // The paper's method (supplemental eqs 1-2): Poisson series over the orders kept by the truncation rule, each

@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 
 #include <fmt/format.h>
 
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/surface/fast_math.hpp"
 #include "surfscatter/surface/radial_table.hpp"
 
 namespace surfscatter::surface {
@@ -14,7 +16,9 @@ namespace surfscatter::surface {
 namespace {
 constexpr int kNodesPerDecade = 48;
 const double kLogGMin = std::log(ScatterLobeTable::kMinG);
+const double kLogGMax = std::log(ScatterLobeTable::kMaxG);
 const double kGStep = std::log(10.0) / kNodesPerDecade;
+const double kInvGStep = 1.0 / kGStep;  // lookups multiply: a division costs as much as the rest of the stencil
 const int kGNodes = static_cast<int>(std::lround((std::log(ScatterLobeTable::kMaxG) - kLogGMin) / kGStep)) + 1;
 
 double node_g(int k) { return std::exp(kLogGMin + k * kGStep); }
@@ -28,6 +32,11 @@ double lobe_integrand(double g, double rho) {
 
 struct ScatterLobeTable::Data {
     std::shared_ptr<const detail::RadialFamily> family;  // row 0: g -> 0 limit (P-hat); row k >= 1: g = node_g(k - 1)
+    // For the stencil starting at row r: the fractional zeta position below which all four rows r .. r+3 are
+    // interpolated from their own interior nodes (same zeta weights for all four), min over the rows of n - 2.
+    std::vector<double> shared_interior_end;
+    std::vector<double> log_mass;  // ln(1 - e^{-g}) of each row (row 0: unused)
+    double inv_step;               // 1 / family->grid.step
 };
 
 namespace {
@@ -51,18 +60,66 @@ void check_g(double g) {
     if (!(g >= 0.0 && g <= ScatterLobeTable::kMaxG)) fail("lobe parameter g = {} outside [0, {}]", g, ScatterLobeTable::kMaxG);
 }
 
-// Cubic Lagrange weights over rows (first .. first+3) for the fractional node position t.
+// Two doubles in one SSE2 register (GNU vector extension): the lookup interpolates in g and zeta at once.
+using Pair = double __attribute__((vector_size(16)));
+Pair load_pair(const double* p) {
+    Pair v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+}
+
+// Cubic Lagrange weights for nodes -1, 0, 1, 2 at two fractional positions u (lane by lane, as cubic_interpolate).
+std::array<Pair, 4> cubic_weights(Pair u) {
+    const Pair um = u - 1.0, up = u + 1.0, u2 = u - 2.0, a = u * um;
+    return {a * u2 * (-1.0 / 6.0), up * um * u2 * 0.5, up * u * u2 * -0.5, a * up * (1.0 / 6.0)};
+}
+
+// Stencil over rows first .. first+3 (nodes first-1 .. first+2; row 0 is the g -> 0 limit) at fractional position u,
+// for ln g in [ln kMinG, ln kMaxG] (position >= 0 up to rounding, so truncation is floor).
+struct GPosition {
+    int first;
+    double u;
+};
+GPosition g_position(double log_g) {
+    const double t = (log_g - kLogGMin) * kInvGStep;
+    const int first = std::clamp(static_cast<int>(t), 1, kGNodes - 3);
+    return {first, t - first};
+}
 struct Stencil {
     int first;
     std::array<double, 4> w;
 };
-Stencil stencil(double g) {
-    const double t = (std::log(g) - kLogGMin) / kGStep;
-    int i = std::clamp(static_cast<int>(std::floor(t)), 1, kGNodes - 3);
-    const double u = t - i;
-    return {i,  // rows i .. i+3 hold nodes i-1 .. i+2 (row 0 is the g -> 0 limit)
-            {-u * (u - 1.0) * (u - 2.0) / 6.0, (u + 1.0) * (u - 1.0) * (u - 2.0) / 2.0,
-             -(u + 1.0) * u * (u - 2.0) / 2.0, (u + 1.0) * u * (u - 1.0) / 6.0}};
+Stencil stencil(double log_g) {
+    const GPosition p = g_position(log_g);
+    const std::array<Pair, 4> w = cubic_weights(Pair{p.u, p.u});
+    return {p.first, {w[0][0], w[1][0], w[2][0], w[3][0]}};
+}
+
+// Bicubic ln s_g(zeta), plus the cubic interpolation of ln(1 - e^{-g}) when with_mass (ln S_g). Every row starts at
+// stored index 0 (make_row), so where zeta lies inside all four rows' nodes one set of zeta weights serves the 4 x 4
+// stencil, g and zeta weights and pairs of taps computed in SSE2 lanes; elsewhere row by row with the extensions.
+double lobe_log_value(const ScatterLobeTable::Data& d, double log_g, double log_zeta, bool with_mass) {
+    const detail::RadialFamily& f = *d.family;
+    const GPosition p = g_position(log_g);
+    const double* m = d.log_mass.data() + p.first;
+    const double tz = (log_zeta - f.grid.log_x0) * d.inv_step;
+    if (tz > 0.0 && tz < d.shared_interior_end[p.first]) {
+        const int j = std::max(static_cast<int>(tz), 1) - 1;  // tz < 1: the first four nodes, as cubic_interpolate
+        const std::array<Pair, 4> w = cubic_weights(Pair{p.u, tz - (j + 1)});  // lane 0: g, lane 1: zeta
+        const Pair wz01 = {w[0][1], w[1][1]}, wz23 = {w[2][1], w[3][1]};
+        std::array<Pair, 4> row;
+        for (int i = 0; i < 4; ++i) {
+            const double* y = f.rows[p.first + i].log_value.data() + j;
+            row[i] = w[i][0] * (load_pair(y) * wz01 + load_pair(y + 2) * wz23);
+        }
+        Pair sum = (row[0] + row[1]) + (row[2] + row[3]);  // a tree: this sum is on the critical path
+        if (with_mass) sum += load_pair(m) * Pair{w[0][0], w[1][0]} + load_pair(m + 2) * Pair{w[2][0], w[3][0]};
+        return sum[0] + sum[1];
+    }
+    const Stencil s = stencil(log_g);
+    double value = 0.0;
+    for (int i = 0; i < 4; ++i) value += s.w[i] * (f.log_value(p.first + i, log_zeta) + (with_mass ? m[i] : 0.0));
+    return value;
 }
 
 }  // namespace
@@ -72,7 +129,20 @@ ScatterLobeTable::ScatterLobeTable(std::shared_ptr<const Data> data) : data_(std
 std::shared_ptr<const ScatterLobeTable> ScatterLobeTable::get(const RadialStatistics& stats) {
     const std::string key = fmt::format("lobe:{}:g={}..{}x{}", stats.cache_key(), kMinG, kMaxG, kNodesPerDecade);
     auto family = detail::cached_family(key, kGNodes + 1, [&] { return build(stats); });
-    return std::make_shared<const ScatterLobeTable>(std::make_shared<const Data>(Data{std::move(family)}));
+    const std::size_t rows = family->rows.size();
+    std::vector<double> interior_end(rows, 0.0), log_mass(rows, 0.0);
+    for (std::size_t r = 0; r + 3 < rows; ++r) {
+        std::size_t n = family->rows[r].log_value.size();
+        bool at_zero = true;
+        for (std::size_t i = 0; i < 4; ++i) {
+            n = std::min(n, family->rows[r + i].log_value.size());
+            at_zero = at_zero && family->rows[r + i].lo == 0;
+        }
+        interior_end[r] = at_zero ? static_cast<double>(n) - 2.0 : 0.0;
+    }
+    for (std::size_t r = 1; r < rows; ++r) log_mass[r] = std::log(-std::expm1(-node_g(static_cast<int>(r) - 1)));
+    return std::make_shared<const ScatterLobeTable>(std::make_shared<const Data>(
+        Data{family, std::move(interior_end), std::move(log_mass), 1.0 / family->grid.step}));
 }
 
 double ScatterLobeTable::shape(double g, double zeta) const {
@@ -86,24 +156,26 @@ double ScatterLobeTable::shape(double g, double zeta) const {
         const double s1 = zeta > 0.0 ? std::exp(f.log_value(1, log_zeta)) : f.value(1, 0.0);
         return s0 + (g / kMinG) * (s1 - s0);
     }
-    const Stencil s = stencil(g);
-    double log_value = 0.0;
-    for (int i = 0; i < 4; ++i)
-        log_value += s.w[i] * (zeta > 0.0 ? f.log_value(s.first + i, log_zeta) : f.rows[s.first + i].log_value.front());
-    return std::exp(log_value);
+    return std::exp(lobe_log_value(*data_, std::log(g), log_zeta, false));
 }
 
 double ScatterLobeTable::eval(double g, double zeta) const {
     check_g(g);
     if (g == 0.0) return 0.0;
-    return -std::expm1(-g) * shape(g, zeta);
+    return one_minus_exp(g) * shape(g, zeta);
+}
+
+double ScatterLobeTable::eval_at_logs(double log_g, double log_zeta) const {
+    log_g = std::min(log_g, kLogGMax);
+    if (!(log_g >= kLogGMin)) return eval(std::exp(log_g), std::exp(log_zeta));
+    return fast_exp(lobe_log_value(*data_, log_g, log_zeta, true));
 }
 
 double ScatterLobeTable::radial_cdf(double g, double zeta) const {
     check_g(g);
     const detail::RadialFamily& f = *data_->family;
     if (g < kMinG) return std::clamp(f.cdf(0, zeta) + (g / kMinG) * (f.cdf(1, zeta) - f.cdf(0, zeta)), 0.0, 1.0);
-    const Stencil s = stencil(g);
+    const Stencil s = stencil(std::log(g));
     double c = 0.0;
     for (int i = 0; i < 4; ++i) c += s.w[i] * f.cdf(s.first + i, zeta);
     return std::clamp(c, 0.0, 1.0);
@@ -116,7 +188,7 @@ double ScatterLobeTable::inverse_radial_cdf(double g, double u) const {
     const detail::RadialFamily& f = *data_->family;
     // Bracket from the neighbouring rows' node intervals, then bisection in ln zeta on the interpolated CDF.
     double a = 1e300, b = -1e300;
-    const int first = g < kMinG ? 0 : stencil(g).first;
+    const int first = g < kMinG ? 0 : stencil(std::log(g)).first;
     for (int i = 0; i < (g < kMinG ? 2 : 4); ++i) {
         double lo, hi;
         f.bracket(first + i, u, lo, hi);

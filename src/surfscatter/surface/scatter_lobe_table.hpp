@@ -5,9 +5,10 @@
 // Tabulated once per statistics as the unit-mass shape s_g = S_g / (1 - e^{-g}): rows at g -> 0 (= P-hat) and at
 // 48 log-spaced g per decade over [1e-4, 1e6]; each row is ln s_g on a log zeta grid (128 points per decade, covering
 // zeta from ~1e-4/L up to where the row has decayed; see radial_table.hpp) with its radial CDF. Lookup: cubic
-// Lagrange in ln zeta and across the 4 nearest g rows (in ln g); g < 1e-4 linear in g between the g -> 0 row and the
-// first node (error O(g^2)). Beyond a row's zeta window the tail is c P-hat (1 + eps (zeta/zeta_top)^kappa), the
-// algebraic asymptotics S_g -> g P-hat of the m = 1 term, so every zeta (up to 1e300) gives a finite value.
+// Lagrange in ln zeta and across the 4 nearest g rows (in ln g), with one set of zeta weights for all four rows inside
+// their nodes; g < 1e-4 linear in g between the g -> 0 row and the first node (error O(g^2)). Beyond a row's zeta
+// window the tail is c P-hat (1 + eps (zeta/zeta_top)^kappa), the algebraic asymptotics S_g -> g P-hat of the m = 1
+// term, so every zeta (up to 1e300) gives a finite value.
 // Accuracy (tests, KC gamma 2.5 and 3, zeta*L in [1e-3, 2000], g in [1e-5, 42] incl. between nodes): |S_g / series
 // - 1| < 4e-7 against e^{-g} sum g^m/m! P-hat^{*m}; unit mass to < 1e-5 for every g including gamma = 1.5 and the
 // Gaussian ACV. Building: ~0.1-0.3 s per statistics (docs/SURFACE.md), then cached on disk.
@@ -26,6 +27,10 @@ public:
     static std::shared_ptr<const ScatterLobeTable> get(const RadialStatistics&);
 
     double eval(double g, double zeta) const;             // S_g(zeta), um^2; g in [0, kMaxG] (else Error); 0 at g = 0
+    // S_g(zeta) from ln g and ln zeta, as the BSDF has them (its hot path: no logarithm of its own); g above kMaxG
+    // is evaluated at kMaxG. For g in [kMinG, kMaxG] the factor 1 - e^{-g} is interpolated with the rows (cubic in
+    // ln g; relative error < 1e-7, the rest as eval); below, eval(e^{log_g}, e^{log_zeta}).
+    double eval_at_logs(double log_g, double log_zeta) const;
     double shape(double g, double zeta) const;            // S_g / (1 - e^{-g}), unit mass
     double radial_cdf(double g, double zeta) const;       // int_{|zeta'|<=zeta} S_g / (1 - e^{-g})
     double inverse_radial_cdf(double g, double u) const;  // radius for u in [0, 1)
