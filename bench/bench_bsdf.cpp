@@ -1,8 +1,10 @@
 // eval / sample / pdf of every scattering model at g0 = 0.1, 10, 1000 (normal incidence, 550 nm, KC gamma = 3,
-// L = 1 um, perfect conductor). The per-wavelength tables (sigma_rel, K) are built before timing.
+// L = 1 um, perfect conductor), and eval with varying incidence and wavelength. The per-wavelength tables (sigma_rel,
+// K) are built before timing.
 // Run: build/bench/bench_bsdf --benchmark_min_time=0.2
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -87,6 +89,35 @@ void BM_sample(benchmark::State& state) {
     state.SetLabel(kNames[state.range(0)]);
 }
 
+// eval with a new incidence direction and wavelength on every call (64 incidences x 4 wavelengths, 16 outgoing
+// directions each from the model's sampler): what a path tracer asks, with no (theta_i, lambda) reuse to benefit from.
+void BM_eval_varying(benchmark::State& state) {
+    const Bsdf& b = model(int(state.range(0)), std::pow(10.0, double(state.range(1)) - 1));
+    struct Query {
+        Vec3 wi, wo;
+        double lambda;
+    };
+    std::vector<Query> queries;
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> u(0, 1);
+    for (int i = 0; i < 64; ++i)
+        for (double lambda : {450.0, 520.0, 590.0, 660.0}) {
+            const Vec3 wi = spherical_direction(std::acos(0.05 + 0.95 * u(rng)), kTwoPi * u(rng));
+            for (int j = 0; j < 16; ++j) {
+                const auto s = b.sample(wi, lambda, u(rng), Vec2(u(rng), u(rng)));
+                queries.push_back({wi, s && !s->delta ? s->wo : spherical_direction(std::acos(u(rng)), kTwoPi * u(rng)),
+                                   lambda});
+            }
+        }
+    std::shuffle(queries.begin(), queries.end(), rng);
+    std::size_t i = 0;
+    for (auto _ : state) {
+        const Query& q = queries[i++ & 4095];
+        benchmark::DoNotOptimize(b.eval(q.wi, q.wo, q.lambda));
+    }
+    state.SetLabel(kNames[state.range(0)]);
+}
+
 // Arguments: model index, log10(g) + 1 (0 -> g = 0.1, 2 -> 10, 4 -> 1000).
 void models_and_g(benchmark::internal::Benchmark* b) {
     for (int m = 0; m < 5; ++m)
@@ -98,3 +129,4 @@ void models_and_g(benchmark::internal::Benchmark* b) {
 BENCHMARK(BM_eval)->Apply(models_and_g);
 BENCHMARK(BM_pdf)->Apply(models_and_g);
 BENCHMARK(BM_sample)->Apply(models_and_g);
+BENCHMARK(BM_eval_varying)->Args({0, 2})->Args({3, 2});
