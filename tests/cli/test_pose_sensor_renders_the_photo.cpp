@@ -23,14 +23,7 @@ TEST(PoseSensor, TheRendererProjectsWorldPointsWhereTheCalibratedCameraSeesThem)
     for (const auto& [eye, up] : std::vector<std::pair<cv::Vec3d, cv::Vec3d>>{
              {{0.1, -0.5, 0.6}, {0, 0, 1}}, {{-0.4, 0.2, 0.5}, {0, 1, 0}}, {{0.3, 0.3, 0.2}, {1, -1, 0.5}}}) {
         const auto pose = photo::synthetic::look_at(eye, {0.0, 0.0, 0.0}, up);
-        cv::Matx33d r;
-        cv::Rodrigues(pose.rvec, r);
-        cv::Matx44d camera_to_world = cv::Matx44d::eye();
-        for (int i = 0; i < 3; ++i) {
-            for (int j = 0; j < 3; ++j) camera_to_world(i, j) = r(j, i);
-            camera_to_world(i, 3) = eye[i];
-        }
-        const photo::MitsubaSensor sensor = photo::mitsuba_sensor(camera, camera_to_world, 0.7);
+        const photo::MitsubaSensor sensor = photo::mitsuba_sensor(camera, photo::synthetic::camera_to_world(pose), 0.7);
 
         // The sensor exactly as a user pastes it into a scene.
         const auto scene = render::load_scene_from_string("<scene version=\"3.0.0\">\n" + sensor.xml + "</scene>\n",

@@ -35,6 +35,8 @@ struct Extrinsics {
     cv::Vec3d rvec, tvec;
 };
 inline Extrinsics look_at(const cv::Vec3d& eye, const cv::Vec3d& target, const cv::Vec3d& up);
+// The camera-to-world transform (OpenCV camera axes) of world -> camera extrinsics.
+inline cv::Matx44d camera_to_world(const Extrinsics& e);
 
 // Normalised undistorted image coordinates (x/z, y/z) of every sub-pixel of the camera's (distorted) image.
 inline cv::Mat sub_pixel_rays(const CameraModel& camera);
@@ -85,6 +87,18 @@ inline Extrinsics look_at(const cv::Vec3d& eye, const cv::Vec3d& target, const c
     cv::Rodrigues(r, e.rvec);
     e.tvec = -(r * eye);
     return e;
+}
+
+inline cv::Matx44d camera_to_world(const Extrinsics& e) {
+    cv::Matx33d r;
+    cv::Rodrigues(e.rvec, r);
+    const cv::Vec3d eye = -(r.t() * e.tvec);
+    cv::Matx44d out = cv::Matx44d::eye();
+    for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) out(i, j) = r(j, i);
+        out(i, 3) = eye[i];
+    }
+    return out;
 }
 
 inline cv::Mat sub_pixel_rays(const CameraModel& camera) {

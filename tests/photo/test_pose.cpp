@@ -89,15 +89,8 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(MarkerPose, SensorReprojectsTheMarkerCentreWhereTheCameraSeesIt) {
     CameraModel camera = test_camera(false);
     const cv::Vec3d eye{0.1, -0.2, 0.3};
-    const auto e = synthetic::look_at(eye, {0, 0, 0}, {0, 1, 0});
-    cv::Matx33d r;
-    cv::Rodrigues(e.rvec, r);
-    cv::Matx44d c2w = cv::Matx44d::eye();
-    for (int i = 0; i < 3; ++i) {
-        for (int j = 0; j < 3; ++j) c2w(i, j) = r(j, i);
-        c2w(i, 3) = eye[i];
-    }
-    const MitsubaSensor s = mitsuba_sensor(camera, c2w, 0.5);
+    const MitsubaSensor s =
+        mitsuba_sensor(camera, synthetic::camera_to_world(synthetic::look_at(eye, {0, 0, 0}, {0, 1, 0})), 0.5);
     EXPECT_NEAR(s.fov_x_deg, 2.0 * std::atan(640.0 / 1370.0) * 180.0 / M_PI, 1e-9);
     // Optical axis at cx + 0.5 = 645.8 of 1280 -> ppo_x = 0.5 - 645.8/1280.
     EXPECT_NEAR(s.principal_point_offset_x, 0.5 - 645.8 / 1280.0, 1e-12);
