@@ -125,7 +125,8 @@ const Command command("colorcorrect", [](CLI::App& app) {
         "colorcorrect",
         "Colour correction from an X-Rite ColorChecker Classic: finds the chart (OpenCV mcc, or --chart-corners), "
         "reads the 24 patch means in linear RGB, fits a 3x3 matrix to the reference in linear sRGB (D65) and applies "
-        "it (optionally after evening out the chart's lighting with a flat-field photo). Prints mean and max CIEDE2000 on the chart before and after as CSV.");
+        "it (optionally after evening out the chart's lighting with a flat-field photo). Prints mean and max "
+        "CIEDE2000 on the chart before and after as CSV.");
     sub->add_option("photo", o->photo, "photograph with the chart (PNG, JPEG, TIFF, EXR)")->required();
     sub->add_option("--chart-corners", o->chart_corners,
                     "x1,y1,...,x4,y4: outer corners of the patch grid, from dark skin (top-left) clockwise");

@@ -37,7 +37,7 @@ Scene photograph(double blur, double noise) {
         rng.fill(n, cv::RNG::NORMAL, 0.0, noise);
         light += n;
     }
-    cv::cvtColor(synthetic::linear_rgb_from_srgb8(synthetic::srgb8_from_linear(light)), s.linear, cv::COLOR_RGB2GRAY);
+    s.linear = to_linear_gray(synthetic::linear_rgb_from_srgb8(synthetic::srgb8_from_linear(light)));
     const double h = 0.5 * kMarkerLength;
     const std::vector<cv::Point3d> object{{-h, h, 0}, {h, h, 0}, {h, -h, 0}, {-h, -h, 0}};
     std::vector<cv::Point2d> projected;

@@ -10,6 +10,9 @@ namespace surfscatter::photo {
 
 namespace {
 
+constexpr double kProfileStep = 0.25;     // pixels between bilinear samples along a profile
+constexpr std::size_t kMinimumPoints = 8;  // edge points a side needs for its line
+
 // Bilinear sample of a CV_32FC1 image at pixel-centre coordinates; nothing outside the image.
 std::optional<double> sample(const cv::Mat& image, cv::Point2d p) {
     const int x0 = static_cast<int>(std::floor(p.x)), y0 = static_cast<int>(std::floor(p.y));
@@ -38,8 +41,8 @@ std::optional<double> edge_offset(const cv::Mat& image, cv::Point2d p, cv::Point
                                   double half_width, double start = 0) {
     const double contrast = bright - dark;
     if (!(contrast > 0)) return std::nullopt;
-    constexpr double kStep = 0.25;  // pixels; bilinear samples, trapezoid rule
-    const int steps = static_cast<int>(std::ceil(2 * half_width / kStep));
+    // Trapezoid rule on bilinear samples.
+    const int steps = static_cast<int>(std::ceil(2 * half_width / kProfileStep));
     const double h = 2 * half_width / steps;
     double offset = start;
     for (int pass = 0; pass < 2; ++pass) {
@@ -79,13 +82,12 @@ struct Line {
 // aligned at their edge estimates: the derivative's second moment over [-reach, reach].
 double line_spread_sigma(const cv::Mat& image, const std::vector<cv::Point2d>& edges, cv::Point2d outward,
                          const std::vector<double>& darks, const std::vector<double>& brights, double reach) {
-    constexpr double kStep = 0.25;
-    const int steps = static_cast<int>(std::floor(2 * reach / kStep));
+    const int steps = static_cast<int>(std::floor(2 * reach / kProfileStep));
     std::vector<double> mean(static_cast<std::size_t>(steps) + 1, 0.0);
     std::vector<int> count(mean.size(), 0);
     for (std::size_t i = 0; i < edges.size(); ++i)
         for (int j = 0; j <= steps; ++j)
-            if (const auto v = sample(image, edges[i] + (-reach + j * kStep) * outward)) {
+            if (const auto v = sample(image, edges[i] + (-reach + j * kProfileStep) * outward)) {
                 mean[static_cast<std::size_t>(j)] += (*v - darks[i]) / (brights[i] - darks[i]);
                 ++count[static_cast<std::size_t>(j)];
             }
@@ -94,7 +96,7 @@ double line_spread_sigma(const cv::Mat& image, const std::vector<cv::Point2d>& e
         const auto a = static_cast<std::size_t>(j), b = a + 1;
         if (count[a] == 0 || count[b] == 0) continue;
         const double slope = std::max(0.0, mean[b] / count[b] - mean[a] / count[a]);  // noise can go negative
-        const double s = -reach + (j + 0.5) * kStep;
+        const double s = -reach + (j + 0.5) * kProfileStep;
         mass += slope, moment += slope * s * s;
     }
     return mass > 0 ? std::sqrt(moment / mass) : reach;
@@ -118,7 +120,6 @@ std::optional<std::vector<cv::Point2f>> side_edge_points(const cv::Mat& image, c
         if (!dark || !bright) continue;
         positions.push_back(t), darks.push_back(*dark), brights.push_back(*bright);
     }
-    constexpr std::size_t kMinimumPoints = 8;
     if (positions.size() < kMinimumPoints) return std::nullopt;
     const Linear dark_fit = fit_linear(positions, darks), bright_fit = fit_linear(positions, brights);
     for (std::size_t i = 0; i < positions.size(); ++i) darks[i] = dark_fit(positions[i]), brights[i] = bright_fit(positions[i]);
@@ -152,10 +153,11 @@ std::optional<std::vector<cv::Point2f>> side_edge_points(const cv::Mat& image, c
     if (points.size() < kMinimumPoints) return std::nullopt;
     return points;
 }
+
 // Total least squares fit, refitted once without points beyond 3 robust sigma (occluders, dirt, the noise tail).
 std::optional<Line> fit_line(std::vector<cv::Point2d> points) {
     for (int pass = 0; pass < 2; ++pass) {
-        if (points.size() < 8) return std::nullopt;
+        if (points.size() < kMinimumPoints) return std::nullopt;
         cv::Point2d mean(0, 0);
         for (const auto& p : points) mean += p;
         mean *= 1.0 / static_cast<double>(points.size());

@@ -142,11 +142,7 @@ std::optional<BoardView> detect_board(const cv::Mat& linear_rgb, const BoardSpec
     CV_Assert(linear_rgb.type() == CV_32FC3);
     const cv::Mat gray = to_gray8(linear_rgb);
     auto view = board.type == BoardType::Charuco ? detect_charuco(gray, board) : detect_chessboard(gray, board);
-    if (view) {
-        cv::Mat linear_gray;
-        cv::cvtColor(linear_rgb, linear_gray, cv::COLOR_RGB2GRAY);
-        refine_board_corners(linear_gray, board, view->image_points);
-    }
+    if (view) refine_board_corners(to_linear_gray(linear_rgb), board, view->image_points);
     return view;
 }
 

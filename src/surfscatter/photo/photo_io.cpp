@@ -194,4 +194,10 @@ cv::Mat to_gray8(const cv::Mat& linear_rgb) {
     return gray;
 }
 
+cv::Mat to_linear_gray(const cv::Mat& linear_rgb) {
+    cv::Mat gray;
+    cv::cvtColor(linear_rgb, gray, cv::COLOR_RGB2GRAY);
+    return gray;
+}
+
 }  // namespace surfscatter::photo

@@ -35,6 +35,8 @@ void write_photo(const std::filesystem::path& path, const cv::Mat& linear_rgb, E
 cv::Mat to_display_bgr8(const cv::Mat& linear_rgb);
 // 8-bit grey (sRGB-encoded luma) for marker and board detection.
 cv::Mat to_gray8(const cv::Mat& linear_rgb);
+// Linear luminance (CV_32FC1) of a CV_32FC3 linear RGB image: where sub-pixel corners and edges are measured.
+cv::Mat to_linear_gray(const cv::Mat& linear_rgb);
 
 // EXIF FocalLength (tag 0x920A) in millimetres from a JPEG's APP1 segment (libexif) or a TIFF's Exif IFD
 // (libtiff), if present and positive. Camera RAW files get theirs from LibRaw in read_photo.

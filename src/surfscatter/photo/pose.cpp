@@ -5,7 +5,6 @@
 #include <fmt/format.h>
 #include <opencv2/aruco.hpp>
 #include <opencv2/calib3d.hpp>
-#include <opencv2/imgproc.hpp>
 
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/photo/marker_corners.hpp"
@@ -66,9 +65,7 @@ MarkerPose estimate_marker_pose(const cv::Mat& linear_rgb, const CameraModel& ca
     pose.marker_id = ids[chosen];
     pose.markers_detected = static_cast<int>(ids.size());
     pose.corners = corners[chosen];
-    cv::Mat linear_gray;
-    cv::cvtColor(linear_rgb, linear_gray, cv::COLOR_RGB2GRAY);
-    if (auto refined = refine_marker_corners(linear_gray, pose.corners, camera, dictionary->markerSize + 2)) {
+    if (auto refined = refine_marker_corners(to_linear_gray(linear_rgb), pose.corners, camera, dictionary->markerSize + 2)) {
         pose.corners = std::move(*refined);
         pose.edge_refined = true;
     }
