@@ -4,9 +4,13 @@
 #include <cmath>
 #include <random>
 
+#include <fmt/format.h>
+
 #include "surfscatter/math/vec.hpp"
 #include "surfscatter/surface/height_map_fft.hpp"
 #include "surfscatter/surface/psd_estimate.hpp"
+#include "surfscatter/surface/radial_statistics.hpp"
+#include "surfscatter/surface/synthesis.hpp"
 
 namespace ss = surfscatter::surface;
 using surfscatter::kPi;
@@ -108,4 +112,70 @@ TEST(HeightPsd, RadialRingsCoverPlaneUpToNyquist) {
     double points = 0.0;
     for (std::size_t i = 0; i < 20; ++i) points += radial.count[i];
     EXPECT_NEAR(points / (kPi * 20.5 * 20.5 - 1.0), 1.0, 0.02);
+}
+
+TEST(HeightPsd, MaskedEstimateHasTheUnmaskedMean) {
+    // 16 KC surfaces (gamma = 3, 256^2, L_c = 2 and 4 px: the knee at ring 20 and 10) with 8 % random invalid
+    // points and a band of 6 rows: the ring means of the masked estimate against those of the same surfaces
+    // without a mask, summed over octaves of rings. Both are estimates of the same windowed PSD, so they agree to
+    // the masked estimate's extra scatter (~0.3-0.7 % here). A plain masked periodogram
+    // |FFT(w m h)|^2 / sum (w m)^2, computed here for contrast, reads 9-11 % low below the knee and is swamped by
+    // the mask's white leakage in the tail (x1.5 and x3.2 in the top octave): what the estimator is there to avoid.
+    const std::size_t n = 256;
+    for (double length : {1.0, 2.0}) {
+        const ss::KCorrelation kc(0.05, length, 3.0);
+        std::vector<double> full_sum, masked_sum, naive_sum;
+        for (std::uint64_t seed = 1; seed <= 16; ++seed) {
+            const ss::HeightMap map = ss::synthesize_surface(kc, {n, n, 0.5}, seed);
+            std::mt19937 engine(static_cast<unsigned>(seed));
+            std::uniform_real_distribution<double> uniform(0.0, 1.0);
+            std::vector<std::uint8_t> valid(map.size(), 1);
+            for (std::size_t i = 0; i < valid.size(); ++i)
+                if (uniform(engine) < 0.08 || (i / n >= 100 && i / n < 106)) valid[i] = 0;
+            const ss::HeightMap masked =
+                ss::remove_form(ss::HeightMap(n, n, 0.5, 0.5, map.heights(), valid, "masked"), ss::Form::plane);
+            const ss::RadialPsd full = ss::radial_average(ss::estimate_psd(map));
+            const ss::RadialPsd holes =
+                ss::radial_average(ss::estimate_psd(masked, ss::Window::hann, ss::Form::none));
+            std::vector<double> weighted(masked.size());
+            double power = 0.0;
+            for (std::size_t i = 0; i < masked.size(); ++i) {
+                if (!masked.valid(i)) continue;
+                const double w = ss::window_value(ss::Window::hann, i % n, n) * ss::window_value(ss::Window::hann, i / n, n);
+                weighted[i] = w * masked.heights()[i];
+                power += w * w;
+            }
+            ss::Psd2d naive = ss::estimate_psd(map);  // for its grid; values replaced
+            const auto spectrum = ss::forward_fft_2d(weighted, n, n);
+            for (std::size_t i = 0; i < spectrum.size(); ++i)
+                naive.values[i] = std::norm(spectrum[i]) * 0.5 * 0.5 / (4 * kPi * kPi * power);
+            const ss::RadialPsd plain = ss::radial_average(naive);
+            full_sum.resize(full.psd.size());
+            masked_sum.resize(full.psd.size());
+            naive_sum.resize(full.psd.size());
+            for (std::size_t i = 0; i < full.psd.size(); ++i) {
+                full_sum[i] += full.psd[i];
+                masked_sum[i] += holes.psd[i];
+                naive_sum[i] += plain.psd[i];
+            }
+        }
+        // Octaves of rings 2-3, 4-7, ..., 64-127 (ring 1, index 0, is smeared by the window and the plane).
+        for (std::size_t first = 1; first < full_sum.size(); first = 2 * first + 1) {
+            const std::size_t last = std::min(2 * first + 1, full_sum.size());
+            double full = 0.0, masked = 0.0, naive = 0.0;
+            for (std::size_t i = first; i < last; ++i) {
+                full += full_sum[i];
+                masked += masked_sum[i];
+                naive += naive_sum[i];
+            }
+            SCOPED_TRACE(fmt::format("L_c = {} um, rings {}-{}", length, first + 1, last));
+            EXPECT_NEAR(masked / full, 1.0, 0.02);
+            if (first == 3) {
+                EXPECT_LT(naive / full, 0.93);
+            }
+            if (last == full_sum.size()) {
+                EXPECT_GT(naive / full, 1.3);
+            }
+        }
+    }
 }

@@ -27,6 +27,17 @@ ss::HeightMap cosine_map(std::size_t n, double dx, int mx, int my, double amplit
         }
     return ss::HeightMap(n, n, dx, dx, std::move(h));
 }
+
+// The same map with about 10 % of its points invalid at random (the heights there are never looked at).
+ss::HeightMap with_random_holes(const ss::HeightMap& map, unsigned seed) {
+    std::vector<std::uint8_t> valid(map.size(), 1);
+    std::uint64_t state = seed;
+    for (auto& v : valid) {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        if ((state >> 33) % 10 == 0) v = 0;
+    }
+    return ss::HeightMap(map.nx(), map.ny(), map.spacing_x(), map.spacing_y(), map.heights(), valid, "holes");
+}
 }  // namespace
 
 TEST(HeightSlope, PlaneHasZeroSlope) {
@@ -57,12 +68,51 @@ TEST(HeightSlope, GaussianSmoothingScalesSinusoidByItsTransferFunction) {
     const double qx = kPi * mx / (n * dx), qy = kPi * my / (n * dx);
     const double transfer = std::exp(-0.5 * s * s * (qx * qx + qy * qy));
     const ss::HeightMap map = cosine_map(n, dx, mx, my, amplitude, -0.1);
-    const ss::HeightMap flat = ss::remove_tilt(map);
+    const ss::HeightMap flat = ss::remove_form(map, ss::Form::plane);
     const ss::HeightMap smoothed = ss::gaussian_smooth(map, s);
     for (std::size_t i = 0; i < map.size(); ++i)
         ASSERT_NEAR(smoothed.heights()[i], transfer * flat.heights()[i], 1e-13);
     EXPECT_NEAR(ss::rms_slope_smoothed(map, s) / ss::rms_slope(map), transfer, 1e-12);
     EXPECT_LT(transfer, 0.8);  // the test would notice a missing filter
+}
+
+TEST(HeightSlope, InvalidPointsAreLeftOutNotFilled) {
+    const std::size_t n = 256;
+    const double dx = 0.1, amplitude = 0.05;
+    const ss::HeightMap full = cosine_map(n, dx, 10, 6, amplitude, 0.2);
+    const ss::HeightMap holes = with_random_holes(full, 4);
+    // The slope over the points whose four neighbours are valid (~66 % of them, spread over the whole map) is
+    // the full map's to the sampling scatter of a product of cosines (~1 %).
+    EXPECT_NEAR(ss::rms_slope(holes) / ss::rms_slope(full), 1.0, 0.02);
+}
+
+TEST(HeightSlope, SmoothingWithInvalidPointsIsTheNormalisedConvolution) {
+    // Reference by direct summation: sum_j G(i - j) m_j h_j / sum_j G(i - j) m_j with the sampled Gaussian
+    // exp(-r^2 / 2 s^2) and even reflection at the edges (index -1 -> 0, n -> n - 1). The FFT's transfer function
+    // exp(-s^2 zeta^2 / 2) is that kernel up to aliasing, exp(-2 pi^2 (s/dx)^2) ~ 1e-17 for s = 2 px.
+    const std::size_t n = 48;
+    const double dx = 0.1, s = 0.2;
+    const ss::HeightMap holes = with_random_holes(cosine_map(n, dx, 5, 3, 0.05), 9);
+    const ss::HeightMap flat = ss::remove_form(holes, ss::Form::none);
+    const ss::HeightMap smoothed = ss::gaussian_smooth(holes, s, ss::Form::none);
+    auto reflect = [n](long i) { return static_cast<std::size_t>(i < 0 ? -i - 1 : i >= static_cast<long>(n) ? 2 * static_cast<long>(n) - i - 1 : i); };
+    double worst = 0.0;
+    for (std::size_t iy = 0; iy < n; ++iy)
+        for (std::size_t ix = 0; ix < n; ++ix) {
+            if (!holes.valid(ix, iy)) continue;
+            double sum = 0.0, weight = 0.0;
+            for (long ky = -20; ky <= 20; ++ky)
+                for (long kx = -20; kx <= 20; ++kx) {
+                    const std::size_t jx = reflect(static_cast<long>(ix) + kx), jy = reflect(static_cast<long>(iy) + ky);
+                    if (!flat.valid(jx, jy)) continue;
+                    const double g = std::exp(-0.5 * static_cast<double>(kx * kx + ky * ky) * dx * dx / (s * s));
+                    sum += g * flat(jx, jy);
+                    weight += g;
+                }
+            worst = std::max(worst, std::abs(smoothed(ix, iy) - sum / weight));
+        }
+    EXPECT_LT(worst, 1e-10);  // FFT rounding on heights of 0.05
+    EXPECT_EQ(smoothed.valid_count(), holes.valid_count());
 }
 
 TEST(HeightSlope, RejectsNonPositiveSmoothingScale) {

@@ -13,7 +13,12 @@ void require_valid_spacing(double spacing_um, const std::string& what) {
 
 HeightMap::HeightMap(std::size_t nx, std::size_t ny, double spacing_x_um, double spacing_y_um,
                      std::vector<double> heights_um, const std::string& origin)
-    : nx_(nx), ny_(ny), spacing_x_(spacing_x_um), spacing_y_(spacing_y_um), heights_(std::move(heights_um)) {
+    : HeightMap(nx, ny, spacing_x_um, spacing_y_um, std::move(heights_um), {}, origin) {}
+
+HeightMap::HeightMap(std::size_t nx, std::size_t ny, double spacing_x_um, double spacing_y_um,
+                     std::vector<double> heights_um, std::vector<std::uint8_t> validity, const std::string& origin)
+    : nx_(nx), ny_(ny), spacing_x_(spacing_x_um), spacing_y_(spacing_y_um), heights_(std::move(heights_um)),
+      valid_(std::move(validity)), origin_(origin) {
     if (nx < kMinHeightMapSize || ny < kMinHeightMapSize)
         fail("{}: grid is {} x {} samples; at least {} x {} are needed", origin, nx, ny, kMinHeightMapSize,
              kMinHeightMapSize);
@@ -21,56 +26,44 @@ HeightMap::HeightMap(std::size_t nx, std::size_t ny, double spacing_x_um, double
     require_valid_spacing(spacing_y_um, origin + ": y pixel spacing");
     if (heights_.size() != nx * ny)
         fail("{}: {} heights given for a {} x {} grid", origin, heights_.size(), nx, ny);
-    for (std::size_t i = 0; i < heights_.size(); ++i)
+    if (!valid_.empty() && valid_.size() != heights_.size())
+        fail("{}: validity mask has {} points for a {} x {} grid", origin, valid_.size(), nx, ny);
+    valid_count_ = 0;
+    for (std::size_t i = 0; i < heights_.size(); ++i) {
+        if (!valid(i)) {
+            heights_[i] = 0.0;
+            continue;
+        }
         if (!std::isfinite(heights_[i]))
             fail("{}: height at column {}, row {} is {} (every height must be finite)", origin, i % nx, i / nx,
                  heights_[i]);
+        ++valid_count_;
+    }
+    if (valid_count_ == 0) fail("{}: every one of the {} x {} points is invalid", origin, nx, ny);
+    if (valid_count_ == heights_.size()) valid_.clear();  // canonical: no mask when nothing is masked
 }
 
-Plane fit_plane(const HeightMap& map) {
-    const std::size_t nx = map.nx(), ny = map.ny();
-    const double xc = 0.5 * static_cast<double>(nx - 1), yc = 0.5 * static_cast<double>(ny - 1);
-    double sum = 0.0, sum_x = 0.0, sum_y = 0.0;
-    for (std::size_t iy = 0; iy < ny; ++iy)
-        for (std::size_t ix = 0; ix < nx; ++ix) {
-            const double h = map(ix, iy);
-            sum += h;
-            sum_x += h * (static_cast<double>(ix) - xc);
-            sum_y += h * (static_cast<double>(iy) - yc);
-        }
-    // sum over the grid of (i - c)^2 = n (n^2 - 1) / 12 per axis, times the other axis' count.
-    const double dnx = static_cast<double>(nx), dny = static_cast<double>(ny);
-    const double xx = dny * dnx * (dnx * dnx - 1.0) / 12.0;
-    const double yy = dnx * dny * (dny * dny - 1.0) / 12.0;
-    Plane plane;
-    plane.mean = sum / (dnx * dny);
-    plane.slope_x = sum_x / xx / map.spacing_x();
-    plane.slope_y = sum_y / yy / map.spacing_y();
-    return plane;
-}
-
-HeightMap remove_tilt(const HeightMap& map) {
-    const Plane plane = fit_plane(map);
-    const std::size_t nx = map.nx(), ny = map.ny();
-    const double xc = 0.5 * static_cast<double>(nx - 1), yc = 0.5 * static_cast<double>(ny - 1);
-    std::vector<double> residual(map.size());
-    for (std::size_t iy = 0; iy < ny; ++iy)
-        for (std::size_t ix = 0; ix < nx; ++ix)
-            residual[iy * nx + ix] = map(ix, iy) - plane.mean -
-                                     plane.slope_x * (static_cast<double>(ix) - xc) * map.spacing_x() -
-                                     plane.slope_y * (static_cast<double>(iy) - yc) * map.spacing_y();
-    HeightMap result(nx, ny, map.spacing_x(), map.spacing_y(), std::move(residual));
-    result.offset_x = map.offset_x;
-    result.offset_y = map.offset_y;
-    result.title = map.title;
+HeightMap HeightMap::with_heights(std::vector<double> heights_um) const {
+    HeightMap result(nx_, ny_, spacing_x_, spacing_y_, std::move(heights_um), valid_, origin_);
+    result.offset_x = offset_x;
+    result.offset_y = offset_y;
+    result.title = title;
+    result.source = source;
     return result;
 }
 
-double rms_height(const HeightMap& map) {
-    const HeightMap flat = remove_tilt(map);
-    double sum = 0.0;
-    for (double h : flat.heights()) sum += h * h;
-    return std::sqrt(sum / static_cast<double>(flat.size()));
+std::string describe(const HeightMap& map) {
+    return fmt::format("{}: {}, {} x {} points of {:.4g} x {:.4g} um, {:.2f} % valid",
+                       map.origin(),
+                       map.source.format.empty() ? "synthesized" : map.source.format, map.nx(), map.ny(),
+                       map.spacing_x(), map.spacing_y(), 100.0 * map.valid_fraction());
+}
+
+void require_valid_fraction(const HeightMap& map, double minimum, const std::string& what) {
+    if (map.valid_fraction() < minimum)
+        fail("{}: only {:.1f} % of the {} x {} points are valid; {} needs at least {:.0f} %", map.origin(),
+             100.0 * map.valid_fraction(), map.nx(),
+             map.ny(), what, 100.0 * minimum);
 }
 
 }  // namespace surfscatter::surface

@@ -52,4 +52,15 @@ std::vector<double> inverse_fft_2d(std::vector<std::complex<double>> spectrum, s
     return output;
 }
 
+std::vector<double> linear_autocorrelation(const std::vector<double>& values, std::size_t nx, std::size_t ny) {
+    const std::size_t ex = 2 * nx, ey = 2 * ny;
+    std::vector<double> padded(ex * ey, 0.0);
+    for (std::size_t iy = 0; iy < ny; ++iy)
+        for (std::size_t ix = 0; ix < nx; ++ix) padded[iy * ex + ix] = values[iy * nx + ix];
+    auto spectrum = forward_fft_2d(padded, ex, ey);
+    const double norm = 1.0 / static_cast<double>(ex * ey);
+    for (auto& c : spectrum) c = std::norm(c) * norm;
+    return inverse_fft_2d(std::move(spectrum), ex, ey);
+}
+
 }  // namespace surfscatter::surface

@@ -10,32 +10,41 @@
 
 namespace surfscatter::surface {
 
-double rms_slope(const HeightMap& map) {
-    const HeightMap flat = remove_tilt(map);
+double rms_slope(const HeightMap& map, Form form) {
+    const HeightMap flat = remove_form(map, form);
     const double inv_2dx = 0.5 / flat.spacing_x(), inv_2dy = 0.5 / flat.spacing_y();
     double sum = 0.0;
+    std::size_t count = 0;
     for (std::size_t iy = 1; iy + 1 < flat.ny(); ++iy)
         for (std::size_t ix = 1; ix + 1 < flat.nx(); ++ix) {
+            if (!(flat.valid(ix - 1, iy) && flat.valid(ix + 1, iy) && flat.valid(ix, iy - 1) &&
+                  flat.valid(ix, iy + 1)))
+                continue;
             const double gx = (flat(ix + 1, iy) - flat(ix - 1, iy)) * inv_2dx;
             const double gy = (flat(ix, iy + 1) - flat(ix, iy - 1)) * inv_2dy;
             sum += gx * gx + gy * gy;
+            ++count;
         }
-    return std::sqrt(sum / static_cast<double>((flat.nx() - 2) * (flat.ny() - 2)));
+    if (count == 0)
+        fail("{}: no point has four valid neighbours; the slope is undefined",
+             map.origin());
+    return std::sqrt(sum / static_cast<double>(count));
 }
 
-HeightMap gaussian_smooth(const HeightMap& map, double smoothing_um) {
-    if (!(std::isfinite(smoothing_um) && smoothing_um > 0.0))
-        fail("Gaussian smoothing scale must be a positive number of um, got {}", smoothing_um);
-    const HeightMap flat = remove_tilt(map);
-    const std::size_t nx = flat.nx(), ny = flat.ny(), ex = 2 * nx, ey = 2 * ny;
+namespace {
+
+// G * v by FFT of the 2nx x 2ny mirror extension of v (nx x ny row-major).
+std::vector<double> mirrored_gaussian_convolution(const std::vector<double>& v, std::size_t nx, std::size_t ny,
+                                                  double dx, double dy, double smoothing_um) {
+    const std::size_t ex = 2 * nx, ey = 2 * ny;
     std::vector<double> extended(ex * ey);
     for (std::size_t iy = 0; iy < ey; ++iy)
         for (std::size_t ix = 0; ix < ex; ++ix)
-            extended[iy * ex + ix] = flat(ix < nx ? ix : ex - 1 - ix, iy < ny ? iy : ey - 1 - iy);
+            extended[iy * ex + ix] = v[(iy < ny ? iy : ey - 1 - iy) * nx + (ix < nx ? ix : ex - 1 - ix)];
 
     auto spectrum = forward_fft_2d(extended, ex, ey);
-    const double dzx = 2.0 * kPi / (static_cast<double>(ex) * flat.spacing_x());
-    const double dzy = 2.0 * kPi / (static_cast<double>(ey) * flat.spacing_y());
+    const double dzx = 2.0 * kPi / (static_cast<double>(ex) * dx);
+    const double dzy = 2.0 * kPi / (static_cast<double>(ey) * dy);
     const std::size_t half = ex / 2 + 1;
     const double norm = 1.0 / static_cast<double>(ex * ey);
     for (std::size_t ky = 0; ky < ey; ++ky) {
@@ -49,15 +58,31 @@ HeightMap gaussian_smooth(const HeightMap& map, double smoothing_um) {
     std::vector<double> smoothed(nx * ny);
     for (std::size_t iy = 0; iy < ny; ++iy)
         for (std::size_t ix = 0; ix < nx; ++ix) smoothed[iy * nx + ix] = smoothed_extended[iy * ex + ix];
-    HeightMap result(nx, ny, flat.spacing_x(), flat.spacing_y(), std::move(smoothed));
-    result.offset_x = map.offset_x;
-    result.offset_y = map.offset_y;
-    result.title = map.title;
-    return result;
+    return smoothed;
 }
 
-double rms_slope_smoothed(const HeightMap& map, double smoothing_um) {
-    return rms_slope(gaussian_smooth(map, smoothing_um));
+}  // namespace
+
+HeightMap gaussian_smooth(const HeightMap& map, double smoothing_um, Form form) {
+    if (!(std::isfinite(smoothing_um) && smoothing_um > 0.0))
+        fail("Gaussian smoothing scale must be a positive number of um, got {}", smoothing_um);
+    const HeightMap flat = remove_form(map, form);
+    const std::size_t nx = flat.nx(), ny = flat.ny();
+    std::vector<double> smoothed = mirrored_gaussian_convolution(flat.heights(), nx, ny, flat.spacing_x(),
+                                                                 flat.spacing_y(), smoothing_um);
+    if (flat.has_invalid()) {
+        std::vector<double> mask(flat.size());
+        for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = flat.valid(i) ? 1.0 : 0.0;
+        const std::vector<double> weight =
+            mirrored_gaussian_convolution(mask, nx, ny, flat.spacing_x(), flat.spacing_y(), smoothing_um);
+        // A valid point's own Gaussian weight is at least that of its pixel, so the weight is positive there.
+        for (std::size_t i = 0; i < smoothed.size(); ++i) smoothed[i] = flat.valid(i) ? smoothed[i] / weight[i] : 0.0;
+    }
+    return flat.with_heights(std::move(smoothed));
+}
+
+double rms_slope_smoothed(const HeightMap& map, double smoothing_um, Form form) {
+    return rms_slope(gaussian_smooth(map, smoothing_um, form), Form::none);
 }
 
 }  // namespace surfscatter::surface

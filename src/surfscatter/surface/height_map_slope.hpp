@@ -2,24 +2,27 @@
 // Slopes of a measured height map (THEORY.md 4.1, 4.2): the rms slope sqrt<|grad h|^2> that sets a Beckmann alpha
 // (alpha_B = rms slope) and, by convention, the GGX alpha of `--alpha-from measured`.
 //
-// Gradients are central differences (h[i+1] - h[i-1]) / (2 dx) at interior points of the tilt-removed map. For a
-// sinusoid of angular frequency q this measures q sin(q dx)/(q dx) instead of q: relative error about -(q dx)^2/6,
-// i.e. -0.16 % at 10 samples per period. For a rough surface the rms slope is a property of the surface AND the
-// resolution: for KC with gamma <= 3 it diverges as the pixel spacing goes to zero, so always quote the spacing
-// (or the smoothing scale) with it.
+// Gradients are central differences (h[i+1] - h[i-1]) / (2 dx) at interior points of the form-removed map whose
+// four neighbours are valid. For a sinusoid of angular frequency q this measures q sin(q dx)/(q dx) instead of q:
+// relative error about -(q dx)^2/6, i.e. -0.16 % at 10 samples per period. For a rough surface the rms slope is a
+// property of the surface AND the resolution: for KC with gamma <= 3 it diverges as the pixel spacing goes to zero,
+// so always quote the spacing (or the smoothing scale) with it.
 #include "surfscatter/surface/height_map.hpp"
+#include "surfscatter/surface/height_map_form.hpp"
 
 namespace surfscatter::surface {
 
-// Root-mean-square slope sqrt<(dh/dx)^2 + (dh/dy)^2> of the tilt-removed map (dimensionless).
-double rms_slope(const HeightMap& map);
+// Root-mean-square slope sqrt<(dh/dx)^2 + (dh/dy)^2> of the form-removed map (dimensionless). Error if no point
+// has four valid neighbours.
+double rms_slope(const HeightMap& map, Form form = Form::plane);
 
-// The tilt-removed map convolved with a Gaussian of standard deviation `smoothing_um` (transfer function
+// The form-removed map convolved with a Gaussian of standard deviation `smoothing_um` (transfer function
 // exp(-s^2 zeta^2 / 2)), computed by FFT on the mirror-extended map (2nx x 2ny, even reflection at every edge), so
-// that the borders see a continuation of the surface instead of the opposite edge.
-HeightMap gaussian_smooth(const HeightMap& map, double smoothing_um);
+// that the borders see a continuation of the surface instead of the opposite edge. With invalid points it is the
+// normalised convolution G*(m h) / G*(m) at the valid points (no fill values; invalid points stay invalid).
+HeightMap gaussian_smooth(const HeightMap& map, double smoothing_um, Form form = Form::plane);
 
 // rms_slope(gaussian_smooth(map, smoothing_um)): the "Gaussian smoothed" slope of THEORY.md 4.2.
-double rms_slope_smoothed(const HeightMap& map, double smoothing_um);
+double rms_slope_smoothed(const HeightMap& map, double smoothing_um, Form form = Form::plane);
 
 }  // namespace surfscatter::surface

@@ -78,7 +78,7 @@ KcFit fit_kc(const RadialPsd& radial, double nyquist, const KcFitOptions& option
     for (std::size_t i = 0; i < radial.zeta.size(); ++i) {
         if (radial.zeta[i] < fit.zeta_min || radial.zeta[i] > fit.zeta_max) continue;
         if (!(radial.psd[i] > 0.0)) continue;  // exactly zero power (e.g. a synthetic band edge) has no log
-        const double nu = effective_samples(radial.window, radial.count[i]);
+        const double nu = effective_samples(radial.window, radial.count[i], radial.valid_weight);
         data.zeta.push_back(radial.zeta[i]);
         data.log_psd.push_back(std::log(radial.psd[i]));
         data.weight.push_back(nu);
@@ -142,12 +142,15 @@ KcFit fit_kc(const RadialPsd& radial, double nyquist, const KcFitOptions& option
 }
 
 SurfaceFit fit_surface(const HeightMap& map, const KcFitOptions& options) {
+    require_valid_fraction(map, kMinFitValidFraction, "a KC fit");
     SurfaceFit result;
-    const Psd2d psd = estimate_psd(map, Window::hann);
+    const HeightMap flat = remove_form(map, options.form);
+    result.psd = estimate_psd(flat, Window::hann, Form::none);
+    const Psd2d& psd = result.psd;
     result.radial = radial_average(psd);
     result.kc = fit_kc(result.radial, nyquist_zeta(map), options);
-    result.rms_height_um = rms_height(map);
-    result.rms_slope = rms_slope(map);
+    result.rms_height_um = height_moments(flat).rms;
+    result.rms_slope = rms_slope(flat, Form::none);
     result.rms_slope_from_psd = rms_slope_from_psd(psd);
     return result;
 }

@@ -23,6 +23,7 @@
 #include <cstddef>
 
 #include "surfscatter/surface/height_map.hpp"
+#include "surfscatter/surface/height_map_form.hpp"
 #include "surfscatter/surface/psd_estimate.hpp"
 
 namespace surfscatter::surface {
@@ -30,6 +31,7 @@ namespace surfscatter::surface {
 struct KcFitOptions {
     std::size_t min_ring = 4;           // first ring used (1 = the lowest non-zero frequency)
     double max_nyquist_fraction = 0.5;  // zeta_max = this * pi / max(dx, dy), in (0, 1]
+    Form form = Form::plane;            // removed before everything (fit_surface)
 };
 
 struct KcFit {
@@ -48,12 +50,15 @@ KcFit fit_kc(const RadialPsd& radial, double nyquist_zeta, const KcFitOptions& o
 // Everything `surfscatter surface fit` reports about a height map.
 struct SurfaceFit {
     KcFit kc;
-    double rms_height_um = 0.0;        // rms of the tilt-removed map (band-limited, see above)
-    double rms_slope = 0.0;            // central differences on the tilt-removed map (height_map_slope.hpp)
+    double rms_height_um = 0.0;        // rms of the form-removed map over its valid points (band-limited, see above)
+    double rms_slope = 0.0;            // central differences on the form-removed map (height_map_slope.hpp)
     double rms_slope_from_psd = 0.0;   // sqrt(sum zeta^2 P dzeta^2) of the windowed periodogram
-    RadialPsd radial;                  // the data that were fitted
+    Psd2d psd;                         // the 2-D PSD of the form-removed map
+    RadialPsd radial;                  // its rings: the data that were fitted
 };
 
+// Removes options.form once, then PSD, fit, rms and slopes over the valid points. Error if fewer than
+// kMinFitValidFraction of the points are valid.
 SurfaceFit fit_surface(const HeightMap& map, const KcFitOptions& options = {});
 
 // Nyquist angular frequency pi / max(dx, dy) of a map (rad/um).

@@ -2,19 +2,35 @@
 // PSD estimation from a height map, in the angular convention of THEORY.md section 0:
 // C(r) = integral of P(zeta) e^{i zeta.r} d2zeta, so the integral of P over the zeta-plane is the height variance.
 //
-// Estimator (windowed periodogram): remove the least-squares plane, multiply by a separable window
-// w(ix, iy) = w_x(ix) w_y(iy), FFT, and
+// Estimator (windowed periodogram): remove the least-squares form (height_map_form.hpp; a plane by default),
+// multiply by a separable window w(ix, iy) = w_x(ix) w_y(iy), FFT, and
 //     P(zeta_k) = |FFT(w h)_k|^2 dx dy / (4 pi^2 sum_n w_n^2),
 // which is the cyclic periodogram |H|^2 dx dy / N divided by 4 pi^2 (P_angular = PSD_f / 4 pi^2) with the window's
 // power loss sum w^2 / N undone. Parseval then holds exactly: sum_k P(zeta_k) dzeta_x dzeta_y =
-// sum_n (w_n h_n)^2 / sum_n w_n^2, the window-weighted variance of the tilt-removed map (windowed_variance()).
+// sum_n (w_n h_n)^2 / sum_n w_n^2, the window-weighted variance of the form-removed map (windowed_variance()).
 // The Hann window w(i) = sin^2(pi (i + 1/2) / n) tapers the map to zero at its borders, so that the jump between
 // opposite edges of a non-periodic measurement does not leak power (as zeta^-2) into the high frequencies; its
 // price is a main lobe of +-2 bins, so the lowest few radial bins are smeared (kc_fit.hpp skips them).
+//
+// Maps with invalid points (mask m = 0 there): fill-free masked correlogram (masked_periodogram()). The periodogram
+// above is the DFT of the lag products A(t) = sum_n (w h)_n (w h)_(n+t) / sum w^2, whose mean is C(t) L(t) with
+// L(t) = sum_n w_n w_(n+t) / sum w^2 the window's own autocorrelation. With a mask the same lag products exist
+// only between valid pairs; their window-weighted mean
+//     C^(t) = sum_n (w m h)_n (w m h)_(n+t) / sum_n (w m)_n (w m)_(n+t)
+// is still an unbiased estimate of C(t) for any mask, so P = dx dy / (4 pi^2) DFT[C^(t) L(t)] has exactly the
+// mean of the unmasked Hann periodogram (the true PSD seen through the same spectral window): no fill values, no
+// 1/valid-fraction power loss, no white floor from the mask's own spectrum (a plain masked periodogram has all
+// three: with 10 % random invalid points it reads 10 % low and adds a floor that swamps a steep tail). Without
+// invalid points it is the periodogram above, term by term. Its price: the scatter grows as pairs are lost (the
+// fit's weights are scaled by the window-weighted valid fraction, kc_fit.hpp), and where the PSD lies far below
+// that scatter single values can come out negative (ring means are positive for any usable map; the fit and the
+// table skip a ring or bin whose mean is not). Lags without a single valid pair (only when the valid region is
+// cut into pieces) contribute 0. Sums over all lags use zero-padded FFTs (2nx x 2ny), ~4x the unmasked cost.
 #include <cstddef>
 #include <vector>
 
 #include "surfscatter/surface/height_map.hpp"
+#include "surfscatter/surface/height_map_form.hpp"
 
 namespace surfscatter::surface {
 
@@ -26,6 +42,7 @@ struct Psd2d {
     Window window = Window::hann;
     double dzeta_x = 0.0;         // 2 pi / (nx dx), rad/um
     double dzeta_y = 0.0;         // 2 pi / (ny dy)
+    double valid_weight = 1.0;    // sum (w m)^2 / sum w^2: the window-weighted valid fraction (1 without a mask)
     std::vector<double> values;   // [ky * (nx/2 + 1) + kx]
 
     std::size_t half_nx() const { return nx / 2 + 1; }
@@ -37,11 +54,19 @@ struct Psd2d {
     double integral() const;
 };
 
-// Removes the tilt, applies the window, and returns the periodogram described above.
-Psd2d estimate_psd(const HeightMap& map, Window window = Window::hann);
+// Removes the form, applies the window, and returns the periodogram described above (the masked correlogram if
+// the map has invalid points).
+Psd2d estimate_psd(const HeightMap& map, Window window = Window::hann, Form form = Form::plane);
 
-// sum (w h)^2 / sum w^2 of the tilt-removed map: what Psd2d::integral() of estimate_psd() equals.
-double windowed_variance(const HeightMap& map, Window window = Window::hann);
+// Rings up to this one take the masked correlogram of the heights, the others that of the slopes (see above).
+inline constexpr double kMaskedDirectRings = 8;
+
+// The masked correlogram of a map whose form is already removed (what estimate_psd() uses for a map with invalid
+// points; for a map without, it equals the periodogram to rounding).
+Psd2d masked_periodogram(const HeightMap& flat, Window window = Window::hann);
+
+// sum (w m h)^2 / sum (w m)^2 of the form-removed map: what Psd2d::integral() of estimate_psd() equals.
+double windowed_variance(const HeightMap& map, Window window = Window::hann, Form form = Form::plane);
 
 // Window value for sample i of n.
 double window_value(Window window, std::size_t i, std::size_t n);
@@ -51,6 +76,7 @@ double window_value(Window window, std::size_t i, std::size_t n);
 // frequency pi / max(dx, dy), so that every ring is complete.
 struct RadialPsd {
     Window window = Window::hann; // of the periodogram it came from
+    double valid_weight = 1.0;    // of the periodogram it came from
     double dzeta = 0.0;           // ring width, rad/um
     std::vector<double> zeta;     // mean |zeta| of the ring's points, rad/um
     std::vector<double> psd;      // mean P over the ring, um^4
@@ -63,11 +89,13 @@ RadialPsd radial_average(const Psd2d& psd);
 // correlates neighbours: a ring mean over `count` full-plane points (half of them Hermitian mirrors) behaves like
 // a mean of count / (2 f) independent exponentials, f = sum_j |R_j|^2 over the window's normalised spectral
 // correlation R_j along the ring (rectangular: 1; Hann: 1 + 2 (2/3)^2 + 2 (1/6)^2 = 35/18, confirmed by the
-// spread of ln(ring mean) over 100 synthetic surfaces). Used as the fit weight and for the log-bias correction.
-double effective_samples(Window window, double count);
+// spread of ln(ring mean) over 100 synthetic surfaces). A masked estimate has fewer independent pairs: the count is
+// scaled by the window-weighted valid fraction (`valid_weight`, see above). Used as the fit weight and for the
+// log-bias correction.
+double effective_samples(Window window, double count, double valid_weight = 1.0);
 
 // rms slope sqrt(sum |zeta|^2 P dzeta^2) from a 2-D PSD (THEORY.md 4.1): the slope of the band-limited map,
-// i.e. up to the Nyquist frequency of the grid.
+// i.e. up to the Nyquist frequency of the grid. Error if a masked estimate's sum is not positive.
 double rms_slope_from_psd(const Psd2d& psd);
 
 }  // namespace surfscatter::surface

@@ -34,7 +34,7 @@ PsdSamples binned_psd_samples(const RadialPsd& radial, double nyquist, const Psd
         const auto bin = static_cast<long>(std::floor(options.bins_per_decade * std::log10(radial.zeta[i] / zeta_min)));
         if (bin != current_bin && sum_nu >= options.min_effective_samples) flush();
         current_bin = bin;
-        sum_nu += effective_samples(radial.window, radial.count[i]);
+        sum_nu += effective_samples(radial.window, radial.count[i], radial.valid_weight);
         sum_count += radial.count[i];
         sum_zeta += radial.count[i] * radial.zeta[i];
         sum_psd += radial.count[i] * radial.psd[i];
@@ -47,8 +47,9 @@ PsdSamples binned_psd_samples(const RadialPsd& radial, double nyquist, const Psd
 }
 
 TabulatedPsd tabulated_psd(const HeightMap& map, const PsdTableOptions& options) {
-    PsdSamples samples =
-        binned_psd_samples(radial_average(estimate_psd(map, Window::hann)), nyquist_zeta(map), options);
+    require_valid_fraction(map, kMinFitValidFraction, "a tabulated PSD");
+    PsdSamples samples = binned_psd_samples(radial_average(estimate_psd(map, Window::hann, options.form)),
+                                            nyquist_zeta(map), options);
     return TabulatedPsd(std::move(samples.zeta), std::move(samples.psd));
 }
 

@@ -19,6 +19,7 @@ struct PsdTableOptions {
     double max_nyquist_fraction = 1.0;  // highest frequency kept, as a fraction of pi / max(dx, dy)
     double bins_per_decade = 20.0;
     double min_effective_samples = 100.0;
+    Form form = Form::plane;            // removed before the PSD is estimated
 };
 
 // The log-binned samples (zeta strictly increasing, psd > 0) that tabulated_psd() passes to TabulatedPsd.
@@ -27,6 +28,7 @@ struct PsdSamples {
 };
 PsdSamples binned_psd_samples(const RadialPsd& radial, double nyquist_zeta, const PsdTableOptions& options = {});
 
+// Error if fewer than kMinFitValidFraction of the map's points are valid.
 TabulatedPsd tabulated_psd(const HeightMap& map, const PsdTableOptions& options = {});
 
 }  // namespace surfscatter::surface
