@@ -9,6 +9,8 @@
 #include <limits>
 #include <string>
 
+#include <fmt/format.h>
+
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/surface/height_map_io.hpp"
 
@@ -154,10 +156,13 @@ TEST(HeightIo, MalformedGsfNamesFileAndProblem) {
     EXPECT_NE(message_for(hand_made_gsf("XRes = 8\nYRes = 8\ngarbage\nXYUnits = m\nZUnits = m\n", data))
                   .find("name = value"),
               std::string::npos);
-    data[10] = std::numeric_limits<float>::quiet_NaN();
-    const std::string nan_message = message_for(hand_made_gsf(good, data));
-    EXPECT_NE(nan_message.find("column 2, row 1"), std::string::npos) << nan_message;
-    EXPECT_NE(nan_message.find(path.string()), std::string::npos);
+    data[10] = std::numeric_limits<float>::infinity();
+    const std::string inf_message = message_for(hand_made_gsf(good, data));
+    EXPECT_NE(inf_message.find("column 2, row 1 is inf"), std::string::npos) << inf_message;
+    EXPECT_NE(inf_message.find(path.string()), std::string::npos);
+    EXPECT_NE(message_for(hand_made_gsf(good, std::vector<float>(64, std::numeric_limits<float>::quiet_NaN())))
+                  .find("every one of the 8 x 8 points is invalid"),
+              std::string::npos);
     EXPECT_NE(error_of([&] { ss::read_gsf(temp_path("does_not_exist.gsf")); }).find("cannot open"),
               std::string::npos);
     std::vector<float> small(16, 0.0f);
@@ -183,10 +188,102 @@ TEST(HeightIo, TextGridWithSpacing) {
     // read_height_map dispatches on content and insists on a spacing for text grids only.
     EXPECT_DOUBLE_EQ(ss::read_height_map(path, 0.5)(8, 7), 78.0);
     EXPECT_NE(error_of([&] { ss::read_height_map(path, std::nullopt); }).find("--spacing"), std::string::npos);
+    // A file that states its spacing and height unit: the same values may be given, others are errors.
     const fs::path gsf = temp_path("grid.gsf");
     ss::write_gsf(map, gsf);
-    EXPECT_NE(error_of([&] { ss::read_height_map(gsf, 1.0); }).find("stores its own"), std::string::npos);
+    EXPECT_EQ(error_of([&] { ss::read_height_map(gsf, 1.0); }),
+              gsf.string() + ": --spacing 1 um contradicts the file, which states dx = 0.25 um, dy = 0.25 um "
+                             "(Gwyddion Simple Field (.gsf))");
+    EXPECT_EQ(error_of([&] { ss::read_height_map(gsf, std::nullopt, 1.0); }),
+              gsf.string() + ": --height-unit 1 um contradicts the file, which states its heights in units of "
+                             "1000000 um (Gwyddion Simple Field (.gsf))");
+    const ss::HeightMap again = ss::read_height_map(gsf, 0.25, 1e6);
+    EXPECT_DOUBLE_EQ(again.spacing_x(), 0.25);
+    EXPECT_EQ(again.source.reader, "native:gsf");
     EXPECT_DOUBLE_EQ(ss::read_height_map(gsf, std::nullopt).spacing_x(), 0.25);
+}
+
+TEST(HeightIo, NanMarksInvalidPointsInGsfAndTextGrids) {
+    ss::HeightMap map = ramp_map(12, 10, 0.5);
+    std::vector<double> h = map.heights();
+    std::vector<std::uint8_t> valid(h.size(), 1);
+    valid[13] = valid[50] = 0;
+    const ss::HeightMap masked(12, 10, 0.5, 0.75, h, valid, "masked");
+    const fs::path gsf = temp_path("masked.gsf");
+    ss::write_gsf(masked, gsf);
+    const ss::HeightMap back = ss::read_height_map(gsf, std::nullopt);
+    EXPECT_EQ(back.valid_count(), 118u);
+    EXPECT_FALSE(back.valid(1, 1));
+    EXPECT_FALSE(back.valid(2, 4));
+    EXPECT_NEAR(back(3, 4), h[51], 1e-9);
+
+    const fs::path csv = temp_path("masked.csv");
+    std::string text;
+    for (int iy = 0; iy < 8; ++iy) {
+        for (int ix = 0; ix < 8; ++ix) text += (ix ? " " : "") + std::string(ix == iy ? (iy % 2 ? "NaN" : "nan") : "1.5");
+        text += "\n";
+    }
+    write_bytes(csv, text);
+    const ss::HeightMap grid = ss::read_height_map(csv, 2.0);
+    EXPECT_EQ(grid.valid_count(), 56u);
+    EXPECT_FALSE(grid.valid(3, 3));
+    EXPECT_DOUBLE_EQ(grid(3, 4), 1.5);
+    EXPECT_EQ(grid.source.format, "text grid");
+}
+
+// Gwyddion's text export as Gwyddion 2.62 writes it (asciiexport with "Add informational comment header": the
+// four lines below, values tab-separated in the channel's base unit).
+std::string gwyddion_text_export(const std::string& width, const std::string& height, const std::string& units,
+                                 std::size_t nx, std::size_t ny) {
+    std::string text = "# Channel: ZSensor\n# Width: " + width + "\n# Height: " + height +
+                       "\n# Value units: " + units + "\n";
+    for (std::size_t iy = 0; iy < ny; ++iy) {
+        for (std::size_t ix = 0; ix < nx; ++ix)
+            text += (ix ? "\t" : "") + (ix == 2 && iy == 3 ? std::string("nan") : fmt::format("{:.6g}", 1e-9 * (ix + 100.0 * iy)));
+        text += "\n";
+    }
+    return text;
+}
+
+TEST(HeightIo, GwyddionTextExportStatesSpacingAndUnits) {
+    const fs::path path = temp_path("export.txt");
+    // 256 x 128 samples over 10.00 x 5.000 um: dx = 0.0390625 um, printed to +-0.005 um of width.
+    write_bytes(path, gwyddion_text_export("10.00 \xc2\xb5m", "5.000 \xc2\xb5m", "m", 256, 128));
+    const ss::HeightMap map = ss::read_height_map(path, std::nullopt);
+    EXPECT_EQ(map.nx(), 256u);
+    EXPECT_EQ(map.ny(), 128u);
+    EXPECT_DOUBLE_EQ(map.spacing_x(), 10.0 / 256);
+    EXPECT_DOUBLE_EQ(map.spacing_y(), 5.0 / 128);
+    EXPECT_NEAR(map(5, 7), 1e-3 * (5 + 700.0), 1e-12);  // m -> um
+    EXPECT_FALSE(map.valid(2, 3));
+    EXPECT_EQ(map.source.format, "Gwyddion text export (text grid with header)");
+    EXPECT_EQ(map.source.channel, "ZSensor");
+    // A spacing within the printed precision (+-2e-5 um in x, +-4e-6 um in y) refines it; one outside contradicts.
+    EXPECT_DOUBLE_EQ(ss::read_height_map(path, 0.039064).spacing_x(), 0.039064);
+    EXPECT_EQ(error_of([&] { ss::read_height_map(path, 0.0395); }),
+              path.string() + ": --spacing 0.0395 um contradicts the header: Width 10 um / 256 columns = 0.0390625 "
+                              "um, Height 5 um / 128 rows = 0.0390625 um");
+    EXPECT_NE(error_of([&] { ss::read_height_map(path, std::nullopt, 1e-3); }).find("Value units: m"),
+              std::string::npos);
+    EXPECT_NO_THROW(ss::read_height_map(path, std::nullopt, 1e6));
+    // Other length units, the Greek mu, and headers that cannot be heights.
+    write_bytes(path, gwyddion_text_export("500.0 nm", "250.0 nm", "nm", 16, 8));
+    const ss::HeightMap nm = ss::read_height_map(path, std::nullopt);
+    EXPECT_DOUBLE_EQ(nm.spacing_x(), 0.5 / 16);
+    EXPECT_NEAR(nm(1, 1), 1e-3 * 1e-9 * 101, 1e-18);
+    write_bytes(path, gwyddion_text_export("2.5 \xce\xbcm", "1.25 \xce\xbcm", "m", 16, 8));
+    EXPECT_DOUBLE_EQ(ss::read_height_map(path, std::nullopt).spacing_x(), 2.5 / 16);
+    write_bytes(path, gwyddion_text_export("2.5 um", "1.25 um", "V", 16, 8));
+    EXPECT_EQ(error_of([&] { ss::read_height_map(path, std::nullopt); }),
+              path.string() + ":4: '# Value units: V' is not a length: the channel 'ZSensor' holds no heights");
+    write_bytes(path, gwyddion_text_export("2.5 furlong", "1.25 um", "m", 16, 8));
+    EXPECT_NE(error_of([&] { ss::read_height_map(path, std::nullopt); }).find(":2: '# Width: 2.5 furlong'"),
+              std::string::npos);
+    std::string width_only = "# Width: 2 um\n";
+    for (int row = 0; row < 8; ++row) width_only += "1 2 3 4 5 6 7 8\n";
+    write_bytes(path, width_only);
+    EXPECT_EQ(error_of([&] { ss::read_height_map(path, std::nullopt); }),
+              path.string() + ": the header states '# Width:' but not '# Height:'");
 }
 
 TEST(HeightIo, MalformedTextGridNamesLine) {
@@ -199,7 +296,7 @@ TEST(HeightIo, MalformedTextGridNamesLine) {
     for (int i = 0; i < 8; ++i) rows += "1,2,3,4,5,6,7,8\n";
     EXPECT_NE(message_for(rows + "1,2,3\n").find(":9: row has 3 values"), std::string::npos);
     EXPECT_NE(message_for(rows + "1,2,x,4,5,6,7,8\n").find(":9: column 3: 'x'"), std::string::npos);
-    EXPECT_NE(message_for(rows + "1,2,nan,4,5,6,7,8\n").find(":9: column 3: height is nan"), std::string::npos);
+    EXPECT_NE(message_for(rows + "1,2,inf,4,5,6,7,8\n").find(":9: column 3: height is inf"), std::string::npos);
     EXPECT_NE(message_for(rows + "1,,3,4,5,6,7,8\n").find("column 2"), std::string::npos);
     EXPECT_NE(message_for(rows, 0.0).find("spacing"), std::string::npos);
     EXPECT_NE(message_for(rows, -1.0).find("spacing"), std::string::npos);

@@ -6,13 +6,16 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
-#include <iterator>
+#include <limits>
 #include <map>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/surface/gwyddion_file.hpp"
+#include "surfscatter/surface/height_map_parse.hpp"
+#include "surfscatter/surface/height_map_x3p.hpp"
 
 namespace surfscatter::surface {
 
@@ -21,36 +24,11 @@ namespace {
 constexpr std::string_view kGsfMagic = "Gwyddion Simple Field 1.0\n";
 constexpr double kMetreInUm = 1e6;
 
-std::string read_file_bytes(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) fail("{}: cannot open height map file", path.string());
-    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (in.bad()) fail("{}: read error", path.string());
-    return bytes;
-}
-
-std::string_view trim(std::string_view s) {
-    const auto first = s.find_first_not_of(" \t\r");
-    if (first == std::string_view::npos) return {};
-    const auto last = s.find_last_not_of(" \t\r");
-    return s.substr(first, last - first + 1);
-}
-
-// The whole of `text` must be a number (no trailing garbage).
-std::optional<double> parse_double(std::string_view text) {
-    double value = 0.0;
-    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-    if (ec != std::errc() || end != text.data() + text.size()) return std::nullopt;
-    return value;
-}
-
 // Micrometres per unit of a GSF length unit string.
-double length_unit_in_um(const std::string& path, const std::string& key, const std::string& unit) {
-    static const std::map<std::string, double, std::less<>> units = {
-        {"m", 1e6}, {"mm", 1e3}, {"um", 1.0}, {"\xc2\xb5m", 1.0}, {"\xce\xbcm", 1.0}, {"nm", 1e-3}};
-    const auto it = units.find(unit);
-    if (it == units.end()) fail("{}: {} = '{}' is not a length unit (m, mm, um or nm)", path, key, unit);
-    return it->second;
+double gsf_length_unit(const std::string& path, const std::string& key, const std::string& unit) {
+    const auto um = parse::length_unit_in_um(unit);
+    if (!um) fail("{}: {} = '{}' is not a length unit (m, mm, um, nm or pm)", path, key, unit);
+    return *um;
 }
 
 std::size_t parse_resolution(const std::string& path, const std::map<std::string, std::string>& header,
@@ -69,7 +47,7 @@ double parse_real(const std::string& path, const std::map<std::string, std::stri
                   double fallback) {
     const auto it = header.find(key);
     if (it == header.end()) return fallback;
-    const auto value = parse_double(it->second);
+    const auto value = parse::to_double(it->second);
     if (!value || !std::isfinite(*value)) fail("{}: {} = '{}' is not a finite number", path, key, it->second);
     return *value;
 }
@@ -94,7 +72,7 @@ bool is_gsf_file(const std::filesystem::path& path) {
 
 HeightMap read_gsf(const std::filesystem::path& file) {
     const std::string path = file.string();
-    const std::string bytes = read_file_bytes(file);
+    const std::string bytes = parse::file_bytes(path);
     if (bytes.compare(0, kGsfMagic.size(), kGsfMagic) != 0)
         fail("{}: not a Gwyddion Simple Field file (first line is not 'Gwyddion Simple Field 1.0')", path);
 
@@ -110,13 +88,13 @@ HeightMap read_gsf(const std::filesystem::path& file) {
     for (int line_number = 2; line_start < text.size(); ++line_number) {
         std::size_t line_end = text.find('\n', line_start);
         if (line_end == std::string_view::npos) line_end = text.size();
-        const std::string_view line = trim(text.substr(line_start, line_end - line_start));
+        const std::string_view line = parse::trim(text.substr(line_start, line_end - line_start));
         line_start = line_end + 1;
         if (line.empty()) continue;
         const std::size_t equals = line.find('=');
         if (equals == std::string_view::npos)
             fail("{}:{}: GSF header line '{}' is not of the form 'name = value'", path, line_number, line);
-        header.emplace(std::string(trim(line.substr(0, equals))), std::string(trim(line.substr(equals + 1))));
+        header.emplace(std::string(parse::trim(line.substr(0, equals))), std::string(parse::trim(line.substr(equals + 1))));
     }
 
     const std::size_t nx = parse_resolution(path, header, "XRes");
@@ -132,27 +110,33 @@ HeightMap read_gsf(const std::filesystem::path& file) {
              ny, 4ull * nx * ny, bytes.size() > data_start ? bytes.size() - data_start : 0,
              bytes.size() < expected ? " (truncated)" : " (trailing bytes)");
 
-    const double xy_unit = length_unit_in_um(path, "XYUnits", require_unit(path, header, "XYUnits"));
-    const double z_unit = length_unit_in_um(path, "ZUnits", require_unit(path, header, "ZUnits"));
+    const double xy_unit = gsf_length_unit(path, "XYUnits", require_unit(path, header, "XYUnits"));
+    const double z_unit = gsf_length_unit(path, "ZUnits", require_unit(path, header, "ZUnits"));
     const double x_real = parse_real(path, header, "XReal", 1.0);
     const double y_real = parse_real(path, header, "YReal", 1.0);
     if (!(x_real > 0.0)) fail("{}: XReal = {} must be positive", path, x_real);
     if (!(y_real > 0.0)) fail("{}: YReal = {} must be positive", path, y_real);
 
     std::vector<double> heights(nx * ny);
+    std::vector<std::uint8_t> valid(nx * ny, 1);
     const char* data = bytes.data() + data_start;
     for (std::size_t i = 0; i < heights.size(); ++i) {
         unsigned char b[4];
         std::memcpy(b, data + 4 * i, 4);
         const std::uint32_t word = static_cast<std::uint32_t>(b[0]) | static_cast<std::uint32_t>(b[1]) << 8 |
                                    static_cast<std::uint32_t>(b[2]) << 16 | static_cast<std::uint32_t>(b[3]) << 24;
-        heights[i] = static_cast<double>(std::bit_cast<float>(word)) * z_unit;
+        const float value = std::bit_cast<float>(word);
+        if (std::isnan(value)) valid[i] = 0;  // GSF's invalid point (Gwyddion masks NaN the same way)
+        heights[i] = static_cast<double>(value) * z_unit;
     }
     HeightMap map(nx, ny, x_real * xy_unit / static_cast<double>(nx), y_real * xy_unit / static_cast<double>(ny),
-                  std::move(heights), path);
+                  std::move(heights), std::move(valid), path);
     map.offset_x = parse_real(path, header, "XOffset", 0.0) * xy_unit;
     map.offset_y = parse_real(path, header, "YOffset", 0.0) * xy_unit;
     if (const auto it = header.find("Title"); it != header.end()) map.title = it->second;
+    map.source.format = "Gwyddion Simple Field (.gsf)";
+    map.source.reader = "native:gsf";
+    map.source.height_unit_um = z_unit;
     return map;
 }
 
@@ -172,7 +156,9 @@ void write_gsf(const HeightMap& map, const std::filesystem::path& file) {
 
     std::string data(4 * map.size(), '\0');
     for (std::size_t i = 0; i < map.size(); ++i) {
-        const auto word = std::bit_cast<std::uint32_t>(static_cast<float>(map.heights()[i] / kMetreInUm));
+        const float value = map.valid(i) ? static_cast<float>(map.heights()[i] / kMetreInUm)
+                                         : std::numeric_limits<float>::quiet_NaN();
+        const auto word = std::bit_cast<std::uint32_t>(value);
         for (int b = 0; b < 4; ++b) data[4 * i + b] = static_cast<char>((word >> (8 * b)) & 0xffu);
     }
     std::ofstream out(file, std::ios::binary | std::ios::trunc);
@@ -182,23 +168,86 @@ void write_gsf(const HeightMap& map, const std::filesystem::path& file) {
     if (!out) fail("{}: write error", path);
 }
 
-HeightMap read_text_grid(const std::filesystem::path& file, double spacing_um, double height_unit_um) {
+
+namespace {
+
+// A length a text header states, "10.00 µm": in um, with half a unit of its last printed digit as tolerance.
+struct StatedLength {
+    double um = 0.0, tolerance_um = 0.0;
+};
+
+StatedLength stated_length(const std::string& path, int line, std::string_view key, std::string_view text) {
+    const std::size_t space = text.find(' ');
+    const std::string_view number = text.substr(0, space);
+    const std::string_view unit = space == std::string_view::npos ? "" : parse::trim(text.substr(space + 1));
+    const auto value = parse::to_double(number);
+    const auto unit_um = parse::length_unit_in_um(unit);
+    if (!value || !std::isfinite(*value) || !(*value > 0.0) || !unit_um)
+        fail("{}:{}: '# {}: {}' is not a positive length with a unit (m, mm, um, nm or pm)", path, line, key, text);
+    // Printed digits after the point, less the exponent: "10.00" -> 2, "1.5e-3" -> 4.
+    const std::size_t exponent_at = number.find_first_of("eE");
+    const std::string_view mantissa = number.substr(0, exponent_at);
+    const std::size_t point = mantissa.find('.');
+    int decimals = point == std::string_view::npos ? 0 : static_cast<int>(mantissa.size() - point - 1);
+    if (exponent_at != std::string_view::npos)
+        decimals -= static_cast<int>(parse::to_double(number.substr(exponent_at + 1)).value_or(0.0));
+    return {*value * *unit_um, 0.5 * std::pow(10.0, -decimals) * *unit_um};
+}
+
+// What Gwyddion's text export header states.
+struct TextHeader {
+    std::string channel;
+    std::optional<StatedLength> width, height;
+    std::optional<double> height_unit_um;
+    std::string value_units;
+};
+
+void read_header_line(const std::string& path, int line_number, std::string_view comment, TextHeader& header) {
+    const std::size_t colon = comment.find(':');
+    if (colon == std::string_view::npos) return;
+    const std::string_view key = parse::trim(comment.substr(0, colon));
+    const std::string_view value = parse::trim(comment.substr(colon + 1));
+    if (key == "Channel") {
+        header.channel = std::string(value);
+    } else if (key == "Width") {
+        header.width = stated_length(path, line_number, key, value);
+    } else if (key == "Height") {
+        header.height = stated_length(path, line_number, key, value);
+    } else if (key == "Value units") {
+        header.value_units = std::string(value);
+        header.height_unit_um = parse::length_unit_in_um(value);
+        if (!header.height_unit_um)
+            fail("{}:{}: '# Value units: {}' is not a length: the channel{} holds no heights", path, line_number,
+                 value, header.channel.empty() ? "" : " '" + header.channel + "'");
+    }
+}
+
+}  // namespace
+
+HeightMap read_text_grid(const std::filesystem::path& file, std::optional<double> spacing_um,
+                         std::optional<double> height_unit_um) {
     const std::string path = file.string();
-    require_valid_spacing(spacing_um, path + ": pixel spacing");
-    if (!(std::isfinite(height_unit_um) && height_unit_um > 0.0))
-        fail("{}: height unit must be a positive number of um, got {}", path, height_unit_um);
-    const std::string bytes = read_file_bytes(file);
+    if (spacing_um) require_valid_spacing(*spacing_um, path + ": pixel spacing");
+    if (height_unit_um && !(std::isfinite(*height_unit_um) && *height_unit_um > 0.0))
+        fail("{}: height unit must be a positive number of um, got {}", path, *height_unit_um);
+    const std::string bytes = parse::file_bytes(path);
     if (bytes.find('\0') != std::string::npos) fail("{}: binary data in a text height grid", path);
 
+    TextHeader header;
     std::vector<double> heights;
+    std::vector<std::uint8_t> valid;
     std::size_t nx = 0, ny = 0;
     std::size_t line_start = 0;
     for (int line_number = 1; line_start < bytes.size(); ++line_number) {
         std::size_t line_end = bytes.find('\n', line_start);
         if (line_end == std::string::npos) line_end = bytes.size();
-        const std::string_view line = trim(std::string_view(bytes).substr(line_start, line_end - line_start));
+        const std::string_view line = parse::trim(std::string_view(bytes).substr(line_start, line_end - line_start));
         line_start = line_end + 1;
-        if (line.empty() || line.front() == '#') continue;
+        if (line.empty()) continue;
+        if (line.front() == '#') {
+            read_header_line(path, line_number, line.substr(1), header);
+            continue;
+        }
 
         std::size_t columns = 0, pos = 0;
         while (pos <= line.size()) {
@@ -208,12 +257,13 @@ HeightMap read_text_grid(const std::filesystem::path& file, double spacing_um, d
             pos = end + 1;
             // Runs of spaces/tabs separate like one; an empty field between commas is an error.
             if (field.empty() && end < line.size() && (line[end] == ' ' || line[end] == '\t')) continue;
-            const auto value = parse_double(field);
+            const auto value = parse::to_double(field);
             if (!value) fail("{}:{}: column {}: '{}' is not a number", path, line_number, columns + 1, field);
-            if (!std::isfinite(*value))
-                fail("{}:{}: column {}: height is {} (every height must be finite)", path, line_number,
-                     columns + 1, field);
-            heights.push_back(*value * height_unit_um);
+            if (std::isinf(*value))
+                fail("{}:{}: column {}: height is {} (every height must be finite; NaN marks an invalid point)",
+                     path, line_number, columns + 1, field);
+            heights.push_back(*value);
+            valid.push_back(std::isnan(*value) ? 0 : 1);
             ++columns;
         }
         if (ny == 0) nx = columns;
@@ -223,22 +273,120 @@ HeightMap read_text_grid(const std::filesystem::path& file, double spacing_um, d
         ++ny;
     }
     if (ny == 0) fail("{}: no height values found", path);
-    return HeightMap(nx, ny, spacing_um, spacing_um, std::move(heights), path);
+
+    // Pixel spacing: stated by the header (to its printed precision) or given.
+    double dx = 0.0, dy = 0.0;
+    if (header.width || header.height) {
+        if (!header.width || !header.height)
+            fail("{}: the header states '# {}:' but not '# {}:'", path, header.width ? "Width" : "Height",
+                 header.width ? "Height" : "Width");
+        dx = header.width->um / static_cast<double>(nx);
+        dy = header.height->um / static_cast<double>(ny);
+        if (spacing_um) {
+            const double tol_x = header.width->tolerance_um / static_cast<double>(nx) + 1e-9 * dx;
+            const double tol_y = header.height->tolerance_um / static_cast<double>(ny) + 1e-9 * dy;
+            if (std::abs(*spacing_um - dx) > tol_x || std::abs(*spacing_um - dy) > tol_y)
+                fail("{}: --spacing {} um contradicts the header: Width {} um / {} columns = {} um, Height {} um / {} "
+                     "rows = {} um",
+                     path, *spacing_um, header.width->um, nx, dx, header.height->um, ny, dy);
+            dx = dy = *spacing_um;  // agrees, and is given to more digits than the header prints
+        }
+    } else {
+        if (!spacing_um)
+            fail("{}: a text height grid does not store its pixel spacing; give it (--spacing, um)", path);
+        dx = dy = *spacing_um;
+    }
+
+    double unit = height_unit_um.value_or(1.0);
+    if (header.height_unit_um) {
+        if (height_unit_um && std::abs(*height_unit_um - *header.height_unit_um) > 1e-9 * *header.height_unit_um)
+            fail("{}: --height-unit {} um contradicts the header's '# Value units: {}' ({} um)", path,
+                 *height_unit_um, header.value_units, *header.height_unit_um);
+        unit = *header.height_unit_um;
+    }
+    for (double& h : heights) h *= unit;
+
+    HeightMap map(nx, ny, dx, dy, std::move(heights), std::move(valid), path);
+    const bool gwyddion_export = header.width || header.height_unit_um || !header.channel.empty();
+    map.source.format = gwyddion_export ? "Gwyddion text export (text grid with header)" : "text grid";
+    map.source.reader = "native:text";
+    map.source.channel = header.channel;
+    map.source.height_unit_um = header.height_unit_um.value_or(0.0);
+    return map;
 }
 
-HeightMap read_height_map(const std::filesystem::path& path, std::optional<double> spacing_um,
-                          std::optional<double> height_unit_um) {
-    if (is_gsf_file(path)) {
-        if (spacing_um)
-            fail("{}: a pixel spacing was given, but a .gsf file stores its own (XReal/XRes)", path.string());
-        if (height_unit_um)
-            fail("{}: a height unit was given, but a .gsf file stores its own (ZUnits)", path.string());
-        return read_gsf(path);
+namespace {
+
+constexpr std::string_view kZipMagic = "PK\x03\x04";
+
+std::string file_head(const std::string& path, std::size_t bytes) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) fail("{}: cannot open height map file", path);
+    std::string head(bytes, '\0');
+    in.read(head.data(), static_cast<std::streamsize>(bytes));
+    head.resize(static_cast<std::size_t>(in.gcount()));
+    return head;
+}
+
+// A file's stated spacing and height unit against what the user gave (text grids reconcile their own).
+void reconcile(const HeightMap& map, std::optional<double> spacing_um, std::optional<double> height_unit_um) {
+    const std::string& path = map.origin();
+    if (spacing_um) {
+        require_valid_spacing(*spacing_um, "--spacing");
+        if (std::abs(*spacing_um - map.spacing_x()) > 1e-6 * map.spacing_x() ||
+            std::abs(*spacing_um - map.spacing_y()) > 1e-6 * map.spacing_y())
+            fail("{}: --spacing {} um contradicts the file, which states dx = {} um, dy = {} um ({})", path,
+                 *spacing_um, map.spacing_x(), map.spacing_y(), map.source.format);
     }
-    if (path.extension() == ".gsf") return read_gsf(path);  // reports the bad magic line
-    if (!spacing_um)
-        fail("{}: a text height grid does not store its pixel spacing; give it (--spacing, um)", path.string());
-    return read_text_grid(path, *spacing_um, height_unit_um.value_or(1.0));
+    if (height_unit_um && std::abs(*height_unit_um - map.source.height_unit_um) > 1e-9 * map.source.height_unit_um)
+        fail("{}: --height-unit {} um contradicts the file, which states its heights in units of {} um ({})", path,
+             *height_unit_um, map.source.height_unit_um, map.source.format);
+}
+
+HeightMap read_x3p_file(const std::string& path, const X3pLayout& layout) {
+    if (!layout.standard()) return read_x3p(path);
+    // Gwyddion's opengps module reads standard X3P files; where it refuses one the native reader may still read
+    // it (and otherwise says precisely what is wrong).
+    try {
+        return gwyddion_read(path);
+    } catch (const Error& gwyddion_error) {
+        try {
+            HeightMap map = read_x3p(path);
+            map.source.warnings.push_back(fmt::format("Gwyddion refused the file ({}); read natively", gwyddion_error.what()));
+            return map;
+        } catch (const Error& native_error) {
+            fail("{} (Gwyddion: {})", native_error.what(), gwyddion_error.what());
+        }
+    }
+}
+
+}  // namespace
+
+HeightMap read_height_map(const std::filesystem::path& file, std::optional<double> spacing_um,
+                          std::optional<double> height_unit_um) {
+    const std::string path = file.string();
+    if (std::filesystem::is_directory(file)) fail("{}: is a directory, not a height map file", path);
+    const std::string head = file_head(path, 65536);
+
+    std::optional<HeightMap> map;
+    if (head.compare(0, kGsfMagic.size(), kGsfMagic) == 0) {
+        map = read_gsf(file);
+    } else if (head.compare(0, kZipMagic.size(), kZipMagic) == 0) {
+        if (const auto layout = x3p_layout(path)) map = read_x3p_file(path, *layout);
+        else map = gwyddion_read(path);  // other zip-based formats (Sensofar, Keyence, NanoObserver, ...)
+    } else if (file.extension() == ".gsf") {
+        map = read_gsf(file);  // reports the bad magic line
+    } else if (!gwyddion_detect(path).empty()) {
+        map = gwyddion_read(path);
+    } else if (head.find('\0') == std::string::npos) {
+        return read_text_grid(file, spacing_um, height_unit_um);
+    } else {
+        fail("{}: unknown height map format: none of Gwyddion {}'s {} file modules recognises it, and it is not a "
+             "GSF, X3P or text grid",
+             path, gwyddion_version(), gwyddion_loader_count());
+    }
+    reconcile(*map, spacing_um, height_unit_um);
+    return std::move(*map);
 }
 
 }  // namespace surfscatter::surface
