@@ -26,8 +26,10 @@ struct BrdfArgs {
     std::string ssa_form = "energy", alpha_from = "none", macro_ndf = "ggx", material = "perfect";
     double epsilon = 1e-6, alpha = 0, smoothing = 0, cutoff_wavelengths = 100;
     bool no_renormalization = false;
-    std::string psd, surface_file;
+    std::string psd, surface_file, form = "plane";
     double sigma = 0, corr_length = 0, gamma = 0;
+    // The --surface map, read when first needed and shared by every model of the command.
+    mutable std::shared_ptr<const surface::HeightMap> height_map;
     double wavelength = 0, phi_i = 0;
     std::vector<double> theta_i;
     // eval
@@ -65,9 +67,16 @@ bsdf::ModelOptions model_options(const BrdfArgs& a, const std::string& model) {
         if (!a.psd.empty() && a.psd != "file") fail("give either --psd or --surface, not both");
         o.surface.psd = bsdf::PsdKind::file;
         o.surface.surface_file = a.surface_file;
+        o.surface.form = surface::parse_form(a.form, "--form");
+        if (!a.height_map) {
+            bsdf::load_height_map(o.surface);
+            a.height_map = o.surface.height_map;
+            std::fprintf(stderr, "surfscatter: brdf: %s\n", surface::describe(*a.height_map).c_str());
+        }
+        o.surface.height_map = a.height_map;
     } else if (!a.psd.empty()) {
         o.surface.psd = bsdf::parse_psd(a.psd, "--psd");
-        if (o.surface.psd == bsdf::PsdKind::file) fail("--psd file needs --surface h.gsf");
+        if (o.surface.psd == bsdf::PsdKind::file) fail("--psd file needs --surface MAP");
         if (o.surface.psd == bsdf::PsdKind::gaussian && a.gamma != 0) fail("--gamma applies to --psd kc only");
         if (o.surface.psd == bsdf::PsdKind::kc && a.gamma == 0) fail("--psd kc needs --gamma");
         o.surface.sigma = a.sigma;
@@ -75,7 +84,7 @@ bsdf::ModelOptions model_options(const BrdfArgs& a, const std::string& model) {
         o.surface.gamma = a.gamma;
     } else if (needs_surface) {
         fail("missing surface for --model {}: give --psd kc --sigma S --corr-length L --gamma G, "
-             "--psd gaussian --sigma S --corr-length l, or --surface h.gsf", model);
+             "--psd gaussian --sigma S --corr-length l, or --surface MAP", model);
     }
     return o;
 }
@@ -181,7 +190,8 @@ void add_model_options(CLI::App* cmd, BrdfArgs& a, bool several_thetas) {
     cmd->add_option("--sigma", a.sigma, "rms height (um)");
     cmd->add_option("--corr-length", a.corr_length, "correlation length (um): KC L, or Gaussian l");
     cmd->add_option("--gamma", a.gamma, "KC exponent gamma > 1");
-    cmd->add_option("--surface", a.surface_file, "height map (.gsf): KC fitted to it");
+    cmd->add_option("--surface", a.surface_file, "height map (any format `surface info` reads): KC fitted to it");
+    cmd->add_option("--form", a.form, "form removed from --surface: none | plane (default) | poly2 | poly3 | poly4");
     cmd->add_option("--wavelength", a.wavelength, "wavelength (nm)")->required();
     if (several_thetas)
         cmd->add_option("--theta-i", a.theta_i, "incidence angles (deg), comma separated")->delimiter(',')->required();

@@ -40,6 +40,7 @@ void run(const RenderArgs& args) {
     const std::filesystem::path output(args.output);
     if (output.extension() != ".exr") fail("-o must name an .exr file (the .png is written beside it), got {}", args.output);
     auto scene = render::load_scene(args.scene, parse_defines(args.defines));
+    for (const std::string& note : scene->notes) std::fprintf(stderr, "surfscatter: render: %s\n", note.c_str());
     if (args.exposure_set) scene->film.exposure = args.exposure;
     if (!args.white_balance.empty()) scene->film.white_balance = args.white_balance;
     render::RenderOptions options;

@@ -1,4 +1,7 @@
-// surfscatter surface synth | fit: random KC height maps (.gsf) and KC fits of measured height maps.
+// surfscatter surface synth | info | fit: random KC height maps (.gsf, .gwy), statistics of measured height maps
+// (any format read_height_map reads), and KC fits.
+#include <bit>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -10,6 +13,10 @@
 #include "command.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/paths.hpp"
+#include "surfscatter/surface/gwyddion_file.hpp"
+#include "surfscatter/surface/height_map_acv.hpp"
+#include "surfscatter/surface/height_map_fft.hpp"
+#include "surfscatter/surface/height_map_form.hpp"
 #include "surfscatter/surface/height_map_io.hpp"
 #include "surfscatter/surface/height_map_slope.hpp"
 #include "surfscatter/surface/kc_fit.hpp"
@@ -30,9 +37,15 @@ struct SynthArgs {
     std::string title;
 };
 
-struct FitArgs {
+// What every command that reads a height map accepts.
+struct MapArgs {
     std::string input;
-    std::optional<double> spacing, height_unit, smoothing;
+    std::optional<double> spacing, height_unit;
+    std::string form = "plane";
+};
+
+struct FitArgs : MapArgs {
+    std::optional<double> smoothing;
     std::size_t min_ring = surface::KcFitOptions{}.min_ring;
     double max_zeta_fraction = surface::KcFitOptions{}.max_nyquist_fraction;
     std::string plot, csv;
@@ -60,15 +73,74 @@ void synth(const SynthArgs& args) {
     surface::require_valid_spacing(args.spacing, "--spacing");
     if (args.size < static_cast<long long>(surface::kMinHeightMapSize))
         fail("--size must be at least {} samples, got {}", surface::kMinHeightMapSize, args.size);
-    if (std::filesystem::path(args.output).extension() != ".gsf")
-        fail("-o must name a .gsf file, got '{}'", args.output);
+    const std::string extension = std::filesystem::path(args.output).extension().string();
+    if (extension != ".gsf" && extension != ".gwy") fail("-o must name a .gsf or .gwy file, got '{}'", args.output);
     const auto n = static_cast<std::size_t>(args.size);
     surface::HeightMap map = surface::synthesize_surface(*model, {n, n, args.spacing}, args.seed);
     map.title = args.title.empty()
                     ? fmt::format("{} sigma_h={} um L_c={} um{} seed={}", args.model, args.sigma, args.corr_length,
                                   args.gamma ? fmt::format(" gamma={}", *args.gamma) : "", args.seed)
                     : args.title;
-    surface::write_gsf(map, args.output);
+    if (extension == ".gwy") surface::gwyddion_write_gwy(map, args.output);
+    else surface::write_gsf(map, args.output);
+}
+
+void add_map_options(CLI::App* cmd, MapArgs& a) {
+    cmd->add_option("map", a.input, "height map: any format Gwyddion reads (.gwy, .gsf, .x3p, .sdf, .dat, .opd, "
+                                    "Nanoscope, ...), X3P, Gwyddion text export, or a CSV/whitespace grid")
+        ->required();
+    cmd->add_option("--spacing", a.spacing, "pixel spacing of a text grid without header (um)");
+    cmd->add_option("--height-unit", a.height_unit, "um per height unit of a text grid without header (default 1)");
+    cmd->add_option("--form", a.form, "form removed first: none (mean) | plane (default) | poly2 | poly3 | poly4");
+}
+
+// The map (after checking the options) and the form to remove; the reader's warnings go to stdout.
+surface::HeightMap read_map(const MapArgs& args, surface::Form& form) {
+    if (args.spacing) surface::require_valid_spacing(*args.spacing, "--spacing");
+    if (args.height_unit) require_positive(*args.height_unit, "--height-unit");
+    form = surface::parse_form(args.form, "--form");
+    surface::HeightMap map = surface::read_height_map(args.input, args.spacing, args.height_unit);
+    for (const std::string& warning : map.source.warnings) std::printf("warning = %s\n", warning.c_str());
+    return map;
+}
+
+void print_value(const char* name, double value) { std::printf("%s = %s\n", name, format_number(value).c_str()); }
+
+void info(const MapArgs& args) {
+    surface::Form form = surface::Form::plane;
+    const surface::HeightMap map = read_map(args, form);
+    const surface::HeightMap flat = surface::remove_form(map, form);
+    const surface::HeightMoments moments = surface::height_moments(flat);
+    const surface::AcvMeasures acv = surface::acv_measures(flat);
+    const auto& source = map.source;
+    std::printf("format = %s\n", source.format.c_str());
+    std::printf("reader = %s%s\n", source.reader.c_str(),
+                source.channel.empty() ? "" : (", channel " + source.channel).c_str());
+    std::printf("width_px = %zu\nheight_px = %zu\n", map.nx(), map.ny());
+    print_value("dx_um", map.spacing_x());
+    print_value("dy_um", map.spacing_y());
+    print_value("valid_fraction", map.valid_fraction());
+    print_value("rms_height_um", moments.rms);
+    print_value("rms_slope", surface::rms_slope(flat, surface::Form::none));
+    print_value("skewness", moments.skewness);
+    print_value("kurtosis", moments.kurtosis);
+    print_value("correlation_length_um", acv.correlation_length_um);
+    print_value("texture_aspect_ratio", acv.texture_aspect_ratio);
+    if (map.valid_fraction() < surface::kMinFitValidFraction)
+        std::printf("warning = only %.1f %% of the points are valid; PSD fits need %.0f %%\n",
+                    100.0 * map.valid_fraction(), 100.0 * surface::kMinFitValidFraction);
+    if (acv.correlation_length_um > surface::kMaxCorrelationLengthFraction * std::min(map.width(), map.height()))
+        std::printf("warning = correlation_length_um is more than %.0f %% of the map's shorter side: too small a "
+                    "patch to measure it (its ACF falls early); measure a larger area\n",
+                    100.0 * surface::kMaxCorrelationLengthFraction);
+    if (acv.str_is_bound)
+        std::printf("warning = along %.1f deg the ACF stays above 0.2 out to the edge of the map: "
+                    "texture_aspect_ratio is only an upper bound\n",
+                    acv.slowest_direction_deg);
+    if (acv.texture_aspect_ratio < 0.5)
+        std::printf("warning = texture_aspect_ratio %.3g < 0.5: a directional texture (lay along %.1f deg); the "
+                    "isotropic scattering models misrepresent this surface\n",
+                    acv.texture_aspect_ratio, acv.slowest_direction_deg);
 }
 
 void write_psd_csv(const surface::SurfaceFit& fit, const std::string& path) {
@@ -85,12 +157,50 @@ void write_psd_csv(const surface::SurfaceFit& fit, const std::string& path) {
     if (!out) fail("--csv: write error on '{}'", path);
 }
 
+// The 2-D PSD over the full zeta-plane, centred (zeta = 0 in the middle), averaged over blocks of
+// `block` x `block` frequencies, as a float32 .npy array [row = zeta_y][column = zeta_x] for the plot script.
+void write_psd_image(const surface::Psd2d& psd, std::size_t block, const std::string& path) {
+    const std::size_t width = psd.nx / block, height = psd.ny / block;
+    std::vector<double> sums(width * height, 0.0);
+    for (std::size_t ky = 0; ky < psd.ny; ++ky)
+        for (std::size_t kx = 0; kx < psd.half_nx(); ++kx) {
+            const double value = psd.values[ky * psd.half_nx() + kx];
+            const long sy = surface::signed_frequency_index(ky, psd.ny), sx = static_cast<long>(kx);
+            // The point and its Hermitian mirror (-kx, -ky) have the same PSD.
+            for (int mirror = 0; mirror < (psd.multiplicity(kx) > 1.0 ? 2 : 1); ++mirror) {
+                const long x = (mirror ? -sx : sx) + static_cast<long>(psd.nx / 2);
+                const long y = (mirror ? -sy : sy) + static_cast<long>(psd.ny / 2);
+                const auto bx = static_cast<std::size_t>(x) / block, by = static_cast<std::size_t>(y) / block;
+                if (x >= 0 && y >= 0 && bx < width && by < height) sums[by * width + bx] += value;
+            }
+        }
+    std::string header = fmt::format("{{'descr': '<f4', 'fortran_order': False, 'shape': ({}, {}), }}", height, width);
+    header.append(63 - (10 + header.size()) % 64, ' ');
+    header += '\n';
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    if (!out) fail("--plot: cannot open '{}' for writing", path);
+    out.write("\x93NUMPY\x01\x00", 8);
+    const auto header_size = static_cast<std::uint16_t>(header.size());
+    const char size_bytes[2] = {static_cast<char>(header_size & 0xff), static_cast<char>(header_size >> 8)};
+    out.write(size_bytes, 2);
+    out << header;
+    const double norm = 1.0 / static_cast<double>(block * block);
+    for (double sum : sums) {
+        const auto word = std::bit_cast<std::uint32_t>(static_cast<float>(sum * norm));
+        const char bytes[4] = {static_cast<char>(word & 0xff), static_cast<char>((word >> 8) & 0xff),
+                               static_cast<char>((word >> 16) & 0xff), static_cast<char>(word >> 24)};
+        out.write(bytes, 4);
+    }
+    if (!out) fail("--plot: write error on '{}'", path);
+}
+
+// zeta at the outer edge of the image's first column (or row): write_psd_image puts signed index -n/2 there.
+double psd_image_edge(std::size_t n, double dzeta) { return -(static_cast<double>(n / 2) + 0.5) * dzeta; }
+
 void fit(const FitArgs& args) {
-    if (args.spacing) surface::require_valid_spacing(*args.spacing, "--spacing");
-    if (args.height_unit) require_positive(*args.height_unit, "--height-unit");
     if (args.smoothing) require_positive(*args.smoothing, "--smoothing");
-    const surface::HeightMap map = surface::read_height_map(args.input, args.spacing, args.height_unit);
     surface::KcFitOptions options;
+    const surface::HeightMap map = read_map(args, options.form);
     options.min_ring = args.min_ring;
     options.max_nyquist_fraction = args.max_zeta_fraction;
     const surface::SurfaceFit result = surface::fit_surface(map, options);
@@ -101,30 +211,44 @@ void fit(const FitArgs& args) {
     std::printf("rms_slope = %s\n", format_number(result.rms_slope).c_str());
     if (args.smoothing)
         std::printf("rms_slope_smoothed = %s\n",
-                    format_number(surface::rms_slope_smoothed(map, *args.smoothing)).c_str());
+                    format_number(surface::rms_slope_smoothed(map, *args.smoothing, options.form)).c_str());
     std::printf("rms_slope_psd = %s\n", format_number(result.rms_slope_from_psd).c_str());
     std::printf("rms_height_map = %s\n", format_number(result.rms_height_um).c_str());
     std::printf("zeta_min = %s\n", format_number(result.kc.zeta_min).c_str());
     std::printf("zeta_max = %s\n", format_number(result.kc.zeta_max).c_str());
     std::printf("log_residual_rms = %s\n", format_number(result.kc.log_residual_rms).c_str());
+    print_value("valid_fraction", map.valid_fraction());
 
     std::string csv = args.csv;
     if (csv.empty() && !args.plot.empty()) csv = std::filesystem::path(args.plot).replace_extension(".csv").string();
     if (!csv.empty()) write_psd_csv(result, csv);
-    if (!args.plot.empty())
-        run_plot_script("psd_fit.py",
-                        {csv, args.plot,
-                         fmt::format("{}: KC fit sigma_h = {:.4g} um, L_c = {:.4g} um, gamma = {:.4g}",
-                                     std::filesystem::path(args.input).filename().string(), result.kc.sigma_h_um,
-                                     result.kc.corr_length_um, result.kc.gamma)});
+    if (args.plot.empty()) return;
+    // The 2-D PSD beside the radial fit: a directional texture shows as a streak through the origin.
+    std::filesystem::path image = args.plot;
+    image.replace_extension();
+    image += "_psd2d.npy";
+    const std::size_t block = std::max<std::size_t>(1, (std::max(map.nx(), map.ny()) + 255) / 256);
+    write_psd_image(result.psd, block, image.string());
+    run_plot_script("psd_fit.py",
+                    {csv, args.plot,
+                     fmt::format("{}: KC fit sigma_h = {:.4g} um, L_c = {:.4g} um, gamma = {:.4g}",
+                                 std::filesystem::path(args.input).filename().string(), result.kc.sigma_h_um,
+                                 result.kc.corr_length_um, result.kc.gamma),
+                     image.string(), format_number(psd_image_edge(result.psd.nx, result.psd.dzeta_x)),
+                     format_number(psd_image_edge(result.psd.nx, result.psd.dzeta_x) +
+                                   result.psd.dzeta_x * static_cast<double>(block * (result.psd.nx / block))),
+                     format_number(psd_image_edge(result.psd.ny, result.psd.dzeta_y)),
+                     format_number(psd_image_edge(result.psd.ny, result.psd.dzeta_y) +
+                                   result.psd.dzeta_y * static_cast<double>(block * (result.psd.ny / block)))});
 }
 
 const Command command("surface", [](CLI::App& app) {
-    CLI::App* surface_cmd = app.add_subcommand("surface", "Height maps: synthesize random surfaces, fit KC statistics");
+    CLI::App* surface_cmd =
+        app.add_subcommand("surface", "Height maps: synthesize random surfaces, measured statistics, KC fits");
     surface_cmd->require_subcommand(1);
 
     auto s = std::make_shared<SynthArgs>();
-    CLI::App* synth_cmd = surface_cmd->add_subcommand("synth", "Random Gaussian surface with a KC PSD -> .gsf");
+    CLI::App* synth_cmd = surface_cmd->add_subcommand("synth", "Random Gaussian surface with a KC PSD -> .gsf/.gwy");
     synth_cmd->add_option("--model", s->model, "PSD model: kc (K-correlation) or gaussian (Gaussian ACV)");
     synth_cmd->add_option("--sigma", s->sigma, "rms height sigma_h (um)")->required();
     synth_cmd->add_option("--corr-length", s->corr_length, "correlation length L_c (um)")->required();
@@ -132,21 +256,27 @@ const Command command("surface", [](CLI::App& app) {
     synth_cmd->add_option("--size", s->size, "samples per side N (N x N map)")->required();
     synth_cmd->add_option("--spacing", s->spacing, "pixel spacing (um)")->required();
     synth_cmd->add_option("--seed", s->seed, "random seed (same seed, same surface)");
-    synth_cmd->add_option("-o,--output", s->output, "output height map (.gsf)")->required();
+    synth_cmd->add_option("-o,--output", s->output, "output height map (.gsf, or .gwy through Gwyddion)")->required();
     synth_cmd->add_option("--title", s->title, "Title stored in the .gsf header");
     synth_cmd->callback([s] { synth(*s); });
 
+    auto i = std::make_shared<MapArgs>();
+    CLI::App* info_cmd = surface_cmd->add_subcommand(
+        "info", "Format, grid, valid fraction, rms, slope, skewness, kurtosis, correlation length and texture "
+                "aspect ratio (ISO 25178 Str) of a height map; name = value lines");
+    add_map_options(info_cmd, *i);
+    info_cmd->callback([i] { info(*i); });
+
     auto f = std::make_shared<FitArgs>();
     CLI::App* fit_cmd = surface_cmd->add_subcommand(
-        "fit", "Fit KC (sigma_h, L_c, gamma) to a height map (.gsf or CSV grid); print name = value lines");
-    fit_cmd->add_option("map", f->input, "height map: .gsf, or a CSV/whitespace grid of heights in um")->required();
-    fit_cmd->add_option("--spacing", f->spacing, "pixel spacing of a CSV grid (um)");
-    fit_cmd->add_option("--height-unit", f->height_unit, "um per height unit of a CSV grid (default 1)");
+        "fit", "Fit KC (sigma_h, L_c, gamma) to a height map; print name = value lines");
+    add_map_options(fit_cmd, *f);
     fit_cmd->add_option("--smoothing", f->smoothing, "also print the rms slope after Gaussian smoothing (std, um)");
     fit_cmd->add_option("--min-ring", f->min_ring, "lowest PSD ring fitted (default 4)");
     fit_cmd->add_option("--max-zeta-fraction", f->max_zeta_fraction,
                         "highest fitted frequency as a fraction of Nyquist (default 0.5)");
-    fit_cmd->add_option("--plot", f->plot, "write the radial PSD and the fit as PNG (and CSV beside it)");
+    fit_cmd->add_option("--plot", f->plot,
+                        "write the radial PSD with the fit and the 2-D PSD as PNG (CSV and _psd2d.npy beside it)");
     fit_cmd->add_option("--csv", f->csv, "write the radial PSD and the fit as CSV");
     fit_cmd->callback([f] { fit(*f); });
 });

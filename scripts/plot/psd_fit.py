@@ -1,7 +1,9 @@
-"""Radial PSD of a height map with its KC fit (written by `surfscatter surface fit --plot`).
+"""Radial PSD of a height map with its KC fit, and the 2-D PSD beside it (written by `surfscatter surface fit --plot`).
 
-usage: psd_fit.py <psd.csv> <out.png> [title]
+usage: psd_fit.py <psd.csv> <out.png> [title [<psd2d.npy> <zeta_x_left> <zeta_x_right> <zeta_y_bottom> <zeta_y_top>]]
 The CSV has columns zeta (rad/um), psd (um^4), count, kc_fit (um^4), in_band (1 if the ring was fitted).
+The .npy holds the 2-D PSD (um^4) over the zeta-plane, centred, rows = zeta_y; the four numbers are its outer
+edges (rad/um). A directional texture shows as a streak through the origin, perpendicular to the lay.
 """
 import sys
 
@@ -12,20 +14,18 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 
-def main():
-    if len(sys.argv) < 3:
-        sys.exit("usage: psd_fit.py <psd.csv> <out.png> [title]")
-    data = np.genfromtxt(sys.argv[1], delimiter=",", names=True)
+def radial_panels(fig, spec, data, title):
     zeta, psd, fit, band = data["zeta"], data["psd"], data["kc_fit"], data["in_band"] > 0.5
-    fig, (ax, ax_res) = plt.subplots(2, 1, figsize=(7, 6.5), sharex=True, gridspec_kw={"height_ratios": [3, 1]})
+    ax = fig.add_subplot(spec[0, 0])
+    ax_res = fig.add_subplot(spec[1, 0], sharex=ax)
     ax.loglog(zeta[~band], psd[~band], ".", color="0.6", ms=3, label="radial PSD (not fitted)")
     ax.loglog(zeta[band], psd[band], ".", color="C0", ms=3, label="radial PSD (fitted band)")
     ax.loglog(zeta, fit, "-", color="C3", lw=1.5, label="KC fit")
     ax.set_ylabel(r"$P(\zeta)$ [$\mu$m$^4$]")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(loc="lower left")
-    if len(sys.argv) > 3:
-        ax.set_title(sys.argv[3], fontsize=9)
+    if title:
+        ax.set_title(title, fontsize=9)
     ratio = psd / fit
     ax_res.semilogx(zeta[~band], ratio[~band], ".", color="0.6", ms=3)
     ax_res.semilogx(zeta[band], ratio[band], ".", color="C0", ms=3)
@@ -34,6 +34,33 @@ def main():
     ax_res.set_xlabel(r"$\zeta$ [rad/$\mu$m]")
     ax_res.set_ylabel("data / fit")
     ax_res.grid(True, which="both", alpha=0.3)
+
+
+def image_panel(fig, spec, image, extent):
+    ax = fig.add_subplot(spec[:, 1])
+    positive = image[image > 0]
+    # Masked estimates can dip below zero where the PSD is far below their scatter: shown at the floor.
+    floor = positive.min() if positive.size else 1.0
+    shown = ax.imshow(np.log10(np.maximum(image, floor)), origin="lower", extent=extent, cmap="magma",
+                      interpolation="nearest", aspect="equal")
+    ax.set_xlabel(r"$\zeta_x$ [rad/$\mu$m]")
+    ax.set_ylabel(r"$\zeta_y$ [rad/$\mu$m]")
+    ax.set_title("2-D PSD (log scale)", fontsize=9)
+    fig.colorbar(shown, ax=ax, label=r"$\log_{10} P$ [$\mu$m$^4$]", shrink=0.8)
+
+
+def main():
+    if len(sys.argv) not in (3, 4, 9):
+        sys.exit(__doc__)
+    data = np.genfromtxt(sys.argv[1], delimiter=",", names=True)
+    title = sys.argv[3] if len(sys.argv) > 3 else ""
+    with_image = len(sys.argv) == 9
+    fig = plt.figure(figsize=(13 if with_image else 7, 6.5))
+    spec = fig.add_gridspec(2, 2 if with_image else 1, height_ratios=[3, 1],
+                            width_ratios=[1, 1] if with_image else None)
+    radial_panels(fig, spec, data, title)
+    if with_image:
+        image_panel(fig, spec, np.load(sys.argv[4]), [float(v) for v in sys.argv[5:9]])
     fig.tight_layout()
     fig.savefig(sys.argv[2], dpi=120)
 

@@ -185,3 +185,33 @@ TEST(Camera, ProjectInvertsGenerateRay) {
     }
     EXPECT_FALSE(camera.project({0.6, -2, 1.6}).has_value());  // behind the camera
 }
+
+TEST(XmlLoader, SurfaceFileOfAnyFormatIsReadOnceAndReported) {
+    // The real Wyko file (116 invalid points) behind two BSDFs, with a form: one read, one note.
+    const std::string opd = (fs::path(SURFSCATTER_SHARED_DATA) / "realdata" / "heightmaps" / "opd-1.opd").string();
+    const std::string bsdf = "<bsdf type=\"ggx_stats\"><string name=\"surface_file\" value=\"" + opd +
+                             "\"/><string name=\"form\" value=\"poly2\"/></bsdf>";
+    auto scene = load_scene_from_string(
+        scene_xml("<shape type=\"rectangle\">" + bsdf + "</shape>\n<shape type=\"sphere\">" + bsdf + "</shape>"),
+        "scene.xml");
+    ASSERT_EQ(scene->notes.size(), 1u);
+    EXPECT_NE(scene->notes[0].find("opd-1.opd: Wyko OPD files (.opd), 640 x 480 points"), std::string::npos)
+        << scene->notes[0];
+    EXPECT_NE(scene->notes[0].find("99.96 % valid"), std::string::npos) << scene->notes[0];
+
+    const std::string bad_form = scene_xml("<shape type=\"rectangle\"><bsdf type=\"ggx_stats\"><string name=\"surface_file\" "
+                                           "value=\"" + opd + "\"/><string name=\"form\" value=\"sphere\"/></bsdf></shape>");
+    EXPECT_NE(load_error(bad_form).find(fmt::format("scene.xml:{}: bsdf 'ggx_stats': form must be none, plane, poly2",
+                                                    line_of(bad_form, "ggx_stats"))),
+              std::string::npos)
+        << load_error(bad_form);
+    const fs::path garbage = temp_dir() / "garbage.dat";
+    {
+        std::ofstream out(garbage, std::ios::binary);
+        for (int i = 0; i < 4000; ++i) out.put(static_cast<char>((i * 37) % 256));
+    }
+    const std::string unknown = scene_xml("<shape type=\"rectangle\"><bsdf type=\"ggx_stats\"><string name=\"surface_file\" "
+                                          "value=\"" + garbage.string() + "\"/></bsdf></shape>");
+    EXPECT_NE(load_error(unknown).find("garbage.dat: unknown height map format"), std::string::npos)
+        << load_error(unknown);
+}

@@ -39,7 +39,7 @@ void validate_surface(const SurfaceOptions& s) {
                 fail("corr_length must be > 0 um, got {}", s.corr_length);
             break;
         case PsdKind::file:
-            if (s.surface_file.empty()) fail("surface_file is empty: give a .gsf height map");
+            if (s.surface_file.empty()) fail("surface_file is empty: give a height map file");
             break;
     }
 }
@@ -48,7 +48,9 @@ void validate_surface(const SurfaceOptions& s) {
 surface::KCorrelation kc_of(const SurfaceOptions& s) {
     if (s.psd == PsdKind::kc) return surface::KCorrelation(s.sigma, s.corr_length, s.gamma);
     if (s.psd == PsdKind::file) {
-        const auto fit = surface::fit_surface(surface::read_height_map(s.surface_file, std::nullopt)).kc;
+        surface::KcFitOptions options;
+        options.form = s.form;
+        const auto fit = surface::fit_surface(*s.height_map, options).kc;
         return surface::KCorrelation(fit.sigma_h_um, fit.corr_length_um, fit.gamma);
     }
     fail("this option needs a K-correlation surface (psd kc or a height map), got psd {}", to_string(s.psd));
@@ -68,8 +70,9 @@ std::function<double(double)> ggx_alpha(const ModelOptions& o) {
         case AlphaFrom::smoothed: {
             const double smoothing = o.alpha_from == AlphaFrom::smoothed ? o.smoothing : 0.0;
             if (s.psd == PsdKind::file) {
-                const auto map = surface::read_height_map(s.surface_file, std::nullopt);
-                return constant(smoothing > 0 ? surface::rms_slope_smoothed(map, smoothing) : surface::rms_slope(map));
+                const surface::HeightMap& map = *s.height_map;
+                return constant(smoothing > 0 ? surface::rms_slope_smoothed(map, smoothing, s.form)
+                                              : surface::rms_slope(map, s.form));
             }
             const double no_cutoff = std::numeric_limits<double>::infinity();
             const double slope2 = statistics_of(s)->mean_square_slope(smoothing, no_cutoff);
@@ -112,8 +115,16 @@ void validate(const ModelOptions& o) {
         fail("method refit needs a K-correlation surface (psd kc or a height map), got psd gaussian");
 }
 
-std::unique_ptr<Bsdf> make_bsdf(const ModelOptions& o) {
-    validate(o);
+void load_height_map(SurfaceOptions& surface) {
+    if (surface.psd == PsdKind::file && !surface.height_map && !surface.surface_file.empty())
+        surface.height_map =
+            std::make_shared<const surface::HeightMap>(surface::read_height_map(surface.surface_file, std::nullopt));
+}
+
+std::unique_ptr<Bsdf> make_bsdf(const ModelOptions& options) {
+    validate(options);
+    ModelOptions o = options;
+    if (needs_surface(o)) load_height_map(o.surface);
     auto material = material::Conductor::from_name(o.material);
     switch (o.model) {
         case ModelKind::ggx: return std::make_unique<GgxBsdf>(std::move(material), ggx_alpha(o));

@@ -3,8 +3,12 @@
 // the renderer's XML plugins and this struct (snake_case: corr_length). Values of the enumerations are spelled
 // as in the CLI/XML ("ghs_ssa" and "ghs-ssa" are both accepted by the parse_* functions).
 // Units: wavelengths in nm, surface lengths (sigma, corr_length, smoothing) in micrometres.
+#include <memory>
 #include <string>
 #include <string_view>
+
+#include "surfscatter/surface/height_map.hpp"
+#include "surfscatter/surface/height_map_form.hpp"
 
 namespace surfscatter::bsdf {
 
@@ -22,7 +26,11 @@ struct SurfaceOptions {
     double sigma = 0;         // rms height, um (kc, gaussian)
     double corr_length = 0;   // um: KC L, or Gaussian l in C = sigma^2 exp(-r^2/l^2)
     double gamma = 0;         // KC exponent, > 1
-    std::string surface_file; // .gsf height map (psd = file)
+    std::string surface_file; // height map (psd = file): any format surface::read_height_map reads
+    surface::Form form = surface::Form::plane;  // removed from the height map before its statistics
+    // The map read from surface_file when the caller has read it already (to report on it, load_height_map());
+    // make_bsdf reads surface_file itself otherwise.
+    std::shared_ptr<const surface::HeightMap> height_map;
 };
 
 struct ModelOptions {

@@ -91,6 +91,7 @@ public:
     FilmSettings film;
     SamplerSettings sampler;
     IntegratorSettings integrator;
+    std::vector<std::string> notes;  // for the user, from the loader: e.g. each height map read and its valid fraction
 
 private:
     struct Shape;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 #include <variant>
@@ -436,6 +437,8 @@ private:
             o.surface.surface_file = resolve(node, file).string();
             if (psd.empty()) o.surface.psd = bsdf::PsdKind::file;
         }
+        const std::string form = props.get_string("form", "");
+        if (!form.empty()) o.surface.form = surface::parse_form(form, "form");
         if (with_fresnel) {
             const std::string fresnel = props.get_string("fresnel", "");
             if (!fresnel.empty()) o.fresnel = bsdf::parse_fresnel(fresnel);
@@ -489,12 +492,25 @@ private:
             }
             props.check_all_used("bsdf '" + type + "'");
             bsdf::validate(o);
+            share_height_map(o.surface);
             return make_model_material(std::shared_ptr<const bsdf::Bsdf>(bsdf::make_bsdf(o)));
         } catch (const Error& e) {
             const std::string message = e.what();
             if (message.rfind(node.source->path.string() + ":", 0) == 0) throw;
             fail_at(node, "bsdf '{}': {}", type, message);
         }
+    }
+
+    // Each surface_file is read once per scene (several BSDFs may use it) and reported in the scene's notes.
+    void share_height_map(bsdf::SurfaceOptions& surface) {
+        if (surface.psd != bsdf::PsdKind::file) return;
+        auto& map = height_maps_[surface.surface_file];
+        if (!map) {
+            bsdf::load_height_map(surface);
+            map = surface.height_map;
+            scene_->notes.push_back(surface::describe(*map));
+        }
+        surface.height_map = map;
     }
 
     MaterialPtr build_bsdf(const Node& node) {
@@ -820,6 +836,7 @@ public:
 private:
     std::map<std::string, std::string> defines_;
     std::unique_ptr<Scene> scene_;
+    std::map<std::string, std::shared_ptr<const surface::HeightMap>> height_maps_;  // by surface_file
     std::vector<std::unique_ptr<Source>> sources_;
     std::map<std::string, Object> objects_;
     bool has_sensor_ = false;
