@@ -1,9 +1,18 @@
 // Height-map pipeline on a 1024 x 1024 map: synthesis, windowed PSD + radial average, KC fit, smoothed slope,
-// .gsf write + read.
+// file reading (.gsf native, .gwy through Gwyddion, Gwyddion text export), and, with 10 % invalid points (5 % at
+// random, a band of 5 % of the rows), form removal, the masked PSD, the ACV measures and the KC fit.
 #include <benchmark/benchmark.h>
 
+#include <cstdint>
 #include <filesystem>
+#include <fstream>
+#include <random>
 
+#include <fmt/format.h>
+
+#include "surfscatter/surface/gwyddion_file.hpp"
+#include "surfscatter/surface/height_map_acv.hpp"
+#include "surfscatter/surface/height_map_form.hpp"
 #include "surfscatter/surface/height_map_io.hpp"
 #include "surfscatter/surface/height_map_slope.hpp"
 #include "surfscatter/surface/kc_fit.hpp"
@@ -11,6 +20,7 @@
 #include "surfscatter/surface/synthesis.hpp"
 
 namespace ss = surfscatter::surface;
+namespace fs = std::filesystem;
 
 namespace {
 const ss::KCorrelation kKc(0.05, 2.0, 3.0);
@@ -18,6 +28,20 @@ const ss::HeightMap& map_1024() {
     static const ss::HeightMap map = ss::synthesize_surface(kKc, {1024, 1024, 0.5}, 1);
     return map;
 }
+// The same surface with 10 % of its points invalid.
+const ss::HeightMap& masked_1024() {
+    static const ss::HeightMap map = [] {
+        const ss::HeightMap& full = map_1024();
+        std::mt19937 engine(1);
+        std::uniform_real_distribution<double> uniform(0.0, 1.0);
+        std::vector<std::uint8_t> valid(full.size(), 1);
+        for (std::size_t i = 0; i < valid.size(); ++i)
+            if (uniform(engine) < 0.05 || (i / 1024 >= 500 && i / 1024 < 551)) valid[i] = 0;
+        return ss::HeightMap(1024, 1024, 0.5, 0.5, full.heights(), valid, "masked");
+    }();
+    return map;
+}
+fs::path scratch(const std::string& name) { return fs::temp_directory_path() / ("surfscatter_bench_" + name); }
 }  // namespace
 
 static void BM_Synthesize1024(benchmark::State& state) {
@@ -41,11 +65,85 @@ static void BM_SmoothedSlope1024(benchmark::State& state) {
 BENCHMARK(BM_SmoothedSlope1024)->Unit(benchmark::kMillisecond);
 
 static void BM_GsfWriteRead1024(benchmark::State& state) {
-    const auto path = std::filesystem::temp_directory_path() / "surfscatter_bench_height_map.gsf";
+    const auto path = scratch("height_map.gsf");
     for (auto _ : state) {
         ss::write_gsf(map_1024(), path);
         benchmark::DoNotOptimize(ss::read_gsf(path));
     }
-    std::filesystem::remove(path);
+    fs::remove(path);
 }
 BENCHMARK(BM_GsfWriteRead1024)->Unit(benchmark::kMillisecond);
+
+// read_height_map as a user calls it: format detection (Gwyddion's detector included) and the reader.
+static void BM_ReadGsf1024(benchmark::State& state) {
+    const auto path = scratch("read.gsf");
+    ss::write_gsf(masked_1024(), path);
+    for (auto _ : state) benchmark::DoNotOptimize(ss::read_height_map(path, std::nullopt));
+    fs::remove(path);
+}
+BENCHMARK(BM_ReadGsf1024)->Unit(benchmark::kMillisecond);
+
+static void BM_ReadGwyThroughGwyddion1024(benchmark::State& state) {
+    const auto path = scratch("read.gwy");
+    ss::gwyddion_write_gwy(masked_1024(), path);
+    for (auto _ : state) benchmark::DoNotOptimize(ss::read_height_map(path, std::nullopt));
+    fs::remove(path);
+}
+BENCHMARK(BM_ReadGwyThroughGwyddion1024)->Unit(benchmark::kMillisecond);
+
+static void BM_ReadGwyddionTextExport1024(benchmark::State& state) {
+    const auto path = scratch("read.txt");
+    {
+        std::ofstream out(path);
+        out << "# Channel: Height\n# Width: 512.0 \xc2\xb5m\n# Height: 512.0 \xc2\xb5m\n# Value units: m\n";
+        const ss::HeightMap& map = masked_1024();
+        for (std::size_t iy = 0; iy < map.ny(); ++iy)
+            for (std::size_t ix = 0; ix < map.nx(); ++ix)
+                out << (map.valid(ix, iy) ? fmt::format("{:.6g}", 1e-6 * map(ix, iy)) : "nan")
+                    << (ix + 1 == map.nx() ? '\n' : '\t');
+    }
+    for (auto _ : state) benchmark::DoNotOptimize(ss::read_height_map(path, std::nullopt));
+    fs::remove(path);
+}
+BENCHMARK(BM_ReadGwyddionTextExport1024)->Unit(benchmark::kMillisecond);
+
+static void BM_FormRemoval1024(benchmark::State& state) {
+    const auto form = static_cast<ss::Form>(state.range(0));
+    for (auto _ : state) benchmark::DoNotOptimize(ss::remove_form(masked_1024(), form));
+    state.SetLabel(ss::to_string(form) + ", 10 % invalid");
+}
+BENCHMARK(BM_FormRemoval1024)
+    ->Arg(static_cast<int>(ss::Form::plane))
+    ->Arg(static_cast<int>(ss::Form::poly2))
+    ->Arg(static_cast<int>(ss::Form::poly4))
+    ->Unit(benchmark::kMillisecond);
+
+static void BM_MaskedRadialPsd1024(benchmark::State& state) {
+    for (auto _ : state) benchmark::DoNotOptimize(ss::radial_average(ss::estimate_psd(masked_1024())));
+}
+BENCHMARK(BM_MaskedRadialPsd1024)->Unit(benchmark::kMillisecond);
+
+static void BM_MaskedFitSurface1024(benchmark::State& state) {
+    ss::KcFitOptions options;
+    options.form = ss::Form::poly2;
+    for (auto _ : state) benchmark::DoNotOptimize(ss::fit_surface(masked_1024(), options));
+}
+BENCHMARK(BM_MaskedFitSurface1024)->Unit(benchmark::kMillisecond);
+
+static void BM_AcvMeasures1024(benchmark::State& state) {
+    const ss::HeightMap flat = ss::remove_form(state.range(0) ? masked_1024() : map_1024(), ss::Form::plane);
+    for (auto _ : state) benchmark::DoNotOptimize(ss::acv_measures(flat));
+    state.SetLabel(state.range(0) ? "10 % invalid" : "all valid");
+}
+BENCHMARK(BM_AcvMeasures1024)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+// Everything `surfscatter surface info` computes after reading: form, moments, slope, ACV measures.
+static void BM_SurfaceInfo1024(benchmark::State& state) {
+    for (auto _ : state) {
+        const ss::HeightMap flat = ss::remove_form(masked_1024(), ss::Form::plane);
+        benchmark::DoNotOptimize(ss::height_moments(flat));
+        benchmark::DoNotOptimize(ss::rms_slope(flat, ss::Form::none));
+        benchmark::DoNotOptimize(ss::acv_measures(flat));
+    }
+}
+BENCHMARK(BM_SurfaceInfo1024)->Unit(benchmark::kMillisecond);

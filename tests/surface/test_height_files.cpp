@@ -8,7 +8,6 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
-#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -16,6 +15,7 @@
 #include <fmt/format.h>
 #include <zip.h>
 
+#include "height_test_util.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/surface/gwyddion_file.hpp"
 #include "surfscatter/surface/height_map_form.hpp"
@@ -31,15 +31,11 @@ constexpr std::size_t kNx = 20, kNy = 14;
 constexpr double kDxM = 6.25e-7, kDyM = 5e-7;  // metres
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-fs::path temp_path(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / "surfscatter_test_height_files";
-    fs::create_directories(dir);
-    return dir / name;
-}
+using surfscatter::surface::test::error_of;
+using surfscatter::surface::test::write_bytes;
 
-void write_bytes(const fs::path& path, const std::string& bytes) {
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+fs::path temp_path(const std::string& name) {
+    return surfscatter::surface::test::temp_path("surfscatter_test_height_files", name);
 }
 
 // The test surface, in metres: a few nanometres of ramps, representable exactly as int16 multiples of 0.1 nm.
@@ -52,15 +48,6 @@ std::string little_endian(T value) {
     std::string s(sizeof(T), '\0');
     for (std::size_t b = 0; b < sizeof(T); ++b) s[b] = static_cast<char>((word >> (8 * b)) & 0xffu);
     return s;
-}
-
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const surfscatter::Error& e) {
-        return e.what();
-    }
-    return "";
 }
 
 // ---------------------------------------------------------------- X3P, written from ISO 5436-2 with libzip

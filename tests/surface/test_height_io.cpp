@@ -11,6 +11,7 @@
 
 #include <fmt/format.h>
 
+#include "height_test_util.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/surface/height_map_io.hpp"
 
@@ -19,15 +20,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path temp_path(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / "surfscatter_test_height_io";
-    fs::create_directories(dir);
-    return dir / name;
-}
+using surfscatter::surface::test::error_of;
+using surfscatter::surface::test::write_bytes;
 
-void write_bytes(const fs::path& path, const std::string& bytes) {
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+fs::path temp_path(const std::string& name) {
+    return surfscatter::surface::test::temp_path("surfscatter_test_height_io", name);
 }
 
 std::string read_bytes(const fs::path& path) {
@@ -54,18 +51,6 @@ ss::HeightMap ramp_map(std::size_t nx, std::size_t ny, double spacing) {
     std::vector<double> h(nx * ny);
     for (std::size_t i = 0; i < h.size(); ++i) h[i] = 0.001 * static_cast<double>(i % 97) - 0.03;
     return ss::HeightMap(nx, ny, spacing, 1.5 * spacing, std::move(h));
-}
-
-// Runs f and returns the Error message (fails the test if nothing is thrown).
-template <typename F>
-std::string error_of(F&& f) {
-    try {
-        f();
-    } catch (const surfscatter::Error& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "no surfscatter::Error thrown";
-    return {};
 }
 
 }  // namespace
@@ -220,7 +205,10 @@ TEST(HeightIo, NanMarksInvalidPointsInGsfAndTextGrids) {
     const fs::path csv = temp_path("masked.csv");
     std::string text;
     for (int iy = 0; iy < 8; ++iy) {
-        for (int ix = 0; ix < 8; ++ix) text += (ix ? " " : "") + std::string(ix == iy ? (iy % 2 ? "NaN" : "nan") : "1.5");
+        for (int ix = 0; ix < 8; ++ix) {
+            if (ix) text += ' ';  // piece by piece: `" " + std::string` trips g++ 12's false -Wrestrict warning
+            text += ix == iy ? (iy % 2 ? "NaN" : "nan") : "1.5";
+        }
         text += "\n";
     }
     write_bytes(csv, text);
@@ -238,8 +226,11 @@ std::string gwyddion_text_export(const std::string& width, const std::string& he
     std::string text = "# Channel: ZSensor\n# Width: " + width + "\n# Height: " + height +
                        "\n# Value units: " + units + "\n";
     for (std::size_t iy = 0; iy < ny; ++iy) {
-        for (std::size_t ix = 0; ix < nx; ++ix)
-            text += (ix ? "\t" : "") + (ix == 2 && iy == 3 ? std::string("nan") : fmt::format("{:.6g}", 1e-9 * (ix + 100.0 * iy)));
+        for (std::size_t ix = 0; ix < nx; ++ix) {
+            if (ix) text += '\t';
+            text += ix == 2 && iy == 3 ? std::string("nan")
+                                       : fmt::format("{:.6g}", 1e-9 * (static_cast<double>(ix) + 100.0 * static_cast<double>(iy)));
+        }
         text += "\n";
     }
     return text;

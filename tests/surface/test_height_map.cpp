@@ -7,11 +7,13 @@
 
 #include <Eigen/Dense>
 
+#include "height_test_util.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/surface/height_map.hpp"
 #include "surfscatter/surface/height_map_form.hpp"
 
 namespace ss = surfscatter::surface;
+using surfscatter::surface::test::error_of;
 
 namespace {
 
@@ -55,15 +57,6 @@ std::vector<double> polynomial_heights(std::size_t nx, std::size_t ny, double dx
                 for (int j = 0; i + j <= degree; ++j) h[iy * nx + ix] += c[k++] * std::pow(x, i) * std::pow(y, j);
         }
     return h;
-}
-
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const surfscatter::Error& e) {
-        return e.what();
-    }
-    return "";
 }
 
 }  // namespace

@@ -12,20 +12,19 @@
 // opposite edges of a non-periodic measurement does not leak power (as zeta^-2) into the high frequencies; its
 // price is a main lobe of +-2 bins, so the lowest few radial bins are smeared (kc_fit.hpp skips them).
 //
-// Maps with invalid points (mask m = 0 there): fill-free masked correlogram (masked_periodogram()). The periodogram
-// above is the DFT of the lag products A(t) = sum_n (w h)_n (w h)_(n+t) / sum w^2, whose mean is C(t) L(t) with
-// L(t) = sum_n w_n w_(n+t) / sum w^2 the window's own autocorrelation. With a mask the same lag products exist
-// only between valid pairs; their window-weighted mean
-//     C^(t) = sum_n (w m h)_n (w m h)_(n+t) / sum_n (w m)_n (w m)_(n+t)
-// is still an unbiased estimate of C(t) for any mask, so P = dx dy / (4 pi^2) DFT[C^(t) L(t)] has exactly the
-// mean of the unmasked Hann periodogram (the true PSD seen through the same spectral window): no fill values, no
-// 1/valid-fraction power loss, no white floor from the mask's own spectrum (a plain masked periodogram has all
-// three: with 10 % random invalid points it reads 10 % low and adds a floor that swamps a steep tail). Without
-// invalid points it is the periodogram above, term by term. Its price: the scatter grows as pairs are lost (the
-// fit's weights are scaled by the window-weighted valid fraction, kc_fit.hpp), and where the PSD lies far below
-// that scatter single values can come out negative (ring means are positive for any usable map; the fit and the
-// table skip a ring or bin whose mean is not). Lags without a single valid pair (only when the valid region is
-// cut into pieces) contribute 0. Sums over all lags use zero-padded FFTs (2nx x 2ny), ~4x the unmasked cost.
+// Maps with invalid points (mask m = 0 there): fill-free masked correlogram, prewhitened (masked_periodogram();
+// docs/HEIGHTMAPS.md has the derivation and the measured bias). The periodogram above is the DFT of the lag
+// products sum_n (w h)_n (w h)_(n+t) / sum w^2, whose mean is C(t) L(t), L(t) = sum_n w_n w_(n+t) / sum w^2 the
+// window's own autocorrelation. With a mask the lag products exist only between valid pairs; their
+// window-weighted mean C^(t) = sum (w m h)_n (w m h)_(n+t) / sum (w m)_n (w m)_(n+t) is an unbiased estimate of
+// C(t) for any mask, so DFT[C^(t) L(t)] dx dy / (4 pi^2) has the mean of the unmasked Hann periodogram: no fill
+// values, no power lost to the invalid fraction, no white floor (a plain masked periodogram |FFT(w m h)|^2 has all
+// three). The mask still leaks the map's variance into every frequency as scatter, which swamps a steep tail; so
+// above ring kMaskedDirectRings the estimator is applied to the slopes between valid neighbours (PSD T P, far
+// flatter) and divided by the window-smoothed transfer function K * T. Lags without a valid pair (only when the
+// valid region is cut into pieces) contribute 0. Values can be negative where the PSD lies far below the scatter
+// (the fit and the table skip rings and bins whose mean is not positive); Parseval holds only approximately.
+// Cost: six zero-padded 2nx x 2ny FFTs instead of one nx x ny.
 #include <cstddef>
 #include <vector>
 
@@ -61,11 +60,12 @@ Psd2d estimate_psd(const HeightMap& map, Window window = Window::hann, Form form
 // Rings up to this one take the masked correlogram of the heights, the others that of the slopes (see above).
 inline constexpr double kMaskedDirectRings = 8;
 
-// The masked correlogram of a map whose form is already removed (what estimate_psd() uses for a map with invalid
-// points; for a map without, it equals the periodogram to rounding).
+// The masked estimate of a map whose form is already removed (what estimate_psd() uses for a map with invalid
+// points).
 Psd2d masked_periodogram(const HeightMap& flat, Window window = Window::hann);
 
-// sum (w m h)^2 / sum (w m)^2 of the form-removed map: what Psd2d::integral() of estimate_psd() equals.
+// sum (w m h)^2 / sum (w m)^2 of the form-removed map: what Psd2d::integral() of estimate_psd() equals (without
+// invalid points exactly; with them approximately).
 double windowed_variance(const HeightMap& map, Window window = Window::hann, Form form = Form::plane);
 
 // Window value for sample i of n.
