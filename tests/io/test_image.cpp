@@ -116,5 +116,6 @@ TEST(Image, ErrorsNameTheFile) {
     EXPECT_THROW(surfscatter::io::read_image(temp_path("x.tga")), Error);
     EXPECT_THROW(surfscatter::io::write_image(temp_path("x.bmp"), Image(2, 2, 3)), Error);
     EXPECT_THROW(Image(0, 2, 3), Error);
-    EXPECT_THROW(Image(2, 2, 2), Error);
+    EXPECT_THROW(Image(2, 2, 5), Error);
+    EXPECT_THROW(surfscatter::io::write_image(temp_path("grey_alpha.jpg"), Image(2, 2, 2)), Error);
 }

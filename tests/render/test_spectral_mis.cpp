@@ -27,7 +27,7 @@ public:
         return wi.z > 0 ? (n + 1) / kTwoPi * std::pow(wi.z, n) : 0.0;
     }
 
-    SampledSpectrum eval(Vec2, const Vec3& wi, const Vec3& wo, const SampledWavelengths& w,
+    SampledSpectrum eval(const ShadingPoint&, const Vec3& wi, const Vec3& wo, const SampledWavelengths& w,
                          SampledSpectrum* pdf) const override {
         SampledSpectrum f;
         for (int k = 0; k < 4; ++k) {
@@ -39,7 +39,7 @@ public:
         return f;
     }
 
-    std::optional<MaterialSample> sample(Vec2, const Vec3& wo, const SampledWavelengths& w, double u_lobe,
+    std::optional<MaterialSample> sample(const ShadingPoint& sp, const Vec3& wo, const SampledWavelengths& w, double u_lobe,
                                          Vec2 u) const override {
         if (wo.z <= 0) return std::nullopt;
         MaterialSample s;
@@ -55,7 +55,7 @@ public:
         const double cos_theta = std::pow(u.x, 1 / (exponent(w.lambda[0]) + 1));
         s.wi = spherical_direction(std::acos(cos_theta), kTwoPi * u.y);
         SampledSpectrum pdf;
-        s.f = eval({}, s.wi, wo, w, &pdf);
+        s.f = eval(sp, s.wi, wo, w, &pdf);
         s.pdf = pdf;
         return s;
     }
@@ -76,13 +76,13 @@ TEST(SpectralMis, WavelengthDependentLobesUnderUniformSky) {
         Scene scene;
         TriangleMesh plane = make_rectangle();
         transform_mesh(plane, Transform::scale({100, 100, 1}), false);
-        scene.add_mesh(std::move(plane), std::make_shared<DispersiveLobe>(), nullptr);
-        scene.set_environment(make_constant_spectrum(1.0));
+        scene.add_shape(std::move(plane), std::make_shared<DispersiveLobe>(), nullptr);
+        scene.add_emitter(make_constant_emitter(make_constant_spectrum(1.0)));
         scene.commit();
         scene.camera.to_world = Transform::look_at({0, -2, 2}, {0, 0, 0}, {0, 0, 1});
         scene.camera.fov_degrees = 10;
         scene.film.width = scene.film.height = 8;
-        scene.film.filter = "box";
+        scene.film.filter = make_box_filter();
         scene.integrator.strategy = strategy;
         scene.integrator.max_depth = 2;  // one bounce: the plane cannot see itself anyway
         // Eight independent renders give the Monte Carlo standard error (emitter sampling alone is noisy here: a

@@ -60,7 +60,7 @@ TEST(XmlLoader, LoadsSensorFilmSamplerIntegrator) {
     EXPECT_DOUBLE_EQ(scene->camera.near_clip, 0.1);
     EXPECT_DOUBLE_EQ(scene->camera.principal_point_offset_x, 0.01);
     EXPECT_EQ(scene->film.width, 40);
-    EXPECT_EQ(scene->film.filter, "gaussian");
+    EXPECT_EQ(scene->film.filter->name(), "gaussian");
     EXPECT_EQ(scene->sampler.sample_count, 9);
     EXPECT_EQ(scene->sampler.seed, 5u);
     const Vec3 origin = scene->camera.to_world.point({0, 0, 0});
@@ -130,7 +130,8 @@ TEST(XmlLoader, ErrorsCarryFileAndLine) {
     EXPECT_NE(load_error(scene_xml("<shape type=\"cube\"><ref id=\"nothing\"/></shape>")).find("undefined id 'nothing'"),
               std::string::npos);
     EXPECT_NE(load_error("<scene version=\"3.0.0\"/>").find("no <sensor>"), std::string::npos);
-    EXPECT_NE(load_error(scene_xml("<emitter type=\"spot\"/>")).find("unknown emitter plugin 'spot'"), std::string::npos);
+    EXPECT_NE(load_error(scene_xml("<emitter type=\"projector\"/>")).find("unknown emitter plugin 'projector'"),
+              std::string::npos);
     EXPECT_NE(load_error(scene_xml("<bogus/>")).find("unknown element <bogus>"), std::string::npos);
 }
 
@@ -140,7 +141,9 @@ TEST(MeshFiles, ObjAndPlyLoad) {
                                        "f 1/1 2/2 3/3 4/4\n";
     const TriangleMesh obj = load_obj(dir / "quad.obj");
     EXPECT_EQ(obj.triangles.size(), 2u);
-    EXPECT_EQ(obj.uvs.size(), 6u);
+    EXPECT_EQ(obj.uvs.size(), 4u);  // corners with the same v/vt share a vertex
+    EXPECT_EQ(obj.uvs[0].y, 1.0);   // Mitsuba's flip_tex_coords: v -> 1 - v
+    EXPECT_EQ(load_obj(dir / "quad.obj", false).uvs[0].y, 0.0);
     std::ofstream(dir / "tri.ply") << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                                       "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
                                       "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";

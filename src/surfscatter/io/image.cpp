@@ -5,6 +5,7 @@
 #include <csetjmp>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 #include <memory>
 #include <string>
 
@@ -13,6 +14,7 @@
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
+#include <Imath/half.h>
 #include <jpeglib.h>
 #include <png.h>
 
@@ -25,7 +27,7 @@ Image::Image(int width_, int height_, int channels_, float fill)
       pixels(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_) * static_cast<std::size_t>(channels_),
              fill) {
     if (width_ <= 0 || height_ <= 0) fail("image size must be positive, got {}x{}", width_, height_);
-    if (channels_ != 1 && channels_ != 3 && channels_ != 4) fail("image must have 1, 3 or 4 channels, got {}", channels_);
+    if (channels_ < 1 || channels_ > 4) fail("image must have 1 to 4 channels, got {}", channels_);
 }
 
 namespace {
@@ -39,8 +41,8 @@ std::string lower_extension(const std::filesystem::path& path) {
 void check_writable(const std::filesystem::path& path, const Image& image) {
     if (image.empty() || image.width <= 0 || image.height <= 0)
         fail("cannot write an empty image to {}", path.string());
-    if (image.channels != 1 && image.channels != 3 && image.channels != 4)
-        fail("cannot write {}: an image must have 1, 3 or 4 channels, got {}", path.string(), image.channels);
+    if (image.channels < 1 || image.channels > 4)
+        fail("cannot write {}: an image must have 1 to 4 channels, got {}", path.string(), image.channels);
     if (image.pixels.size() != static_cast<std::size_t>(image.width) * image.height * image.channels)
         fail("cannot write {}: pixel buffer size does not match {}x{}x{}", path.string(), image.width, image.height,
              image.channels);
@@ -163,6 +165,69 @@ Image read_exr(const std::filesystem::path& path) {
     }
 }
 
+// ---- Radiance RGBE (.hdr) ----
+// Written here (about 80 lines): no Debian library in the dependency set reads it short of OpenCV, which the io
+// module does not link. Format: Greg Ward, "Real Pixels", Graphics Gems II (1991), and the Radiance file format notes.
+
+Image read_hdr(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) fail("cannot open HDR {}", path.string());
+    std::string line;
+    std::getline(in, line);
+    if (line.rfind("#?RADIANCE", 0) != 0 && line.rfind("#?RGBE", 0) != 0)
+        fail("{}: not a Radiance HDR file (missing #?RADIANCE)", path.string());
+    double exposure = 1;
+    while (std::getline(in, line) && !line.empty()) {
+        if (line.rfind("FORMAT=", 0) == 0 && line != "FORMAT=32-bit_rle_rgbe")
+            fail("{}: unsupported HDR pixel format '{}' (32-bit_rle_rgbe only)", path.string(), line.substr(7));
+        if (line.rfind("EXPOSURE=", 0) == 0) {
+            const double e = std::atof(line.c_str() + 9);
+            if (!(e > 0)) fail("{}: bad HDR EXPOSURE '{}'", path.string(), line.substr(9));
+            exposure *= e;
+        }
+    }
+    std::getline(in, line);
+    char y_axis[3] = {}, x_axis[3] = {};
+    int height = 0, width = 0;
+    if (std::sscanf(line.c_str(), "%2s %d %2s %d", y_axis, &height, x_axis, &width) != 4 ||
+        std::string(y_axis) != "-Y" || std::string(x_axis) != "+X" || width <= 0 || height <= 0)
+        fail("{}: unsupported HDR resolution line '{}' (only the standard '-Y height +X width')", path.string(), line);
+    Image image(width, height, 3);
+    std::vector<std::uint8_t> scanline(static_cast<std::size_t>(width) * 4);
+    auto read_byte = [&]() {
+        const int c = in.get();
+        if (c == EOF) fail("{}: HDR data ends early", path.string());
+        return static_cast<std::uint8_t>(c);
+    };
+    for (int y = 0; y < height; ++y) {
+        const std::uint8_t b0 = read_byte(), b1 = read_byte(), b2 = read_byte(), b3 = read_byte();
+        const bool rle = width >= 8 && width < 32768 && b0 == 2 && b1 == 2 && (b2 & 0x80) == 0;
+        if (rle) {
+            if (((b2 << 8) | b3) != width) fail("{}: HDR scanline {} has the wrong length", path.string(), y);
+            for (int c = 0; c < 4; ++c)
+                for (int x = 0; x < width;) {
+                    int count = read_byte();
+                    const bool run = count > 128;
+                    if (run) count -= 128;
+                    if (count == 0 || x + count > width) fail("{}: bad HDR run-length data in scanline {}", path.string(), y);
+                    const std::uint8_t value = run ? read_byte() : 0;
+                    for (int k = 0; k < count; ++k, ++x)
+                        scanline[static_cast<std::size_t>(x) * 4 + static_cast<std::size_t>(c)] = run ? value : read_byte();
+                }
+        } else {
+            if (b0 == 1 && b1 == 1 && b2 == 1) fail("{}: old-style HDR run-length encoding is not supported", path.string());
+            scanline[0] = b0, scanline[1] = b1, scanline[2] = b2, scanline[3] = b3;
+            for (std::size_t i = 4; i < scanline.size(); ++i) scanline[i] = read_byte();
+        }
+        for (int x = 0; x < width; ++x) {
+            const std::uint8_t* p = &scanline[static_cast<std::size_t>(x) * 4];
+            const double scale = p[3] == 0 ? 0.0 : std::ldexp(1.0, p[3] - 136) / exposure;
+            for (int c = 0; c < 3; ++c) image.at(x, y, c) = static_cast<float>(p[c] * scale);
+        }
+    }
+    return image;
+}
+
 }  // namespace
 
 Image read_image(const std::filesystem::path& path) {
@@ -171,7 +236,8 @@ Image read_image(const std::filesystem::path& path) {
     if (ext == ".png") return read_png(path);
     if (ext == ".jpg" || ext == ".jpeg") return read_jpeg(path);
     if (ext == ".exr") return read_exr(path);
-    fail("unsupported image format '{}' for {} (expected .png, .jpg, .jpeg or .exr)", ext, path.string());
+    if (ext == ".hdr") return read_hdr(path);
+    fail("unsupported image format '{}' for {} (expected .png, .jpg, .jpeg, .exr or .hdr)", ext, path.string());
 }
 
 void write_png(const std::filesystem::path& path, const Image& image) {
@@ -181,7 +247,8 @@ void write_png(const std::filesystem::path& path, const Image& image) {
     png.version = PNG_IMAGE_VERSION;
     png.width = static_cast<png_uint_32>(image.width);
     png.height = static_cast<png_uint_32>(image.height);
-    png.format = image.channels == 1 ? PNG_FORMAT_GRAY : (image.channels == 3 ? PNG_FORMAT_RGB : PNG_FORMAT_RGBA);
+    const png_uint_32 formats[4] = {PNG_FORMAT_GRAY, PNG_FORMAT_GA, PNG_FORMAT_RGB, PNG_FORMAT_RGBA};
+    png.format = formats[image.channels - 1];
     std::vector<std::uint8_t> bytes(image.pixels.size());
     std::transform(image.pixels.begin(), image.pixels.end(), bytes.begin(), to_byte);
     if (!png_image_write_to_file(&png, path.c_str(), 0, bytes.data(), 0, nullptr))
@@ -190,7 +257,7 @@ void write_png(const std::filesystem::path& path, const Image& image) {
 
 void write_jpeg(const std::filesystem::path& path, const Image& image, int quality) {
     check_writable(path, image);
-    if (image.channels == 4) fail("cannot write {}: JPEG has no alpha channel", path.string());
+    if (image.channels == 2 || image.channels == 4) fail("cannot write {}: JPEG has no alpha channel", path.string());
     File file = open_file(path, "wb");
     jpeg_compress_struct info;
     JpegError error;
@@ -220,22 +287,38 @@ void write_jpeg(const std::filesystem::path& path, const Image& image, int quali
 }
 
 void write_exr(const std::filesystem::path& path, const Image& image) {
+    static const std::vector<std::string> names[4] = {{"Y"}, {"Y", "A"}, {"R", "G", "B"}, {"R", "G", "B", "A"}};
     check_writable(path, image);
+    write_exr(path, image, names[image.channels - 1], ExrPixelType::float32);
+}
+
+void write_exr(const std::filesystem::path& path, const Image& image, const std::vector<std::string>& channels,
+               ExrPixelType type) {
+    check_writable(path, image);
+    if (channels.size() != static_cast<std::size_t>(image.channels))
+        fail("cannot write EXR {}: {} channel names for {} channels", path.string(), channels.size(), image.channels);
     try {
         Imf::Header header(image.width, image.height);
         header.compression() = Imf::ZIP_COMPRESSION;
-        const char* rgba[4] = {"R", "G", "B", "A"};
-        const int stored = image.channels == 1 ? 1 : image.channels;
-        for (int c = 0; c < stored; ++c)
-            header.channels().insert(image.channels == 1 ? "Y" : rgba[c], Imf::Channel(Imf::FLOAT));
+        const Imf::PixelType pixel_type = type == ExrPixelType::half ? Imf::HALF : Imf::FLOAT;
+        for (const std::string& name : channels) header.channels().insert(name, Imf::Channel(pixel_type));
         Imf::OutputFile file(path.c_str(), header);
         Imf::FrameBuffer frame;
-        const std::size_t x_stride = sizeof(float) * image.channels;
-        const std::size_t y_stride = x_stride * image.width;
-        char* base = const_cast<char*>(reinterpret_cast<const char*>(image.pixels.data()));
-        for (int c = 0; c < stored; ++c)
-            frame.insert(image.channels == 1 ? "Y" : rgba[c],
-                         Imf::Slice(Imf::FLOAT, base + c * sizeof(float), x_stride, y_stride));
+        const std::size_t c_count = static_cast<std::size_t>(image.channels);
+        std::vector<Imath::half> halves;
+        char* base = nullptr;
+        std::size_t sample_size = sizeof(float);
+        if (type == ExrPixelType::half) {
+            halves.assign(image.pixels.begin(), image.pixels.end());
+            base = reinterpret_cast<char*>(halves.data());
+            sample_size = sizeof(Imath::half);
+        } else {
+            base = const_cast<char*>(reinterpret_cast<const char*>(image.pixels.data()));
+        }
+        const std::size_t x_stride = sample_size * c_count;
+        const std::size_t y_stride = x_stride * static_cast<std::size_t>(image.width);
+        for (std::size_t c = 0; c < c_count; ++c)
+            frame.insert(channels[c], Imf::Slice(pixel_type, base + c * sample_size, x_stride, y_stride));
         file.setFrameBuffer(frame);
         file.writePixels(image.height);
     } catch (const std::exception& e) {

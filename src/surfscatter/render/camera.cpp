@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/render/material.hpp"
 
 namespace surfscatter::render {
 
@@ -29,6 +30,10 @@ Camera::Camera(const CameraSettings& settings, int width, int height)
     } else {
         fail("fov_axis must be x, y, diagonal, smaller or larger, got '{}'", settings.fov_axis);
     }
+    if (settings.aperture_radius < 0 || !std::isfinite(settings.aperture_radius))
+        fail("aperture_radius must be non-negative, got {}", settings.aperture_radius);
+    if (settings.aperture_radius > 0 && !(settings.focus_distance > 0))
+        fail("focus_distance must be positive, got {}", settings.focus_distance);
     origin_ = settings.to_world.point({0, 0, 0});
     to_local_ = settings.to_world.inverse();
 }
@@ -42,18 +47,25 @@ std::optional<Vec2> Camera::project(const Vec3& p) const {
                 ((sy + 1) / 2 - settings_.principal_point_offset_y) * height_);
 }
 
-Ray Camera::generate_ray(double x, double y) const {
+Ray Camera::generate_ray(double x, double y, Vec2 aperture) const {
     // Mitsuba 3: film position (u, v) is traced as if it were (u + offset_x, v + offset_y) of the centred frustum.
     const double sx = 2.0 * (x / width_ + settings_.principal_point_offset_x) - 1.0;   // -1 left .. +1 right
     const double sy = 2.0 * (y / height_ + settings_.principal_point_offset_y) - 1.0;  // -1 top .. +1 bottom
-    const Vec3 local(-sx * tan_x_, -sy * tan_y_, 1.0);
-    const double length = local.length();
+    Vec3 local(-sx * tan_x_, -sy * tan_y_, 1.0);  // on the plane z = 1
+    Vec3 lens;                                     // ray origin on the lens (local)
+    if (settings_.aperture_radius > 0) {
+        // Thin lens: every ray through the lens point meets the pinhole ray on the plane z = focus_distance.
+        const Vec2 d = square_to_uniform_disk_concentric(aperture) * settings_.aperture_radius;
+        lens = {d.x, d.y, 0.0};
+        local = local * settings_.focus_distance - lens;
+    }
+    const Vec3 direction = normalize(local);
     Ray ray;
-    ray.origin = origin_;
-    ray.direction = normalize(settings_.to_world.vector(local / length));
-    // Clip planes are distances along the optical axis; along this ray they sit `length` times further.
-    ray.t_min = settings_.near_clip * length;
-    ray.t_max = settings_.far_clip * length;
+    ray.direction = normalize(settings_.to_world.vector(direction));
+    // Clip planes are distances along the optical axis: a ray at cos = direction.z meets them 1 / cos further.
+    ray.origin = settings_.aperture_radius > 0 ? settings_.to_world.point(lens) : origin_;
+    ray.t_min = settings_.near_clip / direction.z;
+    ray.t_max = settings_.far_clip / direction.z;
     return ray;
 }
 

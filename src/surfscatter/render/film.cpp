@@ -9,20 +9,26 @@
 namespace surfscatter::render {
 
 Film::Film(int width, int height)
-    : width_(width), height_(height), sum_(static_cast<std::size_t>(width) * height), count_(sum_.size(), 0) {
+    : width_(width), height_(height), sum_(static_cast<std::size_t>(width) * height), alpha_(sum_.size(), 0.0),
+      count_(sum_.size(), 0) {
     if (width <= 0 || height <= 0) fail("film size must be positive, got {}x{}", width, height);
 }
 
 Vec3 Film::xyz(int x, int y) const {
-    const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x);
+    const std::size_t i = index(x, y);
     return count_[i] ? sum_[i] / count_[i] : Vec3();
+}
+
+double Film::alpha(int x, int y) const {
+    const std::size_t i = index(x, y);
+    return count_[i] ? alpha_[i] / count_[i] : 0.0;
 }
 
 namespace {
 
-// XYZ -> linear sRGB with the film's white balance: the chosen white ("2700" for a blackbody in K, or a CIE
-// illuminant name) is mapped to D65 by Bradford adaptation before the sRGB matrix; "d65" leaves XYZ as it is.
-spectrum::Mat3 output_matrix(const FilmSettings& settings) {
+// XYZ -> XYZ with the film's white balance and exposure: the chosen white ("2700" for a blackbody in K, or a CIE
+// illuminant name) is mapped to D65 by Bradford adaptation; "d65" leaves XYZ as it is.
+spectrum::Mat3 adaptation(const FilmSettings& settings) {
     const double gain = std::exp2(settings.exposure);
     spectrum::Mat3 adapt;
     if (settings.white_balance != "d65" && settings.white_balance != "D65" && settings.white_balance != "none") {
@@ -38,7 +44,7 @@ spectrum::Mat3 output_matrix(const FilmSettings& settings) {
 }  // namespace
 
 io::Image Film::develop(const FilmSettings& settings) const {
-    const spectrum::Mat3 adapt = output_matrix(settings);
+    const spectrum::Mat3 adapt = adaptation(settings);
     io::Image image(width_, height_, 3);
     for (int y = 0; y < height_; ++y)
         for (int x = 0; x < width_; ++x) {
@@ -48,13 +54,49 @@ io::Image Film::develop(const FilmSettings& settings) const {
     return image;
 }
 
+io::Image Film::develop_pixel_format(const FilmSettings& settings, std::vector<std::string>& channels) const {
+    const std::string& format = settings.pixel_format;
+    const bool with_alpha = format == "rgba" || format == "xyza" || format == "luminance_alpha";
+    if (format == "rgb" || format == "rgba") channels = {"R", "G", "B"};
+    else if (format == "xyz" || format == "xyza") channels = {"X", "Y", "Z"};
+    else if (format == "luminance" || format == "luminance_alpha") channels = {"Y"};
+    else fail("pixel_format must be luminance, luminance_alpha, rgb, rgba, xyz or xyza, got '{}'", format);
+    if (with_alpha) channels.push_back("A");
+    const spectrum::Mat3 adapt = adaptation(settings);
+    io::Image image(width_, height_, static_cast<int>(channels.size()));
+    for (int y = 0; y < height_; ++y)
+        for (int x = 0; x < width_; ++x) {
+            const Vec3 v = adapt * xyz(x, y);
+            const Vec3 out = channels[0] == "R" ? spectrum::xyz_to_linear_srgb(v) : v;
+            if (channels[0] == "Y") image.at(x, y, 0) = static_cast<float>(out.y);
+            else
+                for (int c = 0; c < 3; ++c) image.at(x, y, c) = static_cast<float>(out[c]);
+            if (with_alpha) image.at(x, y, image.channels - 1) = static_cast<float>(alpha(x, y));
+        }
+    return image;
+}
+
 void write_film(const Film& film, const FilmSettings& settings, const std::filesystem::path& exr_path) {
-    io::Image image = film.develop(settings);
-    io::write_exr(exr_path, image);
-    for (float& v : image.pixels) v = static_cast<float>(spectrum::srgb_encode(std::clamp(static_cast<double>(v), 0.0, 1.0)));
-    std::filesystem::path png = exr_path;
-    png.replace_extension(".png");
-    io::write_png(png, image);
+    std::vector<std::string> channels;
+    const io::Image exr = film.develop_pixel_format(settings, channels);
+    io::ExrPixelType type = io::ExrPixelType::half;
+    if (settings.component_format == "float32") type = io::ExrPixelType::float32;
+    else if (settings.component_format != "float16")
+        fail("component_format must be float16 or float32, got '{}'", settings.component_format);
+    io::write_exr(exr_path, exr, channels, type);
+
+    const bool with_alpha = channels.back() == "A";
+    const io::Image rgb = film.develop(settings);
+    io::Image png(rgb.width, rgb.height, with_alpha ? 4 : 3);
+    for (int y = 0; y < rgb.height; ++y)
+        for (int x = 0; x < rgb.width; ++x) {
+            for (int c = 0; c < 3; ++c)
+                png.at(x, y, c) = static_cast<float>(spectrum::srgb_encode(std::clamp(static_cast<double>(rgb.at(x, y, c)), 0.0, 1.0)));
+            if (with_alpha) png.at(x, y, 3) = static_cast<float>(std::clamp(film.alpha(x, y), 0.0, 1.0));
+        }
+    std::filesystem::path png_path = exr_path;
+    png_path.replace_extension(".png");
+    io::write_png(png_path, png);
 }
 
 }  // namespace surfscatter::render

@@ -1,13 +1,7 @@
 #pragma once
-// Spectral path tracer (hero wavelengths, next-event estimation, spectral and strategy MIS, Russian roulette).
-//
-// Estimator. A path carries four wavelengths (spectrum/wavelength_sampling.hpp); directions are sampled for the hero.
-// For wavelength j the contribution of a path x is f_j(x) / ((1/4) sum_k p_k(x)), the balance heuristic over the
-// four ways (one per hero) the same path could have been drawn (Wilkie et al. 2014), where p_k is the density with
-// wavelength k as hero. At a vertex where a light is reached, p_k includes both strategies: p_k = prefix_k *
-// (p_emitter + p_bsdf,k), so next-event estimation and BSDF sampling are combined by the balance heuristic as well.
-// The tracer keeps beta_j = f_j / p_hero and the ratios r_k = prefix_k / prefix_hero, which keeps the arithmetic in
-// range. Delta lobes and point lights take part with their discrete probabilities (no strategy MIS for them).
+// The render loop: pixels in 16x16 tiles over oneTBB workers, samples placed by the reconstruction filter, radiance
+// from the scene's integrator (integrators/path.cpp, integrators/direct.cpp; estimator.hpp explains the spectral
+// and strategy MIS they share), accumulated as XYZ on the film.
 #include <cstdint>
 #include <optional>
 

@@ -11,22 +11,12 @@
 namespace surfscatter::render {
 
 struct Scene::Shape {
-    bool is_sphere = false;
-    TriangleMesh mesh;          // world space
-    std::vector<double> area_cdf;  // triangle areas, cumulative (emitters only)
+    TriangleMesh mesh;             // world space (meshes)
+    AnalyticShapePtr analytic;     // or an analytic shape
+    std::vector<double> area_cdf;  // triangle areas, cumulative (mesh emitters only)
     double area = 0;
-    Vec3 center;
-    double radius = 0;
-    bool flip_normals = false;
     MaterialPtr material;
     SpectrumPtr radiance;
-};
-
-struct Scene::Emitter {
-    enum class Kind { point, area } kind = Kind::point;
-    Vec3 position;
-    SpectrumPtr spectrum;
-    int shape = -1;
 };
 
 struct Scene::Embree {
@@ -45,6 +35,14 @@ void FilmSettings::check_crop() const {
              crop_offset_y, width, height);
 }
 
+Frame Hit::shading_frame() const {
+    const Vec3 s = dpdu - ns * dot(ns, dpdu);
+    const double length = s.length();
+    if (!(length > 1e-12 * (dpdu.length() + 1e-300))) return Frame(ns);
+    const Vec3 sn = s / length;
+    return Frame(sn, cross(ns, sn), ns);
+}
+
 Scene::Scene() : embree_(std::make_unique<Embree>()) {
     embree_->device = rtcNewDevice(nullptr);
     if (!embree_->device) fail("cannot create the Embree device (error {})", static_cast<int>(rtcGetDeviceError(nullptr)));
@@ -55,75 +53,111 @@ Scene::Scene() : embree_(std::make_unique<Embree>()) {
 Scene::~Scene() = default;
 
 namespace {
+
 double triangle_area(const TriangleMesh& m, std::size_t i) {
     const auto& t = m.triangles[i];
     return 0.5 * cross(m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]]).length();
 }
+
+// Embree user-geometry callbacks: the analytic shape's own double-precision intersection.
+void analytic_bounds(const RTCBoundsFunctionArguments* args) {
+    const auto* shape = static_cast<const AnalyticShape*>(args->geometryUserPtr);
+    Vec3 lo, hi;
+    shape->bounds(lo, hi);
+    // Widen by float round-off so that Embree's float boxes contain the double-precision surface.
+    const double pad = 1e-5 * (1 + std::max({std::abs(lo.x), std::abs(lo.y), std::abs(lo.z), std::abs(hi.x),
+                                             std::abs(hi.y), std::abs(hi.z)}));
+    args->bounds_o->lower_x = static_cast<float>(lo.x - pad);
+    args->bounds_o->lower_y = static_cast<float>(lo.y - pad);
+    args->bounds_o->lower_z = static_cast<float>(lo.z - pad);
+    args->bounds_o->upper_x = static_cast<float>(hi.x + pad);
+    args->bounds_o->upper_y = static_cast<float>(hi.y + pad);
+    args->bounds_o->upper_z = static_cast<float>(hi.z + pad);
+}
+
+void analytic_intersect(const RTCIntersectFunctionNArguments* args) {
+    const auto* shape = static_cast<const AnalyticShape*>(args->geometryUserPtr);
+    RTCRayHitN* rayhit = args->rayhit;
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] != -1) continue;
+        RTCRayN* ray = RTCRayHitN_RayN(rayhit, args->N);
+        const Vec3 o(RTCRayN_org_x(ray, args->N, i), RTCRayN_org_y(ray, args->N, i), RTCRayN_org_z(ray, args->N, i));
+        const Vec3 d(RTCRayN_dir_x(ray, args->N, i), RTCRayN_dir_y(ray, args->N, i), RTCRayN_dir_z(ray, args->N, i));
+        float& tfar = RTCRayN_tfar(ray, args->N, i);
+        const auto t = shape->intersect(o, d, RTCRayN_tnear(ray, args->N, i), tfar);
+        if (!t) continue;
+        tfar = static_cast<float>(*t);
+        RTCHitN* hit = RTCRayHitN_HitN(rayhit, args->N);
+        RTCHitN_geomID(hit, args->N, i) = args->geomID;
+        RTCHitN_primID(hit, args->N, i) = args->primID;
+        RTCHitN_instID(hit, args->N, i, 0) = RTC_INVALID_GEOMETRY_ID;
+    }
+}
+
+void analytic_occluded(const RTCOccludedFunctionNArguments* args) {
+    const auto* shape = static_cast<const AnalyticShape*>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] != -1) continue;
+        RTCRayN* ray = args->ray;
+        const Vec3 o(RTCRayN_org_x(ray, args->N, i), RTCRayN_org_y(ray, args->N, i), RTCRayN_org_z(ray, args->N, i));
+        const Vec3 d(RTCRayN_dir_x(ray, args->N, i), RTCRayN_dir_y(ray, args->N, i), RTCRayN_dir_z(ray, args->N, i));
+        float& tfar = RTCRayN_tfar(ray, args->N, i);
+        if (shape->intersect(o, d, RTCRayN_tnear(ray, args->N, i), tfar)) tfar = -std::numeric_limits<float>::infinity();
+    }
+}
+
 }  // namespace
 
-void Scene::add_mesh(TriangleMesh mesh, MaterialPtr material, SpectrumPtr radiance) {
-    RTCGeometry geometry = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                                  3 * sizeof(float), mesh.positions.size()));
-    for (std::size_t i = 0; i < mesh.positions.size(); ++i)
-        for (int c = 0; c < 3; ++c) vertices[3 * i + static_cast<std::size_t>(c)] = static_cast<float>(mesh.positions[i][c]);
-    auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                                    3 * sizeof(unsigned), mesh.triangles.size()));
-    for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
-        for (std::size_t c = 0; c < 3; ++c) indices[3 * i + c] = mesh.triangles[i][c];
-    rtcCommitGeometry(geometry);
-    const unsigned id = rtcAttachGeometry(embree_->scene, geometry);
-    rtcReleaseGeometry(geometry);
-    if (id != shapes_.size()) fail("internal: Embree geometry ids out of order");
-
+void Scene::add_shape(ShapeGeometry geometry, MaterialPtr material, SpectrumPtr radiance) {
     Shape shape;
-    shape.mesh = std::move(mesh);
-    shape.material = std::move(material);
-    shape.radiance = std::move(radiance);
-    if (shape.radiance) {
-        double sum = 0;
-        for (std::size_t i = 0; i < shape.mesh.triangles.size(); ++i) {
-            sum += triangle_area(shape.mesh, i);
-            shape.area_cdf.push_back(sum);
+    RTCGeometry g = nullptr;
+    if (auto* mesh = std::get_if<TriangleMesh>(&geometry)) {
+        shape.mesh = std::move(*mesh);
+        const TriangleMesh& m = shape.mesh;
+        if (m.triangles.empty()) fail("a mesh shape has no triangles");
+        g = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+        auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                                      3 * sizeof(float), m.positions.size()));
+        for (std::size_t i = 0; i < m.positions.size(); ++i)
+            for (int c = 0; c < 3; ++c) vertices[3 * i + static_cast<std::size_t>(c)] = static_cast<float>(m.positions[i][c]);
+        auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                        3 * sizeof(unsigned), m.triangles.size()));
+        for (std::size_t i = 0; i < m.triangles.size(); ++i)
+            for (std::size_t c = 0; c < 3; ++c) indices[3 * i + c] = m.triangles[i][c];
+        if (radiance) {
+            double sum = 0;
+            for (std::size_t i = 0; i < m.triangles.size(); ++i) {
+                sum += triangle_area(m, i);
+                shape.area_cdf.push_back(sum);
+            }
+            shape.area = sum;
         }
-        shape.area = sum;
-        emitters_.push_back({Emitter::Kind::area, {}, shape.radiance, static_cast<int>(shapes_.size())});
+    } else {
+        shape.analytic = std::get<AnalyticShapePtr>(geometry);
+        shape.area = shape.analytic->area();
+        g = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_USER);
+        rtcSetGeometryUserPrimitiveCount(g, 1);
+        rtcSetGeometryUserData(g, const_cast<AnalyticShape*>(shape.analytic.get()));
+        rtcSetGeometryBoundsFunction(g, analytic_bounds, nullptr);
+        rtcSetGeometryIntersectFunction(g, analytic_intersect);
+        rtcSetGeometryOccludedFunction(g, analytic_occluded);
     }
-    shapes_.push_back(std::move(shape));
-}
-
-void Scene::add_sphere(const Vec3& center, double radius, bool flip_normals, MaterialPtr material, SpectrumPtr radiance) {
-    if (!(radius > 0)) fail("sphere radius must be positive, got {}", radius);
-    RTCGeometry geometry = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
-    auto* point = static_cast<float*>(
-        rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
-    point[0] = static_cast<float>(center.x);
-    point[1] = static_cast<float>(center.y);
-    point[2] = static_cast<float>(center.z);
-    point[3] = static_cast<float>(radius);
-    rtcCommitGeometry(geometry);
-    const unsigned id = rtcAttachGeometry(embree_->scene, geometry);
-    rtcReleaseGeometry(geometry);
+    rtcCommitGeometry(g);
+    const unsigned id = rtcAttachGeometry(embree_->scene, g);
+    rtcReleaseGeometry(g);
     if (id != shapes_.size()) fail("internal: Embree geometry ids out of order");
-    Shape shape;
-    shape.is_sphere = true;
-    shape.center = center;
-    shape.radius = radius;
-    shape.flip_normals = flip_normals;
-    shape.area = 4 * kPi * radius * radius;
+    if (radiance) {
+        if (!(shape.area > 0)) fail("an area emitter's shape has zero area");
+        area_emitters_.push_back(static_cast<int>(shapes_.size()));
+    }
     shape.material = std::move(material);
     shape.radiance = std::move(radiance);
-    if (shape.radiance) emitters_.push_back({Emitter::Kind::area, {}, shape.radiance, static_cast<int>(shapes_.size())});
     shapes_.push_back(std::move(shape));
 }
 
-void Scene::add_point_light(const Vec3& position, SpectrumPtr intensity) {
-    emitters_.push_back({Emitter::Kind::point, position, std::move(intensity), -1});
-}
-
-void Scene::set_environment(SpectrumPtr radiance) {
-    if (environment_) fail("a scene may hold only one constant emitter");
-    environment_ = std::move(radiance);
+void Scene::add_emitter(EmitterPtr emitter) {
+    if (emitter->is_environment()) environments_.push_back(emitter.get());
+    emitters_.push_back(std::move(emitter));
 }
 
 void Scene::commit() { rtcCommitScene(embree_->scene); }
@@ -151,18 +185,15 @@ std::optional<Hit> Scene::intersect(const Ray& ray) const {
 
     Hit hit;
     hit.shape = static_cast<int>(rh.hit.geomID);
-    hit.t = rh.ray.tfar;
     const Shape& shape = shapes_[rh.hit.geomID];
-    if (shape.is_sphere) {
-        // Refine in double: re-project onto the exact sphere.
-        const Vec3 d = ray.origin + ray.direction * hit.t - shape.center;
-        const Vec3 n = normalize(d);
-        hit.p = shape.center + n * shape.radius;
-        hit.ng = hit.ns = shape.flip_normals ? -n : n;
-        const double theta = std::acos(std::clamp(n.z, -1.0, 1.0));
-        double phi = std::atan2(n.y, n.x);
-        if (phi < 0) phi += kTwoPi;
-        hit.uv = {phi / kTwoPi, theta / kPi};
+    if (shape.analytic) {
+        const SurfaceGeometry g = shape.analytic->surface(ray.origin + ray.direction * static_cast<double>(rh.ray.tfar));
+        hit.p = g.p;
+        hit.ng = hit.ns = g.n;
+        hit.uv = g.uv;
+        hit.dpdu = g.dpdu;
+        hit.dpdv = g.dpdv;
+        hit.t = (hit.p - ray.origin).length();
         return hit;
     }
     const auto& tri = shape.mesh.triangles[rh.hit.primID];
@@ -180,8 +211,22 @@ std::optional<Hit> Scene::intersect(const Ray& ray) const {
     } else {
         hit.ns = hit.ng;
     }
-    if (!m.uvs.empty()) hit.uv = m.uvs[tri[0]] * b0 + m.uvs[tri[1]] * b1 + m.uvs[tri[2]] * b2;
-    else hit.uv = {b1, b2};
+    // dp/du, dp/dv from the uv parametrisation (Mitsuba; the barycentrics stand in when the mesh has no uv).
+    hit.dpdu = p1 - p0;
+    hit.dpdv = p2 - p0;
+    if (!m.uvs.empty()) {
+        const Vec2 t0 = m.uvs[tri[0]], t1 = m.uvs[tri[1]], t2 = m.uvs[tri[2]];
+        hit.uv = t0 * b0 + t1 * b1 + t2 * b2;
+        const Vec2 d1 = t1 - t0, d2 = t2 - t0;
+        const double det = d1.x * d2.y - d1.y * d2.x;
+        if (std::abs(det) > 1e-20) {
+            const Vec3 e1 = p1 - p0, e2 = p2 - p0;
+            hit.dpdu = (e1 * d2.y - e2 * d1.y) / det;
+            hit.dpdv = (e2 * d1.x - e1 * d2.x) / det;
+        }
+    } else {
+        hit.uv = {b1, b2};
+    }
     hit.t = (hit.p - ray.origin).length();
     return hit;
 }
@@ -206,7 +251,7 @@ bool Scene::occluded(const Vec3& origin, const Vec3& direction, double t_max) co
     return ray.tfar < 0;
 }
 
-std::size_t Scene::emitter_count() const { return emitters_.size(); }
+std::size_t Scene::emitter_count() const { return emitter_choices(); }
 
 const Material* Scene::material(int shape) const { return shapes_[static_cast<std::size_t>(shape)].material.get(); }
 
@@ -221,52 +266,38 @@ double Scene::emitter_pdf(const Vec3& from, const Hit& hit, const Vec3& directio
     const double cos_light = -dot(hit.ng, direction);
     if (!shape.radiance || cos_light <= 0) return 0.0;
     const double d2 = (hit.p - from).length_squared();
-    return d2 / (cos_light * shape.area * static_cast<double>(emitters_.size() + (environment_ ? 1 : 0)));
+    return d2 / (cos_light * shape.area * static_cast<double>(emitter_choices()));
 }
 
-SampledSpectrum Scene::environment(const SampledWavelengths& w) const {
-    return environment_ ? environment_->eval(w) : SampledSpectrum(0.0);
+SampledSpectrum Scene::environment(const Vec3& direction, const SampledWavelengths& w) const {
+    SampledSpectrum sum(0.0);
+    for (const Emitter* e : environments_) sum += e->environment(direction, w);
+    return sum;
 }
 
-double Scene::environment_pdf() const {
-    if (!environment_) return 0.0;
-    return 1.0 / (4 * kPi * static_cast<double>(emitters_.size() + 1));
+double Scene::environment_pdf(const Vec3& direction) const {
+    double sum = 0;
+    for (const Emitter* e : environments_) sum += e->environment_pdf(direction);
+    return sum / static_cast<double>(emitter_choices());
 }
 
 std::optional<EmitterSample> Scene::sample_emitter(const Vec3& p, double u_choice, Vec2 u,
                                                   const SampledWavelengths& w) const {
-    const std::size_t count = emitters_.size() + (environment_ ? 1 : 0);
+    const std::size_t count = emitter_choices();
     if (count == 0) return std::nullopt;
     const std::size_t index = std::min(static_cast<std::size_t>(u_choice * static_cast<double>(count)), count - 1);
     const double choice = 1.0 / static_cast<double>(count);
-    EmitterSample s;
-    if (index == emitters_.size()) {  // the constant environment: uniform directions
-        const double z = 1 - 2 * u.x, r = std::sqrt(std::max(0.0, 1 - z * z)), phi = kTwoPi * u.y;
-        s.wi = {r * std::cos(phi), r * std::sin(phi), z};
-        s.distance = std::numeric_limits<double>::infinity();
-        s.radiance = environment_->eval(w);
-        s.pdf = choice / (4 * kPi);
+    if (index >= area_emitters_.size()) {
+        auto s = emitters_[index - area_emitters_.size()]->sample(p, u, w);
+        if (s) s->pdf *= choice;
         return s;
     }
-    const Emitter& e = emitters_[index];
-    if (e.kind == Emitter::Kind::point) {
-        const Vec3 d = e.position - p;
-        const double d2 = d.length_squared();
-        if (!(d2 > 0)) return std::nullopt;
-        s.distance = std::sqrt(d2);
-        s.wi = d / s.distance;
-        s.radiance = e.spectrum->eval(w) * (1.0 / d2);
-        s.pdf = choice;
-        s.delta = true;
-        return s;
-    }
-    const Shape& shape = shapes_[static_cast<std::size_t>(e.shape)];
+    const Shape& shape = shapes_[static_cast<std::size_t>(area_emitters_[index])];
     Vec3 q, n;
-    if (shape.is_sphere) {
-        const double z = 1 - 2 * u.x, r = std::sqrt(std::max(0.0, 1 - z * z)), phi = kTwoPi * u.y;
-        const Vec3 dir(r * std::cos(phi), r * std::sin(phi), z);
-        q = shape.center + dir * shape.radius;
-        n = shape.flip_normals ? -dir : dir;
+    if (shape.analytic) {
+        const SurfaceGeometry g = shape.analytic->sample(u);
+        q = g.p;
+        n = g.n;
     } else {
         // Pick a triangle by area (u.x reused after rescaling), then a uniform point in it.
         const double target = u.x * shape.area;
@@ -286,11 +317,12 @@ std::optional<EmitterSample> Scene::sample_emitter(const Vec3& p, double u_choic
     const Vec3 d = q - p;
     const double d2 = d.length_squared();
     if (!(d2 > 0)) return std::nullopt;
+    EmitterSample s;
     s.distance = std::sqrt(d2);
     s.wi = d / s.distance;
     const double cos_light = -dot(n, s.wi);
     if (cos_light <= 0) return std::nullopt;
-    s.radiance = e.spectrum->eval(w);
+    s.radiance = shape.radiance->eval(w);
     s.pdf = choice * d2 / (cos_light * shape.area);
     return s;
 }

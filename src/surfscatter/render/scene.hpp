@@ -7,15 +7,20 @@
 #include <vector>
 
 #include "surfscatter/render/camera.hpp"
+#include "surfscatter/render/emitter.hpp"
+#include "surfscatter/render/filter.hpp"
 #include "surfscatter/render/material.hpp"
-#include "surfscatter/render/mesh.hpp"
+#include "surfscatter/render/shape.hpp"
 
 namespace surfscatter::render {
 
 struct FilmSettings {
     int width = 768;
     int height = 576;
-    std::string filter = "gaussian";  // box (radius 1/2 pixel) or gaussian (stddev 0.5, radius 2 pixels)
+    FilterPtr filter;                  // null: Mitsuba's default gaussian (stddev 0.5)
+    bool sample_border = false;        // false: samples stay inside the crop window (Mitsuba's default)
+    std::string pixel_format = "rgb";  // luminance, luminance_alpha, rgb, rgba, xyz, xyza
+    std::string component_format = "float16";  // float16, float32, uint32 (Mitsuba's default: float16)
     double exposure = 0;              // stops: linear values are scaled by 2^exposure
     std::string white_balance = "d65"; // "d65" (none), or a blackbody temperature in K such as "2700"
     // Mitsuba's crop window: only pixels [crop_offset, crop_offset + crop_size) of the full film are rendered, and
@@ -32,11 +37,15 @@ struct SamplerSettings {
 };
 
 struct IntegratorSettings {
-    int max_depth = -1;  // Mitsuba: -1 unbounded, 1 = emitters seen directly, 2 = direct lighting, ...
-    int rr_depth = 5;    // first depth at which Russian roulette may end a path
-    // Which strategies reach emitters: "mis" (both, combined), "bsdf" (BSDF sampling only), "emitter"
+    std::string type = "path";  // path or direct
+    int max_depth = -1;  // path: -1 unbounded, 1 = emitters seen directly, 2 = direct lighting, ...
+    int rr_depth = 5;    // path: first depth at which Russian roulette may end a path
+    bool hide_emitters = false;  // emitters seen directly by the camera are black
+    // path: which strategies reach emitters: "mis" (both, combined), "bsdf" (BSDF sampling only), "emitter"
     // (next-event estimation only, plus emitters seen through delta lobes). The last two exist to test the first.
     std::string strategy = "mis";
+    int emitter_samples = 1;  // direct: next-event samples per camera ray
+    int bsdf_samples = 1;     // direct: BSDF samples per camera ray
 };
 
 struct Hit {
@@ -45,15 +54,10 @@ struct Hit {
     Vec3 ng;  // geometric normal, unit, on the shape's outward side
     Vec3 ns;  // shading normal (interpolated vertex normals or ng)
     Vec2 uv;
+    Vec3 dpdu, dpdv;  // world
     int shape = -1;
-};
-
-struct EmitterSample {
-    Vec3 wi;            // unit direction from the shading point toward the emitter
-    double distance = 0;
-    SampledSpectrum radiance;  // incident radiance (area, environment) or intensity / distance^2 (point)
-    double pdf = 0;     // solid-angle density including the emitter choice; for point lights its choice probability
-    bool delta = false;
+    // Mitsuba's shading frame: n = ns, s = dp/du made orthogonal to n.
+    Frame shading_frame() const;
 };
 
 class Scene {
@@ -64,10 +68,8 @@ public:
     Scene& operator=(const Scene&) = delete;
 
     // `radiance` (may be null) makes the shape an area emitter on its front face.
-    void add_mesh(TriangleMesh mesh, MaterialPtr material, SpectrumPtr radiance);
-    void add_sphere(const Vec3& center, double radius, bool flip_normals, MaterialPtr material, SpectrumPtr radiance);
-    void add_point_light(const Vec3& position, SpectrumPtr intensity);
-    void set_environment(SpectrumPtr radiance);
+    void add_shape(ShapeGeometry geometry, MaterialPtr material, SpectrumPtr radiance);
+    void add_emitter(EmitterPtr emitter);
     void commit();
 
     std::optional<Hit> intersect(const Ray& ray) const;
@@ -78,9 +80,12 @@ public:
     SampledSpectrum emitted(const Hit& hit, const Vec3& direction, const SampledWavelengths& w) const;
     // Solid-angle pdf that sample_emitter() produces a ray from `from` to `hit` (area emitters).
     double emitter_pdf(const Vec3& from, const Hit& hit, const Vec3& direction) const;
-    bool has_environment() const { return environment_ != nullptr; }
-    SampledSpectrum environment(const SampledWavelengths& w) const;
-    double environment_pdf() const;
+    // Emitters at infinity (constant, envmap) seen along `direction` by a ray that leaves the scene, and the
+    // solid-angle density with which sample_emitter() produces that direction.
+    bool has_environment() const { return !environments_.empty(); }
+    SampledSpectrum environment(const Vec3& direction, const SampledWavelengths& w) const;
+    double environment_pdf(const Vec3& direction) const;
+    // One emitter chosen uniformly (Mitsuba's choice), then a direction toward it; the pdf includes the choice.
     std::optional<EmitterSample> sample_emitter(const Vec3& p, double u_choice, Vec2 u, const SampledWavelengths& w) const;
     std::size_t emitter_count() const;
 
@@ -95,11 +100,12 @@ public:
 
 private:
     struct Shape;
-    struct Emitter;
     struct Embree;
+    std::size_t emitter_choices() const { return area_emitters_.size() + emitters_.size(); }
     std::vector<Shape> shapes_;
-    std::vector<Emitter> emitters_;
-    SpectrumPtr environment_;
+    std::vector<int> area_emitters_;        // shape indices
+    std::vector<EmitterPtr> emitters_;      // the others
+    std::vector<const Emitter*> environments_;
     std::unique_ptr<Embree> embree_;
 };
 

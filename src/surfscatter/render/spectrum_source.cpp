@@ -87,6 +87,12 @@ double d65_normalisation() {
 
 }  // namespace
 
+double d65_normalised(double lambda_nm) {
+    static const spectrum::RegularSpectrum& d65 = spectrum::cie_illuminant("D65");
+    static const double normalisation = d65_normalisation();
+    return d65(lambda_nm) * normalisation;
+}
+
 SpectrumPtr make_constant_spectrum(double value) {
     if (!std::isfinite(value) || value < 0) fail("spectrum value must be finite and non-negative, got {}", value);
     return std::make_shared<Constant>(value);

@@ -34,5 +34,8 @@ SpectrumPtr make_rgb_reflectance(const std::array<double, 3>& linear_srgb);
 // An emission spectrum from linear sRGB: the upsampled colour times the D65 illuminant, normalised so that
 // rgb (1, 1, 1) has luminance Y = 1 (as Mitsuba's spectral variants do for RGB emitters).
 SpectrumPtr make_rgb_illuminant(const std::array<double, 3>& linear_srgb);
+// The CIE D65 illuminant scaled to luminance Y = 1 in the film's units, at lambda (nm): what Mitsuba multiplies
+// emitters' RGB and constant values by in its spectral variants.
+double d65_normalised(double lambda_nm);
 
 }  // namespace surfscatter::render

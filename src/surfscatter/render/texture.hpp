@@ -1,8 +1,7 @@
 #pragma once
-// Spectral textures over surface uv: a constant spectrum, Mitsuba's checkerboard and bitmap (PNG, JPEG, EXR).
-#include <filesystem>
+// Spectral textures over surface uv: constant spectra, and Mitsuba's bitmap and checkerboard (textures/*.cpp).
 #include <memory>
-#include <vector>
+#include <optional>
 
 #include "surfscatter/render/spectrum_source.hpp"
 #include "surfscatter/render/transform.hpp"
@@ -13,23 +12,18 @@ class Texture {
 public:
     virtual ~Texture() = default;
     virtual SampledSpectrum eval(Vec2 uv, const SampledWavelengths& w) const = 0;
+    // A scalar reading (a blend weight, an opacity, a bump height): Mitsuba's eval_1, the luminance Y of the linear
+    // RGB (or of the spectrum under an equal-energy white; the value itself for a <float>).
+    virtual double eval_1(Vec2 uv) const = 0;
+    // Its derivative with respect to (u, v) (bumpmap); zero where the texture is piecewise constant.
+    virtual Vec2 eval_1_grad(Vec2 /*uv*/) const { return {0, 0}; }
+    // The stored linear RGB, for textures that hold one (bitmap: a normal map reads it with raw = true).
+    virtual std::optional<Vec3> eval_rgb(Vec2 /*uv*/) const { return std::nullopt; }
 };
 using TexturePtr = std::shared_ptr<const Texture>;
 
 TexturePtr make_constant_texture(SpectrumPtr spectrum);
 
-// Mitsuba's checkerboard: after to_uv, color0 where frac(u) > 1/2 equals frac(v) > 1/2, else color1.
-TexturePtr make_checkerboard_texture(TexturePtr color0, TexturePtr color1, const Transform& to_uv);
-
-struct BitmapOptions {
-    std::filesystem::path filename;
-    bool raw = false;       // false: 8-bit PNG/JPEG code values are sRGB-decoded to linear first
-    bool bilinear = true;   // filter_type "bilinear" (true) or "nearest"
-    bool repeat = true;     // wrap_mode "repeat" (true) or "clamp"
-    Transform to_uv;
-};
-// Each texel becomes a bounded sigmoid spectrum (Jakob-Hanika, see spectrum/rgb_to_spectrum.hpp) times a scale
-// (> 1 only for EXR texels above 1); bilinear filtering blends the texel spectra. Image row 0 is v = 0 (Mitsuba).
-TexturePtr make_bitmap_texture(const BitmapOptions& options);
+Vec2 apply_uv_transform(const Transform& to_uv, Vec2 uv);
 
 }  // namespace surfscatter::render

@@ -13,6 +13,8 @@
 
 #include "surfscatter/bsdf/factory.hpp"
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/render/plugins.hpp"
+#include "surfscatter/surface/height_map.hpp"
 
 namespace surfscatter::render {
 
@@ -49,6 +51,7 @@ template <typename... Args>
 }
 
 using Object = std::variant<MaterialPtr, TexturePtr>;
+using render::Properties;
 
 class Loader {
 public:
@@ -58,9 +61,7 @@ public:
         scene_ = std::make_unique<Scene>();
         const Node scene_node{root.document.child("scene"), &root};
         if (!scene_node.xml) throw Error(fmt::format("{}:1: the root element must be <scene>", root.path.string()));
-        for (const auto& attr : scene_node.xml.attributes())
-            if (std::string(attr.name()) != "version")
-                fail_at(scene_node, "unknown attribute '{}' of <scene>", attr.name());
+        check_version(scene_node);
         load_children(scene_node);
         if (!has_sensor_) fail_at(scene_node, "the scene has no <sensor>");
         scene_->commit();
@@ -151,20 +152,27 @@ private:
     };
 
     // The children of a plugin element: named parameters, plus unnamed nested objects.
-    class Properties {
+    class ElementProperties final : public Properties {
     public:
-        Properties(Loader& loader, const Node& owner) : loader_(loader), owner_(owner) {
+        ElementProperties(Loader& loader, const Node& owner) : loader_(loader), owner_(owner) {
             for (pugi::xml_node child : owner.xml.children()) {
                 if (child.type() != pugi::node_element) continue;
                 const Node node{child, owner.source};
                 const std::string name = child.attribute("name") ? loader.substitute(node, child.attribute("name").value()) : "";
-                if (name.empty()) {
+                // Nested objects may carry names (Mitsuba ignores them); they are taken by kind.
+                if (name.empty() || node.tag() == "bsdf") {
                     unnamed_.push_back({node});
                     continue;
                 }
-                if (named_.count(name)) fail_at(node, "parameter '{}' given twice", name);
+                if (named_.count(name)) render::fail_at(node, "parameter '{}' given twice", name);
                 named_.emplace(name, Property{node});
             }
+        }
+
+        std::string where() const override { return owner_.where(); }
+        std::string where(const std::string& name) const override {
+            const auto it = named_.find(name);
+            return it == named_.end() ? owner_.where() : it->second.node.where();
         }
 
         const Node* find(const std::string& name) {
@@ -176,58 +184,117 @@ private:
 
         const Node* find_typed(const std::string& name, const char* tag) {
             const Node* node = find(name);
-            if (node && node->tag() != tag) fail_at(*node, "parameter '{}' must be a <{}>, got <{}>", name, tag, node->tag());
+            if (node && node->tag() != tag) render::fail_at(*node, "parameter '{}' must be a <{}>, got <{}>", name, tag, node->tag());
             return node;
         }
 
-        double get_float(const std::string& name, double fallback) {
+        double get_float(const std::string& name, double fallback) override {
             const Node* node = find(name);
             if (!node) return fallback;
             if (node->tag() != "float" && node->tag() != "integer")
-                fail_at(*node, "parameter '{}' must be a <float>, got <{}>", name, node->tag());
+                render::fail_at(*node, "parameter '{}' must be a <float>, got <{}>", name, node->tag());
             loader_.check_attributes(*node, {"name", "value"});
             return loader_.parse_double(*node, loader_.attribute(*node, "value"), name);
         }
-        double get_float_required(const std::string& name) {
-            if (!named_.count(name)) fail_at(owner_, "<{}> needs the parameter '{}'", owner_.tag(), name);
+        double get_float_required(const std::string& name) override {
+            if (!named_.count(name)) render::fail_at(owner_, "<{}> needs the parameter '{}'", owner_.tag(), name);
             return get_float(name, 0);
         }
-        int get_int(const std::string& name, int fallback) {
+        int get_int(const std::string& name, int fallback) override {
             const Node* node = find_typed(name, "integer");
             if (!node) return fallback;
             loader_.check_attributes(*node, {"name", "value"});
             const double v = loader_.parse_double(*node, loader_.attribute(*node, "value"), name);
-            if (v != std::floor(v) || std::abs(v) > 2e9) fail_at(*node, "{}: '{}' is not an integer", name, v);
+            if (v != std::floor(v) || std::abs(v) > 2e9) render::fail_at(*node, "{}: '{}' is not an integer", name, v);
             return static_cast<int>(v);
         }
-        bool get_bool(const std::string& name, bool fallback) {
+        bool get_bool(const std::string& name, bool fallback) override {
             const Node* node = find_typed(name, "boolean");
             if (!node) return fallback;
             loader_.check_attributes(*node, {"name", "value"});
             const std::string v = loader_.attribute(*node, "value");
             if (v == "true") return true;
             if (v == "false") return false;
-            fail_at(*node, "{}: boolean must be true or false, got '{}'", name, v);
+            render::fail_at(*node, "{}: boolean must be true or false, got '{}'", name, v);
         }
-        std::string get_string(const std::string& name, const std::string& fallback) {
+        std::string get_string(const std::string& name, const std::string& fallback) override {
             const Node* node = find_typed(name, "string");
             if (!node) return fallback;
             loader_.check_attributes(*node, {"name", "value"});
             return loader_.attribute(*node, "value");
         }
-        std::optional<Vec3> get_point(const std::string& name) {
+        std::optional<std::string> get_float_or_string(const std::string& name) override {
+            const Node* node = find(name);
+            if (!node) return std::nullopt;
+            if (node->tag() != "float" && node->tag() != "string")
+                render::fail_at(*node, "parameter '{}' must be a <float> or a <string>, got <{}>", name, node->tag());
+            loader_.check_attributes(*node, {"name", "value"});
+            return loader_.attribute(*node, "value");
+        }
+        std::optional<Vec3> get_point(const std::string& name) override {
             const Node* node = find(name);
             if (!node) return std::nullopt;
             if (node->tag() != "point" && node->tag() != "vector")
-                fail_at(*node, "parameter '{}' must be a <point>, got <{}>", name, node->tag());
+                render::fail_at(*node, "parameter '{}' must be a <point>, got <{}>", name, node->tag());
             loader_.check_attributes(*node, {"name", "value", "x", "y", "z"});
             return loader_.parse_xyz(*node, 0.0);
         }
-        Transform get_transform(const std::string& name) {
+        Transform get_transform(const std::string& name) override {
             const Node* node = find_typed(name, "transform");
             return node ? loader_.build_transform(*node) : Transform();
         }
-        // Unnamed nested objects of a kind (<bsdf>, <emitter>, <film>, ...), references included.
+        fs::path get_file(const std::string& name) override {
+            const Node* node = find_typed(name, "string");
+            if (!node) render::fail_at(owner_, "<{}> needs the parameter '{}'", owner_.tag(), name);
+            loader_.check_attributes(*node, {"name", "value"});
+            return loader_.resolve(*node, loader_.attribute(*node, "value"));
+        }
+        TexturePtr get_texture(const std::string& name, double fallback) override {
+            const Node* node = find(name);
+            return node ? loader_.build_texture_param(*node) : make_constant_texture(make_constant_spectrum(fallback));
+        }
+        TexturePtr get_texture_required(const std::string& name) override {
+            const Node* node = find(name);
+            if (!node) render::fail_at(owner_, "<{}> needs the parameter '{}'", owner_.tag(), name);
+            return loader_.build_texture_param(*node);
+        }
+        SpectrumPtr get_spectrum(const std::string& name, bool illuminant, std::optional<double> fallback) override {
+            const Node* node = find(name);
+            if (!node) {
+                if (!fallback) render::fail_at(owner_, "<{}> needs the parameter '{}'", owner_.tag(), name);
+                return illuminant ? make_d65_illuminant(*fallback) : make_constant_spectrum(*fallback);
+            }
+            return loader_.build_spectrum(*node, illuminant);
+        }
+        std::vector<MaterialPtr> take_bsdfs() override {
+            std::vector<MaterialPtr> out;
+            for (Property& p : unnamed_) {
+                if (p.used) continue;
+                // A <ref> that names no texture is taken as a BSDF (an undefined id is then reported).
+                const bool bsdf_ref = p.node.tag() == "ref" && !loader_.names_texture(p.node);
+                if (p.node.tag() == "bsdf" || bsdf_ref) {
+                    p.used = true;
+                    out.push_back(loader_.build_bsdf(p.node));
+                }
+            }
+            return out;
+        }
+        std::vector<TexturePtr> take_textures() override {
+            std::vector<TexturePtr> out;
+            auto take = [&](Property& p) {
+                const bool texture_ref = p.node.tag() == "ref" && loader_.names_texture(p.node);
+                if (p.used || (p.node.tag() != "texture" && !texture_ref)) return;
+                p.used = true;
+                out.push_back(loader_.build_texture_param(p.node));
+            };
+            for (Property& p : unnamed_) take(p);
+            for (auto& [name, p] : named_) take(p);
+            return out;
+        }
+        bool has(const std::string& name) const override { return named_.count(name) != 0; }
+        void share_height_map(bsdf::SurfaceOptions& surface) override { loader_.share_height_map(surface); }
+
+        // Unnamed nested objects of a kind (<emitter>, <film>, ...).
         std::vector<Node> take_unnamed(const char* tag) {
             std::vector<Node> out;
             for (Property& p : unnamed_) {
@@ -239,22 +306,12 @@ private:
             }
             return out;
         }
-        std::vector<Node> take_unnamed_refs() {
-            std::vector<Node> out;
-            for (Property& p : unnamed_)
-                if (!p.used && p.node.tag() == "ref") {
-                    p.used = true;
-                    out.push_back(p.node);
-                }
-            return out;
-        }
         void check_all_used(const std::string& plugin) {
             for (auto& [name, p] : named_)
-                if (!p.used) fail_at(p.node, "unknown parameter '{}' of {} (<{}>)", name, plugin, p.node.tag());
+                if (!p.used) render::fail_at(p.node, "unknown parameter '{}' of {} (<{}>)", name, plugin, p.node.tag());
             for (const Property& p : unnamed_)
-                if (!p.used) fail_at(p.node, "unexpected <{}> inside {}", p.node.tag(), plugin);
+                if (!p.used) render::fail_at(p.node, "unexpected <{}> inside {}", p.node.tag(), plugin);
         }
-        bool has(const std::string& name) const { return named_.count(name) != 0; }
 
     private:
         Loader& loader_;
@@ -320,43 +377,87 @@ private:
 
     // ---------------------------------------------------------------- spectra and textures
 
-    // float, <spectrum>, <rgb> -> a spectrum; `illuminant` selects the emission variant of RGB upsampling.
+    // Mitsuba's spectral variants multiply an emitter's constant value by the D65 illuminant (normalised to Y = 1).
+    static SpectrumPtr make_d65_illuminant(double value) {
+        if (!(value >= 0) || !std::isfinite(value)) fail("spectrum value must be finite and non-negative, got {}", value);
+        return make_rgb_illuminant({value, value, value});
+    }
+
+    // float, <spectrum>, <rgb> -> a spectrum; `illuminant` selects the emission variant (RGB and constants times
+    // D65, as Mitsuba's spectral variants do for emitters).
     SpectrumPtr build_spectrum(const Node& node, bool illuminant) {
         const std::string tag = node.tag();
-        if (tag == "float") {
-            check_attributes(node, {"name", "value"});
-            return make_constant_spectrum(parse_double(node, attribute(node, "value"), "value"));
-        }
-        if (tag == "rgb") {
-            check_attributes(node, {"name", "value"});
-            const auto v = parse_list(node, attribute(node, "value"), "rgb");
-            if (v.size() != 1 && v.size() != 3) fail_at(node, "<rgb> needs 1 or 3 numbers, got {}", v.size());
-            const std::array<double, 3> rgb = v.size() == 1 ? std::array<double, 3>{v[0], v[0], v[0]}
-                                                            : std::array<double, 3>{v[0], v[1], v[2]};
-            for (double x : rgb)
-                if (x < 0) fail_at(node, "<rgb> values must be non-negative, got {}", x);
-            try {
+        try {
+            if (tag == "float") {
+                check_attributes(node, {"name", "value"});
+                const double v = parse_double(node, attribute(node, "value"), "value");
+                return illuminant ? make_d65_illuminant(v) : make_constant_spectrum(v);
+            }
+            if (tag == "rgb") {
+                check_attributes(node, {"name", "value"});
+                const auto v = parse_list(node, attribute(node, "value"), "rgb");
+                if (v.size() != 1 && v.size() != 3) fail_at(node, "<rgb> needs 1 or 3 numbers, got {}", v.size());
+                const std::array<double, 3> rgb = v.size() == 1 ? std::array<double, 3>{v[0], v[0], v[0]}
+                                                                : std::array<double, 3>{v[0], v[1], v[2]};
+                for (double x : rgb)
+                    if (x < 0) fail_at(node, "<rgb> values must be non-negative, got {}", x);
                 return illuminant ? make_rgb_illuminant(rgb) : make_rgb_reflectance(rgb);
-            } catch (const Error& e) {
-                fail_at(node, "{}", e.what());
             }
+            if (tag == "spectrum") return build_spectrum_element(node, illuminant);
+        } catch (const Error& e) {
+            const std::string message = e.what();
+            if (message.rfind(node.source->path.string() + ":", 0) == 0) throw;
+            fail_at(node, "{}", message);
         }
-        if (tag == "spectrum") {
-            const std::string type = node.xml.attribute("type") ? attribute(node, "type") : "";
+        fail_at(node, "expected <float>, <spectrum> or <rgb>, got <{}>", tag);
+    }
+
+    // <spectrum value="0.5"/>, value="400:0.1, 500:0.3, ..." (piecewise linear), filename="x.spd" (Mitsuba's
+    // "wavelength value" lines, # comments), type="blackbody" (temperature, scale), type="d65" (scale).
+    SpectrumPtr build_spectrum_element(const Node& node, bool illuminant) {
+        const std::string type = node.xml.attribute("type") ? attribute(node, "type") : "";
+        if (type == "blackbody" || type == "d65") {
+            check_attributes(node, {"name", "type"});
+            ElementProperties props(*this, node);
+            const double scale = props.get_float("scale", 1.0);
+            SpectrumPtr s;
             if (type == "blackbody") {
-                check_attributes(node, {"name", "type"});
-                Properties props(*this, node);
                 const double temperature = props.get_float_required("temperature");
-                const double scale = props.get_float("scale", 1.0);
-                props.check_all_used("spectrum 'blackbody'");
                 if (!(temperature > 0)) fail_at(node, "blackbody temperature must be positive, got {}", temperature);
-                return make_blackbody_spectrum(temperature, scale);
+                s = make_blackbody_spectrum(temperature, scale);
+            } else {
+                s = make_d65_illuminant(scale);
             }
-            if (!type.empty()) fail_at(node, "unknown spectrum type '{}' (value list or blackbody)", type);
-            check_attributes(node, {"name", "value"});
+            props.check_all_used("spectrum '" + type + "'");
+            return s;
+        }
+        if (!type.empty()) fail_at(node, "unknown spectrum type '{}' (a value, a value list, filename, blackbody, d65)", type);
+        check_attributes(node, {"name", "value", "filename"});
+        std::vector<double> lambdas, values;
+        if (node.xml.attribute("filename")) {
+            if (node.xml.attribute("value")) fail_at(node, "<spectrum> takes either value or filename, not both");
+            const fs::path path = resolve(node, attribute(node, "filename"));
+            std::ifstream in(path);
+            if (!in) fail_at(node, "cannot open spectrum file {}", path.string());
+            std::string line;
+            for (int number = 1; std::getline(in, line); ++number) {
+                const auto hash = line.find('#');
+                if (hash != std::string::npos) line.resize(hash);
+                std::istringstream ls(line);
+                double lambda = 0, value = 0;
+                if (!(ls >> lambda)) continue;  // blank or comment line
+                std::string rest;
+                if (!(ls >> value) || (ls >> rest))
+                    fail_at(node, "{}:{}: expected 'wavelength value', got '{}'", path.string(), number, line);
+                lambdas.push_back(lambda);
+                values.push_back(value);
+            }
+        } else {
             const std::string value = attribute(node, "value");
-            if (value.find(':') == std::string::npos) return make_constant_spectrum(parse_double(node, value, "spectrum value"));
-            std::vector<double> lambdas, values;
+            if (value.find(':') == std::string::npos) {
+                const double v = parse_double(node, value, "spectrum value");
+                return illuminant ? make_d65_illuminant(v) : make_constant_spectrum(v);
+            }
             std::string normalised = value;
             std::replace(normalised.begin(), normalised.end(), ',', ' ');
             std::istringstream in(normalised);
@@ -367,13 +468,8 @@ private:
                 lambdas.push_back(parse_double(node, pair.substr(0, colon), "wavelength"));
                 values.push_back(parse_double(node, pair.substr(colon + 1), "spectrum value"));
             }
-            try {
-                return make_tabulated_spectrum(lambdas, values);
-            } catch (const Error& e) {
-                fail_at(node, "{}", e.what());
-            }
         }
-        fail_at(node, "expected <float>, <spectrum> or <rgb>, got <{}>", tag);
+        return make_tabulated_spectrum(lambdas, values);
     }
 
     TexturePtr build_texture_param(const Node& node) {
@@ -383,121 +479,31 @@ private:
         return make_constant_texture(build_spectrum(node, false));
     }
 
-    TexturePtr texture_or(Properties& props, const std::string& name, double fallback) {
-        const Node* node = props.find(name);
-        return node ? build_texture_param(*node) : make_constant_texture(make_constant_spectrum(fallback));
-    }
-
     TexturePtr build_texture(const Node& node) {
         check_attributes(node, {"type", "name", "id"});
         const std::string type = attribute(node, "type");
-        Properties props(*this, node);
-        TexturePtr texture;
-        if (type == "checkerboard") {
-            TexturePtr c0 = texture_or(props, "color0", 0.4), c1 = texture_or(props, "color1", 0.2);
-            const Transform to_uv = props.get_transform("to_uv");
-            texture = make_checkerboard_texture(c0, c1, to_uv);
-        } else if (type == "bitmap") {
-            BitmapOptions options;
-            const std::string filename = props.get_string("filename", "");
-            if (filename.empty()) fail_at(node, "bitmap needs the parameter 'filename'");
-            options.filename = resolve(node, filename);
-            options.raw = props.get_bool("raw", false);
-            const std::string filter = props.get_string("filter_type", "bilinear");
-            if (filter != "bilinear" && filter != "nearest") fail_at(node, "filter_type must be bilinear or nearest, got '{}'", filter);
-            options.bilinear = filter == "bilinear";
-            const std::string wrap = props.get_string("wrap_mode", "repeat");
-            if (wrap != "repeat" && wrap != "clamp") fail_at(node, "wrap_mode must be repeat or clamp, got '{}'", wrap);
-            options.repeat = wrap == "repeat";
-            options.to_uv = props.get_transform("to_uv");
-            try {
-                texture = make_bitmap_texture(options);
-            } catch (const Error& e) {
-                fail_at(node, "{}", e.what());
-            }
-        } else {
-            fail_at(node, "unknown texture plugin '{}' (bitmap, checkerboard)", type);
-        }
+        using Factory = TexturePtr (*)(Properties&);
+        static const std::map<std::string, Factory> factories = {{"bitmap", plugins::bitmap},
+                                                                  {"checkerboard", plugins::checkerboard}};
+        const auto it = factories.find(type);
+        if (it == factories.end()) fail_at(node, "unknown texture plugin '{}' (bitmap, checkerboard)", type);
+        ElementProperties props(*this, node);
+        TexturePtr texture = build(node, "texture '" + type + "'", [&] { return it->second(props); });
         props.check_all_used("texture '" + type + "'");
         register_id(node, texture);
         return texture;
     }
 
-    // ---------------------------------------------------------------- BSDFs
-
-    void read_surface_options(Properties& props, bsdf::ModelOptions& o, const Node& node, bool with_fresnel) {
-        o.material = props.get_string("material", o.material);
-        const std::string psd = props.get_string("psd", "");
-        if (!psd.empty()) o.surface.psd = bsdf::parse_psd(psd);
-        o.surface.sigma = props.get_float("sigma", o.surface.sigma);
-        o.surface.corr_length = props.get_float("corr_length", o.surface.corr_length);
-        o.surface.gamma = props.get_float("gamma", o.surface.gamma);
-        const std::string file = props.get_string("surface_file", "");
-        if (!file.empty()) {
-            o.surface.surface_file = resolve(node, file).string();
-            if (psd.empty()) o.surface.psd = bsdf::PsdKind::file;
-        }
-        const std::string form = props.get_string("form", "");
-        if (!form.empty()) o.surface.form = surface::parse_form(form, "form");
-        if (with_fresnel) {
-            const std::string fresnel = props.get_string("fresnel", "");
-            if (!fresnel.empty()) o.fresnel = bsdf::parse_fresnel(fresnel);
-        }
-    }
-
-    void read_ghs_options(Properties& props, bsdf::ModelOptions& o) {
-        const std::string method = props.get_string("method", "");
-        if (!method.empty()) o.method = bsdf::parse_method(method);
-        const std::string truncation = props.get_string("truncation", "");
-        if (!truncation.empty()) o.truncation = bsdf::parse_truncation(truncation);
-        o.epsilon = props.get_float("epsilon", o.epsilon);
-        o.renormalization = props.get_bool("renormalization", o.renormalization);
-    }
-
-    MaterialPtr build_model(const Node& node, Properties& props, const std::string& type) {
-        bsdf::ModelOptions o;
+    // Runs a plugin factory; an error without a file:line gets the element's.
+    template <typename Build>
+    auto build(const Node& node, const std::string& plugin, Build&& build_object) -> decltype(build_object()) {
         try {
-            if (type == "roughconductor") {
-                o.model = bsdf::ModelKind::ggx;
-                o.alpha = props.get_float("alpha", 0.1);
-                const std::string distribution = props.get_string("distribution", "ggx");
-                if (distribution != "ggx") fail_at(node, "roughconductor supports distribution 'ggx' only, got '{}'", distribution);
-                o.material = props.get_string("material", "perfect");
-                if (o.material == "none") o.material = "perfect";
-            } else if (type == "ggx_stats") {
-                o.model = bsdf::ModelKind::ggx;
-                o.alpha_from = bsdf::AlphaFrom::measured;
-                const std::string from = props.get_string("alpha_from", "");
-                if (!from.empty()) o.alpha_from = bsdf::parse_alpha_from(from);
-                o.smoothing = props.get_float("smoothing", o.smoothing);
-                o.alpha = props.get_float("alpha", o.alpha);
-                read_surface_options(props, o, node, true);
-            } else if (type == "ghs") {
-                o.model = bsdf::ModelKind::ghs;
-                read_ghs_options(props, o);
-                read_surface_options(props, o, node, true);
-            } else if (type == "ghs_ssa") {
-                o.model = bsdf::ModelKind::ghs_ssa;
-                const std::string form = props.get_string("ssa_form", "");
-                if (!form.empty()) o.ssa_form = bsdf::parse_ssa_form(form);
-                o.renormalization = props.get_bool("renormalization", o.renormalization);
-                read_surface_options(props, o, node, true);
-            } else {  // two_scale
-                o.model = bsdf::ModelKind::two_scale;
-                o.cutoff_wavelengths = props.get_float("cutoff_wavelengths", o.cutoff_wavelengths);
-                const std::string ndf = props.get_string("macro_ndf", "");
-                if (!ndf.empty()) o.macro_ndf = bsdf::parse_macro_ndf(ndf);
-                read_ghs_options(props, o);
-                read_surface_options(props, o, node, true);
-            }
-            props.check_all_used("bsdf '" + type + "'");
-            bsdf::validate(o);
-            share_height_map(o.surface);
-            return make_model_material(std::shared_ptr<const bsdf::Bsdf>(bsdf::make_bsdf(o)));
+            return build_object();
         } catch (const Error& e) {
             const std::string message = e.what();
-            if (message.rfind(node.source->path.string() + ":", 0) == 0) throw;
-            fail_at(node, "bsdf '{}': {}", type, message);
+            for (const auto& source : sources_)
+                if (message.rfind(source->path.string() + ":", 0) == 0) throw;
+            fail_at(node, "{}: {}", plugin, message);
         }
     }
 
@@ -513,50 +519,31 @@ private:
         surface.height_map = map;
     }
 
+    // ---------------------------------------------------------------- BSDFs
+
     MaterialPtr build_bsdf(const Node& node) {
         if (node.tag() == "ref") return std::get<MaterialPtr>(lookup(node, "bsdf"));
         check_attributes(node, {"type", "id", "name"});
         const std::string type = attribute(node, "type");
-        Properties props(*this, node);
-        MaterialPtr material;
-        if (type == "diffuse") {
-            material = make_diffuse(texture_or(props, "reflectance", 0.5));
-        } else if (type == "conductor") {
-            std::optional<material::Conductor> conductor;
-            SpectrumPtr eta, k;
-            const Node* eta_node = props.find("eta");
-            const Node* k_node = props.find("k");
-            const std::string name = props.get_string("material", "");
-            if (eta_node || k_node) {
-                if (!eta_node || !k_node) fail_at(node, "conductor needs both eta and k");
-                if (!name.empty()) fail_at(node, "conductor takes either material or eta/k, not both");
-                eta = build_spectrum(*eta_node, false);
-                k = build_spectrum(*k_node, false);
-            } else {
-                try {
-                    conductor = material::Conductor::from_name(name.empty() || name == "none" ? "perfect" : name);
-                } catch (const Error& e) {
-                    fail_at(node, "conductor material: {}", e.what());
-                }
-            }
-            TexturePtr specular = texture_or(props, "specular_reflectance", 1.0);
-            try {
-                material = make_smooth_conductor(conductor, eta, k, specular);
-            } catch (const Error& e) {
-                fail_at(node, "conductor: {}", e.what());
-            }
-        } else if (type == "twosided") {
-            std::vector<Node> nested = props.take_unnamed("bsdf");
-            for (const Node& r : props.take_unnamed_refs()) nested.push_back(r);
-            if (nested.size() != 1) fail_at(node, "twosided needs exactly one nested <bsdf>, got {}", nested.size());
-            material = make_twosided(build_bsdf(nested[0]));
-        } else if (type == "roughconductor" || type == "ghs" || type == "ghs_ssa" || type == "ggx_stats" ||
-                   type == "two_scale") {
-            material = build_model(node, props, type);
-        } else {
-            fail_at(node, "unknown bsdf plugin '{}' (diffuse, conductor, roughconductor, twosided, ghs, ghs_ssa, "
-                          "ggx_stats, two_scale)", type);
-        }
+        using Factory = MaterialPtr (*)(Properties&);
+        static const std::map<std::string, Factory> factories = {
+            {"diffuse", plugins::diffuse},         {"conductor", plugins::conductor},
+            {"roughconductor", plugins::roughconductor}, {"dielectric", plugins::dielectric},
+            {"thindielectric", plugins::thindielectric}, {"roughdielectric", plugins::roughdielectric},
+            {"plastic", plugins::plastic},         {"roughplastic", plugins::roughplastic},
+            {"twosided", plugins::twosided},       {"blendbsdf", plugins::blendbsdf},
+            {"mask", plugins::mask},               {"bumpmap", plugins::bumpmap},
+            {"normalmap", plugins::normalmap}};
+        const bool model = type == "ghs" || type == "ghs_ssa" || type == "ggx_stats" || type == "two_scale";
+        const auto it = factories.find(type);
+        if (!model && it == factories.end())
+            fail_at(node, "unknown bsdf plugin '{}' (diffuse, conductor, roughconductor, dielectric, thindielectric, "
+                          "roughdielectric, plastic, roughplastic, twosided, blendbsdf, mask, bumpmap, normalmap, "
+                          "ghs, ghs_ssa, ggx_stats, two_scale)", type);
+        ElementProperties props(*this, node);
+        MaterialPtr material = build(node, "bsdf '" + type + "'", [&] {
+            return model ? plugins::scattering_model(props, type) : it->second(props);
+        });
         props.check_all_used("bsdf '" + type + "'");
         register_id(node, material);
         return material;
@@ -564,159 +551,116 @@ private:
 
     // ---------------------------------------------------------------- shapes, emitters, sensor
 
-    SpectrumPtr spectrum_param(Properties& props, const std::string& name, const Node& owner, bool illuminant) {
-        const Node* node = props.find(name);
-        if (!node) fail_at(owner, "<{}> needs the parameter '{}'", owner.tag(), name);
-        return build_spectrum(*node, illuminant);
-    }
-
     void build_shape(const Node& node) {
         check_attributes(node, {"type", "id"});
         const std::string type = attribute(node, "type");
-        Properties props(*this, node);
-        const Transform to_world = props.get_transform("to_world");
-        const bool flip = props.get_bool("flip_normals", false);
-        MaterialPtr material;
-        std::vector<Node> bsdfs = props.take_unnamed("bsdf");
-        for (const Node& r : props.take_unnamed_refs()) bsdfs.push_back(r);
+        using Factory = ShapeGeometry (*)(Properties&);
+        static const std::map<std::string, Factory> factories = {
+            {"obj", plugins::obj},   {"ply", plugins::ply},       {"serialized", plugins::serialized},
+            {"rectangle", plugins::rectangle}, {"disk", plugins::disk}, {"cube", plugins::cube},
+            {"sphere", plugins::sphere}, {"cylinder", plugins::cylinder}};
+        const auto it = factories.find(type);
+        if (it == factories.end())
+            fail_at(node, "unknown shape plugin '{}' (obj, ply, serialized, rectangle, disk, cube, sphere, cylinder)", type);
+        register_name(node);
+        ElementProperties props(*this, node);
+        std::vector<MaterialPtr> bsdfs = props.take_bsdfs();
         if (bsdfs.size() > 1) fail_at(node, "a shape takes one <bsdf>, got {}", bsdfs.size());
-        if (!bsdfs.empty()) material = build_bsdf(bsdfs[0]);
         SpectrumPtr radiance;
         const std::vector<Node> emitters = props.take_unnamed("emitter");
         if (emitters.size() > 1) fail_at(node, "a shape takes one <emitter>, got {}", emitters.size());
         if (!emitters.empty()) {
             const Node& e = emitters[0];
-            check_attributes(e, {"type"});
+            check_attributes(e, {"type", "id", "name"});
             if (attribute(e, "type") != "area") fail_at(e, "a shape's emitter must be of type 'area', got '{}'", attribute(e, "type"));
-            Properties eprops(*this, e);
-            radiance = spectrum_param(eprops, "radiance", e, true);
+            ElementProperties eprops(*this, e);
+            radiance = plugins::area(eprops);
             eprops.check_all_used("emitter 'area'");
         }
+        MaterialPtr material = bsdfs.empty() ? nullptr : bsdfs[0];
         if (!material && !radiance) material = make_diffuse(make_constant_texture(make_constant_spectrum(0.5)));  // Mitsuba's default
-
-        try {
-            if (type == "sphere") {
-                const Vec3 center = props.get_point("center").value_or(Vec3(0, 0, 0));
-                const double radius = props.get_float("radius", 1.0);
-                const Vec3 ex = to_world.vector({1, 0, 0}), ey = to_world.vector({0, 1, 0}), ez = to_world.vector({0, 0, 1});
-                const double s = ex.length();
-                if (std::abs(ey.length() - s) > 1e-9 * s || std::abs(ez.length() - s) > 1e-9 * s)
-                    fail_at(node, "sphere to_world must scale uniformly");
-                props.check_all_used("shape 'sphere'");
-                scene_->add_sphere(to_world.point(center), radius * s, flip, material, radiance);
-                return;
-            }
-            TriangleMesh mesh;
-            if (type == "rectangle") mesh = make_rectangle();
-            else if (type == "disk") mesh = make_disk();
-            else if (type == "cube") mesh = make_cube();
-            else if (type == "obj" || type == "ply") {
-                const std::string filename = props.get_string("filename", "");
-                if (filename.empty()) fail_at(node, "shape '{}' needs the parameter 'filename'", type);
-                const fs::path path = resolve(node, filename);
-                mesh = type == "obj" ? load_obj(path) : load_ply(path);
-                if (props.get_bool("face_normals", false)) mesh.normals.clear();
-            } else {
-                fail_at(node, "unknown shape plugin '{}' (rectangle, disk, cube, sphere, obj, ply)", type);
-            }
-            props.check_all_used("shape '" + type + "'");
-            transform_mesh(mesh, to_world, flip);
-            scene_->add_mesh(std::move(mesh), material, radiance);
-        } catch (const Error& e) {
-            const std::string message = e.what();
-            if (message.rfind(node.source->path.string() + ":", 0) == 0) throw;
-            fail_at(node, "shape '{}': {}", type, message);
-        }
+        ShapeGeometry geometry = build(node, "shape '" + type + "'", [&] { return it->second(props); });
+        props.check_all_used("shape '" + type + "'");
+        build(node, "shape '" + type + "'", [&] {
+            scene_->add_shape(std::move(geometry), material, radiance);
+            return 0;
+        });
     }
 
     void build_emitter(const Node& node) {
         check_attributes(node, {"type", "id"});
         const std::string type = attribute(node, "type");
-        Properties props(*this, node);
-        if (type == "point") {
-            const Transform to_world = props.get_transform("to_world");
-            Vec3 position = to_world.point({0, 0, 0});
-            if (auto p = props.get_point("position")) position = *p;
-            scene_->add_point_light(position, spectrum_param(props, "intensity", node, true));
-        } else if (type == "constant") {
-            try {
-                scene_->set_environment(spectrum_param(props, "radiance", node, true));
-            } catch (const Error& e) {
-                const std::string message = e.what();
-                if (message.rfind(node.source->path.string() + ":", 0) == 0) throw;
-                fail_at(node, "{}", message);
-            }
-        } else if (type == "area") {
-            fail_at(node, "an area emitter must be nested in a <shape>");
-        } else {
-            fail_at(node, "unknown emitter plugin '{}' (point, area, constant)", type);
-        }
+        if (type == "area") fail_at(node, "an area emitter must be nested in a <shape>");
+        using Factory = EmitterPtr (*)(Properties&);
+        static const std::map<std::string, Factory> factories = {
+            {"point", plugins::point}, {"spot", plugins::spot}, {"directional", plugins::directional},
+            {"constant", plugins::constant}, {"envmap", plugins::envmap}};
+        const auto it = factories.find(type);
+        if (it == factories.end())
+            fail_at(node, "unknown emitter plugin '{}' (point, spot, directional, area, constant, envmap)", type);
+        register_name(node);
+        ElementProperties props(*this, node);
+        EmitterPtr emitter = build(node, "emitter '" + type + "'", [&] { return it->second(props); });
         props.check_all_used("emitter '" + type + "'");
+        scene_->add_emitter(std::move(emitter));
     }
 
     void build_sensor(const Node& node) {
         check_attributes(node, {"type", "id"});
         const std::string type = attribute(node, "type");
-        if (type != "perspective") fail_at(node, "unknown sensor plugin '{}' (perspective)", type);
+        if (type != "perspective" && type != "thinlens") fail_at(node, "unknown sensor plugin '{}' (perspective, thinlens)", type);
         if (has_sensor_) fail_at(node, "only one <sensor> is supported");
         has_sensor_ = true;
-        Properties props(*this, node);
-        CameraSettings& c = scene_->camera;
-        c.to_world = props.get_transform("to_world");
-        c.fov_degrees = props.get_float("fov", c.fov_degrees);
-        c.fov_axis = props.get_string("fov_axis", c.fov_axis);
-        c.near_clip = props.get_float("near_clip", c.near_clip);
-        c.far_clip = props.get_float("far_clip", c.far_clip);
-        c.principal_point_offset_x = props.get_float("principal_point_offset_x", 0.0);
-        c.principal_point_offset_y = props.get_float("principal_point_offset_y", 0.0);
-        for (const Node& film : props.take_unnamed("film")) build_film(film);
-        for (const Node& sampler : props.take_unnamed("sampler")) build_sampler(sampler);
-        props.check_all_used("sensor 'perspective'");
-        try {
-            Camera check(c, scene_->film.width, scene_->film.height);
-        } catch (const Error& e) {
-            fail_at(node, "{}", e.what());
-        }
+        register_name(node);
+        ElementProperties props(*this, node);
+        // The film first: its size sets the field of view's axes.
+        const std::vector<Node> films = props.take_unnamed("film");
+        if (films.size() > 1) fail_at(films[1], "a sensor takes one <film>");
+        if (!films.empty()) build_film(films[0]);
+        const std::vector<Node> samplers = props.take_unnamed("sampler");
+        if (samplers.size() > 1) fail_at(samplers[1], "a sensor takes one <sampler>");
+        if (!samplers.empty()) build_sampler(samplers[0]);
+        const int w = scene_->film.width, h = scene_->film.height;
+        scene_->camera = build(node, "sensor '" + type + "'", [&] {
+            return type == "perspective" ? plugins::perspective(props, w, h) : plugins::thinlens(props, w, h);
+        });
+        props.check_all_used("sensor '" + type + "'");
     }
 
     void build_film(const Node& node) {
-        check_attributes(node, {"type", "id"});
+        check_attributes(node, {"type", "id", "name"});
         const std::string type = attribute(node, "type");
         if (type != "hdrfilm") fail_at(node, "unknown film plugin '{}' (hdrfilm)", type);
-        Properties props(*this, node);
-        FilmSettings& f = scene_->film;
-        f.width = props.get_int("width", f.width);
-        f.height = props.get_int("height", f.height);
-        if (f.width <= 0 || f.height <= 0) fail_at(node, "film size must be positive, got {}x{}", f.width, f.height);
-        f.crop_offset_x = props.get_int("crop_offset_x", 0);
-        f.crop_offset_y = props.get_int("crop_offset_y", 0);
-        f.crop_width = props.get_int("crop_width", 0);
-        f.crop_height = props.get_int("crop_height", 0);
-        try {
-            f.check_crop();
-        } catch (const Error& e) {
-            fail_at(node, "{}", e.what());
-        }
-        f.exposure = props.get_float("exposure", f.exposure);
-        f.white_balance = props.get_string("white_balance", f.white_balance);
-        const std::string format = props.get_string("pixel_format", "rgb");
-        if (format != "rgb") fail_at(node, "pixel_format must be rgb, got '{}'", format);
-        for (const Node& r : props.take_unnamed("rfilter")) {
-            check_attributes(r, {"type", "name"});
-            const std::string filter = attribute(r, "type");
-            if (filter != "box" && filter != "gaussian") fail_at(r, "unknown rfilter plugin '{}' (box, gaussian)", filter);
-            Properties rprops(*this, r);
-            rprops.check_all_used("rfilter '" + filter + "'");
-            f.filter = filter;
-        }
+        ElementProperties props(*this, node);
+        FilterPtr filter = make_gaussian_filter();
+        const std::vector<Node> filters = props.take_unnamed("rfilter");
+        if (filters.size() > 1) fail_at(filters[1], "a film takes one <rfilter>");
+        if (!filters.empty()) filter = build_filter(filters[0]);
+        scene_->film = build(node, "film 'hdrfilm'", [&] { return plugins::hdrfilm(props, filter); });
         props.check_all_used("film 'hdrfilm'");
     }
 
+    FilterPtr build_filter(const Node& node) {
+        check_attributes(node, {"type", "name", "id"});
+        const std::string type = attribute(node, "type");
+        using Factory = FilterPtr (*)(Properties&);
+        static const std::map<std::string, Factory> factories = {
+            {"box", plugins::box},           {"tent", plugins::tent},         {"gaussian", plugins::gaussian},
+            {"mitchell", plugins::mitchell}, {"catmullrom", plugins::catmullrom}, {"lanczos", plugins::lanczos}};
+        const auto it = factories.find(type);
+        if (it == factories.end())
+            fail_at(node, "unknown rfilter plugin '{}' (box, tent, gaussian, mitchell, catmullrom, lanczos)", type);
+        ElementProperties props(*this, node);
+        FilterPtr filter = build(node, "rfilter '" + type + "'", [&] { return it->second(props); });
+        props.check_all_used("rfilter '" + type + "'");
+        return filter;
+    }
+
     void build_sampler(const Node& node) {
-        check_attributes(node, {"type", "id"});
+        check_attributes(node, {"type", "id", "name"});
         const std::string type = attribute(node, "type");
         if (type != "independent") fail_at(node, "unknown sampler plugin '{}' (independent)", type);
-        Properties props(*this, node);
+        ElementProperties props(*this, node);
         scene_->sampler.sample_count = props.get_int("sample_count", scene_->sampler.sample_count);
         if (scene_->sampler.sample_count <= 0) fail_at(node, "sample_count must be positive");
         const int seed = props.get_int("seed", 0);
@@ -728,17 +672,14 @@ private:
     void build_integrator(const Node& node) {
         check_attributes(node, {"type", "id"});
         const std::string type = attribute(node, "type");
-        if (type != "path") fail_at(node, "unknown integrator plugin '{}' (path)", type);
-        Properties props(*this, node);
-        IntegratorSettings& s = scene_->integrator;
-        s.max_depth = props.get_int("max_depth", s.max_depth);
-        s.rr_depth = props.get_int("rr_depth", s.rr_depth);
-        s.strategy = props.get_string("strategy", s.strategy);
-        if (s.max_depth < -1 || s.max_depth == 0) fail_at(node, "max_depth must be -1 or positive, got {}", s.max_depth);
-        if (s.rr_depth < 1) fail_at(node, "rr_depth must be positive, got {}", s.rr_depth);
-        if (s.strategy != "mis" && s.strategy != "bsdf" && s.strategy != "emitter")
-            fail_at(node, "strategy must be mis, bsdf or emitter, got '{}'", s.strategy);
-        props.check_all_used("integrator 'path'");
+        if (type == "aov")
+            fail_at(node, "integrator 'aov' is not supported: surfscatter renders radiance only (use path or direct)");
+        if (type != "path" && type != "direct") fail_at(node, "unknown integrator plugin '{}' (path, direct)", type);
+        ElementProperties props(*this, node);
+        scene_->integrator = build(node, "integrator '" + type + "'", [&] {
+            return type == "path" ? plugins::path(props) : plugins::direct(props);
+        });
+        props.check_all_used("integrator '" + type + "'");
     }
 
     // ---------------------------------------------------------------- scene level
@@ -761,6 +702,7 @@ private:
                 const Source& included = open(path, &node);
                 const Node root{included.document.child("scene"), &included};
                 if (!root.xml) fail_at(node, "included file {} has no <scene> root", path.string());
+                check_version(root);
                 load_children(root);
                 --include_depth_;
             } else if (tag == "integrator") {
@@ -793,7 +735,36 @@ private:
     void register_id(const Node& node, Object object) {
         if (!node.xml.attribute("id")) return;
         const std::string id = attribute(node, "id");
-        if (!objects_.emplace(id, std::move(object)).second) fail_at(node, "duplicate id '{}'", id);
+        if (names_.count(id) || !objects_.emplace(id, std::move(object)).second) fail_at(node, "duplicate id '{}'", id);
+    }
+
+    // Shapes, emitters and sensors may carry an id (a name only: nothing refers to them).
+    void register_name(const Node& node) {
+        if (!node.xml.attribute("id")) return;
+        const std::string id = attribute(node, "id");
+        if (objects_.count(id) || !names_.insert(id).second) fail_at(node, "duplicate id '{}'", id);
+    }
+
+    bool names_texture(const Node& ref) {
+        const auto it = objects_.find(attribute(ref, "id"));
+        return it != objects_.end() && std::holds_alternative<TexturePtr>(it->second);
+    }
+
+    // Mitsuba 2 and 3 scenes (version="2.x.y" or "3.x.y"); 0.x scenes use Mitsuba 0.6's different names.
+    void check_version(const Node& scene_node) {
+        for (const auto& attr : scene_node.xml.attributes())
+            if (std::string(attr.name()) != "version")
+                fail_at(scene_node, "unknown attribute '{}' of <scene>", attr.name());
+        if (!scene_node.xml.attribute("version"))
+            fail_at(scene_node, "<scene> needs a version attribute (version=\"3.0.0\")");
+        const std::string version = attribute(scene_node, "version");
+        int major = -1, minor = -1, patch = -1;
+        char extra = 0;
+        if (std::sscanf(version.c_str(), "%d.%d.%d%c", &major, &minor, &patch, &extra) != 3 || minor < 0 || patch < 0)
+            fail_at(scene_node, "scene version '{}' is not major.minor.patch", version);
+        if (major != 2 && major != 3)
+            fail_at(scene_node, "scene version {} is not supported: surfscatter reads Mitsuba 2.x and 3.x scenes{}", version,
+                    major < 2 ? " (upgrade 0.x scenes with Mitsuba's converter: parameter names changed)" : "");
     }
 
     Object lookup(const Node& node, const char* kind) {
@@ -839,6 +810,7 @@ private:
     std::map<std::string, std::shared_ptr<const surface::HeightMap>> height_maps_;  // by surface_file
     std::vector<std::unique_ptr<Source>> sources_;
     std::map<std::string, Object> objects_;
+    std::set<std::string> names_;
     bool has_sensor_ = false;
     int include_depth_ = 0;
 };
