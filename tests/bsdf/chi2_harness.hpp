@@ -3,8 +3,12 @@
 // over a (theta_o, phi_o) grid against the expected counts N * integral of pdf() per cell (Gauss-Legendre
 // quadrature per cell), the delta lobe as one more cell, cells with low expectation pooled, and the p-value of
 // the statistic compared with a significance level already Sidak-corrected by the caller. While sampling it also
-// checks that pdf() equals the pdf sample() returns and that the weight equals f cos / pdf.
+// checks that pdf() equals the pdf sample() returns and that the weight equals f cos / pdf. The generic form takes any
+// direction sampler (render materials with transmission and several delta lobes use it, tests/render).
+#include <algorithm>
 #include <cmath>
+#include <functional>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -60,38 +64,64 @@ struct Chi2Result {
     }
 };
 
-inline Chi2Result chi2_test(const Bsdf& bsdf, const Vec3& wi, double lambda_nm, long samples = 1000000,
-                            int theta_bins = 60, int phi_bins = 120, std::uint64_t seed = 7) {
+// What the harness tests: a sampler of directions (continuous or from a finite set of delta directions), its
+// claimed density, and optionally the f cos / pdf weight recomputed from eval (NaN to skip that check).
+struct DirectionSample {
+    Vec3 direction;
+    double pdf = 0;     // continuous: solid-angle density; delta: the probability of that outcome
+    double weight = 0;  // what the sampler reports as f cos / pdf (continuous samples)
+    bool delta = false;
+};
+struct Chi2Subject {
+    std::function<std::optional<DirectionSample>(double u_lobe, Vec2 u)> sample;
+    std::function<double(const Vec3&)> pdf;         // density of the continuous part
+    std::function<double(const Vec3&)> weight;      // f cos / pdf recomputed; may be empty
+    std::vector<std::pair<Vec3, double>> deltas;    // delta directions and their probabilities
+    bool full_sphere = false;                       // transmission: histogram theta over [0, pi]
+};
+
+inline Chi2Result chi2_test(const Chi2Subject& subject, long samples = 1000000, int theta_bins = 60,
+                            int phi_bins = 120, std::uint64_t seed = 7) {
     Chi2Result result;
     const int cells = theta_bins * phi_bins;
-    std::vector<double> observed(cells + 1, 0.0), expected(cells + 1, 0.0);
-    const double dtheta = 0.5 * kPi / theta_bins, dphi = kTwoPi / phi_bins;
+    const int discrete = static_cast<int>(subject.deltas.size());
+    std::vector<double> observed(cells + discrete, 0.0), expected(cells + discrete, 0.0);
+    const double theta_max = subject.full_sphere ? kPi : 0.5 * kPi;
+    const double dtheta = theta_max / theta_bins, dphi = kTwoPi / phi_bins;
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> uniform(0.0, 1.0);
-    const double p_delta = bsdf.delta_probability(wi, lambda_nm);
     for (long n = 0; n < samples; ++n) {
         const double ul = uniform(rng);
         const Vec2 u(uniform(rng), uniform(rng));
-        const auto s = bsdf.sample(wi, lambda_nm, ul, u);
+        const auto s = subject.sample(ul, u);
         if (!s) {
             ++result.failed;
             continue;
         }
         if (s->delta) {
-            observed[cells] += 1;
+            int best = -1;
+            for (int k = 0; k < discrete; ++k)
+                if (dot(s->direction, subject.deltas[static_cast<std::size_t>(k)].first) > 1 - 1e-9) best = k;
+            if (best < 0) {
+                result.statistic = HUGE_VAL;  // a delta direction the subject did not announce
+                return result;
+            }
+            observed[cells + best] += 1;
             continue;
         }
-        const double theta = std::acos(std::clamp(s->wo.z, -1.0, 1.0));
-        double phi = std::atan2(s->wo.y, s->wo.x);
+        const double theta = std::acos(std::clamp(s->direction.z, -1.0, 1.0));
+        double phi = std::atan2(s->direction.y, s->direction.x);
         if (phi < 0) phi += kTwoPi;
         const int ti = std::min(theta_bins - 1, int(theta / dtheta));
         const int pi = std::min(phi_bins - 1, int(phi / dphi));
         observed[ti * phi_bins + pi] += 1;
         if (n % 97 == 0) {
-            const double p = bsdf.pdf(wi, s->wo, lambda_nm);
+            const double p = subject.pdf(s->direction);
             result.pdf_mismatch = std::max(result.pdf_mismatch, std::abs(p - s->pdf) / s->pdf);
-            const double w = bsdf.eval(wi, s->wo, lambda_nm) * s->wo.z / s->pdf;
-            result.weight_mismatch = std::max(result.weight_mismatch, std::abs(w - s->weight) / std::max(w, 1e-300));
+            if (subject.weight) {
+                const double w = subject.weight(s->direction);
+                result.weight_mismatch = std::max(result.weight_mismatch, std::abs(w - s->weight) / std::max(w, 1e-300));
+            }
         }
     }
     // Expected counts: 6x6 Gauss-Legendre per cell of pdf * sin(theta).
@@ -107,19 +137,21 @@ inline Chi2Result chi2_test(const Bsdf& bsdf, const Vec3& wi, double lambda_nm, 
                 for (int b = 0; b < 6; ++b) {
                     const double theta = (ti + 0.5 + 0.5 * x6[a]) * dtheta;
                     const double phi = (pi + 0.5 + 0.5 * x6[b]) * dphi;
-                    const Vec3 wo = spherical_direction(theta, phi);
-                    integral += w6[a] * w6[b] * bsdf.pdf(wi, wo, lambda_nm) * std::sin(theta);
+                    integral += w6[a] * w6[b] * subject.pdf(spherical_direction(theta, phi)) * std::sin(theta);
                 }
             integral *= 0.25 * dtheta * dphi;
             expected[ti * phi_bins + pi] = integral * double(samples);
             total += integral;
         }
-    expected[cells] = p_delta * double(samples);
-    result.expected_total = total + p_delta;
+    for (int k = 0; k < discrete; ++k) {
+        expected[cells + k] = subject.deltas[static_cast<std::size_t>(k)].second * double(samples);
+        total += subject.deltas[static_cast<std::size_t>(k)].second;
+    }
+    result.expected_total = total;
     // Pool low-expectation cells (pbrt-v4: minimum expected frequency 5).
     double pooled_obs = 0, pooled_exp = 0, chi2 = 0;
     int kept = 0;
-    for (int c = 0; c <= cells; ++c) {
+    for (int c = 0; c < cells + discrete; ++c) {
         if (expected[c] == 0 && observed[c] > 0) {
             result.statistic = HUGE_VAL;  // a sample where the pdf says none can be
             result.p_value = 0;
@@ -141,6 +173,24 @@ inline Chi2Result chi2_test(const Bsdf& bsdf, const Vec3& wi, double lambda_nm, 
     result.dof = kept - 1;
     result.p_value = result.dof > 0 ? gamma_q(0.5 * result.dof, 0.5 * chi2) : 1.0;
     return result;
+}
+
+inline Chi2Result chi2_test(const Bsdf& bsdf, const Vec3& wi, double lambda_nm, long samples = 1000000,
+                            int theta_bins = 60, int phi_bins = 120, std::uint64_t seed = 7) {
+    Chi2Subject subject;
+    subject.sample = [&](double ul, Vec2 u) -> std::optional<DirectionSample> {
+        const auto s = bsdf.sample(wi, lambda_nm, ul, u);
+        if (!s) return std::nullopt;
+        return DirectionSample{s->wo, s->pdf, s->weight, s->delta};
+    };
+    subject.pdf = [&](const Vec3& wo) { return bsdf.pdf(wi, wo, lambda_nm); };
+    subject.weight = [&](const Vec3& wo) {
+        const double p = bsdf.pdf(wi, wo, lambda_nm);
+        return p > 0 ? bsdf.eval(wi, wo, lambda_nm) * wo.z / p : 0.0;
+    };
+    const double p_delta = bsdf.delta_probability(wi, lambda_nm);
+    if (p_delta > 0) subject.deltas.push_back({reflect_about_normal(wi), p_delta});
+    return chi2_test(subject, samples, theta_bins, phi_bins, seed);
 }
 
 // Per-test significance for `tests` tests at overall level `alpha` (Sidak).

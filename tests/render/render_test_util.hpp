@@ -1,6 +1,12 @@
 #pragma once
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <filesystem>
+#include <memory>
 #include <string>
 
+#include "surfscatter/core/error.hpp"
 #include "surfscatter/render/integrator.hpp"
 #include "surfscatter/render/xml_loader.hpp"
 
@@ -66,6 +72,42 @@ inline MeanY mean_y_over_seeds(const std::string& xml, int spp, int seeds) {
     out.mean = sum / seeds;
     out.standard_error = std::sqrt(std::max(0.0, sum2 / seeds - out.mean * out.mean) / (seeds - 1));
     return out;
+}
+
+// A BSDF built by the XML loader (on a rectangle of an otherwise empty scene), for tests of the material itself.
+struct LoadedMaterial {
+    std::unique_ptr<Scene> scene;
+    const Material* material = nullptr;
+};
+inline LoadedMaterial load_material(const std::string& bsdf_xml, const std::filesystem::path& where = "test.xml") {
+    LoadedMaterial m;
+    m.scene = load_scene_from_string(scene_xml("<shape type=\"rectangle\">" + bsdf_xml + "</shape>"), where);
+    m.material = m.scene->material(0);
+    return m;
+}
+
+// The message of the Error that loading `xml` throws ("" if it loads).
+inline std::string load_error(const std::string& xml, const std::map<std::string, std::string>& defines = {}) {
+    try {
+        load_scene_from_string(xml, "scene.xml", defines);
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+// 1-based line of the first occurrence of `needle` in `text`.
+inline int line_of(const std::string& text, const std::string& needle) {
+    const auto pos = text.find(needle);
+    return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(pos), '\n'));
+}
+
+// A fresh directory under the system temporary directory.
+inline std::filesystem::path temp_dir(const std::string& name) {
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("surfscatter_" + name);
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    return dir;
 }
 
 }  // namespace surfscatter::render::test

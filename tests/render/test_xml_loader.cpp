@@ -12,31 +12,6 @@ using namespace surfscatter::render;
 using namespace surfscatter::render::test;
 namespace fs = std::filesystem;
 
-namespace {
-
-// The message of the Error that loading `xml` throws ("" if it loads).
-std::string load_error(const std::string& xml, const std::map<std::string, std::string>& defines = {}) {
-    try {
-        load_scene_from_string(xml, "scene.xml", defines);
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
-}
-
-// 1-based line of the first occurrence of `needle` in `text`.
-int line_of(const std::string& text, const std::string& needle) {
-    const auto pos = text.find(needle);
-    return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(pos), '\n'));
-}
-
-fs::path temp_dir() {
-    const fs::path dir = fs::temp_directory_path() / "surfscatter_test_xml";
-    fs::create_directories(dir);
-    return dir;
-}
-
-}  // namespace
 
 TEST(XmlLoader, LoadsSensorFilmSamplerIntegrator) {
     const std::string xml = R"(<scene version="3.0.0">
@@ -83,7 +58,7 @@ TEST(XmlLoader, TransformsComposeInMitsubaOrder) {
 }
 
 TEST(XmlLoader, IncludeAndReferences) {
-    const fs::path dir = temp_dir();
+    const fs::path dir = temp_dir("test_xml");
     std::ofstream(dir / "materials.xml") << R"(<scene version="3.0.0">
   <bsdf type="diffuse" id="grey"><float name="reflectance" value="0.3"/></bsdf>
   <texture type="checkerboard" id="checks"/>
@@ -136,7 +111,7 @@ TEST(XmlLoader, ErrorsCarryFileAndLine) {
 }
 
 TEST(MeshFiles, ObjAndPlyLoad) {
-    const fs::path dir = temp_dir();
+    const fs::path dir = temp_dir("test_xml");
     std::ofstream(dir / "quad.obj") << "# quad\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
                                        "f 1/1 2/2 3/3 4/4\n";
     const TriangleMesh obj = load_obj(dir / "quad.obj");

@@ -40,8 +40,12 @@ public:
         // tells which side of the interface the viewer is on.
         const Vec3 m = distribution_.sample(wo.z > 0 ? wo : -wo, u);
         const material::DielectricFresnel fr = material::fresnel_dielectric(dot(wo, m), eta_);
+        const bool reflection = u_lobe < fr.reflectance;
         MaterialSample s;
-        s.wi = u_lobe < fr.reflectance ? reflect(wo, m) : refract(wo, m, fr.cos_theta_t, fr.eta_ti);
+        s.wi = reflection ? reflect(wo, m) : refract(wo, m, fr.cos_theta_t, fr.eta_ti);
+        // A facet can send light to the other side than its lobe's (eval would read it as the other lobe): drop it,
+        // as Mitsuba's zero shadowing term does.
+        if ((s.wi.z * wo.z > 0) != reflection) return std::nullopt;
         s.f = eval(sp, s.wi, wo, w, &s.pdf);
         if (!(s.pdf[0] > 0)) return std::nullopt;
         return s;

@@ -34,14 +34,19 @@ public:
             transmittance_[static_cast<std::size_t>(i)] =
                 1 - distribution_.reflection_albedo({std::sqrt(1 - mu * mu), 0, mu}, eta_);
         }
+        // Hemispherical average 2 int_0^1 R(mu) mu dmu from inside; the albedo changes quickly around the critical
+        // cosine of total internal reflection, so each side of it gets its own Gauss-Legendre rule.
         std::vector<double> nodes, weights;
-        math::gauss_legendre(32, nodes, weights);
+        math::gauss_legendre(48, nodes, weights);
+        const double critical = eta_ > 1 ? std::sqrt(1 - 1 / (eta_ * eta_)) : 0.0;
         double inside = 0;
-        for (std::size_t k = 0; k < nodes.size(); ++k) {
-            const double mu = 0.5 * (nodes[k] + 1);
-            inside += weights[k] * distribution_.reflection_albedo({std::sqrt(1 - mu * mu), 0, mu}, 1 / eta_) * mu;
+        for (const auto& [a, b] : {std::pair{0.0, critical}, std::pair{critical, 1.0}}) {
+            for (std::size_t k = 0; k < nodes.size() && b > a; ++k) {
+                const double mu = 0.5 * (a + b) + 0.5 * (b - a) * nodes[k];
+                inside += weights[k] * (b - a) * distribution_.reflection_albedo({std::sqrt(1 - mu * mu), 0, mu}, 1 / eta_) * mu;
+            }
         }
-        internal_reflectance_ = inside;  // 2 int_0^1 R mu dmu with the 1/2 of the [0, 1] rule
+        internal_reflectance_ = inside;
     }
 
     SampledSpectrum eval(const ShadingPoint& sp, const Vec3& wi, const Vec3& wo, const SampledWavelengths& w,
