@@ -61,10 +61,14 @@ inline Film render_string(const std::string& xml, int spp, int threads = 0, std:
 
 // Mean Y over the film, averaged over renders with seeds 1..seeds; the standard error is that of the seed average,
 // i.e. Monte Carlo noise only (the spread between pixels is image content, not noise).
-inline MeanY mean_y_over_seeds(const std::string& xml, int spp, int seeds) {
+inline MeanY mean_y_over_seeds_of(const Scene& scene, int spp, int seeds) {
     double sum = 0, sum2 = 0;
     for (int s = 1; s <= seeds; ++s) {
-        const double m = mean_y(render_string(xml, spp, 0, static_cast<std::uint64_t>(s))).mean;
+        RenderOptions options;
+        options.spp = spp;
+        options.seed = static_cast<std::uint64_t>(s);
+        options.progress = false;
+        const double m = mean_y(render(scene, options)).mean;
         sum += m;
         sum2 += m * m;
     }
@@ -72,6 +76,10 @@ inline MeanY mean_y_over_seeds(const std::string& xml, int spp, int seeds) {
     out.mean = sum / seeds;
     out.standard_error = std::sqrt(std::max(0.0, sum2 / seeds - out.mean * out.mean) / (seeds - 1));
     return out;
+}
+
+inline MeanY mean_y_over_seeds(const std::string& xml, int spp, int seeds) {
+    return mean_y_over_seeds_of(*load_scene_from_string(xml, "test.xml"), spp, seeds);
 }
 
 // A BSDF built by the XML loader (on a rectangle of an otherwise empty scene), for tests of the material itself.
