@@ -1,6 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 
@@ -118,4 +121,68 @@ TEST(Image, ErrorsNameTheFile) {
     EXPECT_THROW(Image(0, 2, 3), Error);
     EXPECT_THROW(Image(2, 2, 5), Error);
     EXPECT_THROW(surfscatter::io::write_image(temp_path("grey_alpha.jpg"), Image(2, 2, 2)), Error);
+}
+
+namespace {
+
+// Ward's RGBE encoding of an RGB triple (written here independently of the reader): the largest channel v = f 2^e
+// with f in [0.5, 1) gives the shared exponent e + 128 and mantissas c 2^(8 - e).
+std::array<std::uint8_t, 4> rgbe(float r, float g, float b) {
+    const float v = std::max({r, g, b});
+    if (v <= 0) return {0, 0, 0, 0};
+    int e = 0;
+    std::frexp(v, &e);
+    const auto m = [&](float c) { return static_cast<std::uint8_t>(std::lround(std::ldexp(c, 8 - e))); };
+    return {m(r), m(g), m(b), static_cast<std::uint8_t>(e + 128)};
+}
+
+}  // namespace
+
+TEST(Image, RadianceHdrFlatAndRunLengthEncoded) {
+    // 10 x 2 run-length encoded (new-style scanlines) and 4 x 1 flat, values exact in RGBE; EXPOSURE = 2 halves them.
+    const auto pixel = [](int x, int y) {
+        return std::array<float, 3>{0.5f, 0.25f * static_cast<float>(1 + x % 3), y == 0 ? 1.0f : 0.0f};
+    };
+    {
+        std::ofstream out(temp_path("rle.hdr"), std::ios::binary);
+        out << "#?RADIANCE\n# test\nFORMAT=32-bit_rle_rgbe\nEXPOSURE=2\n\n-Y 2 +X 10\n";
+        for (int y = 0; y < 2; ++y) {
+            std::array<std::array<std::uint8_t, 4>, 10> row{};
+            for (int x = 0; x < 10; ++x) {
+                const auto p = pixel(x, y);
+                row[static_cast<std::size_t>(x)] = rgbe(p[0], p[1], p[2]);
+            }
+            out.put(2).put(2).put(0).put(10);
+            for (std::size_t c = 0; c < 4; ++c) {
+                // A run of the first four bytes, then the other six as literals.
+                out.put(static_cast<char>(128 + 4)).put(static_cast<char>(row[0][c]));
+                out.put(6);
+                for (std::size_t x = 4; x < 10; ++x) out.put(static_cast<char>(row[x][c]));
+            }
+        }
+    }
+    // The runs repeat pixel 0's bytes over pixels 0-3, so the decoder must return pixel 0's value there.
+    const Image rle = surfscatter::io::read_image(temp_path("rle.hdr"));
+    ASSERT_EQ(rle.width, 10);
+    ASSERT_EQ(rle.height, 2);
+    for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 10; ++x) {
+            const auto p = pixel(x < 4 ? 0 : x, y);
+            for (int c = 0; c < 3; ++c) EXPECT_EQ(rle.at(x, y, c), p[static_cast<std::size_t>(c)] / 2) << x << "," << y;
+        }
+    {
+        std::ofstream out(temp_path("flat.hdr"), std::ios::binary);
+        out << "#?RGBE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1 +X 4\n";
+        for (int x = 0; x < 4; ++x) {
+            const auto p = pixel(x, 0);
+            for (std::uint8_t byte : rgbe(p[0], p[1], p[2])) out.put(static_cast<char>(byte));
+        }
+    }
+    const Image flat = surfscatter::io::read_image(temp_path("flat.hdr"));
+    for (int x = 0; x < 4; ++x)
+        for (int c = 0; c < 3; ++c) EXPECT_EQ(flat.at(x, 0, c), pixel(x, 0)[static_cast<std::size_t>(c)]);
+    std::ofstream(temp_path("rotated.hdr")) << "#?RADIANCE\n\n+X 4 -Y 1\n";
+    EXPECT_THROW(surfscatter::io::read_image(temp_path("rotated.hdr")), Error);
+    std::ofstream(temp_path("short.hdr")) << "#?RADIANCE\n\n-Y 2 +X 4\nab";
+    EXPECT_THROW(surfscatter::io::read_image(temp_path("short.hdr")), Error);
 }
