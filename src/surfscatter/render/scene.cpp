@@ -187,7 +187,11 @@ std::optional<Hit> Scene::intersect(const Ray& ray) const {
     hit.shape = static_cast<int>(rh.hit.geomID);
     const Shape& shape = shapes_[rh.hit.geomID];
     if (shape.analytic) {
-        const SurfaceGeometry g = shape.analytic->surface(ray.origin + ray.direction * static_cast<double>(rh.ray.tfar));
+        // Embree keeps the distance in float: find the same root again in double.
+        const double t_float = rh.ray.tfar;
+        const double t = shape.analytic->intersect(ray.origin, ray.direction, std::max(ray.t_min, t_float * (1 - 1e-5) - 1e-7),
+                                                   t_float * (1 + 1e-5) + 1e-7).value_or(t_float);
+        const SurfaceGeometry g = shape.analytic->surface(ray.origin + ray.direction * t);
         hit.p = g.p;
         hit.ng = hit.ns = g.n;
         hit.uv = g.uv;
