@@ -186,3 +186,16 @@ TEST(Image, RadianceHdrFlatAndRunLengthEncoded) {
     std::ofstream(temp_path("short.hdr")) << "#?RADIANCE\n\n-Y 2 +X 4\nab";
     EXPECT_THROW(surfscatter::io::read_image(temp_path("short.hdr")), Error);
 }
+
+TEST(Image, GreyExrIsExpandedToRgb) {
+    Image grey(3, 2, 1);
+    for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 3; ++x) grey.at(x, y, 0) = static_cast<float>(0.25 * (x + 3 * y));
+    const fs::path path = temp_path("grey.exr");
+    surfscatter::io::write_exr(path, grey);
+    const Image back = surfscatter::io::read_image(path);
+    ASSERT_EQ(back.channels, 3);
+    for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 3; ++x)
+            for (int c = 0; c < 3; ++c) EXPECT_EQ(back.at(x, y, c), grey.at(x, y, 0)) << x << "," << y << "," << c;
+}

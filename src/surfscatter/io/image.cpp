@@ -151,12 +151,16 @@ Image read_exr(const std::filesystem::path& path) {
                       static_cast<std::ptrdiff_t>(window.min.y) * y_stride);
         Imf::FrameBuffer frame;
         const char* names[3] = {"R", "G", "B"};
-        for (int c = 0; c < 3; ++c)
+        // A frame buffer holds one slice per channel name: a Y-only file fills channel 0, copied to G and B below.
+        for (int c = 0; c < (grey ? 1 : 3); ++c)
             frame.insert(grey ? "Y" : names[c],
                          Imf::Slice(Imf::FLOAT, base + c * sizeof(float), x_stride, y_stride, 1, 1, 0.0));
         if (alpha) frame.insert("A", Imf::Slice(Imf::FLOAT, base + 3 * sizeof(float), x_stride, y_stride, 1, 1, 1.0));
         file.setFrameBuffer(frame);
         file.readPixels(window.min.y, window.max.y);
+        if (grey)
+            for (int y = 0; y < height; ++y)
+                for (int x = 0; x < width; ++x) image.at(x, y, 1) = image.at(x, y, 2) = image.at(x, y, 0);
         return image;
     } catch (const Error&) {
         throw;
