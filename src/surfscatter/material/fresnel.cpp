@@ -53,14 +53,7 @@ DielectricFresnel fresnel_dielectric(double cos_theta_i, double eta) {
 }
 
 double fresnel_diffuse_reflectance(double eta) {
-    struct Rule {
-        std::vector<double> nodes, weights;
-    };
-    static const Rule rule = [] {
-        Rule r;
-        math::gauss_legendre(64, r.nodes, r.weights);
-        return r;
-    }();
+    static const math::GaussLegendreRule rule(64);
     const std::vector<double>& nodes = rule.nodes;
     const std::vector<double>& weights = rule.weights;
     // The integrand has a kink at the critical cosine (eta < 1): integrate the two sides separately.

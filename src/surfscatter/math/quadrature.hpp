@@ -13,5 +13,9 @@ double integrate_adaptive(const std::function<double(double)>& f, double a, doub
 
 // n-point Gauss-Legendre nodes/weights on [-1, 1] (Newton on P_n, accurate to ~1e-15).
 void gauss_legendre(int n, std::vector<double>& nodes, std::vector<double>& weights);
+struct GaussLegendreRule {
+    std::vector<double> nodes, weights;
+    explicit GaussLegendreRule(int n) { gauss_legendre(n, nodes, weights); }
+};
 
 }  // namespace surfscatter::math

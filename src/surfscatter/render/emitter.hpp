@@ -38,6 +38,9 @@ using EmitterPtr = std::shared_ptr<const Emitter>;
 // Mitsuba's constant environment emitter, for scenes built in code (emitters/constant.cpp).
 EmitterPtr make_constant_emitter(SpectrumPtr radiance);
 
+// What a point source at `position` of intensity I (W/sr per nm) delivers at p: the direction to it and I / d^2.
+std::optional<EmitterSample> point_source_sample(const Vec3& position, const Vec3& p, const SampledSpectrum& intensity);
+
 // Uniform directions on the unit sphere (density 1 / (4 pi)).
 Vec3 square_to_uniform_sphere(Vec2 u);
 

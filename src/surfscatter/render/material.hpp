@@ -51,6 +51,17 @@ public:
 };
 using MaterialPtr = std::shared_ptr<const Material>;
 
+// Materials made of delta lobes only (smooth conductors and dielectrics): f is zero for every pair of directions.
+class DeltaMaterial : public Material {
+public:
+    SampledSpectrum eval(const ShadingPoint&, const Vec3&, const Vec3&, const SampledWavelengths&,
+                         SampledSpectrum* pdf) const final {
+        if (pdf) *pdf = SampledSpectrum(0.0);
+        return SampledSpectrum(0.0);
+    }
+    bool has_continuous_part() const final { return false; }
+};
+
 // Lambertian reflectance used where a scene gives a shape no BSDF (Mitsuba's default diffuse 0.5).
 MaterialPtr make_diffuse(TexturePtr reflectance);
 

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include <fmt/format.h>
@@ -44,8 +45,8 @@ public:
     virtual int get_int(const std::string& name, int fallback) = 0;
     virtual bool get_bool(const std::string& name, bool fallback) = 0;
     virtual std::string get_string(const std::string& name, const std::string& fallback) = 0;
-    // The text of a parameter given either as <float> or as <string> (an index of refraction by value or by name).
-    virtual std::optional<std::string> get_float_or_string(const std::string& name) = 0;
+    // A parameter given either as <float> or as <string> (an index of refraction by value or by name).
+    virtual std::optional<std::variant<double, std::string>> get_float_or_string(const std::string& name) = 0;
     // <point> or <vector>.
     virtual std::optional<Vec3> get_point(const std::string& name) = 0;
     // <transform>; the identity when absent.

@@ -223,13 +223,15 @@ private:
             loader_.check_attributes(*node, {"name", "value"});
             return loader_.attribute(*node, "value");
         }
-        std::optional<std::string> get_float_or_string(const std::string& name) override {
+        std::optional<std::variant<double, std::string>> get_float_or_string(const std::string& name) override {
             const Node* node = find(name);
             if (!node) return std::nullopt;
             if (node->tag() != "float" && node->tag() != "string")
                 render::fail_at(*node, "parameter '{}' must be a <float> or a <string>, got <{}>", name, node->tag());
             loader_.check_attributes(*node, {"name", "value"});
-            return loader_.attribute(*node, "value");
+            const std::string value = loader_.attribute(*node, "value");
+            if (node->tag() == "float") return loader_.parse_double(*node, value, name);
+            return value;
         }
         std::optional<Vec3> get_point(const std::string& name) override {
             const Node* node = find(name);

@@ -36,24 +36,18 @@ constexpr int kTableSize = static_cast<int>(spectrum::kSampledLambdaMax - spectr
 }  // namespace
 
 double read_ior(Properties& props, const std::string& name, const std::string& fallback) {
-    const std::string text = props.get_float_or_string(name).value_or(fallback);
+    const auto given = props.get_float_or_string(name).value_or(fallback);
+    if (const double* value = std::get_if<double>(&given)) {
+        if (!(*value > 0)) props.fail_param(name, "{} must be positive, got {}", name, *value);
+        return *value;
+    }
+    const std::string& text = std::get<std::string>(given);
     const std::string key = lower(text);
     for (const NamedIor& n : kNamedIors)
         if (key == n.name) return n.value;
-    std::size_t used = 0;
-    double value = 0;
-    try {
-        value = std::stod(text, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (used == 0 || used != text.size() || !std::isfinite(value)) {
-        std::string names;
-        for (const NamedIor& n : kNamedIors) names += std::string(names.empty() ? "" : ", ") + n.name;
-        props.fail_param(name, "{}: '{}' is neither a number nor a known material ({})", name, text, names);
-    }
-    if (!(value > 0)) props.fail_param(name, "{} must be positive, got {}", name, value);
-    return value;
+    std::string names;
+    for (const NamedIor& n : kNamedIors) names += std::string(names.empty() ? "" : ", ") + n.name;
+    props.fail_param(name, "{}: '{}' is neither a number nor a known material ({})", name, text, names);
 }
 
 double read_relative_ior(Properties& props, const std::string& int_default, const std::string& ext_default,
@@ -145,14 +139,7 @@ Vec3 Microfacet::sample_projected(Vec2 u) const {
 }
 
 double Microfacet::reflection_albedo(const Vec3& wo, double eta) const {
-    struct Rule {
-        std::vector<double> nodes, weights;
-    };
-    static const Rule rule = [] {
-        Rule r;
-        math::gauss_legendre(24, r.nodes, r.weights);
-        return r;
-    }();
+    static const math::GaussLegendreRule rule(24);
     // With m ~ D(m) m.z, wi = reflect(wo, m) and dwi = 4 |wo.m| dm: albedo = E[F G |wo.m| / (wo.z m.z)].
     double total = 0;
     for (std::size_t a = 0; a < rule.nodes.size(); ++a)

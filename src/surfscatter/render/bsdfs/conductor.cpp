@@ -14,15 +14,10 @@ namespace surfscatter::render {
 
 namespace {
 
-class SmoothConductor final : public Material {
+class SmoothConductor final : public DeltaMaterial {
 public:
     SmoothConductor(ConductorIor ior, TexturePtr specular) : ior_(std::move(ior)), specular_(std::move(specular)) {}
 
-    SampledSpectrum eval(const ShadingPoint&, const Vec3&, const Vec3&, const SampledWavelengths&,
-                         SampledSpectrum* pdf) const override {
-        if (pdf) *pdf = SampledSpectrum(0.0);
-        return SampledSpectrum(0.0);
-    }
 
     std::optional<MaterialSample> sample(const ShadingPoint& sp, const Vec3& wo, const SampledWavelengths& w, double,
                                          Vec2) const override {
@@ -36,7 +31,6 @@ public:
         return s;
     }
 
-    bool has_continuous_part() const override { return false; }
 
 private:
     ConductorIor ior_;

@@ -12,16 +12,11 @@ namespace surfscatter::render {
 
 namespace {
 
-class SmoothDielectric final : public Material {
+class SmoothDielectric final : public DeltaMaterial {
 public:
     SmoothDielectric(double eta, TexturePtr reflectance, TexturePtr transmittance)
         : eta_(eta), reflectance_(std::move(reflectance)), transmittance_(std::move(transmittance)) {}
 
-    SampledSpectrum eval(const ShadingPoint&, const Vec3&, const Vec3&, const SampledWavelengths&,
-                         SampledSpectrum* pdf) const override {
-        if (pdf) *pdf = SampledSpectrum(0.0);
-        return SampledSpectrum(0.0);
-    }
 
     std::optional<MaterialSample> sample(const ShadingPoint& sp, const Vec3& wo, const SampledWavelengths& w,
                                          double u_lobe, Vec2) const override {
@@ -41,7 +36,6 @@ public:
         return s;
     }
 
-    bool has_continuous_part() const override { return false; }
     bool has_transmission() const override { return true; }
 
 private:

@@ -8,6 +8,19 @@
 
 namespace surfscatter::render {
 
+std::optional<EmitterSample> point_source_sample(const Vec3& position, const Vec3& p, const SampledSpectrum& intensity) {
+    const Vec3 d = position - p;
+    const double d2 = d.length_squared();
+    if (!(d2 > 0)) return std::nullopt;
+    EmitterSample s;
+    s.distance = std::sqrt(d2);
+    s.wi = d / s.distance;
+    s.radiance = intensity * (1.0 / d2);
+    s.pdf = 1;
+    s.delta = true;
+    return s;
+}
+
 namespace {
 
 class PointLight final : public Emitter {
@@ -15,16 +28,7 @@ public:
     PointLight(const Vec3& position, SpectrumPtr intensity) : position_(position), intensity_(std::move(intensity)) {}
 
     std::optional<EmitterSample> sample(const Vec3& p, Vec2, const SampledWavelengths& w) const override {
-        const Vec3 d = position_ - p;
-        const double d2 = d.length_squared();
-        if (!(d2 > 0)) return std::nullopt;
-        EmitterSample s;
-        s.distance = std::sqrt(d2);
-        s.wi = d / s.distance;
-        s.radiance = intensity_->eval(w) * (1.0 / d2);
-        s.pdf = 1;
-        s.delta = true;
-        return s;
+        return point_source_sample(position_, p, intensity_->eval(w));
     }
     bool is_delta() const override { return true; }
 

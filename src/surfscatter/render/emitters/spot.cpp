@@ -30,18 +30,9 @@ public:
     }
 
     std::optional<EmitterSample> sample(const Vec3& p, Vec2, const SampledWavelengths& w) const override {
-        const Vec3 d = position_ - p;
-        const double d2 = d.length_squared();
-        if (!(d2 > 0)) return std::nullopt;
-        const double f = falloff(to_local_.vector(-d));
+        const double f = falloff(to_local_.vector(p - position_));
         if (f <= 0) return std::nullopt;
-        EmitterSample s;
-        s.distance = std::sqrt(d2);
-        s.wi = d / s.distance;
-        s.radiance = intensity_->eval(w) * (f / d2);
-        s.pdf = 1;
-        s.delta = true;
-        return s;
+        return point_source_sample(position_, p, intensity_->eval(w) * f);
     }
     bool is_delta() const override { return true; }
 
