@@ -159,8 +159,9 @@ private:
                 if (child.type() != pugi::node_element) continue;
                 const Node node{child, owner.source};
                 const std::string name = child.attribute("name") ? loader.substitute(node, child.attribute("name").value()) : "";
-                // Nested objects may carry names (Mitsuba ignores them); they are taken by kind.
-                if (name.empty() || node.tag() == "bsdf") {
+                // Nested objects may carry names (Mitsuba ignores them); they are taken by kind. A named <ref> to
+                // anything but a texture (<ref id="mat" name="bsdf"/>) is a nested BSDF.
+                if (name.empty() || node.tag() == "bsdf" || (node.tag() == "ref" && !loader.names_texture(node))) {
                     unnamed_.push_back({node});
                     continue;
                 }
@@ -715,12 +716,13 @@ private:
                 build_shape(node);
             } else if (tag == "emitter") {
                 build_emitter(node);
-            } else if (tag == "bsdf") {
-                if (!node.xml.attribute("id")) fail_at(node, "a top-level <bsdf> needs an id");
-                build_bsdf(node);
-            } else if (tag == "texture") {
-                if (!node.xml.attribute("id")) fail_at(node, "a top-level <texture> needs an id");
-                build_texture(node);
+            } else if (tag == "bsdf" || tag == "texture") {
+                // Built when first referenced: one that nothing uses has no effect on the image (Mitsuba's lego
+                // scene defines a volume-textured BSDF it never uses).
+                if (!node.xml.attribute("id")) fail_at(node, "a top-level <{}> needs an id", tag);
+                const std::string id = attribute(node, "id");
+                if (objects_.count(id) || names_.count(id) || !pending_.emplace(id, node).second)
+                    fail_at(node, "duplicate id '{}'", id);
             } else {
                 fail_at(node, "unknown element <{}> in <scene>", tag);
             }
@@ -737,18 +739,34 @@ private:
     void register_id(const Node& node, Object object) {
         if (!node.xml.attribute("id")) return;
         const std::string id = attribute(node, "id");
-        if (names_.count(id) || !objects_.emplace(id, std::move(object)).second) fail_at(node, "duplicate id '{}'", id);
+        if (names_.count(id) || (!pending_.count(id) && objects_.count(id)) || !objects_.emplace(id, std::move(object)).second)
+            fail_at(node, "duplicate id '{}'", id);
     }
 
     // Shapes, emitters and sensors may carry an id (a name only: nothing refers to them).
     void register_name(const Node& node) {
         if (!node.xml.attribute("id")) return;
         const std::string id = attribute(node, "id");
-        if (objects_.count(id) || !names_.insert(id).second) fail_at(node, "duplicate id '{}'", id);
+        if (objects_.count(id) || pending_.count(id) || !names_.insert(id).second) fail_at(node, "duplicate id '{}'", id);
+    }
+
+    // A top-level object defined earlier and not built yet: build it now (once; a cycle of references is an error).
+    void build_pending(const Node& ref, const std::string& id) {
+        const auto it = pending_.find(id);
+        if (it == pending_.end()) return;
+        if (!building_.insert(id).second) fail_at(ref, "reference cycle through id '{}'", id);
+        const Node node = it->second;
+        if (node.tag() == "bsdf") build_bsdf(node);
+        else build_texture(node);
+        building_.erase(id);
+        pending_.erase(id);
     }
 
     bool names_texture(const Node& ref) {
-        const auto it = objects_.find(attribute(ref, "id"));
+        const std::string id = attribute(ref, "id");
+        const auto pending = pending_.find(id);
+        if (pending != pending_.end()) return pending->second.tag() == "texture";
+        const auto it = objects_.find(id);
         return it != objects_.end() && std::holds_alternative<TexturePtr>(it->second);
     }
 
@@ -772,6 +790,7 @@ private:
     Object lookup(const Node& node, const char* kind) {
         check_attributes(node, {"id", "name"});
         const std::string id = attribute(node, "id");
+        if (!objects_.count(id)) build_pending(node, id);
         const auto it = objects_.find(id);
         if (it == objects_.end()) fail_at(node, "reference to undefined id '{}'", id);
         const bool is_bsdf = std::holds_alternative<MaterialPtr>(it->second);
@@ -813,6 +832,8 @@ private:
     std::vector<std::unique_ptr<Source>> sources_;
     std::map<std::string, Object> objects_;
     std::set<std::string> names_;
+    std::map<std::string, Node> pending_;  // top-level BSDFs and textures not referenced yet
+    std::set<std::string> building_;
     bool has_sensor_ = false;
     int include_depth_ = 0;
 };
