@@ -80,6 +80,32 @@ TEST(MitsubaScenes, SpdSpectraNamedIorsAndMetals) {
                   .find("use 'Cu'"), std::string::npos);
 }
 
+TEST(MitsubaScenes, BitmapWrapModesAndFilters) {
+    // A 4 x 1 EXR with texel values 0.1, 0.2, 0.3, 0.4 (raw, grey): eval_1 at u outside [0, 1] in each wrap mode.
+    const fs::path dir = temp_dir("test_bitmap");
+    io::Image ramp(4, 1, 1);
+    for (int x = 0; x < 4; ++x) ramp.at(x, 0, 0) = static_cast<float>(0.1 * (x + 1));
+    io::write_exr(dir / "ramp.exr", ramp);
+    const auto value = [&](const std::string& wrap, const std::string& filter, double u) {
+        const LoadedMaterial m = load_material(fmt::format(R"(<bsdf type="blendbsdf"><texture name="weight" type="bitmap">
+            <string name="filename" value="ramp.exr"/><string name="wrap_mode" value="{}"/><string name="filter_type" value="{}"/>
+            </texture><bsdf type="diffuse"><float name="reflectance" value="0"/></bsdf>
+            <bsdf type="diffuse"><float name="reflectance" value="1"/></bsdf></bsdf>)", wrap, filter), dir / "scene.xml");
+        ShadingPoint sp;
+        sp.uv = {u, 0.5};
+        SampledWavelengths w = SampledWavelengths::sample_visible(0.5);
+        return m.material->eval(sp, {0, 0, 1}, {0, 0, 1}, w, nullptr)[0] * kPi;  // = the blend weight
+    };
+    // Texel centres at u = 0.125, 0.375, ...: u = 1.125 is texel 0 repeated, texel 3 mirrored, texel 3 clamped.
+    EXPECT_NEAR(value("repeat", "nearest", 1.125), 0.1, 1e-6);
+    EXPECT_NEAR(value("mirror", "nearest", 1.125), 0.4, 1e-6);
+    EXPECT_NEAR(value("clamp", "nearest", 1.125), 0.4, 1e-6);
+    EXPECT_NEAR(value("mirror", "nearest", -0.125), 0.1, 1e-6);
+    EXPECT_NEAR(value("repeat", "bilinear", 0.25), 0.15, 1e-6);  // halfway between texels 0 and 1
+    EXPECT_NEAR(value("repeat", "bilinear", 0.0), 0.25, 1e-6);   // halfway between texel 3 and (wrapped) texel 0
+    EXPECT_NEAR(value("clamp", "bilinear", 0.0), 0.1, 1e-6);
+}
+
 TEST(MitsubaScenes, PluginsOutsideTheSubsetAreErrorsWithFileAndLine) {
     const std::pair<std::string, std::string> cases[] = {
         {R"(<integrator type="bdpt"/>)", "unknown integrator plugin 'bdpt'"},
