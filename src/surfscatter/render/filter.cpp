@@ -42,6 +42,14 @@ ReconstructionFilter::ReconstructionFilter(std::string name, double radius, doub
     absolute_integral_ = absolute_total / signed_total;
     for (double& c : cdf_) c /= absolute_total;
     for (double& c : signed_cdf_) c /= signed_total;
+    // Guide table: for u in [k, k + 1) / kBins the bin to search from (sampling is on every camera ray).
+    guide_.resize(kBins + 1);
+    std::size_t bin = 0;
+    for (int k = 0; k <= kBins; ++k) {
+        const double u = static_cast<double>(k) / kBins;
+        while (bin + 1 < kBins && cdf_[bin + 1] <= u) ++bin;
+        guide_[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(bin);
+    }
 }
 
 double ReconstructionFilter::eval(double x) const {
@@ -58,18 +66,24 @@ double ReconstructionFilter::cdf_at(const std::vector<double>& cdf, double x) co
 }
 
 double ReconstructionFilter::sample_1d(double u, double lo, double hi, double& weight) const {
-    lo = std::max(lo, -radius_);
-    hi = std::min(hi, radius_);
-    const double p_lo = cdf_at(cdf_, lo), p_hi = cdf_at(cdf_, hi);
-    const double mass = p_hi - p_lo, integral = cdf_at(signed_cdf_, hi) - cdf_at(signed_cdf_, lo);
-    if (!(mass > 0) || !(std::abs(integral) > 1e-12)) {
-        weight = 0;
-        return 0.5 * (lo + hi);
+    double p_lo = 0, mass = 1, integral = 1;  // the whole footprint
+    if (lo > -radius_ || hi < radius_) {
+        lo = std::max(lo, -radius_);
+        hi = std::min(hi, radius_);
+        p_lo = cdf_at(cdf_, lo);
+        mass = cdf_at(cdf_, hi) - p_lo;
+        integral = cdf_at(signed_cdf_, hi) - cdf_at(signed_cdf_, lo);
+        if (!(mass > 0) || !(std::abs(integral) > 1e-12)) {
+            weight = 0;
+            return 0.5 * (lo + hi);
+        }
+    } else {
+        lo = -radius_;
+        hi = radius_;
     }
     const double target = p_lo + u * mass;
-    const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), target);
-    const std::size_t i = std::min<std::size_t>(
-        static_cast<std::size_t>(std::max<std::ptrdiff_t>(it - cdf_.begin() - 1, 0)), kBins - 1);
+    std::size_t i = guide_[std::min<std::size_t>(static_cast<std::size_t>(target * kBins), kBins)];
+    while (i + 1 < kBins && cdf_[i + 1] <= target) ++i;
     const double c0 = cdf_[i], c1 = cdf_[i + 1];
     const double t = c1 > c0 ? std::clamp((target - c0) / (c1 - c0), 0.0, 1.0) : 0.5;
     const double width = 2 * radius_ / kBins;

@@ -12,6 +12,7 @@
 // edge is the filter-weighted mean over the part of its footprint inside the window. sample() reproduces this: the
 // offset is drawn from |f| restricted to the window [lo, hi] and the weight is divided by the filter's integral over
 // the window (from a table of bin integrals, accurate to ~1e-6 relative).
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -57,6 +58,7 @@ private:
     double absolute_integral_ = 1;
     std::vector<double> cdf_;         // of |f| over kBins equal bins of [-radius, radius], normalised to 1
     std::vector<double> signed_cdf_;  // of the normalised f
+    std::vector<std::uint32_t> guide_;  // first bin for u in [k, k + 1) / kBins
 };
 using FilterPtr = std::shared_ptr<const ReconstructionFilter>;
 

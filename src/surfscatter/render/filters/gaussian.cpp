@@ -9,9 +9,9 @@
 
 namespace surfscatter::render::plugins {
 
+// p[0] = stddev, p[1] = the Gaussian's value at the radius 4 stddev, exp(-8).
 double gaussian_profile(double x, const double* p) {
-    const double alpha = -1 / (2 * p[0] * p[0]);
-    return std::max(0.0, std::exp(alpha * x * x) - std::exp(alpha * 16 * p[0] * p[0]));
+    return std::max(0.0, std::exp(-x * x / (2 * p[0] * p[0])) - p[1]);
 }
 
 FilterPtr gaussian(Properties& props) {
@@ -25,6 +25,6 @@ FilterPtr gaussian(Properties& props) {
 namespace surfscatter::render {
 FilterPtr make_gaussian_filter(double stddev) {
     return std::make_shared<ReconstructionFilter>("gaussian", 4 * stddev, plugins::gaussian_profile,
-                                                  std::vector<double>{stddev});
+                                                  std::vector<double>{stddev, std::exp(-8.0)});
 }
 }  // namespace surfscatter::render
