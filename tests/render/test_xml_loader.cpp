@@ -183,7 +183,7 @@ TEST(XmlLoader, SurfaceFileOfAnyFormatIsReadOnceAndReported) {
                                                     line_of(bad_form, "ggx_stats"))),
               std::string::npos)
         << load_error(bad_form);
-    const fs::path garbage = temp_dir() / "garbage.dat";
+    const fs::path garbage = temp_dir("test_xml_heightmap") / "garbage.dat";
     {
         std::ofstream out(garbage, std::ios::binary);
         for (int i = 0; i < 4000; ++i) out.put(static_cast<char>((i * 37) % 256));
