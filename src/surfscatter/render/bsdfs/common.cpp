@@ -162,4 +162,26 @@ double Microfacet::pdf(const Vec3& w, const Vec3& m) const {
     return D(m) * m.z;
 }
 
+SmoothDielectricLobes::SmoothDielectricLobes(Properties& props)
+    : eta_(read_relative_ior(props, "bk7", "air", true)),
+      reflectance_(props.get_texture("specular_reflectance", 1.0)),
+      transmittance_(props.get_texture("specular_transmittance", 1.0)) {}
+
+MaterialSample SmoothDielectricLobes::choose_lobe(const ShadingPoint& sp, const Vec3& wo, const SampledWavelengths& w,
+                                                  double u_lobe, double r, const Vec3& wi_transmitted,
+                                                  double transmitted_scale) const {
+    MaterialSample s;
+    s.delta = true;
+    if (u_lobe < r) {
+        s.wi = reflect_about_normal(wo);
+        s.f = reflectance_->eval(sp.uv, w) * r;
+        s.pdf = SampledSpectrum(r);
+    } else {
+        s.wi = wi_transmitted;
+        s.f = transmittance_->eval(sp.uv, w) * ((1 - r) * transmitted_scale);
+        s.pdf = SampledSpectrum(1 - r);
+    }
+    return s;
+}
+
 }  // namespace surfscatter::render

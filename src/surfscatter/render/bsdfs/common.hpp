@@ -1,6 +1,7 @@
 #pragma once
 // What several BSDF plugins share: indices of refraction by value or by Mitsuba's names, a conductor's complex
-// index tabulated over the sampled wavelengths, and the microfacet distributions of the rough plugins.
+// index tabulated over the sampled wavelengths, the microfacet distributions of the rough plugins and the two delta
+// lobes of the smooth dielectrics.
 #include <complex>
 #include <functional>
 #include <memory>
@@ -78,5 +79,24 @@ inline Vec3 reflect(const Vec3& w, const Vec3& m) { return 2 * dot(w, m) * m - w
 inline Vec3 refract(const Vec3& w, const Vec3& m, double cos_theta_t, double eta_ti) {
     return m * (dot(w, m) * eta_ti + cos_theta_t) - w * eta_ti;
 }
+
+// A smooth dielectric's two delta lobes (dielectric, thindielectric): `int_ior`/`ext_ior`, `specular_reflectance`,
+// `specular_transmittance`. The subclass gives, for wo, the probability r of reflection about the normal and the
+// transmitted direction with its weight; both lobes are chosen with their probabilities.
+class SmoothDielectricLobes : public DeltaMaterial {
+public:
+    explicit SmoothDielectricLobes(Properties& props);
+    bool has_transmission() const final { return true; }
+
+protected:
+    // Reflection with probability r (weight r times specular_reflectance), else transmission along wi_transmitted
+    // (weight (1 - r) * transmitted_scale times specular_transmittance).
+    MaterialSample choose_lobe(const ShadingPoint& sp, const Vec3& wo, const SampledWavelengths& w, double u_lobe,
+                               double r, const Vec3& wi_transmitted, double transmitted_scale) const;
+    double eta_;  // int_ior / ext_ior
+
+private:
+    TexturePtr reflectance_, transmittance_;
+};
 
 }  // namespace surfscatter::render

@@ -12,43 +12,21 @@ namespace surfscatter::render {
 
 namespace {
 
-class SmoothDielectric final : public DeltaMaterial {
+class SmoothDielectric final : public SmoothDielectricLobes {
 public:
-    SmoothDielectric(double eta, TexturePtr reflectance, TexturePtr transmittance)
-        : eta_(eta), reflectance_(std::move(reflectance)), transmittance_(std::move(transmittance)) {}
-
+    using SmoothDielectricLobes::SmoothDielectricLobes;
 
     std::optional<MaterialSample> sample(const ShadingPoint& sp, const Vec3& wo, const SampledWavelengths& w,
                                          double u_lobe, Vec2) const override {
         if (wo.z == 0) return std::nullopt;
         const material::DielectricFresnel f = material::fresnel_dielectric(wo.z, eta_);
-        MaterialSample s;
-        s.delta = true;
-        if (u_lobe < f.reflectance) {
-            s.wi = reflect_about_normal(wo);
-            s.f = reflectance_->eval(sp.uv, w) * f.reflectance;
-            s.pdf = SampledSpectrum(f.reflectance);
-        } else {
-            s.wi = Vec3(-wo.x * f.eta_ti, -wo.y * f.eta_ti, f.cos_theta_t);
-            s.f = transmittance_->eval(sp.uv, w) * ((1 - f.reflectance) * f.eta_ti * f.eta_ti);
-            s.pdf = SampledSpectrum(1 - f.reflectance);
-        }
-        return s;
+        const Vec3 refracted(-wo.x * f.eta_ti, -wo.y * f.eta_ti, f.cos_theta_t);
+        return choose_lobe(sp, wo, w, u_lobe, f.reflectance, refracted, f.eta_ti * f.eta_ti);
     }
-
-    bool has_transmission() const override { return true; }
-
-private:
-    double eta_;
-    TexturePtr reflectance_, transmittance_;
 };
 
 }  // namespace
 
-MaterialPtr plugins::dielectric(Properties& props) {
-    const double eta = read_relative_ior(props, "bk7", "air", true);
-    return std::make_shared<SmoothDielectric>(eta, props.get_texture("specular_reflectance", 1.0),
-                                              props.get_texture("specular_transmittance", 1.0));
-}
+MaterialPtr plugins::dielectric(Properties& props) { return std::make_shared<SmoothDielectric>(props); }
 
 }  // namespace surfscatter::render

@@ -12,44 +12,21 @@ namespace surfscatter::render {
 
 namespace {
 
-class ThinDielectric final : public DeltaMaterial {
+class ThinDielectric final : public SmoothDielectricLobes {
 public:
-    ThinDielectric(double eta, TexturePtr reflectance, TexturePtr transmittance)
-        : eta_(eta), reflectance_(std::move(reflectance)), transmittance_(std::move(transmittance)) {}
-
+    using SmoothDielectricLobes::SmoothDielectricLobes;
 
     std::optional<MaterialSample> sample(const ShadingPoint& sp, const Vec3& wo, const SampledWavelengths& w,
                                          double u_lobe, Vec2) const override {
         if (wo.z == 0) return std::nullopt;
         const double f = material::fresnel_dielectric(std::abs(wo.z), eta_).reflectance;
         const double r = f < 1 ? f + (1 - f) * (1 - f) * f / (1 - f * f) : 1.0;
-        MaterialSample s;
-        s.delta = true;
-        if (u_lobe < r) {
-            s.wi = reflect_about_normal(wo);
-            s.f = reflectance_->eval(sp.uv, w) * r;
-            s.pdf = SampledSpectrum(r);
-        } else {
-            s.wi = -wo;
-            s.f = transmittance_->eval(sp.uv, w) * (1 - r);
-            s.pdf = SampledSpectrum(1 - r);
-        }
-        return s;
+        return choose_lobe(sp, wo, w, u_lobe, r, -wo, 1.0);
     }
-
-    bool has_transmission() const override { return true; }
-
-private:
-    double eta_;
-    TexturePtr reflectance_, transmittance_;
 };
 
 }  // namespace
 
-MaterialPtr plugins::thindielectric(Properties& props) {
-    const double eta = read_relative_ior(props, "bk7", "air", true);
-    return std::make_shared<ThinDielectric>(eta, props.get_texture("specular_reflectance", 1.0),
-                                            props.get_texture("specular_transmittance", 1.0));
-}
+MaterialPtr plugins::thindielectric(Properties& props) { return std::make_shared<ThinDielectric>(props); }
 
 }  // namespace surfscatter::render
