@@ -170,7 +170,7 @@ inline cv::Mat linear_rgb_from_srgb8(const cv::Mat& encoded) {
 inline MarkerTexture marker_texture(int id, double marker_length, const char* dictionary) {
     constexpr int kSide = 400;
     cv::Mat marker;
-    cv::aruco::drawMarker(dictionary_by_name(dictionary), id, kSide, marker, 1);
+    cv::aruco::drawMarker(load_dictionary(dictionary), id, kSide, marker, 1);
     cv::Mat canvas(2 * kSide, 2 * kSide, CV_8UC1, cv::Scalar(255));
     marker.copyTo(canvas(cv::Rect(kSide / 2, kSide / 2, kSide, kSide)));
     return {canvas, 2.0 * marker_length};

@@ -1,6 +1,9 @@
 #include <cstdio>
 
+#include <filesystem>
 #include <tuple>
+
+#include <unistd.h>
 
 #include <gtest/gtest.h>
 #include <opencv2/calib3d.hpp>
@@ -101,6 +104,7 @@ TEST(Calibration, CharucoRecoversKnownIntrinsicsAndDistortionDespiteOcclusion) {
     spec.type = BoardType::Charuco;
     spec.squares_x = 10, spec.squares_y = 7, spec.square_length = 0.03, spec.marker_length = 0.022;
     const CalibrationResult result = calibrate_camera(inputs, spec);
+    EXPECT_TRUE(result.camera.calibration_warnings.empty()) << result.camera.calibration_warnings.front();
     ASSERT_EQ(result.rejected, std::vector<std::string>{"empty.png"});
     expect_recovers(truth, result, "ChArUco", 0, 0.5);
 }
@@ -118,6 +122,7 @@ TEST(Calibration, ChessboardRecoversKnownIntrinsics) {
     spec.type = BoardType::Chessboard;
     spec.squares_x = 8, spec.squares_y = 6, spec.square_length = 0.025;
     const CalibrationResult result = calibrate_camera(inputs, spec);
+    EXPECT_TRUE(result.camera.calibration_warnings.empty()) << result.camera.calibration_warnings.front();
     EXPECT_EQ(result.rejected.size(), 4u);  // the four views with the board cut by the image border
     expect_recovers(truth, result, "chessboard", 120, 1.0);
 }
@@ -155,6 +160,57 @@ TEST(Calibration, BadBoardSpecsAreRejected) {
     spec.squares_x = 2;
     EXPECT_THROW(validate(spec), Error);
     EXPECT_THROW(board_type_by_name("circles"), Error);
+    // Sizes whose products overflow an int, or that would make OpenCV allocate or loop for ever, are refused with
+    // the limit named (before any board is built).
+    for (const int side : {201, 65536, 100000}) {
+        spec.squares_x = spec.squares_y = side;
+        try {
+            validate(spec);
+            FAIL() << side;
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("--squares must be between 3 and 200"), std::string::npos) << e.what();
+        }
+    }
+    spec.squares_x = 7, spec.squares_y = 5;
+    spec.square_length = 1e39;  // beyond float
+    EXPECT_THROW(validate(spec), Error);
+    spec.square_length = 0.03;
+    spec.dictionary = "/nonexistent/dictionary.yml";
+    EXPECT_THROW(validate(spec), Error);
+    spec.type = BoardType::Grid;
+    spec.markers_x = 1, spec.markers_y = 1, spec.marker_separation = 0.01;
+    EXPECT_THROW(validate(spec), Error);  // a grid of one marker is a marker
+}
+
+// Four near head-on views pin nothing down: the focal length's standard deviation is far above 1 % and the
+// calibration says so, in the camera file too.
+TEST(Calibration, WeakViewSetsAreFlagged) {
+    const CameraModel truth = synthetic::true_camera();
+    const auto board = synthetic::charuco_texture(10, 7, 0.03, 0.022);
+    std::vector<CalibrationInput> inputs;
+    int i = 0;
+    for (const cv::Vec3d& eye : {cv::Vec3d{0.0, 0.0, 0.33}, {0.02, 0.0, 0.33}, {0.0, 0.02, 0.32}, {-0.02, 0.01, 0.34}})
+        inputs.push_back({"near" + std::to_string(i++), photograph(board.image, board.width, board.height, truth,
+                                                                   synthetic::look_at(eye, {0, 0, 0}, {0, 1, 0}))});
+    BoardSpec spec;
+    spec.squares_x = 10, spec.squares_y = 7, spec.square_length = 0.03, spec.marker_length = 0.022;
+    const CalibrationResult weak = calibrate_camera(inputs, spec);
+    std::printf("[ measured ] 4 head-on views: fx %.1f +- %.1f px, tilt span %.1f deg, %zu warnings\n", weak.camera.fx(),
+                weak.camera.intrinsics_std_dev[0], weak.tilt_span_deg, weak.camera.calibration_warnings.size());
+    EXPECT_LT(weak.tilt_span_deg, kMinimumTiltSpanDeg);
+    ASSERT_FALSE(weak.camera.calibration_warnings.empty());
+    const auto mentions = [&](const std::string& text) {
+        for (const auto& w : weak.camera.calibration_warnings)
+            if (w.find(text) != std::string::npos) return true;
+        return false;
+    };
+    EXPECT_TRUE(mentions("fx = "));
+    EXPECT_TRUE(mentions("span only"));
+    EXPECT_TRUE(mentions("add views"));
+    const auto path = std::filesystem::temp_directory_path() / ("weak_camera_" + std::to_string(::getpid()) + ".yml");
+    write_camera(path, weak.camera);
+    EXPECT_EQ(read_camera(path).calibration_warnings, weak.camera.calibration_warnings);
+    std::filesystem::remove(path);
 }
 
 }  // namespace

@@ -64,17 +64,18 @@ TEST_P(MarkerPoseRecovery, CameraPositionWithin2mmAndRotationWithinHalfDegree) {
     options.marker_length = kMarkerLength;
     const MarkerPose pose = estimate_marker_pose(synthetic::linear_rgb_from_srgb8(image), camera, options);
     EXPECT_EQ(pose.marker_id, 7);
-    EXPECT_TRUE(pose.edge_refined);
-    EXPECT_LT(pose.reprojection_rms, 0.5);
+    EXPECT_EQ(pose.corners.method, "pattern");
+    EXPECT_FALSE(pose.pose.ambiguous);
+    EXPECT_LT(pose.pose.best.reprojection_rms, 0.5);
     // The issue asks for 2 mm and 0.5 degree; the edge-based corners give well under a tenth of that.
-    EXPECT_LT(cv::norm(pose.position - pc.eye), 0.0005) << pose.position << " vs " << pc.eye;
+    EXPECT_LT(cv::norm(pose.pose.best.position - pc.eye), 0.0005) << pose.pose.best.position << " vs " << pc.eye;
     cv::Matx33d r_true, r_est;
     cv::Rodrigues(truth.rvec, r_true);
-    cv::Rodrigues(pose.rvec, r_est);
+    cv::Rodrigues(pose.pose.best.rvec, r_est);
     const double rotation_error = rotation_error_degrees(r_true, r_est);
     EXPECT_LT(rotation_error, 0.05);
     std::printf("[ measured ] position error %.4f mm, rotation error %.4f deg, reprojection %.3f px\n",
-                1e3 * cv::norm(pose.position - pc.eye), rotation_error, pose.reprojection_rms);
+                1e3 * cv::norm(pose.pose.best.position - pc.eye), rotation_error, pose.pose.best.reprojection_rms);
 }
 
 INSTANTIATE_TEST_SUITE_P(

@@ -2,6 +2,7 @@
 // A calibrated pinhole camera with OpenCV's distortion model (k1, k2, p1, p2, k3): image x to the right, y down,
 // pixel centres at integer coordinates, the camera looking along +z. Stored as YAML through cv::FileStorage.
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -17,6 +18,8 @@ struct CameraModel {
     // One standard deviation of fx, fy, cx, cy and each distortion coefficient, from the calibration's covariance
     // (cv::calibrateCamera); empty if unknown.
     std::vector<double> intrinsics_std_dev;
+    // Why the calibration is weak (calibration.hpp), one sentence each; empty if it is not (or unknown).
+    std::vector<std::string> calibration_warnings;
 
     double fx() const { return matrix(0, 0); }
     double fy() const { return matrix(1, 1); }
@@ -25,7 +28,7 @@ struct CameraModel {
 };
 
 // Writes image_width, image_height, camera_matrix, distortion_coefficients, rms_reprojection_error, views and, when
-// known, intrinsics_std_dev.
+// known, intrinsics_std_dev and calibration_warnings.
 void write_camera(const std::filesystem::path& path, const CameraModel& camera);
 // Throws Error naming the file and the missing or bad entry.
 CameraModel read_camera(const std::filesystem::path& path);

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include <opencv2/calib3d.hpp>
+#include <opencv2/imgproc.hpp>
 
 namespace surfscatter::photo {
 
@@ -230,6 +231,52 @@ std::optional<std::vector<cv::Point2f>> refine_marker_corners(const cv::Mat& lin
         refined.emplace_back(distorted[static_cast<std::size_t>(k)]);
     }
     return refined;
+}
+
+MarkerCorners refine_marker(const cv::Mat& linear_gray, const std::vector<cv::Point2f>& detected,
+                            const CameraModel& camera, const cv::Mat& cells) {
+    CV_Assert(linear_gray.type() == CV_32FC1 && detected.size() == 4);
+    const int n = cells.rows;
+    double perimeter = 0;
+    for (int k = 0; k < 4; ++k) perimeter += cv::norm(detected[(k + 1) % 4] - detected[k]);
+    const double cell = perimeter / 4 / n;
+
+    MarkerCorners out;
+    out.candidates.push_back({"detector", detected, std::nullopt});
+    // cornerSubPix looks at (2 w + 1)^2 pixels: w is chosen so that this window is no wider than a cell.
+    const int half_window = static_cast<int>(std::floor((cell - 1) / 2));
+    if (half_window >= 1) {
+        std::vector<cv::Point2f> corners = detected;
+        cv::cornerSubPix(linear_gray, corners, cv::Size(half_window, half_window), cv::Size(-1, -1),
+                         cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 100, 1e-4));
+        out.candidates.push_back({"cornerSubPix", corners, std::nullopt});
+    }
+    if (auto edges = refine_marker_corners(linear_gray, detected, camera, n))
+        out.candidates.push_back({"edges", *edges, std::nullopt});
+
+    const CornerCandidate* best = nullptr;
+    for (auto& candidate : out.candidates) {
+        if (const auto score = score_marker_corners(linear_gray, candidate.corners, camera, cells))
+            candidate.pattern_residual = score->residual;
+        if (candidate.pattern_residual && (!best || *candidate.pattern_residual < *best->pattern_residual))
+            best = &candidate;
+    }
+    if (!best) {
+        // Nothing could be scored: the edge fit if it worked (measured to 0.03 px on its own), else the detector.
+        const bool edges = out.candidates.back().method == "edges";
+        out.method = edges ? "edges" : "detector";
+        out.corners = edges ? out.candidates.back().corners : detected;
+        return out;
+    }
+    const std::vector<cv::Point2f> start = best->corners;
+    out.method = best->method, out.corners = best->corners;
+    double best_residual = *best->pattern_residual;
+    if (auto fit = fit_marker_pattern(linear_gray, start, camera, cells)) {
+        out.candidates.push_back({"pattern", fit->corners, fit->residual});
+        if (fit->residual < best_residual) out.method = "pattern", out.corners = fit->corners;
+        out.pattern = std::move(fit);
+    }
+    return out;
 }
 
 }  // namespace surfscatter::photo

@@ -13,11 +13,13 @@
 // points are undistorted with the camera model, a straight line is fitted to each side (total least squares, with
 // outliers beyond 3 robust sigma dropped), neighbouring lines are intersected and the corners distorted back.
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <opencv2/core.hpp>
 
 #include "surfscatter/photo/camera_model.hpp"
+#include "surfscatter/photo/marker_pattern.hpp"
 
 namespace surfscatter::photo {
 
@@ -29,5 +31,26 @@ namespace surfscatter::photo {
 std::optional<std::vector<cv::Point2f>> refine_marker_corners(const cv::Mat& linear_gray,
                                                               const std::vector<cv::Point2f>& corners,
                                                               const CameraModel& camera, int cells_per_side);
+
+// The marker's corners never worse than the detector's. Candidates: the detector's own corners ("detector"),
+// cornerSubPix on the linear luminance with a window no wider than a cell ("cornerSubPix", markers of 3 px per cell
+// and more), the edge fit above ("edges") and the fit of the whole pattern (marker_pattern.hpp, "pattern", started
+// from the best of the others). Each is scored by how well the marker's pattern reprojected through its corners
+// explains the image (score_marker_corners: RMS residual as a fraction of the contrast); the lowest wins. When the
+// pattern cannot be scored (the marker or its quiet zone leaves the image), the edge fit is kept if it succeeded,
+// else the detector's corners.
+struct CornerCandidate {
+    std::string method;
+    std::vector<cv::Point2f> corners;
+    std::optional<double> pattern_residual;  // nothing if it could not be scored
+};
+struct MarkerCorners {
+    std::vector<cv::Point2f> corners;         // the chosen set
+    std::string method;                       // its candidate's name
+    std::vector<CornerCandidate> candidates;  // all of them, in the order above
+    std::optional<PatternFit> pattern;        // the pattern fit, when it converged
+};
+MarkerCorners refine_marker(const cv::Mat& linear_gray, const std::vector<cv::Point2f>& detected,
+                            const CameraModel& camera, const cv::Mat& cells);
 
 }  // namespace surfscatter::photo

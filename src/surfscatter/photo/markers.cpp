@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cstdint>
+#include <filesystem>
 #include <limits>
 #include <utility>
 
@@ -10,6 +12,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/photo/marker_corners.hpp"
 #include "surfscatter/photo/photo_io.hpp"
 
 namespace surfscatter::photo {
@@ -35,52 +38,143 @@ std::string upper(std::string s) {
 }
 }  // namespace
 
-cv::Ptr<cv::aruco::Dictionary> dictionary_by_name(const std::string& name) {
+namespace {
+cv::Ptr<cv::aruco::Dictionary> predefined_dictionary(const std::string& name) {
     std::string key = upper(name);
     if (key.rfind("DICT_", 0) == 0) key = key.substr(5);
     for (const auto& [n, id] : kDictionaries)
         if (key == n) return cv::aruco::getPredefinedDictionary(id);
     std::string valid;
     for (const auto& [n, id] : kDictionaries) valid += (valid.empty() ? "" : ", ") + std::string(n);
-    fail("unknown ArUco dictionary '{}' (valid: {})", name, valid);
+    fail("unknown ArUco dictionary '{}' (valid: {}, or a dictionary file .yml/.xml/.json)", name, valid);
+}
+
+// OpenCV's own Dictionary::readDictionary does not check the bit strings (a longer one writes past its buffer, any
+// character but '0' counts as 1), so the file is read and checked here.
+cv::Ptr<cv::aruco::Dictionary> dictionary_file(const std::string& path) {
+    if (!std::filesystem::exists(path)) fail("dictionary file '{}' does not exist", path);
+    if (std::filesystem::is_directory(path)) fail("dictionary file '{}' is a directory", path);
+    cv::FileStorage fs;
+    try {
+        fs.open(path, cv::FileStorage::READ);
+    } catch (const cv::Exception& e) {
+        fail("dictionary file '{}' is not valid YAML/XML/JSON: {}", path, e.err);
+    }
+    if (!fs.isOpened()) fail("dictionary file '{}' could not be read as YAML/XML/JSON", path);
+    const auto integer = [&](const std::string& key, int low, int high) {
+        const cv::FileNode node = fs[key];
+        if (node.empty()) fail("dictionary file '{}': missing entry '{}'", path, key);
+        if (!node.isInt()) fail("dictionary file '{}': '{}' must be an integer", path, key);
+        const int value = static_cast<int>(node);
+        if (value < low || value > high)
+            fail("dictionary file '{}': {} = {} is outside [{}, {}]", path, key, value, low, high);
+        return value;
+    };
+    const int markers = integer("nmarkers", 1, kMaxDictionaryMarkers);
+    const int bits = integer("markersize", 2, kMaxMarkerBits);
+    const int correction = fs["maxCorrectionBits"].empty() ? 0 : integer("maxCorrectionBits", 0, bits * bits);
+    cv::Mat bytes;
+    cv::Mat cells(bits, bits, CV_8UC1);
+    for (int i = 0; i < markers; ++i) {
+        const std::string key = "marker_" + std::to_string(i);
+        const cv::FileNode node = fs[key];
+        if (node.empty()) fail("dictionary file '{}': missing entry '{}' (nmarkers = {})", path, key, markers);
+        if (!node.isString()) fail("dictionary file '{}': '{}' must be a string of '0' and '1'", path, key);
+        const std::string code = static_cast<std::string>(node);
+        if (code.size() != static_cast<std::size_t>(bits * bits) ||
+            code.find_first_not_of("01") != std::string::npos)
+            fail("dictionary file '{}': '{}' must be {} characters '0' or '1' (markersize {} squared), got '{}'", path,
+                 key, bits * bits, bits, code);
+        for (int j = 0; j < bits * bits; ++j) cells.at<std::uint8_t>(j / bits, j % bits) = code[static_cast<std::size_t>(j)] == '1';
+        bytes.push_back(cv::aruco::Dictionary::getByteListFromBits(cells));
+    }
+    return cv::makePtr<cv::aruco::Dictionary>(bytes, bits, correction);
+}
+
+void require_length(double value, const char* what) {
+    if (!(value >= kMinBoardLength && value <= kMaxBoardLength))
+        fail("{} must be between {} and {} metres, got {}", what, kMinBoardLength, kMaxBoardLength, value);
+}
+
+void require_side(int value, int minimum, const char* what) {
+    if (value < minimum || value > kMaxBoardSide)
+        fail("{} must be between {} and {} per side, got {}", what, minimum, kMaxBoardSide, value);
+}
+
+void require_dictionary_size(std::int64_t markers, const BoardSpec& board, const char* kind) {
+    const int available = load_dictionary(board.dictionary)->bytesList.rows;
+    if (markers > available)
+        fail("a {} board needs {} markers but dictionary {} has only {}", kind, markers, board.dictionary, available);
+}
+}  // namespace
+
+cv::Ptr<cv::aruco::Dictionary> load_dictionary(const std::string& name_or_file) {
+    if (name_or_file.find_first_of("/.") != std::string::npos) return dictionary_file(name_or_file);
+    return predefined_dictionary(name_or_file);
+}
+
+cv::Mat marker_cells(const cv::aruco::Dictionary& dictionary, int id) {
+    CV_Assert(id >= 0 && id < dictionary.bytesList.rows);
+    const int bits = dictionary.markerSize;
+    const cv::Mat code = cv::aruco::Dictionary::getBitsFromByteList(dictionary.bytesList.row(id), bits);
+    cv::Mat cells = cv::Mat::zeros(bits + 2, bits + 2, CV_8UC1);
+    code.copyTo(cells(cv::Rect(1, 1, bits, bits)));
+    return cells;
 }
 
 cv::Ptr<cv::aruco::DetectorParameters> marker_detector_parameters() {
     auto params = cv::aruco::DetectorParameters::create();
-    params->cornerRefinementMethod = cv::aruco::CORNER_REFINE_SUBPIX;
-    params->cornerRefinementWinSize = 5;
-    params->cornerRefinementMaxIterations = 100;
-    params->cornerRefinementMinAccuracy = 0.001;
+    params->cornerRefinementMethod = cv::aruco::CORNER_REFINE_NONE;
     return params;
+}
+
+DetectedMarkers detect_markers(const cv::Mat& linear_rgb, const cv::Ptr<cv::aruco::Dictionary>& dictionary) {
+    CV_Assert(linear_rgb.type() == CV_32FC3);
+    DetectedMarkers found;
+    cv::aruco::detectMarkers(to_gray8(linear_rgb), dictionary, found.corners, found.ids, marker_detector_parameters(),
+                             found.rejected);
+    return found;
 }
 
 BoardType board_type_by_name(const std::string& name) {
     if (name == "charuco") return BoardType::Charuco;
     if (name == "chessboard") return BoardType::Chessboard;
-    fail("unknown board type '{}' (expected charuco or chessboard)", name);
+    if (name == "grid") return BoardType::Grid;
+    fail("unknown board type '{}' (expected charuco, chessboard or grid)", name);
 }
 
 void validate(const BoardSpec& board) {
-    if (board.squares_x < 3 || board.squares_y < 3)
-        fail("board must have at least 3x3 squares, got {}x{}", board.squares_x, board.squares_y);
-    require_positive(board.square_length, "--square-length");
+    if (board.type == BoardType::Grid) {
+        require_length(board.marker_length, "--marker-length");
+        require_side(board.markers_x, 1, "--markers");
+        require_side(board.markers_y, 1, "--markers");
+        if (board.markers_x * board.markers_y < 2)
+            fail("a grid board needs at least 2 markers, got {}x{}", board.markers_x, board.markers_y);
+        require_length(board.marker_separation, "--marker-separation");
+        require_dictionary_size(std::int64_t{board.markers_x} * board.markers_y, board, "grid");
+        return;
+    }
+    require_side(board.squares_x, 3, "--squares");
+    require_side(board.squares_y, 3, "--squares");
+    require_length(board.square_length, "--square-length");
     if (board.type == BoardType::Charuco) {
-        require_positive(board.marker_length, "--marker-length");
+        require_length(board.marker_length, "--marker-length");
         if (board.marker_length >= board.square_length)
             fail("--marker-length {} must be smaller than --square-length {}", board.marker_length,
                  board.square_length);
-        const int markers = board.squares_x * board.squares_y / 2;
-        const int available = dictionary_by_name(board.dictionary)->bytesList.rows;
-        if (markers > available)
-            fail("a {}x{} ChArUco board needs {} markers but dictionary {} has only {}", board.squares_x,
-                 board.squares_y, markers, board.dictionary, available);
+        require_dictionary_size(std::int64_t{board.squares_x} * board.squares_y / 2, board, "ChArUco");
     }
 }
 
 cv::Ptr<cv::aruco::CharucoBoard> make_charuco_board(const BoardSpec& board) {
     return cv::aruco::CharucoBoard::create(board.squares_x, board.squares_y, static_cast<float>(board.square_length),
                                            static_cast<float>(board.marker_length),
-                                           dictionary_by_name(board.dictionary));
+                                           load_dictionary(board.dictionary));
+}
+
+cv::Ptr<cv::aruco::GridBoard> make_grid_board(const BoardSpec& board) {
+    return cv::aruco::GridBoard::create(board.markers_x, board.markers_y, static_cast<float>(board.marker_length),
+                                        static_cast<float>(board.marker_separation), load_dictionary(board.dictionary));
 }
 
 namespace {
@@ -102,33 +196,38 @@ void refine_board_corners(const cv::Mat& linear_gray, const BoardSpec& board, st
                      cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 100, 1e-4));
 }
 
-std::optional<BoardView> detect_charuco(const cv::Mat& gray, const BoardSpec& spec) {
+BoardView detect_charuco(const cv::Mat& gray, const BoardSpec& spec, const CameraModel* camera) {
     const auto board = make_charuco_board(spec);
     std::vector<std::vector<cv::Point2f>> marker_corners, rejected;
     std::vector<int> marker_ids;
     cv::aruco::detectMarkers(gray, board->dictionary, marker_corners, marker_ids, marker_detector_parameters(),
                              rejected);
-    if (marker_ids.empty()) return std::nullopt;
-    cv::aruco::refineDetectedMarkers(gray, board, marker_corners, marker_ids, rejected);
+    BoardView view;
+    if (marker_ids.empty()) return view.fail("no marker of the ChArUco board found");
+    const cv::Mat matrix = camera ? cv::Mat(camera->matrix) : cv::Mat();
+    const cv::Mat distortion = camera ? cv::Mat(camera->distortion) : cv::Mat();
+    cv::aruco::refineDetectedMarkers(gray, board, marker_corners, marker_ids, rejected, matrix, distortion);
     std::vector<cv::Point2f> corners;
     std::vector<int> ids;
-    cv::aruco::interpolateCornersCharuco(marker_corners, marker_ids, gray, board, corners, ids);
-    constexpr int kMinimumCorners = 6;
-    if (static_cast<int>(ids.size()) < kMinimumCorners) return std::nullopt;
-    if (cv::aruco::testCharucoCornersCollinear(board, ids)) return std::nullopt;
-    BoardView view;
+    cv::aruco::interpolateCornersCharuco(marker_corners, marker_ids, gray, board, corners, ids, matrix, distortion);
+    view.markers_detected = static_cast<int>(marker_ids.size());
+    if (static_cast<int>(ids.size()) < kMinimumCharucoCorners)
+        return view.fail(fmt::format("too few ChArUco corners: {} interpolated from {} markers, {} needed", ids.size(),
+                                     marker_ids.size(), kMinimumCharucoCorners));
+    if (cv::aruco::testCharucoCornersCollinear(board, ids))
+        return view.fail(fmt::format("the {} ChArUco corners found all lie on one line", ids.size()));
     view.image_points = corners;
     for (int id : ids) view.object_points.push_back(board->chessboardCorners[static_cast<std::size_t>(id)]);
     return view;
 }
 
-std::optional<BoardView> detect_chessboard(const cv::Mat& gray, const BoardSpec& spec) {
+BoardView detect_chessboard(const cv::Mat& gray, const BoardSpec& spec) {
     const cv::Size inner(spec.squares_x - 1, spec.squares_y - 1);
     std::vector<cv::Point2f> corners;
+    BoardView view;
     if (!cv::findChessboardCornersSB(gray, inner, corners,
                                      cv::CALIB_CB_NORMALIZE_IMAGE | cv::CALIB_CB_EXHAUSTIVE | cv::CALIB_CB_ACCURACY))
-        return std::nullopt;
-    BoardView view;
+        return view.fail(fmt::format("no {}x{} chessboard found", spec.squares_x, spec.squares_y));
     view.image_points = corners;
     const auto length = static_cast<float>(spec.square_length);
     for (int row = 0; row < inner.height; ++row)
@@ -136,13 +235,48 @@ std::optional<BoardView> detect_chessboard(const cv::Mat& gray, const BoardSpec&
             view.object_points.emplace_back(static_cast<float>(col) * length, static_cast<float>(row) * length, 0.0f);
     return view;
 }
+
+// Every marker of the grid found (the missed ones looked for again where the board says they are), each with its
+// corners refined by its pattern.
+BoardView detect_grid(const cv::Mat& linear_rgb, const cv::Mat& gray, const BoardSpec& spec,
+                                     const CameraModel& camera) {
+    const auto board = make_grid_board(spec);
+    std::vector<std::vector<cv::Point2f>> marker_corners, rejected;
+    std::vector<int> marker_ids;
+    cv::aruco::detectMarkers(gray, board->dictionary, marker_corners, marker_ids, marker_detector_parameters(),
+                             rejected);
+    BoardView view;
+    if (marker_ids.empty()) return view.fail("no marker of the grid board found");
+    cv::aruco::refineDetectedMarkers(gray, board, marker_corners, marker_ids, rejected, cv::Mat(camera.matrix),
+                                     cv::Mat(camera.distortion));
+    const cv::Mat linear_gray = to_linear_gray(linear_rgb);
+    for (std::size_t i = 0; i < marker_ids.size(); ++i) {
+        const auto position = std::find(board->ids.begin(), board->ids.end(), marker_ids[i]);
+        if (position == board->ids.end()) continue;  // a marker of the dictionary that is not on this board
+        ++view.markers_detected;
+        const auto corners = refine_marker(linear_gray, marker_corners[i], camera,
+                                           marker_cells(*board->dictionary, marker_ids[i]))
+                                 .corners;
+        const auto& object = board->objPoints[static_cast<std::size_t>(position - board->ids.begin())];
+        view.image_points.insert(view.image_points.end(), corners.begin(), corners.end());
+        view.object_points.insert(view.object_points.end(), object.begin(), object.end());
+    }
+    if (view.markers_detected == 0)
+        return view.fail(fmt::format("none of the {} markers found belongs to the {}x{} grid board", marker_ids.size(),
+                                     spec.markers_x, spec.markers_y));
+    return view;
+}
 }  // namespace
 
-std::optional<BoardView> detect_board(const cv::Mat& linear_rgb, const BoardSpec& board) {
+BoardView detect_board(const cv::Mat& linear_rgb, const BoardSpec& board, const CameraModel* camera) {
     CV_Assert(linear_rgb.type() == CV_32FC3);
     const cv::Mat gray = to_gray8(linear_rgb);
-    auto view = board.type == BoardType::Charuco ? detect_charuco(gray, board) : detect_chessboard(gray, board);
-    if (view) refine_board_corners(to_linear_gray(linear_rgb), board, view->image_points);
+    if (board.type == BoardType::Grid) {
+        if (!camera) fail("a grid board needs the camera (its markers' corners are fitted through the lens)");
+        return detect_grid(linear_rgb, gray, board, *camera);
+    }
+    auto view = board.type == BoardType::Charuco ? detect_charuco(gray, board, camera) : detect_chessboard(gray, board);
+    if (view.found()) refine_board_corners(to_linear_gray(linear_rgb), board, view.image_points);
     return view;
 }
 

@@ -5,6 +5,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdarg>
+#include <cstdio>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -14,6 +15,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <tiffio.h>
+#include <unistd.h>
 
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/io/image.hpp"
@@ -95,6 +97,36 @@ std::optional<double> tiff_focal_length(const std::filesystem::path& path) {
     return TIFFGetField(tiff.get(), EXIFTAG_FOCALLENGTH, &focal) ? positive(focal) : std::nullopt;
 }
 
+// Runs `decode` with the process's stderr (fd 2) sent to a temporary file and returns what was written there: the
+// image libraries OpenCV uses print their errors and warnings themselves.
+template <typename F>
+std::string captured_stderr(F decode) {
+    std::fflush(stderr);
+    const std::unique_ptr<FILE, int (*)(FILE*)> sink(std::tmpfile(), &std::fclose);
+    const int saved = sink ? ::dup(STDERR_FILENO) : -1;
+    if (saved < 0) {
+        decode();
+        return {};
+    }
+    ::dup2(::fileno(sink.get()), STDERR_FILENO);
+    try {
+        decode();
+    } catch (...) {
+        std::fflush(stderr);
+        ::dup2(saved, STDERR_FILENO);
+        ::close(saved);
+        throw;
+    }
+    std::fflush(stderr);
+    ::dup2(saved, STDERR_FILENO);
+    ::close(saved);
+    std::string text;
+    std::rewind(sink.get());
+    for (int c; (c = std::fgetc(sink.get())) != EOF;) text += static_cast<char>(c == '\n' ? ' ' : c);
+    while (!text.empty() && text.back() == ' ') text.pop_back();
+    return text;
+}
+
 }  // namespace
 
 Encoding encoding_by_name(const std::string& name) {
@@ -112,6 +144,7 @@ std::optional<double> read_exif_focal_length(const std::filesystem::path& path) 
 
 Photo read_photo(const std::filesystem::path& path, Encoding encoding) {
     if (!std::filesystem::exists(path)) fail("image '{}' does not exist", path.string());
+    if (std::filesystem::is_directory(path)) fail("image '{}' is a directory", path.string());
     const std::string ext = lower_extension(path);
     if (is_exr(ext)) return read_exr(path);
     if (is_camera_raw(ext)) {
@@ -123,12 +156,17 @@ Photo read_photo(const std::filesystem::path& path, Encoding encoding) {
         fail("image '{}': unsupported type '{}' (expected .png, .jpg, .jpeg, .tif, .tiff, .exr or camera RAW such as "
              ".dng, .cr2, .nef, .arw)", path.string(), ext);
 
-    const cv::Mat raw = cv::imread(path.string(), cv::IMREAD_UNCHANGED | cv::IMREAD_IGNORE_ORIENTATION);
+    cv::Mat raw;
+    const std::string decoder = captured_stderr(
+        [&] { raw = cv::imread(path.string(), cv::IMREAD_UNCHANGED | cv::IMREAD_IGNORE_ORIENTATION); });
     if (raw.empty()) {
         // A camera RAW file under an image extension is still read.
         if (auto photo = read_camera_raw(path)) return *std::move(photo);
-        fail("image '{}' could not be decoded", path.string());
+        fail("image '{}' could not be decoded{}", path.string(), decoder.empty() ? "" : " (" + decoder + ")");
     }
+    if (decoder.find("Premature end") != std::string::npos)
+        fail("image '{}' is truncated ({})", path.string(), decoder);
+    if (!decoder.empty()) std::fprintf(stderr, "surfscatter: warning: image '%s': %s\n", path.c_str(), decoder.c_str());
     double scale = 0.0;
     Photo photo;
     switch (raw.depth()) {
@@ -147,6 +185,7 @@ Photo read_photo(const std::filesystem::path& path, Encoding encoding) {
     cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
     rgb.convertTo(rgb, CV_32F, scale);
     photo.rgb = encoding == Encoding::Srgb ? srgb_decode_image(rgb) : rgb;
+    photo.encoded = true;
     photo.focal_length_mm = read_exif_focal_length(path);
     return photo;
 }

@@ -20,11 +20,16 @@ Encoding encoding_by_name(const std::string& name);  // "srgb" | "linear"; throw
 struct Photo {
     cv::Mat rgb;                             // CV_32FC3, linear, R G B
     int bit_depth = 8;                       // of the decoded samples (32 for EXR, 16 for camera RAW)
+    bool encoded = false;                    // integer PNG/JPEG/TIFF samples, read as the Encoding asked (EXR and
+                                             // camera RAW are linear whatever it says)
     std::optional<double> focal_length_mm;   // EXIF FocalLength (JPEG, TIFF, camera RAW), when present
 };
 
-// Throws Error naming the file when it is missing, unreadable, of an unknown type or not 1/3/4 channels. A file
-// with an image extension that OpenCV cannot decode is offered to LibRaw before giving up.
+// Throws Error naming the file when it is missing, a directory, unreadable, truncated, of an unknown type or not
+// 1/3/4 channels. A file with an image extension that OpenCV cannot decode is offered to LibRaw before giving up.
+// OpenCV's decoders let libpng and libjpeg print on stderr (and decode a truncated JPEG, greying the rest): their
+// messages are captured and become the error (or, for a JPEG that decodes with a warning other than truncation, one
+// "surfscatter: warning:" line naming the file).
 Photo read_photo(const std::filesystem::path& path, Encoding encoding = Encoding::Srgb);
 
 // Writes by extension: .png (16-bit), .tif/.tiff (16-bit), .jpg/.jpeg (8-bit), all sRGB-encoded unless

@@ -1,6 +1,8 @@
 #include "surfscatter/photo/pose.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <fmt/format.h>
 #include <opencv2/aruco.hpp>
@@ -28,74 +30,233 @@ std::vector<cv::Point3d> marker_object_points(double length) {
     return {{-h, h, 0.0}, {h, h, 0.0}, {h, -h, 0.0}, {-h, -h, 0.0}};
 }
 
-double reprojection_rms(const std::vector<cv::Point3d>& object, const std::vector<cv::Point2f>& image,
-                        const CameraModel& camera, const cv::Vec3d& rvec, const cv::Vec3d& tvec) {
+std::vector<cv::Point2d> project(const std::vector<cv::Point3d>& world, const CameraModel& camera,
+                                 const cv::Vec3d& rvec, const cv::Vec3d& tvec) {
     std::vector<cv::Point2d> projected;
-    cv::projectPoints(object, rvec, tvec, camera.matrix, camera.distortion, projected);
+    cv::projectPoints(world, rvec, tvec, camera.matrix, camera.distortion, projected);
+    return projected;
+}
+
+double sum_of_squares(const std::vector<cv::Point3d>& world, const std::vector<cv::Point2f>& image,
+                      const CameraModel& camera, const cv::Vec3d& rvec, const cv::Vec3d& tvec) {
+    const auto projected = project(world, camera, rvec, tvec);
     double sum = 0.0;
     for (std::size_t i = 0; i < image.size(); ++i) {
         const double dx = projected[i].x - image[i].x, dy = projected[i].y - image[i].y;
         sum += dx * dx + dy * dy;
     }
-    return std::sqrt(sum / static_cast<double>(image.size()));
+    return sum;
+}
+
+PoseSolution as_solution(const std::vector<cv::Point3d>& world, const std::vector<cv::Point2f>& image,
+                         const CameraModel& camera, const cv::Vec3d& rvec, const cv::Vec3d& tvec) {
+    PoseSolution s;
+    s.rvec = rvec, s.tvec = tvec;
+    s.reprojection_rms = std::sqrt(sum_of_squares(world, image, camera, rvec, tvec) / double(image.size()));
+    cv::Matx33d r;
+    cv::Rodrigues(rvec, r);
+    const cv::Matx33d rt = r.t();
+    s.position = -(rt * tvec);
+    s.camera_to_world = cv::Matx44d::eye();
+    for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) s.camera_to_world(i, j) = rt(i, j);
+        s.camera_to_world(i, 3) = s.position[i];
+    }
+    return s;
+}
+
+PoseSolution refined_solution(const std::vector<cv::Point3d>& world, const std::vector<cv::Point2f>& image,
+                              const CameraModel& camera, cv::Vec3d rvec, cv::Vec3d tvec) {
+    cv::solvePnPRefineLM(world, image, camera.matrix, camera.distortion, rvec, tvec,
+                         cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 100, 1e-12));
+    return as_solution(world, image, camera, rvec, tvec);
+}
+
+double rotation_angle_deg(const cv::Vec3d& rvec_a, const cv::Vec3d& rvec_b) {
+    cv::Matx33d a, b;
+    cv::Rodrigues(rvec_a, a);
+    cv::Rodrigues(rvec_b, b);
+    return std::acos(std::clamp(0.5 * (cv::trace(a.t() * b) - 1.0), -1.0, 1.0)) * 180.0 / kPi;
+}
+
+// RMS distance between the projections of the points by two poses, pixels.
+double projection_distance(const std::vector<cv::Point3d>& world, const CameraModel& camera, const PoseSolution& a,
+                           const PoseSolution& b) {
+    const auto pa = project(world, camera, a.rvec, a.tvec), pb = project(world, camera, b.rvec, b.tvec);
+    double sum = 0;
+    for (std::size_t i = 0; i < pa.size(); ++i) sum += std::pow(cv::norm(pa[i] - pb[i]), 2);
+    return std::sqrt(sum / double(pa.size()));
+}
+// Two refined solutions closer than this (pixels) are one: Levenberg-Marquardt stops within 1e-6 px of a minimum.
+constexpr double kSamePoseDistance = 1e-3;
+
+// The projections as a function of (small rotation about the world axes, camera centre), differentiated
+// numerically (central differences) at the solution.
+cv::Mat pose_jacobian(const std::vector<cv::Point3d>& world, const CameraModel& camera, const PoseSolution& s) {
+    cv::Matx33d r0;
+    cv::Rodrigues(s.rvec, r0);
+    const double scale = std::max(cv::norm(s.position), 1e-6);
+    const auto projections = [&](const cv::Vec3d& rotation, const cv::Vec3d& centre) {
+        cv::Matx33d dr;
+        cv::Rodrigues(rotation, dr);
+        const cv::Matx33d r = r0 * dr;
+        cv::Vec3d rvec;
+        cv::Rodrigues(r, rvec);
+        return project(world, camera, rvec, -(r * centre));
+    };
+    cv::Mat j(2 * static_cast<int>(world.size()), 6, CV_64F);
+    for (int k = 0; k < 6; ++k) {
+        const double step = k < 3 ? 1e-6 : 1e-6 * scale;
+        cv::Vec3d rotation(0, 0, 0), centre = s.position;
+        (k < 3 ? rotation[k] : centre[k - 3]) += step;
+        const auto plus = projections(rotation, centre);
+        (k < 3 ? rotation[k] : centre[k - 3]) -= 2 * step;
+        const auto minus = projections(rotation, centre);
+        for (std::size_t i = 0; i < world.size(); ++i) {
+            j.at<double>(2 * static_cast<int>(i), k) = (plus[i].x - minus[i].x) / (2 * step);
+            j.at<double>(2 * static_cast<int>(i) + 1, k) = (plus[i].y - minus[i].y) / (2 * step);
+        }
+    }
+    return j;
+}
+
+PoseUncertainty uncertainty(const std::vector<cv::Point3d>& world, const std::vector<cv::Point2f>& image,
+                            const CameraModel& camera, const PoseSolution& s, std::optional<double> point_noise_px) {
+    PoseUncertainty u;
+    const int dof = 2 * static_cast<int>(world.size()) - 6;
+    const double residual_sigma =
+        dof > 0 ? std::sqrt(sum_of_squares(world, image, camera, s.rvec, s.tvec) / dof) : 0.0;
+    u.image_noise_px = residual_sigma;
+    u.image_noise_source = fmt::format("reprojection residuals ({} degrees of freedom)", dof);
+    if (point_noise_px && *point_noise_px > residual_sigma) {
+        u.image_noise_px = *point_noise_px;
+        u.image_noise_source = "marker pattern fit";
+    }
+    const cv::Mat j = pose_jacobian(world, camera, s);
+    cv::Mat covariance;
+    cv::invert(j.t() * j, covariance, cv::DECOMP_SVD);
+    covariance *= u.image_noise_px * u.image_noise_px;
+    for (int k = 0; k < 3; ++k) {
+        u.rotation_std_deg[k] = std::sqrt(std::max(0.0, covariance.at<double>(k, k))) * 180.0 / kPi;
+        u.position_std_m[k] = std::sqrt(std::max(0.0, covariance.at<double>(k + 3, k + 3)));
+    }
+    return u;
 }
 }  // namespace
+
+Pose solve_planar_pose(const std::vector<cv::Point3d>& world, const std::vector<cv::Point2f>& image,
+                       const CameraModel& camera, bool square, std::optional<double> point_noise_px) {
+    CV_Assert(world.size() == image.size() && world.size() >= 4);
+    std::vector<cv::Mat> rvecs, tvecs;
+    cv::Mat errors;
+    cv::solvePnPGeneric(world, image, camera.matrix, camera.distortion, rvecs, tvecs, false,
+                        square ? cv::SOLVEPNP_IPPE_SQUARE : cv::SOLVEPNP_IPPE, cv::noArray(), cv::noArray(), errors);
+    if (rvecs.empty()) fail("the pose could not be solved from {} points", world.size());
+    std::vector<std::size_t> order(rvecs.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    const auto error = [&](std::size_t i) { return errors.at<double>(static_cast<int>(i)); };
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return error(a) < error(b); });
+
+    Pose pose;
+    pose.points = static_cast<int>(world.size());
+    pose.best = refined_solution(world, image, camera, cv::Vec3d(rvecs[order[0]]), cv::Vec3d(tvecs[order[0]]));
+    pose.uncertainty = uncertainty(world, image, camera, pose.best, point_noise_px);
+    pose.ippe_rms_best = error(order[0]);
+    pose.ambiguity_ratio = pose.ambiguity_chi2 = std::numeric_limits<double>::infinity();
+    if (order.size() > 1) {
+        const cv::Vec3d rvec(rvecs[order[1]]), tvec(tvecs[order[1]]);
+        pose.ippe_rms_mirror = error(order[1]);
+        // Refined, the mirror often reaches the same minimum (a large, head-on or steeply seen plane has only one):
+        // then there is no second pose, and it is reported as IPPE gave it.
+        const PoseSolution refined = refined_solution(world, image, camera, rvec, tvec);
+        pose.alternative_is_minimum = projection_distance(world, camera, pose.best, refined) > kSamePoseDistance;
+        pose.alternative = pose.alternative_is_minimum ? refined : as_solution(world, image, camera, rvec, tvec);
+        pose.mirror_angle_deg = rotation_angle_deg(pose.best.rvec, pose.alternative->rvec);
+        if (pose.alternative_is_minimum) {
+            // The refined errors of the two minima: IPPE's own are first-order approximations that, head-on, are
+            // both a fraction of a pixel off while the refined pose fits to a hundredth.
+            const double best = pose.best.reprojection_rms, mirror = refined.reprojection_rms;
+            if (best > 0) pose.ambiguity_ratio = mirror / best;
+            const double sigma = pose.uncertainty.image_noise_px;
+            if (sigma > 0) pose.ambiguity_chi2 = pose.points * (mirror * mirror - best * best) / (sigma * sigma);
+        }
+    }
+    const cv::Vec3d& r = pose.uncertainty.rotation_std_deg;
+    pose.rotation_std_deg = std::sqrt(r.dot(r));
+    const bool rejected = pose.ambiguity_ratio >= kAmbiguityRatio && pose.ambiguity_chi2 >= kAmbiguityChi2;
+    pose.ambiguous = pose.alternative_is_minimum && !rejected &&
+                     pose.mirror_angle_deg > kAmbiguitySigmas * pose.rotation_std_deg;
+    return pose;
+}
 
 MarkerPose estimate_marker_pose(const cv::Mat& linear_rgb, const CameraModel& camera, const MarkerPoseOptions& options) {
     CV_Assert(linear_rgb.type() == CV_32FC3);
     require_positive(options.marker_length, "--marker-length");
-    const auto dictionary = dictionary_by_name(options.dictionary);
-    std::vector<std::vector<cv::Point2f>> corners;
-    std::vector<int> ids;
-    cv::aruco::detectMarkers(to_gray8(linear_rgb), dictionary, corners, ids, marker_detector_parameters());
-    if (ids.empty()) fail("no ArUco marker of dictionary {} found in the image", options.dictionary);
+    const auto dictionary = load_dictionary(options.dictionary);
+    const DetectedMarkers found = detect_markers(linear_rgb, dictionary);
+    if (found.ids.empty()) fail("no ArUco marker of dictionary {} found in the image", options.dictionary);
 
-    std::size_t chosen = ids.size();
+    std::size_t chosen = found.ids.size();
     if (options.marker_id) {
-        for (std::size_t i = 0; i < ids.size(); ++i)
-            if (ids[i] == *options.marker_id) chosen = i;
-        if (chosen == ids.size())
-            fail("marker {} not found (markers found: {})", *options.marker_id, list_ids(ids));
+        for (std::size_t i = 0; i < found.ids.size(); ++i)
+            if (found.ids[i] == *options.marker_id) chosen = i;
+        if (chosen == found.ids.size())
+            fail("marker {} not found (markers found: {})", *options.marker_id, list_ids(found.ids));
     } else {
-        if (ids.size() > 1) fail("several markers found ({}); choose one with --marker-id", list_ids(ids));
+        if (found.ids.size() > 1) fail("several markers found ({}); choose one with --marker-id", list_ids(found.ids));
         chosen = 0;
     }
 
-    MarkerPose pose;
-    pose.marker_id = ids[chosen];
-    pose.markers_detected = static_cast<int>(ids.size());
-    pose.corners = corners[chosen];
-    if (auto refined = refine_marker_corners(to_linear_gray(linear_rgb), pose.corners, camera, dictionary->markerSize + 2)) {
-        pose.corners = std::move(*refined);
-        pose.edge_refined = true;
-    }
-    const auto object = marker_object_points(options.marker_length);
+    MarkerPose marker;
+    marker.marker_id = found.ids[chosen];
+    marker.markers_detected = static_cast<int>(found.ids.size());
+    marker.corners = refine_marker(to_linear_gray(linear_rgb), found.corners[chosen], camera,
+                                   marker_cells(*dictionary, marker.marker_id));
+    std::optional<double> noise;
+    if (marker.corners.method == "pattern") noise = marker.corners.pattern->corner_std_px;
+    marker.pose = solve_planar_pose(marker_object_points(options.marker_length), marker.corners.corners, camera, true,
+                                    noise);
+    return marker;
+}
 
-    // IPPE gives the two poses a square admits; keep the one that reprojects better, then refine it.
-    std::vector<cv::Mat> rvecs, tvecs;
-    cv::solvePnPGeneric(object, pose.corners, camera.matrix, camera.distortion, rvecs, tvecs, false,
-                        cv::SOLVEPNP_IPPE_SQUARE);
-    if (rvecs.empty()) fail("marker {} found but its pose could not be solved", pose.marker_id);
-    double best = INFINITY;
-    for (std::size_t i = 0; i < rvecs.size(); ++i) {
-        const cv::Vec3d r(rvecs[i]), t(tvecs[i]);
-        const double error = reprojection_rms(object, pose.corners, camera, r, t);
-        if (error < best) best = error, pose.rvec = r, pose.tvec = t;
+std::vector<cv::Point3d> board_to_scene(const BoardSpec& board, const std::vector<cv::Point3f>& opencv_points) {
+    // Which way OpenCV's board y runs: along the first marker's left edge (top-left to bottom-left as printed) it
+    // points down the board.
+    cv::Point3f down, centre;
+    if (board.type == BoardType::Grid) {
+        const auto grid = make_grid_board(board);
+        down = grid->objPoints[0][3] - grid->objPoints[0][0];
+        cv::Point3f low = grid->objPoints[0][0], high = low;
+        for (const auto& marker : grid->objPoints)
+            for (const auto& p : marker)
+                low = {std::min(low.x, p.x), std::min(low.y, p.y), 0}, high = {std::max(high.x, p.x), std::max(high.y, p.y), 0};
+        centre = 0.5f * (low + high);
+    } else {
+        const auto charuco = make_charuco_board(board);
+        down = charuco->objPoints[0][3] - charuco->objPoints[0][0];
+        centre = {static_cast<float>(0.5 * board.squares_x * board.square_length),
+                  static_cast<float>(0.5 * board.squares_y * board.square_length), 0.0f};
     }
-    cv::solvePnPRefineLM(object, pose.corners, camera.matrix, camera.distortion, pose.rvec, pose.tvec,
-                         cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 100, 1e-12));
-    pose.reprojection_rms = reprojection_rms(object, pose.corners, camera, pose.rvec, pose.tvec);
+    const double flip = down.y > 0 ? -1.0 : 1.0;  // y (and z, to stay right-handed) turned to point up and out
+    std::vector<cv::Point3d> scene;
+    for (const auto& p : opencv_points) scene.emplace_back(p.x - centre.x, flip * (p.y - centre.y), flip * p.z);
+    return scene;
+}
 
-    cv::Matx33d r;
-    cv::Rodrigues(pose.rvec, r);
-    const cv::Matx33d rt = r.t();
-    pose.position = -(rt * pose.tvec);
-    pose.camera_to_world = cv::Matx44d::eye();
-    for (int i = 0; i < 3; ++i) {
-        for (int j = 0; j < 3; ++j) pose.camera_to_world(i, j) = rt(i, j);
-        pose.camera_to_world(i, 3) = pose.position[i];
-    }
-    return pose;
+BoardPose estimate_board_pose(const cv::Mat& linear_rgb, const CameraModel& camera, const BoardSpec& board) {
+    CV_Assert(linear_rgb.type() == CV_32FC3);
+    validate(board);
+    if (board.type == BoardType::Chessboard)
+        fail("a pose needs a board whose orientation can be read: --board charuco or grid, not chessboard");
+    const BoardView view = detect_board(linear_rgb, board, &camera);
+    if (!view.found()) fail("board not found: {}", view.problem);
+    if (board.type == BoardType::Grid && view.markers_detected < kMinimumGridMarkers)
+        fail("too few board corners: {} grid marker found, {} needed", view.markers_detected, kMinimumGridMarkers);
+    BoardPose out;
+    out.corners = static_cast<int>(view.image_points.size());
+    out.markers_detected = view.markers_detected;
+    out.pose = solve_planar_pose(board_to_scene(board, view.object_points), view.image_points, camera, false);
+    return out;
 }
 
 MitsubaSensor mitsuba_sensor(const CameraModel& camera, const cv::Matx44d& opencv_camera_to_world,

@@ -1,0 +1,28 @@
+#pragma once
+// Board options shared by `surfscatter calibrate` and `surfscatter pose`: --board, --squares WxH, --square-length,
+// --markers WxH, --marker-length, --marker-separation, --dictionary.
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "surfscatter/photo/markers.hpp"
+
+namespace surfscatter::cli {
+
+struct BoardOptions {
+    std::string board;
+    std::string squares, markers;
+    double square_length = 0.0, marker_length = 0.0, marker_separation = 0.0;
+    std::string dictionary = "4X4_50";
+
+    // `types` lists the board types the command accepts, for the help text; `default_board` is "" if --board may
+    // be left out.
+    void add_to(CLI::App& cmd, const std::string& types, const std::string& default_board);
+    // The spec of --board (validated); throws Error naming the bad option.
+    photo::BoardSpec spec() const;
+};
+
+// Parses "WxH" (e.g. "7x5") of an option `option`; throws Error naming it.
+void parse_size(const std::string& text, const char* option, int& width, int& height);
+
+}  // namespace surfscatter::cli
