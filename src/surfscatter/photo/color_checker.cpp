@@ -1,5 +1,6 @@
 #include "surfscatter/photo/color_checker.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -82,30 +83,60 @@ cv::Matx33d chart_homography(const std::array<cv::Point2f, 4>& corners) {
 
 }  // namespace
 
-std::array<Vec3d, kChartPatches> sample_patches(const cv::Mat& linear_rgb, const std::array<cv::Point2f, 4>& corners) {
-    CV_Assert(linear_rgb.type() == CV_32FC3);
+namespace {
+double median(std::vector<double> v) {
+    const auto mid = v.begin() + static_cast<long>(v.size() / 2);
+    std::nth_element(v.begin(), mid, v.end());
+    return *mid;
+}
+}  // namespace
+
+std::array<Vec3d, kChartPatches> sample_patches(const cv::Mat& image, const std::array<cv::Point2f, 4>& corners,
+                                                std::array<int, kChartPatches>* rejected) {
+    CV_Assert(image.type() == CV_32FC3);
     const cv::Matx33d h = chart_homography(corners);
     std::array<Vec3d, kChartPatches> means{};
-    cv::Mat mask(linear_rgb.size(), CV_8UC1);
+    cv::Mat mask(image.size(), CV_8UC1);
     for (int row = 0; row < kChartRows; ++row)
         for (int col = 0; col < kChartColumns; ++col) {
+            const int patch = row * kChartColumns + col;
             std::vector<cv::Point2d> square{{col + 0.25, row + 0.25}, {col + 0.75, row + 0.25},
                                             {col + 0.75, row + 0.75}, {col + 0.25, row + 0.75}};
             std::vector<cv::Point2d> projected;
             cv::perspectiveTransform(square, projected, h);
             std::vector<cv::Point> polygon;
             for (const auto& p : projected) {
-                if (p.x < 0 || p.y < 0 || p.x > linear_rgb.cols - 1 || p.y > linear_rgb.rows - 1)
-                    fail("chart patch {} lies outside the image (check the chart corners)",
-                         row * kChartColumns + col + 1);
+                if (p.x < 0 || p.y < 0 || p.x > image.cols - 1 || p.y > image.rows - 1)
+                    fail("chart patch {} lies outside the image (check the chart corners)", patch + 1);
                 polygon.emplace_back(cvRound(p.x), cvRound(p.y));
             }
             mask.setTo(0);
             cv::fillConvexPoly(mask, polygon, cv::Scalar(255));
-            if (cv::countNonZero(mask) == 0)
-                fail("chart patch {} covers no pixel (chart too small in the image)", row * kChartColumns + col + 1);
-            const cv::Scalar m = cv::mean(linear_rgb, mask);
-            means[static_cast<std::size_t>(row * kChartColumns + col)] = {m[0], m[1], m[2]};
+            std::vector<cv::Point> pixels;
+            cv::findNonZero(mask, pixels);
+            if (pixels.empty())
+                fail("chart patch {} covers no pixel (chart too small in the image)", patch + 1);
+            std::array<std::vector<double>, 3> channel;
+            for (const auto& q : pixels)
+                for (int c = 0; c < 3; ++c) channel[static_cast<std::size_t>(c)].push_back(image.at<cv::Vec3f>(q)[c]);
+            std::array<double, 3> centre{}, limit{};
+            for (std::size_t c = 0; c < 3; ++c) {
+                centre[c] = median(channel[c]);
+                std::vector<double> deviation;
+                for (double v : channel[c]) deviation.push_back(std::abs(v - centre[c]));
+                limit[c] = std::max(kPatchOutlierSigmas * 1.4826 * median(deviation), kPatchOutlierFloor);
+            }
+            Vec3d sum{0, 0, 0};
+            int used = 0;
+            for (std::size_t i = 0; i < pixels.size(); ++i) {
+                bool inlier = true;
+                for (std::size_t c = 0; c < 3; ++c) inlier = inlier && std::abs(channel[c][i] - centre[c]) <= limit[c];
+                if (!inlier) continue;
+                for (std::size_t c = 0; c < 3; ++c) sum[c] += channel[c][i];
+                ++used;
+            }
+            for (std::size_t c = 0; c < 3; ++c) means[static_cast<std::size_t>(patch)][c] = sum[c] / used;
+            if (rejected) (*rejected)[static_cast<std::size_t>(patch)] = static_cast<int>(pixels.size()) - used;
         }
     return means;
 }
@@ -215,6 +246,19 @@ private:
     cv::Matx33d start_;
     std::vector<cv::Matx33d> basis_;
 };
+// Nelder-Mead (cv::DownhillSolver) from `x` with initial steps `step`, restarted from its result until that stops
+// helping (it can stall on a non-smooth objective such as the mean CIEDE2000).
+void minimize(const cv::Ptr<cv::MinProblemSolver::Function>& f, cv::Mat& x, const cv::Mat& step) {
+    auto solver = cv::DownhillSolver::create(
+        f, step, cv::TermCriteria(cv::TermCriteria::MAX_ITER + cv::TermCriteria::EPS, 20000, 1e-10));
+    double best = f->calc(x.ptr<double>());
+    for (int restart = 0; restart < 10; ++restart) {
+        cv::Mat trial = x.clone();
+        const double value = solver->minimize(trial);
+        if (!(value < best - 1e-9)) break;
+        best = value, x = trial;
+    }
+}
 }  // namespace
 
 CcmObjective ccm_objective_by_name(const std::string& name) {
@@ -229,20 +273,168 @@ cv::Matx33d fit_ccm(const std::array<Vec3d, kChartPatches>& measured, const Char
     if (objective == CcmObjective::LeastSquares) return start;
     const auto problem = cv::makePtr<MeanDeltaE>(measured, reference, start, constraint);
     const int dims = problem->getDims();
-    // Steps of 0.05 in the matrix entries (the least-squares matrix is near the optimum, entries of order 1);
-    // Nelder-Mead can stall on a non-smooth objective, so it restarts from its result until that stops helping.
-    auto solver = cv::DownhillSolver::create(problem, cv::Mat(1, dims, CV_64F, cv::Scalar(0.05)),
-                                             cv::TermCriteria(cv::TermCriteria::MAX_ITER + cv::TermCriteria::EPS,
-                                                              20000, 1e-10));
+    // Steps of 0.05 in the matrix entries (the least-squares matrix is near the optimum, entries of order 1).
     cv::Mat x = cv::Mat::zeros(1, dims, CV_64F);
-    double best = problem->calc(x.ptr<double>());
-    for (int restart = 0; restart < 10; ++restart) {
-        cv::Mat trial = x.clone();
-        const double value = solver->minimize(trial);
-        if (!(value < best - 1e-9)) break;
-        best = value, x = trial;
-    }
+    minimize(problem, x, cv::Mat(1, dims, CV_64F, cv::Scalar(0.05)));
     return problem->matrix(x.ptr<double>());
+}
+
+namespace {
+// The neutral row's linear fit of ln(reference) on the family's basis in L = ln(code), with a free offset (the
+// scale); returns the coefficients of the basis and adds the squared residuals to `sum_squares`.
+std::vector<double> neutral_row_fit(const std::array<Vec3d, kChartPatches>& codes, const ChartReference& reference,
+                                    Linearization family, std::size_t channel, double& sum_squares) {
+    constexpr int kFirstNeutral = 18;
+    const int terms = family == Linearization::Gamma ? 1 : family == Linearization::Poly ? 3 : 0;
+    cv::Mat a(kChartPatches - kFirstNeutral, terms + 1, CV_64F), b(kChartPatches - kFirstNeutral, 1, CV_64F);
+    for (int i = kFirstNeutral; i < kChartPatches; ++i) {
+        const double code = codes[static_cast<std::size_t>(i)][channel];
+        const double target = reference.linear_srgb[static_cast<std::size_t>(i)][channel];
+        if (!(code > 0) || !(target > 0))
+            fail("chart patch {} has code {} in channel {}: a tone curve needs the neutral row above black (is the "
+                 "photo under-exposed?)", i + 1, code, "RGB"[channel]);
+        const double l = std::log(code);
+        const int row = i - kFirstNeutral;
+        double fixed = 0;
+        if (family == Linearization::Linear) fixed = l;
+        if (family == Linearization::Srgb) fixed = std::log(ToneCurve(Linearization::Srgb)(0, code));
+        double power = l;
+        for (int k = 0; k < terms; ++k, power *= l) a.at<double>(row, k) = power;
+        a.at<double>(row, terms) = 1.0;
+        b.at<double>(row) = std::log(target) - fixed;
+    }
+    cv::Mat x;
+    cv::solve(a, b, x, cv::DECOMP_SVD);
+    const cv::Mat r = a * x - b;
+    sum_squares += r.dot(r);
+    return std::vector<double>(x.begin<double>(), x.begin<double>() + terms);
+}
+
+// The log-code range of the chart's patches, per channel (where a poly curve's cubic applies).
+std::array<std::array<double, 2>, 3> log_code_range(const std::array<Vec3d, kChartPatches>& codes) {
+    std::array<std::array<double, 2>, 3> range;
+    for (std::size_t c = 0; c < 3; ++c) {
+        double low = 1, high = 0;
+        for (const auto& v : codes) low = std::min(low, v[c]), high = std::max(high, v[c]);
+        if (!(low > 0)) fail("a chart patch has code {} in channel {}: a tone curve needs every patch above black", low,
+                             "RGB"[c]);
+        range[c] = {std::log(low), std::log(high)};
+    }
+    return range;
+}
+
+ToneCurve neutral_row_curve(const std::array<Vec3d, kChartPatches>& codes, const ChartReference& reference,
+                            Linearization family) {
+    if (family == Linearization::Linear || family == Linearization::Srgb) return ToneCurve(family);
+    ToneCurve::Coefficients coefficients{};
+    double ignored = 0;
+    for (std::size_t c = 0; c < 3; ++c) {
+        const auto fit = neutral_row_fit(codes, reference, family, c, ignored);
+        for (std::size_t k = 0; k < fit.size(); ++k) coefficients[c][k] = fit[k];
+    }
+    return ToneCurve(family, coefficients, family == Linearization::Poly ? log_code_range(codes)
+                                                                         : std::array<std::array<double, 2>, 3>{});
+}
+
+double objective_value(const std::array<Vec3d, kChartPatches>& corrected, const ChartReference& reference,
+                       CcmObjective objective) {
+    if (objective == CcmObjective::Ciede2000) return chart_delta_e(corrected, reference).mean;
+    double sum = 0;
+    for (std::size_t i = 0; i < corrected.size(); ++i)
+        for (std::size_t c = 0; c < 3; ++c) sum += std::pow(corrected[i][c] - reference.linear_srgb[i][c], 2);
+    return sum;
+}
+
+// The curve's free coefficients as the solver's variables; the objective of the least-squares matrix they give.
+class CurveObjective : public cv::MinProblemSolver::Function {
+public:
+    CurveObjective(const std::array<Vec3d, kChartPatches>& codes, const ChartReference& reference,
+                   const ToneCurve& start, CcmConstraint constraint, CcmObjective objective,
+                   const std::array<Vec3d, kChartPatches>* flat_codes)
+        : codes_(codes), reference_(reference), start_(start), constraint_(constraint), objective_(objective),
+          flat_codes_(flat_codes) {}
+    int getDims() const override { return 3 * start_.free_coefficients(); }
+    double calc(const double* x) const override {
+        const ToneCurve curve = this->curve(x);
+        if (!curve.increasing()) return 1e6;  // not a tone curve: outside the search space
+        try {
+            const auto linear = linearize_patches(codes_, curve, flat_codes_);
+            const cv::Matx33d m = fit_ccm(linear, reference_, constraint_, CcmObjective::LeastSquares);
+            const double value = objective_value(apply_ccm(linear, m), reference_, objective_);
+            return std::isfinite(value) ? value : 1e6;
+        } catch (const Error&) {
+            return 1e6;  // degenerate patches for this curve
+        }
+    }
+    ToneCurve curve(const double* x) const {
+        ToneCurve::Coefficients c{};
+        const int k = start_.free_coefficients();
+        for (int ch = 0; ch < 3; ++ch)
+            for (int j = 0; j < k; ++j) c[static_cast<std::size_t>(ch)][static_cast<std::size_t>(j)] = x[ch * k + j];
+        return ToneCurve(start_.family(), c, start_.log_range());
+    }
+
+private:
+    const std::array<Vec3d, kChartPatches>& codes_;
+    const ChartReference& reference_;
+    ToneCurve start_;
+    CcmConstraint constraint_;
+    CcmObjective objective_;
+    const std::array<Vec3d, kChartPatches>* flat_codes_;
+};
+
+}  // namespace
+
+LinearizationChoice choose_linearization(const std::array<Vec3d, kChartPatches>& codes,
+                                         const ChartReference& reference) {
+    LinearizationChoice choice;
+    const std::array<Linearization, 4> families{Linearization::Linear, Linearization::Srgb, Linearization::Gamma,
+                                                Linearization::Poly};
+    for (std::size_t f = 0; f < families.size(); ++f) {
+        double sum = 0;
+        for (std::size_t c = 0; c < 3; ++c) neutral_row_fit(codes, reference, families[f], c, sum);
+        choice.neutral_row_log_rms[f] = std::sqrt(sum / (3.0 * (kChartPatches - 18)));
+    }
+    const double best = *std::min_element(choice.neutral_row_log_rms.begin(), choice.neutral_row_log_rms.end());
+    for (std::size_t f = 0; f < families.size(); ++f)
+        if (choice.neutral_row_log_rms[f] <= best + kAutoLinearizationTolerance) {
+            choice.family = families[f];
+            break;
+        }
+    return choice;
+}
+
+std::array<Vec3d, kChartPatches> linearize_patches(const std::array<Vec3d, kChartPatches>& codes,
+                                                   const ToneCurve& curve,
+                                                   const std::array<Vec3d, kChartPatches>* flat_codes) {
+    std::array<Vec3d, kChartPatches> linear;
+    for (std::size_t i = 0; i < codes.size(); ++i) linear[i] = curve(codes[i]);
+    if (!flat_codes) return linear;
+    std::array<Vec3d, kChartPatches> flat;
+    for (std::size_t i = 0; i < codes.size(); ++i) flat[i] = curve((*flat_codes)[i]);
+    return flatten_patches(linear, flat);
+}
+
+ColourCorrection fit_colour_correction(const std::array<Vec3d, kChartPatches>& codes, const ChartReference& reference,
+                                       Linearization family, CcmConstraint constraint, CcmObjective objective,
+                                       const std::array<Vec3d, kChartPatches>* flat_codes) {
+    CV_Assert(family != Linearization::Auto);
+    ColourCorrection out;
+    out.curve = neutral_row_curve(codes, reference, family);
+    if (const int k = out.curve.free_coefficients(); k > 0) {
+        const auto problem =
+            cv::makePtr<CurveObjective>(codes, reference, out.curve, constraint, objective, flat_codes);
+        cv::Mat x(1, 3 * k, CV_64F), step(1, 3 * k, CV_64F);
+        for (int ch = 0; ch < 3; ++ch)
+            for (int j = 0; j < k; ++j) {
+                x.at<double>(ch * k + j) = out.curve.coefficients()[static_cast<std::size_t>(ch)][static_cast<std::size_t>(j)];
+                step.at<double>(ch * k + j) = j == 0 ? 0.05 : 0.02;  // the exponent, then the bends
+            }
+        minimize(problem, x, step);
+        out.curve = problem->curve(x.ptr<double>());
+    }
+    out.ccm = fit_ccm(linearize_patches(codes, out.curve, flat_codes), reference, constraint, objective);
+    return out;
 }
 
 std::array<Vec3d, kChartPatches> flatten_patches(const std::array<Vec3d, kChartPatches>& measured,

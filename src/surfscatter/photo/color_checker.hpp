@@ -14,6 +14,7 @@
 
 #include "surfscatter/photo/ciede2000.hpp"
 #include "surfscatter/photo/colour_space.hpp"
+#include "surfscatter/photo/tone_curve.hpp"
 
 namespace surfscatter::photo {
 
@@ -39,8 +40,14 @@ ChartReference read_chart_reference(const std::filesystem::path& path = kArgyllC
 // found.
 std::array<cv::Point2f, 4> detect_chart(const cv::Mat& linear_rgb, const ChartReference& reference);
 
-// Mean linear RGB of the central half (in each direction) of every patch, through the homography of the corners.
-std::array<Vec3d, kChartPatches> sample_patches(const cv::Mat& linear_rgb, const std::array<cv::Point2f, 4>& corners);
+// Robust mean of the central half (in each direction) of every patch, through the homography of the corners, of
+// whatever `image` (CV_32FC3) holds (linear light or code values): pixels with a channel more than
+// kPatchOutlierSigmas robust standard deviations (1.4826 MAD, at least kPatchOutlierFloor) from the patch's median
+// are left out (specular spots, dust, a scratch); `rejected` (if given) counts them per patch.
+inline constexpr double kPatchOutlierSigmas = 4.0;
+inline constexpr double kPatchOutlierFloor = 1.0 / 255.0;  // one 8-bit code: quantisation is not an outlier
+std::array<Vec3d, kChartPatches> sample_patches(const cv::Mat& image, const std::array<cv::Point2f, 4>& corners,
+                                                std::array<int, kChartPatches>* rejected = nullptr);
 
 enum class CcmConstraint {
     None,           // ordinary least squares over the 24 patches
@@ -58,6 +65,35 @@ CcmObjective ccm_objective_by_name(const std::string& name);  // "ciede2000" | "
 // or over the 6 that keep M * measured_white = reference_white.
 cv::Matx33d fit_ccm(const std::array<Vec3d, kChartPatches>& measured, const ChartReference& reference,
                     CcmConstraint constraint, CcmObjective objective = CcmObjective::LeastSquares);
+
+// ---- Colour correction with a tone curve (tone_curve.hpp): corrected = M * f(code) per pixel.
+
+// The linearisation `auto` picks: each family's curve fitted per channel to the chart's neutral row (patches
+// 19-24) against the reference, up to a scale; the RMS of ln(fitted / reference) over the 18 values for linear,
+// srgb, gamma and poly (in that order); the simplest family within kAutoLinearizationTolerance of the best wins.
+inline constexpr double kAutoLinearizationTolerance = 0.01;
+struct LinearizationChoice {
+    Linearization family = Linearization::Srgb;
+    std::array<double, 4> neutral_row_log_rms{};  // linear, srgb, gamma, poly
+};
+LinearizationChoice choose_linearization(const std::array<Vec3d, kChartPatches>& codes,
+                                         const ChartReference& reference);
+
+struct ColourCorrection {
+    ToneCurve curve;
+    cv::Matx33d ccm;
+};
+// Fits the tone curve of `family` (not Auto) together with the matrix: the curve's coefficients (started from the
+// neutral-row fit) by Nelder-Mead over the objective of the least-squares matrix they give (the exact joint fit for
+// the least-squares objective), then the matrix for that curve by fit_ccm. `flat_codes`: the flat field's patch
+// codes (flatten_patches after linearisation). Throws Error if a code the curve needs is not positive.
+ColourCorrection fit_colour_correction(const std::array<Vec3d, kChartPatches>& codes, const ChartReference& reference,
+                                       Linearization family, CcmConstraint constraint, CcmObjective objective,
+                                       const std::array<Vec3d, kChartPatches>* flat_codes = nullptr);
+// The patches as the fit sees them: linearised by `curve` and, with a flat field, evened by it.
+std::array<Vec3d, kChartPatches> linearize_patches(const std::array<Vec3d, kChartPatches>& codes,
+                                                   const ToneCurve& curve,
+                                                   const std::array<Vec3d, kChartPatches>* flat_codes = nullptr);
 
 // Evens out the light across the chart: every patch divided, channel by channel, by a flat field (the patch means of
 // a photograph of a uniform grey card in the chart's place, same camera, position and light) normalised to its mean
