@@ -168,11 +168,14 @@ inline cv::Mat linear_rgb_from_srgb8(const cv::Mat& encoded) {
 }
 
 inline MarkerTexture marker_texture(int id, double marker_length, const char* dictionary) {
-    constexpr int kSide = 400;
+    // A whole number of texels per cell: drawMarker rounds cell edges to texels, which on a 400-texel 4x4 marker
+    // (6 cells of 66.7) moved inner edges by up to a quarter of a pixel of a 200 px marker.
+    const auto dict = load_dictionary(dictionary);
+    const int side = 60 * (dict->markerSize + 2);
     cv::Mat marker;
-    cv::aruco::drawMarker(load_dictionary(dictionary), id, kSide, marker, 1);
-    cv::Mat canvas(2 * kSide, 2 * kSide, CV_8UC1, cv::Scalar(255));
-    marker.copyTo(canvas(cv::Rect(kSide / 2, kSide / 2, kSide, kSide)));
+    cv::aruco::drawMarker(dict, id, side, marker, 1);
+    cv::Mat canvas(2 * side, 2 * side, CV_8UC1, cv::Scalar(255));
+    marker.copyTo(canvas(cv::Rect(side / 2, side / 2, side, side)));
     return {canvas, 2.0 * marker_length};
 }
 

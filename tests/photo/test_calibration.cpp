@@ -182,6 +182,27 @@ TEST(Calibration, BadBoardSpecsAreRejected) {
     EXPECT_THROW(validate(spec), Error);  // a grid of one marker is a marker
 }
 
+// A ChArUco board printed from a custom dictionary file (OpenCV's tutorial dictionary: 35 markers of 6x6 bits).
+TEST(Calibration, ChArUcoBoardFromADictionaryFile) {
+    const std::string dictionary = std::string(SURFSCATTER_SHARED_DATA) + "/realdata/photos/tutorial_dict.yml";
+    const CameraModel truth = synthetic::true_camera();
+    const auto board = synthetic::charuco_texture(7, 5, 0.04, 0.03, dictionary.c_str());
+    std::vector<CalibrationInput> inputs;
+    const auto all = views();
+    for (std::size_t i = 0; i < 8; ++i)
+        inputs.push_back({"view" + std::to_string(i), photograph(board.image, board.width, board.height, truth, all[i])});
+    BoardSpec spec;
+    spec.squares_x = 7, spec.squares_y = 5, spec.square_length = 0.04, spec.marker_length = 0.03;
+    spec.dictionary = dictionary;
+    const CalibrationResult result = calibrate_camera(inputs, spec);
+    std::printf("[ measured ] ChArUco from tutorial_dict.yml: fx %.2f +- %.2f (true 1010), %zu of 8 views used\n",
+                result.camera.fx(), result.camera.intrinsics_std_dev[0], result.used.size());
+    EXPECT_EQ(result.used.size(), 8u);
+    EXPECT_NEAR(result.camera.fx(), truth.fx(), 3 * result.camera.intrinsics_std_dev[0] + 0.5);
+    spec.squares_x = 9, spec.squares_y = 8;  // 36 markers: one more than the file holds
+    EXPECT_THROW(validate(spec), Error);
+}
+
 // Four near head-on views pin nothing down: the focal length's standard deviation is far above 1 % and the
 // calibration says so, in the camera file too.
 TEST(Calibration, WeakViewSetsAreFlagged) {
