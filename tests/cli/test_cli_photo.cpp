@@ -134,18 +134,23 @@ TEST_F(PhotoPipeline, UndistortWritesPngAndExr) {
     }
 }
 
-TEST_F(PhotoPipeline, ColorcorrectRemovesACastBelowTwoCiede2000) {
+// The chart's patches in linear light under warm light, under-exposed.
+std::array<Vec3d, kChartPatches> cast_chart_patches() {
     const ChartReference reference = read_chart_reference();
     std::array<Vec3d, kChartPatches> patches;
-    const cv::Matx33d cast(0.80, 0.10, -0.02, 0.04, 0.62, 0.08, -0.02, 0.06, 0.45);  // warm light, under-exposed
+    const cv::Matx33d cast(0.80, 0.10, -0.02, 0.04, 0.62, 0.08, -0.02, 0.06, 0.45);
     for (std::size_t i = 0; i < patches.size(); ++i) {
         const auto& v = reference.linear_srgb[i];
         const cv::Vec3d c = cast * cv::Vec3d(std::clamp(v[0], 0.0, 1.0), std::clamp(v[1], 0.0, 1.0),
                                              std::clamp(v[2], 0.0, 1.0));
         patches[i] = {c[0], c[1], c[2]};
     }
-    const std::array<cv::Point2f, 4> corners{cv::Point2f{200, 150}, {760, 170}, {745, 560}, {215, 545}};
-    write_photo(path("chart.png"), synthetic::chart_photo(patches, {960, 720}, corners));
+    return patches;
+}
+const std::array<cv::Point2f, 4> kChartCorners{cv::Point2f{200, 150}, {760, 170}, {745, 560}, {215, 545}};
+
+TEST_F(PhotoPipeline, ColorcorrectRemovesACastBelowTwoCiede2000) {
+    write_photo(path("chart.png"), synthetic::chart_photo(cast_chart_patches(), {960, 720}, kChartCorners));
 
     const auto detected = run_cli({"colorcorrect", path("chart.png"), "-o", path("corrected.png"), "--ccm",
                                    path("ccm.json")});
@@ -352,17 +357,7 @@ TEST_F(PhotoPipeline, HostileInputsExitWithStatus2AndOneLine) {
 
 TEST_F(PhotoPipeline, ColorcorrectLinearisesACameraCurvedJpeg) {
     // The chart under a warm cast, then a camera's S-curve on top of gamma 2.2, as an 8-bit JPEG.
-    const ChartReference reference = read_chart_reference();
-    std::array<Vec3d, kChartPatches> patches;
-    const cv::Matx33d cast(0.80, 0.10, -0.02, 0.04, 0.62, 0.08, -0.02, 0.06, 0.45);
-    for (std::size_t i = 0; i < patches.size(); ++i) {
-        const auto& v = reference.linear_srgb[i];
-        const cv::Vec3d c = cast * cv::Vec3d(std::clamp(v[0], 0.0, 1.0), std::clamp(v[1], 0.0, 1.0),
-                                             std::clamp(v[2], 0.0, 1.0));
-        patches[i] = {c[0], c[1], c[2]};
-    }
-    const std::array<cv::Point2f, 4> corners{cv::Point2f{200, 150}, {760, 170}, {745, 560}, {215, 545}};
-    const cv::Mat light = synthetic::chart_photo(patches, {960, 720}, corners);
+    const cv::Mat light = synthetic::chart_photo(cast_chart_patches(), {960, 720}, kChartCorners);
     cv::Mat bgr8(light.size(), CV_8UC3);
     light.forEach<cv::Vec3f>([&](const cv::Vec3f& px, const int* pos) {
         for (int c = 0; c < 3; ++c) {

@@ -196,24 +196,34 @@ void refine_board_corners(const cv::Mat& linear_gray, const BoardSpec& board, st
                      cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 100, 1e-4));
 }
 
+// The board's markers in an 8-bit grey image; when some are found, the missed ones are looked for again where the
+// board puts them (through the camera if known).
+DetectedMarkers detect_board_markers(const cv::Mat& gray, const cv::Ptr<cv::aruco::Board>& board,
+                                     const CameraModel* camera) {
+    DetectedMarkers found;
+    cv::aruco::detectMarkers(gray, board->dictionary, found.corners, found.ids, marker_detector_parameters(),
+                             found.rejected);
+    if (found.ids.empty()) return found;
+    cv::aruco::refineDetectedMarkers(gray, board, found.corners, found.ids, found.rejected,
+                                     camera ? cv::Mat(camera->matrix) : cv::Mat(),
+                                     camera ? cv::Mat(camera->distortion) : cv::Mat());
+    return found;
+}
+
 BoardView detect_charuco(const cv::Mat& gray, const BoardSpec& spec, const CameraModel* camera) {
     const auto board = make_charuco_board(spec);
-    std::vector<std::vector<cv::Point2f>> marker_corners, rejected;
-    std::vector<int> marker_ids;
-    cv::aruco::detectMarkers(gray, board->dictionary, marker_corners, marker_ids, marker_detector_parameters(),
-                             rejected);
+    const DetectedMarkers found = detect_board_markers(gray, board, camera);
     BoardView view;
-    if (marker_ids.empty()) return view.fail("no marker of the ChArUco board found");
-    const cv::Mat matrix = camera ? cv::Mat(camera->matrix) : cv::Mat();
-    const cv::Mat distortion = camera ? cv::Mat(camera->distortion) : cv::Mat();
-    cv::aruco::refineDetectedMarkers(gray, board, marker_corners, marker_ids, rejected, matrix, distortion);
+    if (found.ids.empty()) return view.fail("no marker of the ChArUco board found");
     std::vector<cv::Point2f> corners;
     std::vector<int> ids;
-    cv::aruco::interpolateCornersCharuco(marker_corners, marker_ids, gray, board, corners, ids, matrix, distortion);
-    view.markers_detected = static_cast<int>(marker_ids.size());
+    cv::aruco::interpolateCornersCharuco(found.corners, found.ids, gray, board, corners, ids,
+                                         camera ? cv::Mat(camera->matrix) : cv::Mat(),
+                                         camera ? cv::Mat(camera->distortion) : cv::Mat());
+    view.markers_detected = static_cast<int>(found.ids.size());
     if (static_cast<int>(ids.size()) < kMinimumCharucoCorners)
         return view.fail(fmt::format("too few ChArUco corners: {} interpolated from {} markers, {} needed", ids.size(),
-                                     marker_ids.size(), kMinimumCharucoCorners));
+                                     found.ids.size(), kMinimumCharucoCorners));
     if (cv::aruco::testCharucoCornersCollinear(board, ids))
         return view.fail(fmt::format("the {} ChArUco corners found all lie on one line", ids.size()));
     view.image_points = corners;
@@ -239,30 +249,25 @@ BoardView detect_chessboard(const cv::Mat& gray, const BoardSpec& spec) {
 // Every marker of the grid found (the missed ones looked for again where the board says they are), each with its
 // corners refined by its pattern.
 BoardView detect_grid(const cv::Mat& linear_rgb, const cv::Mat& gray, const BoardSpec& spec,
-                                     const CameraModel& camera) {
+                      const CameraModel& camera) {
     const auto board = make_grid_board(spec);
-    std::vector<std::vector<cv::Point2f>> marker_corners, rejected;
-    std::vector<int> marker_ids;
-    cv::aruco::detectMarkers(gray, board->dictionary, marker_corners, marker_ids, marker_detector_parameters(),
-                             rejected);
+    const DetectedMarkers found = detect_board_markers(gray, board, &camera);
     BoardView view;
-    if (marker_ids.empty()) return view.fail("no marker of the grid board found");
-    cv::aruco::refineDetectedMarkers(gray, board, marker_corners, marker_ids, rejected, cv::Mat(camera.matrix),
-                                     cv::Mat(camera.distortion));
+    if (found.ids.empty()) return view.fail("no marker of the grid board found");
     const cv::Mat linear_gray = to_linear_gray(linear_rgb);
-    for (std::size_t i = 0; i < marker_ids.size(); ++i) {
-        const auto position = std::find(board->ids.begin(), board->ids.end(), marker_ids[i]);
+    for (std::size_t i = 0; i < found.ids.size(); ++i) {
+        const auto position = std::find(board->ids.begin(), board->ids.end(), found.ids[i]);
         if (position == board->ids.end()) continue;  // a marker of the dictionary that is not on this board
         ++view.markers_detected;
-        const auto corners = refine_marker(linear_gray, marker_corners[i], camera,
-                                           marker_cells(*board->dictionary, marker_ids[i]))
+        const auto corners = refine_marker(linear_gray, found.corners[i], camera,
+                                           marker_cells(*board->dictionary, found.ids[i]))
                                  .corners;
         const auto& object = board->objPoints[static_cast<std::size_t>(position - board->ids.begin())];
         view.image_points.insert(view.image_points.end(), corners.begin(), corners.end());
         view.object_points.insert(view.object_points.end(), object.begin(), object.end());
     }
     if (view.markers_detected == 0)
-        return view.fail(fmt::format("none of the {} markers found belongs to the {}x{} grid board", marker_ids.size(),
+        return view.fail(fmt::format("none of the {} markers found belongs to the {}x{} grid board", found.ids.size(),
                                      spec.markers_x, spec.markers_y));
     return view;
 }
