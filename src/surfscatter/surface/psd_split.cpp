@@ -8,6 +8,7 @@
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/math/quadrature.hpp"
 #include "surfscatter/math/vec.hpp"
+#include "surfscatter/surface/sharp_cut.hpp"
 
 namespace surfscatter::surface {
 
@@ -23,19 +24,19 @@ double low_pass_transfer(LowPassFilter filter, double zeta, double zeta_c) {
     return std::exp2(-2.0 * t * t);
 }
 
-FilteredStatistics::FilteredStatistics(std::shared_ptr<const RadialStatistics> base, LowPassFilter filter,
-                                       double zeta_c, bool high_pass)
-    : base_(std::move(base)), filter_(filter), zeta_c_(zeta_c), high_pass_(high_pass) {
+GaussianFilteredStatistics::GaussianFilteredStatistics(std::shared_ptr<const RadialStatistics> base, double zeta_c,
+                                                       bool high_pass)
+    : base_(std::move(base)), zeta_c_(zeta_c), high_pass_(high_pass) {
     require_positive(zeta_c, "cutoff frequency");
     const double l = base_->correlation_length();
     zeta_lo_ = std::min(1e-3 / l, 1e-3 * zeta_c);
     zeta_hi_ = std::max(1e3 / l, 1e3 * zeta_c);
-    initialise(fmt::format("{}({},{},zc={:.17g})", high_pass ? "highpass" : "lowpass", base_->cache_key(),
-                           filter == LowPassFilter::sharp ? "sharp" : "iso-gauss", zeta_c));
+    initialise(fmt::format("{}({},iso-gauss,zc={:.17g})", high_pass ? "highpass" : "lowpass", base_->cache_key(),
+                           zeta_c));
 }
 
-double FilteredStatistics::psd_raw(double zeta) const {
-    const double t = low_pass_transfer(filter_, zeta, zeta_c_);
+double GaussianFilteredStatistics::psd_raw(double zeta) const {
+    const double t = low_pass_transfer(LowPassFilter::iso_gaussian, zeta, zeta_c_);
     return base_->psd(zeta) * (high_pass_ ? 1.0 - t : t);
 }
 
@@ -61,7 +62,10 @@ PsdSplit split_psd(std::shared_ptr<const RadialStatistics> base, double zeta_c, 
                                  std::log(zeta_c * 1e-6), y_max, 1e-11);
     }
     split.sigma2_micro = sigma2 - split.sigma2_macro;
-    split.micro = std::make_shared<FilteredStatistics>(base, filter, zeta_c, true);
+    if (filter == LowPassFilter::sharp)
+        split.micro = std::make_shared<SharpCutStatistics>(base, zeta_c, CutPart::high_pass);
+    else
+        split.micro = std::make_shared<GaussianFilteredStatistics>(base, zeta_c, true);
     return split;
 }
 

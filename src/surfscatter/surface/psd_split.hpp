@@ -15,15 +15,15 @@ double cutoff_frequency(double lambda_nm, double n_wavelengths);
 // Low-pass power transfer |H(zeta)|^2 in [0, 1].
 double low_pass_transfer(LowPassFilter, double zeta, double zeta_c);
 
-// Statistics of base P times a power transfer (low- or high-pass). Numerical (NumericalRadialStatistics).
-class FilteredStatistics final : public NumericalRadialStatistics {
+// Statistics of base P times the ISO Gaussian power transfer (low- or high-pass): a smooth PSD, so its ACV by FFTLog
+// (NumericalRadialStatistics) is accurate. The sharp filter's parts are SharpCutStatistics (sharp_cut.hpp).
+class GaussianFilteredStatistics final : public NumericalRadialStatistics {
 public:
-    FilteredStatistics(std::shared_ptr<const RadialStatistics> base, LowPassFilter, double zeta_c, bool high_pass);
+    GaussianFilteredStatistics(std::shared_ptr<const RadialStatistics> base, double zeta_c, bool high_pass);
 
 private:
     double psd_raw(double zeta) const override;
     std::shared_ptr<const RadialStatistics> base_;
-    LowPassFilter filter_;
     double zeta_c_;
     bool high_pass_;
 };
@@ -33,7 +33,7 @@ struct PsdSplit {
     double sigma2_macro = 0;        // um^2
     double sigma2_micro = 0;        // um^2 (sigma2_macro + sigma2_micro = sigma_h^2)
     double slope2_macro = 0;        // <|grad h_LP|^2>
-    std::shared_ptr<const RadialStatistics> micro;  // high-pass statistics (usable by ScatterLobeTable)
+    std::shared_ptr<const RadialStatistics> micro;  // high-pass statistics (SharpCutStatistics for the sharp filter)
 };
 
 PsdSplit split_psd(std::shared_ptr<const RadialStatistics> base, double zeta_c, LowPassFilter);

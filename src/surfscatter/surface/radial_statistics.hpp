@@ -22,6 +22,9 @@ public:
     virtual double radial_cdf(double zeta) const = 0;   // mass of P-hat inside |zeta'| <= zeta, in [0, 1]
     virtual double correlation_length() const = 0;      // characteristic length (um) that scales tables
     virtual std::string cache_key() const = 0;          // stable text naming the model and all parameters
+    // Radius (rad/um) where P-hat jumps (a sharp filter's cut), 0 if P-hat is continuous: the lobe tables add the
+    // discontinuous first-order term analytically and quadratures put a break there.
+    virtual double psd_jump_radius() const { return 0.0; }
 
     // <|grad h|^2> = int |zeta|^2 |H(zeta)|^2 P(zeta) d2zeta (dimensionless), with Gaussian smoothing of standard
     // deviation `smoothing_um` (|H|^2 = exp(-s^2 zeta^2); 0 = none) and a sharp low-pass at `cutoff_zeta` (rad/um;

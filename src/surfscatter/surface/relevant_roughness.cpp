@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/math/quadrature.hpp"
@@ -30,8 +31,14 @@ double visible_disc_mass(const RadialStatistics& stats, double theta_i_rad, doub
     const double l = stats.correlation_length();
     const double zeta_knee = std::min(k * (1.0 + s), k * (1.0 - s) + 20.0 / l);
     const double t_knee = std::acos(std::clamp((1.0 - zeta_knee / k) / s, -1.0, 1.0));
-    const double annulus = math::integrate_adaptive(integrand, 0.0, t_knee, 1e-11, 1e-14) +
-                           math::integrate_adaptive(integrand, t_knee, kPi, 1e-11, 1e-14);
+    // A jump of P-hat (sharp cut) inside the annulus is a panel edge too.
+    std::vector<double> edges{0.0, t_knee, kPi};
+    const double jump = stats.psd_jump_radius();
+    if (jump > k * (1.0 - s) && jump < k * (1.0 + s)) edges.push_back(std::acos(std::clamp((1.0 - jump / k) / s, -1.0, 1.0)));
+    std::sort(edges.begin(), edges.end());
+    double annulus = 0.0;
+    for (std::size_t e = 0; e + 1 < edges.size(); ++e)
+        annulus += math::integrate_adaptive(integrand, edges[e], edges[e + 1], 1e-11, 1e-14);
     return std::clamp(inner + annulus, 0.0, 1.0);
 }
 
