@@ -106,7 +106,7 @@ TEST(ScatterLobe, PoissonIdentityAtNodesAndBetween) {
     for (double gamma : {3.0, 2.5}) {
         const double l = 1.3;
         const KCorrelation kc(1.0, l, gamma);
-        const auto lobe = ScatterLobeTable::get(kc);
+        const auto lobe = ScatterLobeTable::get(std::make_shared<KCorrelation>(kc));
         const auto conv = SelfConvolutionTable::get(kc, 160);
         double worst = 0.0;
         for (double g : {1e-5, 1e-3, 0.01, 0.137, 1.0, 3.3, 10.0, 42.0}) {
@@ -123,10 +123,10 @@ TEST(ScatterLobe, PoissonIdentityAtNodesAndBetween) {
 }
 
 TEST(ScatterLobe, UnitMassAndSamplingInverse) {
-    const GaussianAcv gauss(2.27, 20.9);
-    const KCorrelation kc(1.0, 0.5, 1.5);
-    for (const RadialStatistics* s : {static_cast<const RadialStatistics*>(&gauss), static_cast<const RadialStatistics*>(&kc)}) {
-        const auto lobe = ScatterLobeTable::get(*s);
+    const std::shared_ptr<const RadialStatistics> gauss = std::make_shared<GaussianAcv>(2.27, 20.9);
+    const std::shared_ptr<const RadialStatistics> kc = std::make_shared<KCorrelation>(1.0, 0.5, 1.5);
+    for (const auto& s : {gauss, kc}) {
+        const auto lobe = ScatterLobeTable::get(s);
         for (double g : {0.0, 1e-6, 0.5, 30.0, 1e3, 1e5, 1e6}) {
             EXPECT_NEAR(lobe->radial_cdf(g, 1e300), 1.0, 1e-5) << s->cache_key() << " g " << g;
             for (double u : {1e-6, 0.3, 0.9, 0.99999}) {
@@ -146,7 +146,7 @@ TEST(ScatterLobe, UnitMassAndSamplingInverse) {
 // rows) against eval (exact 1 - e^{-g}) over a dense (g, zeta) sweep between nodes, including the tails.
 TEST(ScatterLobe, EvalAtLogsMatchesEval) {
     const KCorrelation kc(1.0, 1.3, 3.0);
-    const auto lobe = ScatterLobeTable::get(kc);
+    const auto lobe = ScatterLobeTable::get(std::make_shared<KCorrelation>(kc));
     double worst = 0.0;
     for (double g : log_points(1.37e-5, 9.9e5, 700))
         for (double zl : log_points(1e-5, 1e5, 400)) {
@@ -163,7 +163,7 @@ TEST(ScatterLobe, EvalAtLogsMatchesEval) {
 
 TEST(ScatterLobe, CorruptCacheIsRebuilt) {
     const KCorrelation kc(1.0, 3.0, 2.2);
-    const auto first = ScatterLobeTable::get(kc);  // builds and writes the cache file
+    const auto first = ScatterLobeTable::get(std::make_shared<KCorrelation>(kc));  // builds and writes the cache file
     const std::string key = "lobe:" + kc.cache_key() + ":g=0.0001..1000000x48";
     const auto path = detail::cache_file(key);
     ASSERT_TRUE(std::filesystem::exists(path));
@@ -183,7 +183,7 @@ TEST(ScatterLobe, CorruptCacheIsRebuilt) {
     const KCorrelation other(1.0, 3.0, 2.3);
     const std::string other_key = "lobe:" + other.cache_key() + ":g=0.0001..1000000x48";
     { std::ofstream(detail::cache_file(other_key), std::ios::binary) << "not a table"; }
-    const double value = ScatterLobeTable::get(other)->eval(2.0, 0.3);
+    const double value = ScatterLobeTable::get(std::make_shared<KCorrelation>(other))->eval(2.0, 0.3);
     EXPECT_GT(value, 0.0);
     EXPECT_TRUE(detail::load_family(other_key, family, extra));
 }

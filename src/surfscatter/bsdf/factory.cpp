@@ -134,7 +134,7 @@ std::unique_ptr<Bsdf> make_bsdf(const ModelOptions& options) {
             auto stats = statistics_of(o.surface);
             std::shared_ptr<const ScatterCore> core;
             if (o.method == GhsMethod::exact) {
-                core = std::make_shared<ExactScatterCore>(*stats);
+                core = std::make_shared<ExactScatterCore>(stats);
             } else {
                 const surface::KCorrelation kc = kc_of(o.surface);
                 const double x = surface::refit_self_convolutions(kc, kRefitOrders).exponent_x;
@@ -149,7 +149,7 @@ std::unique_ptr<Bsdf> make_bsdf(const ModelOptions& options) {
             const double alpha = std::max(1e-4, std::sqrt(split.slope2_macro));
             GhsSettings settings = ghs_settings(o);
             settings.name = "two_scale_micro";
-            auto micro = std::make_unique<GhsBsdf>(split.micro, std::make_shared<ExactScatterCore>(*split.micro),
+            auto micro = std::make_unique<GhsBsdf>(split.micro, std::make_shared<ExactScatterCore>(split.micro),
                                                    material, settings);
             return std::make_unique<TwoScaleBsdf>(std::move(material), o.macro_ndf, alpha, std::move(micro));
         }

@@ -17,8 +17,8 @@ const int kFirstProposal = int(std::lround(kProposalsPerDecade * std::log10(surf
 const int kLastProposal = int(std::lround(kProposalsPerDecade * std::log10(surface::ScatterLobeTable::kMaxG)));
 }  // namespace
 
-ExactScatterCore::ExactScatterCore(const surface::RadialStatistics& stats)
-    : table_(surface::ScatterLobeTable::get(stats)), proposals_(std::size_t(kLastProposal - kFirstProposal + 1)) {}
+ExactScatterCore::ExactScatterCore(std::shared_ptr<const surface::RadialStatistics> stats)
+    : table_(surface::ScatterLobeTable::get(std::move(stats))), proposals_(std::size_t(kLastProposal - kFirstProposal + 1)) {}
 
 double ExactScatterCore::density(double g, double zeta) const {
     return table_->eval(std::min(g, surface::ScatterLobeTable::kMaxG), zeta);

@@ -28,30 +28,78 @@ double lobe_integrand(double g, double rho) {
     if (g < 30.0) return std::exp(-g) * std::expm1(g * rho);
     return std::exp(-g * (1.0 - rho)) - std::exp(-g);
 }
+
+// e^x - 1 - x without cancellation for small |x|.
+double expm1_minus_x(double x) {
+    if (std::abs(x) < 0.1) {
+        double term = 0.5 * x * x, sum = term;
+        for (int n = 3; n < 14; ++n) {
+            term *= x / n;
+            sum += term;
+        }
+        return sum;
+    }
+    return std::expm1(x) - x;
+}
+
+// The lobe less its first-order term, exp(-g (1 - rho)) - exp(-g) (1 + g rho): the orders m >= 2.
+double remainder_integrand(double g, double rho) {
+    if (g < 30.0) return std::exp(-g) * expm1_minus_x(g * rho);
+    return std::exp(-g * (1.0 - rho)) - std::exp(-g) * (1.0 + g * rho);
+}
+
+// Mass of the orders m >= 2: 1 - e^{-g} - g e^{-g} (series below g = 0.1, where the difference cancels).
+double remainder_mass(double g) {
+    if (g < 0.1) {
+        double term = -g, sum = 0.0;  // sum_{n>=2} (-1)^n g^n (n-1) / n!
+        for (int n = 2; n < 16; ++n) {
+            term *= -g / n;
+            sum += (n - 1) * term;
+        }
+        return sum;
+    }
+    return -std::expm1(-g) - g * std::exp(-g);
+}
 }  // namespace
 
 struct ScatterLobeTable::Data {
-    std::shared_ptr<const detail::RadialFamily> family;  // row 0: g -> 0 limit (P-hat); row k >= 1: g = node_g(k - 1)
+    // Row 0: g -> 0 limit of the tabulated shape; row k >= 1: g = node_g(k - 1). Continuous P-hat: the rows are the
+    // whole lobe's shape s_g (row 0 = P-hat). P-hat with a jump (first_order set): the rows are the shape of the
+    // orders m >= 2, whose mass is remainder_mass(g) (row 0 = P-hat^{*2}), and g e^{-g} P-hat is added exactly.
+    std::shared_ptr<const detail::RadialFamily> family;
+    std::shared_ptr<const RadialStatistics> first_order;
     // For the stencil starting at row r: the fractional zeta position below which all four rows r .. r+3 are
     // interpolated from their own interior nodes (same zeta weights for all four), min over the rows of n - 2.
     std::vector<double> shared_interior_end;
-    std::vector<double> log_mass;  // ln(1 - e^{-g}) of each row (row 0: unused)
+    std::vector<double> log_mass;  // ln of each row's mass, 1 - e^{-g} or remainder_mass(g) (row 0: unused)
     double inv_step;               // 1 / family->grid.step
 };
 
 namespace {
 
-detail::RadialFamily build(const RadialStatistics& stats) {
+// Rows of the whole lobe, or (first_order_apart) of its orders m >= 2. The tail weights are the asymptotic ratios to
+// P-hat (P-hat^{*m} ~ m P-hat): g for S_g, g (1 - e^{-g}) for the orders m >= 2, 2 for P-hat^{*2}.
+detail::RadialFamily build(const RadialStatistics& stats, bool first_order_apart) {
     detail::RadialFamily family;
     const detail::TransformSetup setup = detail::make_transform_setup(stats, ScatterLobeTable::kMaxG);
     family.grid = detail::stored_grid(setup);
     family.set_base(stats);
-    family.rows.push_back(detail::make_row(setup, setup.rho, 1.0, 1.0, family.grid));
     std::vector<double> f(setup.rho.size());
+    if (first_order_apart) {
+        for (std::size_t j = 0; j < f.size(); ++j) f[j] = setup.rho[j] * setup.rho[j];
+        family.rows.push_back(detail::make_row(setup, f, 1.0, 2.0, family.grid));
+    } else {
+        family.rows.push_back(detail::make_row(setup, setup.rho, 1.0, 1.0, family.grid));
+    }
     for (int k = 0; k < kGNodes; ++k) {
         const double g = node_g(k);
-        for (std::size_t j = 0; j < f.size(); ++j) f[j] = lobe_integrand(g, setup.rho[j]);
-        family.rows.push_back(detail::make_row(setup, f, -std::expm1(-g), g, family.grid));
+        if (first_order_apart) {
+            for (std::size_t j = 0; j < f.size(); ++j) f[j] = remainder_integrand(g, setup.rho[j]);
+            family.rows.push_back(detail::make_row(setup, f, remainder_mass(g), -g * std::expm1(-g), family.grid));
+        } else {
+            for (std::size_t j = 0; j < f.size(); ++j) f[j] = lobe_integrand(g, setup.rho[j]);
+            family.rows.push_back(detail::make_row(setup, f, -std::expm1(-g), g, family.grid));
+        }
     }
     return family;
 }
@@ -126,9 +174,11 @@ double lobe_log_value(const ScatterLobeTable::Data& d, double log_g, double log_
 
 ScatterLobeTable::ScatterLobeTable(std::shared_ptr<const Data> data) : data_(std::move(data)) {}
 
-std::shared_ptr<const ScatterLobeTable> ScatterLobeTable::get(const RadialStatistics& stats) {
-    const std::string key = fmt::format("lobe:{}:g={}..{}x{}", stats.cache_key(), kMinG, kMaxG, kNodesPerDecade);
-    auto family = detail::cached_family(key, kGNodes + 1, [&] { return build(stats); });
+std::shared_ptr<const ScatterLobeTable> ScatterLobeTable::get(std::shared_ptr<const RadialStatistics> stats) {
+    const bool first_order_apart = stats->psd_jump_radius() > 0.0;
+    const std::string key = fmt::format("{}:{}:g={}..{}x{}", first_order_apart ? "lobe-m2" : "lobe", stats->cache_key(),
+                                        kMinG, kMaxG, kNodesPerDecade);
+    auto family = detail::cached_family(key, kGNodes + 1, [&] { return build(*stats, first_order_apart); });
     const std::size_t rows = family->rows.size();
     std::vector<double> interior_end(rows, 0.0), log_mass(rows, 0.0);
     for (std::size_t r = 0; r + 3 < rows; ++r) {
@@ -140,13 +190,16 @@ std::shared_ptr<const ScatterLobeTable> ScatterLobeTable::get(const RadialStatis
         }
         interior_end[r] = at_zero ? static_cast<double>(n) - 2.0 : 0.0;
     }
-    for (std::size_t r = 1; r < rows; ++r) log_mass[r] = std::log(-std::expm1(-node_g(static_cast<int>(r) - 1)));
+    for (std::size_t r = 1; r < rows; ++r) {
+        const double g = node_g(static_cast<int>(r) - 1);
+        log_mass[r] = std::log(first_order_apart ? remainder_mass(g) : -std::expm1(-g));
+    }
     return std::make_shared<const ScatterLobeTable>(std::make_shared<const Data>(
-        Data{family, std::move(interior_end), std::move(log_mass), 1.0 / family->grid.step}));
+        Data{family, first_order_apart ? std::move(stats) : nullptr, std::move(interior_end), std::move(log_mass),
+             1.0 / family->grid.step}));
 }
 
-double ScatterLobeTable::shape(double g, double zeta) const {
-    check_g(g);
+double ScatterLobeTable::rows_shape(double g, double zeta) const {
     const detail::RadialFamily& f = *data_->family;
     if (!(zeta >= 0.0) || std::isinf(zeta)) return 0.0;
     const double log_zeta = zeta > 0.0 ? std::log(zeta) : -1e300;
@@ -159,26 +212,52 @@ double ScatterLobeTable::shape(double g, double zeta) const {
     return std::exp(lobe_log_value(*data_, std::log(g), log_zeta, false));
 }
 
+double ScatterLobeTable::shape(double g, double zeta) const {
+    check_g(g);
+    if (!data_->first_order) return rows_shape(g, zeta);
+    if (g == 0.0) return data_->first_order->psd_unit(zeta);
+    return eval(g, zeta) / one_minus_exp(g);
+}
+
 double ScatterLobeTable::eval(double g, double zeta) const {
     check_g(g);
     if (g == 0.0) return 0.0;
-    return one_minus_exp(g) * shape(g, zeta);
+    if (!data_->first_order) return one_minus_exp(g) * rows_shape(g, zeta);
+    if (!(zeta >= 0.0) || std::isinf(zeta)) return 0.0;
+    return g * std::exp(-g) * data_->first_order->psd_unit(zeta) + remainder_mass(g) * rows_shape(g, zeta);
 }
 
 double ScatterLobeTable::eval_at_logs(double log_g, double log_zeta) const {
     log_g = std::min(log_g, kLogGMax);
     if (!(log_g >= kLogGMin)) return eval(std::exp(log_g), std::exp(log_zeta));
-    return fast_exp(lobe_log_value(*data_, log_g, log_zeta, true));
+    const double rows = fast_exp(lobe_log_value(*data_, log_g, log_zeta, true));
+    if (!data_->first_order) return rows;
+    const double g = fast_exp(log_g);
+    return g * fast_exp(-g) * data_->first_order->psd_unit(fast_exp(log_zeta)) + rows;
+}
+
+double ScatterLobeTable::log_eval_at_logs(double log_g, double log_zeta) const {
+    log_g = std::min(log_g, kLogGMax);
+    if (data_->first_order || !(log_g >= kLogGMin)) return fast_log(eval_at_logs(log_g, log_zeta));
+    return lobe_log_value(*data_, log_g, log_zeta, true);
 }
 
 double ScatterLobeTable::radial_cdf(double g, double zeta) const {
     check_g(g);
     const detail::RadialFamily& f = *data_->family;
-    if (g < kMinG) return std::clamp(f.cdf(0, zeta) + (g / kMinG) * (f.cdf(1, zeta) - f.cdf(0, zeta)), 0.0, 1.0);
-    const Stencil s = stencil(std::log(g));
-    double c = 0.0;
-    for (int i = 0; i < 4; ++i) c += s.w[i] * f.cdf(s.first + i, zeta);
-    return std::clamp(c, 0.0, 1.0);
+    double rows;
+    if (g < kMinG) {
+        rows = f.cdf(0, zeta) + (g / kMinG) * (f.cdf(1, zeta) - f.cdf(0, zeta));
+    } else {
+        const Stencil s = stencil(std::log(g));
+        rows = 0.0;
+        for (int i = 0; i < 4; ++i) rows += s.w[i] * f.cdf(s.first + i, zeta);
+    }
+    rows = std::clamp(rows, 0.0, 1.0);
+    if (!data_->first_order) return rows;
+    const double first = data_->first_order->radial_cdf(zeta);
+    if (g == 0.0) return first;
+    return std::clamp((g * std::exp(-g) * first + remainder_mass(g) * rows) / one_minus_exp(g), 0.0, 1.0);
 }
 
 double ScatterLobeTable::inverse_radial_cdf(double g, double u) const {
