@@ -16,17 +16,40 @@ namespace surfscatter::bsdf {
 
 namespace {
 
-// Incidence nodes, in cos(theta_i): theta_j = 89.5 deg (1 - (1 - j / (kThetaNodes - 1))^2), dense toward grazing where
-// sigma_rel and K vary fastest (grazing queries use the last node, where the lobe vanishes); wavelength nodes 2 %
-// apart over [kMinWavelength, kMaxWavelength]. NodeAxis moves them to its cell edges (by at most 0.2 %).
+// Incidence nodes, in cos(theta_i): theta_j = 90 deg (1 - (1 - j / (kThetaNodes - 1))^3), dense toward grazing where
+// sigma_rel and K vary fastest, the last one at cos theta_i = 1e-6 instead of 0 (NodeAxis needs positive nodes);
+// wavelength nodes 2 % apart over [kMinWavelength, kMaxWavelength]. NodeAxis moves them to its cell edges (by at most
+// 0.2 %).
+constexpr double kMinCosine = 1e-6;
 NodeAxis incidence_axis() {
     std::vector<double> cosines;
     for (int j = GhsBsdf::kThetaNodes - 1; j >= 0; --j) {
         const double u = double(j) / (GhsBsdf::kThetaNodes - 1);
-        cosines.push_back(j == 0 ? 1.0 : std::cos(89.5 * kDegree * (1.0 - (1.0 - u) * (1.0 - u))));
+        const double theta = 90.0 * kDegree * (1.0 - (1.0 - u) * (1.0 - u) * (1.0 - u));
+        cosines.push_back(j == 0 ? 1.0 : std::max(kMinCosine, std::cos(theta)));
     }
     return NodeAxis(cosines);
 }
+
+// Cubic through (x[0], y[0]) .. (x[3], y[3]) as coefficients of t in [0, 1] over [a, b] (a < b inside the nodes):
+// from its values at t = 0, 1/3, 2/3, 1 (Lagrange), then the monomial form of those four values.
+std::array<double, 4> interval_cubic(const double* x, const double* y, double a, double b) {
+    std::array<double, 4> v{};
+    for (int m = 0; m < 4; ++m) {
+        const double at = a + (b - a) * m / 3.0;
+        for (int i = 0; i < 4; ++i) {
+            double w = y[i];
+            for (int j = 0; j < 4; ++j)
+                if (j != i) w *= (at - x[j]) / (x[i] - x[j]);
+            v[m] += w;
+        }
+    }
+    // p(t) = c0 + c1 t + c2 t^2 + c3 t^3 through v at t = 0, 1/3, 2/3, 1.
+    return {v[0], (-11.0 * v[0] + 18.0 * v[1] - 9.0 * v[2] + 2.0 * v[3]) / 2.0,
+            (18.0 * v[0] - 45.0 * v[1] + 36.0 * v[2] - 9.0 * v[3]) / 2.0,
+            (-9.0 * v[0] + 27.0 * v[1] - 27.0 * v[2] + 9.0 * v[3]) / 2.0};
+}
+double horner(const double* c, double t) { return c[0] + t * (c[1] + t * (c[2] + t * c[3])); }
 NodeAxis wavelength_axis() {
     std::vector<double> lambdas{GhsBsdf::kMinWavelength};
     while (lambdas.back() < GhsBsdf::kMaxWavelength) lambdas.push_back(lambdas.back() * std::exp(0.02));
@@ -54,20 +77,18 @@ GhsBsdf::Incidence GhsBsdf::lookup(double cos_theta_i, double lambda_nm) const {
     auto table = [&](int slot) -> const Table& {
         return tables_.get(std::size_t(slot), [&] { return build_table(kWavelengthAxis.node(slot)); });
     };
-    const Table& a = table(l.interval);
-    const Table& b = table(l.interval + 1);
-    const int j = c.interval;
-    // Bilinear, weights first: the four products do not wait for one another.
-    const double w00 = (1.0 - l.t) * (1.0 - c.t), w01 = (1.0 - l.t) * c.t, w10 = l.t * (1.0 - c.t), w11 = l.t * c.t;
+    const Interval& a = table(l.interval)[c.interval];
+    const Interval& b = table(l.interval + 1)[c.interval];
+    // Cubic in cos theta_i within each wavelength node's table, then linear in lambda.
     return {wavenumber(lambda_nm),
-            (w00 * a[j].log_sigma + w01 * a[j + 1].log_sigma) + (w10 * b[j].log_sigma + w11 * b[j + 1].log_sigma),
-            (w00 * a[j].norm + w01 * a[j + 1].norm) + (w10 * b[j].norm + w11 * b[j + 1].norm)};
+            (1.0 - l.t) * horner(a.log_sigma, c.t) + l.t * horner(b.log_sigma, c.t),
+            (1.0 - l.t) * horner(a.log_norm, c.t) + l.t * horner(b.log_norm, c.t)};
 }
 
 double GhsBsdf::core_lobe(const Vec3& wi, const Vec3& wo, double lambda_nm, double sigma_um) const {
     if (wi.z <= 0 || wo.z <= 0) return 0.0;
     const double k = wavenumber(lambda_nm);
-    return k * k * density(LobeLogs(wi, wo, k), std::log(sigma_um));
+    return k * k * surface::fast_exp(log_density(LobeLogs(wi, wo, k), std::log(sigma_um)));
 }
 
 // ln g = 2 ln(k sigma (cos i + cos o)) but for its 2 ln sigma, which the lookup interpolates, and ln zeta,
@@ -78,10 +99,10 @@ GhsBsdf::LobeLogs::LobeLogs(const Vec3& wi, const Vec3& wo, double k) {
     log_zeta = 0.5 * surface::fast_log(k * k * (x * x + y * y));
 }
 
-// The core's density; the exact core is called without virtual dispatch.
-double GhsBsdf::density(const LobeLogs& logs, double log_sigma) const {
+// ln of the core's density; the exact core is called without virtual dispatch.
+double GhsBsdf::log_density(const LobeLogs& logs, double log_sigma) const {
     const double log_g = logs.log_g_over_sigma2 + 2.0 * log_sigma;
-    return exact_ ? exact_->density_at_logs(log_g, logs.log_zeta) : core_->density_at_logs(log_g, logs.log_zeta);
+    return exact_ ? exact_->log_density_at_logs(log_g, logs.log_zeta) : core_->log_density_at_logs(log_g, logs.log_zeta);
 }
 
 double GhsBsdf::specular_exponent(const Incidence& in, double cos_theta_i) {
@@ -110,7 +131,8 @@ double GhsBsdf::eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
     const double k = wavenumber(lambda_nm);
     const LobeLogs logs(wi, wo, k);
     const Incidence in = lookup(wi.z, lambda_nm);
-    const double f = fresnel(wi, wo, lambda_nm) * in.norm * k * k * density(logs, in.log_sigma);
+    const double f = fresnel(wi, wo, lambda_nm) * norm_power(wi.z) * k * k *
+                     surface::fast_exp(in.log_norm + log_density(logs, in.log_sigma));
     return std::isfinite(f) ? f : 0.0;
 }
 
@@ -164,11 +186,21 @@ std::optional<BsdfSample> GhsBsdf::sample(const Vec3& wi, double lambda_nm, doub
 }
 
 GhsBsdf::Table GhsBsdf::build_table(double lambda_nm) const {
-    Table t;
+    std::array<double, kThetaNodes> x{}, log_sigma{}, log_norm{};
     for (int j = 0; j < kThetaNodes; ++j) {
-        const Direct d = direct(std::acos(kIncidenceAxis.node(j)), lambda_nm);
-        // ln sigma finite even for sigma = 0, for the interpolation.
-        t[j] = {std::log(std::max(d.sigma, std::numeric_limits<double>::min())), d.norm};
+        x[j] = kIncidenceAxis.node(j);
+        const Direct d = direct(std::acos(x[j]), lambda_nm);
+        // Finite logarithms even for sigma = 0 or N = 0, for the interpolation.
+        log_sigma[j] = std::log(std::max(d.sigma, std::numeric_limits<double>::min()));
+        log_norm[j] = std::log(std::max(d.norm / norm_power(x[j]), std::numeric_limits<double>::min()));
+    }
+    Table t;
+    for (int j = 0; j + 1 < kThetaNodes; ++j) {
+        const int first = std::clamp(j - 1, 0, kThetaNodes - 4);  // the 4 nodes around the interval (one-sided at ends)
+        const auto s = interval_cubic(&x[first], &log_sigma[first], x[j], x[j + 1]);
+        const auto n = interval_cubic(&x[first], &log_norm[first], x[j], x[j + 1]);
+        std::copy(s.begin(), s.end(), t[j].log_sigma);
+        std::copy(n.begin(), n.end(), t[j].log_norm);
     }
     return t;
 }
@@ -198,7 +230,7 @@ double GhsBsdf::scatter_mass(double theta_i, double lambda_nm, double sigma_um) 
                const double co = std::sqrt(std::max(0.0, 1.0 - ox * ox - oy * oy));
                const double a = k * sigma_um * (ci + co);
                return core_->density(a * a, k * q);
-           });
+           }, stats_->psd_jump_radius() / k);
 }
 
 }  // namespace surfscatter::bsdf

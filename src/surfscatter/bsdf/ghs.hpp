@@ -5,11 +5,15 @@
 // where sigma is the relevant roughness sigma_rel(theta_i, lambda) or sigma_h, F the Fresnel factor
 // (incident / half / rr), and N the lobe normalisation: K(theta_i, lambda) making the directional albedo exactly R
 // (full GHS, THEORY 1.1 eq 20, and the SSA energy form), sigma_h^2 / sigma_rel^2 (the visible-disc mass) or 1.
-// ln sigma and N are tabulated per wavelength node (2 % apart over [kMinWavelength, kMaxWavelength]; other wavelengths
-// are an Error) over cos theta_i (52 nodes to 89.5 deg, denser toward grazing), built lazily, read without a lock once
-// built, and interpolated bilinearly in (cos theta_i, lambda) between nodes found by NodeAxis (no log, no acos). eval
-// hands ln g and ln zeta to the core (the exact core's table is log-spaced in both): two logarithms per call, taken
-// before the lookup so that they overlap with it.
+// ln sigma and ln(N / cos^p theta_i) (p = 2 for the albedo normalisation K, which vanishes like cos^2 theta_i at
+// grazing while K / cos^2 stays finite; p = 0 otherwise) are tabulated per wavelength node (2 % apart over
+// [kMinWavelength, kMaxWavelength]; other wavelengths are an Error) over cos theta_i at 64 nodes from 1e-6 (theta_i
+// 89.99994 deg) to 1, theta_j = 90 deg (1 - (1 - j/63)^3), built lazily and read without a lock once built. Between
+// incidence nodes both are cubic in cos theta_i (the 4-point Lagrange cubic of each interval, stored as polynomial
+// coefficients), between wavelength nodes linear in lambda; below cos theta_i = 1e-6 the end values hold (K itself
+// still scales with cos^2). Nodes are found by NodeAxis (no log, no acos). eval hands ln g and ln zeta to the core (the
+// exact core's table is log-spaced in both) and takes one exponential of ln N + ln density: two logarithms and one
+// exponential per call, the logarithms taken before the lookup so that they overlap with it.
 // Sampling: the delta with probability e^{-g0}; otherwise |zeta| from the core at g* = g0 and the azimuth over the
 // visible wedge; the pdf is exact (wedge_pdf).
 #include <array>
@@ -39,7 +43,7 @@ class GhsBsdf final : public Bsdf {
 public:
     static constexpr double kMinWavelength = 0.1;  // nm
     static constexpr double kMaxWavelength = 1e8;  // nm
-    static constexpr int kThetaNodes = 52;         // incidence nodes of the sigma / N tables
+    static constexpr int kThetaNodes = 64;         // incidence nodes of the sigma / N tables
 
     GhsBsdf(std::shared_ptr<const surface::RadialStatistics> stats, std::shared_ptr<const ScatterCore> core,
             material::Conductor material, GhsSettings settings);
@@ -55,7 +59,9 @@ public:
     double sigma(double cos_theta_i, double lambda_nm) const {
         return std::exp(lookup(cos_theta_i, lambda_nm).log_sigma);
     }
-    double normalization(double cos_theta_i, double lambda_nm) const { return lookup(cos_theta_i, lambda_nm).norm; }
+    double normalization(double cos_theta_i, double lambda_nm) const {
+        return std::exp(lookup(cos_theta_i, lambda_nm).log_norm) * norm_power(cos_theta_i);
+    }
     // Both computed directly at (theta_i, lambda), as at the table's nodes (an integral over the visible disc, ~1 ms):
     // the reference for the tabulation's accuracy.
     struct Direct {
@@ -66,16 +72,20 @@ public:
     double core_lobe(const Vec3& wi, const Vec3& wo, double lambda_nm, double sigma_um) const;
 
 private:
-    struct Node { double log_sigma, norm; };
-    using Table = std::array<Node, kThetaNodes>;  // over theta_i
-    struct Incidence { double k, log_sigma, norm; };  // k in rad/um
+    // Cubic coefficients (in the position t in [0, 1] of cos theta_i within the interval) of ln sigma and ln(N/cos^p).
+    struct Interval { double log_sigma[4], log_norm[4]; };
+    using Table = std::array<Interval, kThetaNodes - 1>;  // over cos theta_i
+    struct Incidence { double k, log_sigma, log_norm; };  // k in rad/um; log_norm = ln(N / cos^p theta_i)
     Incidence lookup(double cos_theta_i, double lambda_nm) const;
+    double norm_power(double cos_theta_i) const {  // cos^p theta_i
+        return settings_.normalization == LobeNormalization::albedo ? cos_theta_i * cos_theta_i : 1.0;
+    }
     static double specular_exponent(const Incidence& in, double cos_theta_i);  // g0 = (2 k sigma cos theta_i)^2
     struct LobeLogs {  // ln g - 2 ln sigma and ln zeta of a direction pair
         LobeLogs(const Vec3& wi, const Vec3& wo, double k);
         double log_g_over_sigma2, log_zeta;
     };
-    double density(const LobeLogs& logs, double log_sigma) const;
+    double log_density(const LobeLogs& logs, double log_sigma) const;
     Table build_table(double lambda_nm) const;
     double scatter_mass(double theta_i, double lambda_nm, double sigma_um) const;  // integral of density over disc
     double fresnel(const Vec3& wi, const Vec3& wo, double lambda_nm) const;

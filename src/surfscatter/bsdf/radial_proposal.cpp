@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "surfscatter/math/vec.hpp"
 #include "surfscatter/surface/fast_math.hpp"
@@ -39,11 +40,14 @@ RadialProposal::RadialProposal(const std::function<double(double)>& cdf, const s
         cdf_.push_back(c);
         slope_.push_back(std::max(0.0, kTwoPi * zeta * zeta * density_2d(zeta)));
     }
-    const double total = cdf_.back();  // the last node carries all the proposed mass
+    // The nodes carry 1 - tail_mass of the mass, the power-law tail the rest.
+    tail_mass_ = std::clamp(1.0 - cdf_.back(), 1e-12, 1e-3);
+    const double scale = (1.0 - tail_mass_) / cdf_.back();
     for (std::size_t j = 0; j < cdf_.size(); ++j) {
-        cdf_[j] /= total;
-        slope_[j] /= total;
+        cdf_[j] *= scale;
+        slope_[j] *= scale;
     }
+    tail_power_ = std::clamp(slope_.back() / tail_mass_, 0.5, 8.0);
     zeta_front_ = std::exp(log_zeta_.front());
     // Segment index at the start of each of kCells uniform cells in ln zeta (replaces a branchy binary search).
     const double width = (log_zeta_.back() - log_zeta_.front()) / kCells;
@@ -77,7 +81,7 @@ double RadialProposal::cdf(double zeta) const {
     if (!(zeta > 0)) return 0.0;
     const double lz = surface::fast_log(zeta);
     if (lz <= log_zeta_.front()) return cdf_.front() * std::exp(2.0 * (lz - log_zeta_.front()));
-    if (lz >= log_zeta_.back()) return 1.0;
+    if (lz >= log_zeta_.back()) return 1.0 - tail_mass_ * std::exp(-tail_power_ * (lz - log_zeta_.back()));
     const std::size_t j = segment(lz);
     const double h = log_zeta_[j + 1] - log_zeta_[j];
     return hermite((lz - log_zeta_[j]) / h, cdf_[j], cdf_[j + 1], slope_[j] * h, slope_[j + 1] * h);
@@ -86,7 +90,10 @@ double RadialProposal::cdf(double zeta) const {
 double RadialProposal::inverse(double u) const {
     if (!(u > 0)) return 0.0;
     if (u <= cdf_.front()) return std::exp(log_zeta_.front()) * std::sqrt(u / cdf_.front());
-    if (u >= 1.0) return std::exp(log_zeta_.back());
+    if (u >= cdf_.back()) {
+        if (u >= 1.0) return std::numeric_limits<double>::infinity();
+        return std::exp(log_zeta_.back() - std::log((1.0 - u) / tail_mass_) / tail_power_);
+    }
     const auto j = std::size_t(std::upper_bound(cdf_.begin(), cdf_.end(), u) - cdf_.begin()) - 1;
     const double h = log_zeta_[j + 1] - log_zeta_[j];
     const double f0 = cdf_[j], f1 = cdf_[j + 1], m0 = slope_[j] * h, m1 = slope_[j + 1] * h;
@@ -111,7 +118,8 @@ double RadialProposal::density_2d(double zeta) const {
     if (!(zeta >= 0)) return 0.0;
     if (zeta <= zeta_front_) return cdf_.front() / (kPi * zeta_front_ * zeta_front_);
     const double lz = surface::fast_log(zeta);
-    if (lz >= log_zeta_.back()) return 0.0;
+    if (lz >= log_zeta_.back())
+        return tail_power_ * tail_mass_ * std::exp(-tail_power_ * (lz - log_zeta_.back())) / (kTwoPi * zeta * zeta);
     const std::size_t j = segment(lz);
     const double h = log_zeta_[j + 1] - log_zeta_[j];
     const double dF_dlnzeta =

@@ -3,9 +3,11 @@
 // the distribution's own inverse CDF is slow (the S_g table inverts by bisection, ~50 us). Built once from the CDF
 // and density at nodes placed uniformly in logit(u) (dense in both tails, u in [1e-10, 1 - 1e-10]): between nodes F
 // is the monotone (Fritsch-Carlson) cubic Hermite interpolant in ln(zeta), so the proposal density is continuous and
-// within ~1e-4 of the true one; below the first node the density is uniform over the disc, and the mass beyond the
-// last node (< 1e-10) is not proposed. Inversion: safeguarded Newton on the cubic. The density it reports is exactly
-// that of what it draws, so pdfs stay exact.
+// within ~1e-4 of the true one; below the first node the density is uniform over the disc, and beyond the last node
+// the mass left there (1 - F at that node, at least 1e-12) falls as a power law 1 - F ~ zeta^-a whose density meets
+// the last node's (a clamped to [0.5, 8]): the density is positive at every radius, so every direction where the lobe
+// is positive can be drawn. Inversion: safeguarded Newton on the cubic. The density it reports is exactly that of
+// what it draws, so pdfs stay exact.
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -26,6 +28,7 @@ private:
     std::size_t segment(double log_zeta) const;
     std::vector<double> log_zeta_, cdf_, slope_;  // slope_ = dF / d ln(zeta) at the nodes
     double zeta_front_;                           // exp(log_zeta_.front())
+    double tail_mass_, tail_power_;               // beyond the last node: 1 - F = tail_mass (zeta/zeta_last)^-power
     std::vector<std::uint16_t> cell_start_;       // see segment()
     double inverse_cell_;
 };

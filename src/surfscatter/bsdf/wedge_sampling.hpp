@@ -36,8 +36,10 @@ double wedge_pdf(double k, double cos_theta_o, double density_2d, double phi_max
 // phi measured from the azimuth of i, for integrands symmetric in phi (isotropic lobes): composite Gauss-Legendre in
 // q on panels spaced in log(q) from q_lo and graded geometrically toward the circles q = 1 - s and q = 1 + s, where
 // the wedge half-angle has square-root kinks; azimuth phi = phi_max (1 - (1 - t)^2), which absorbs the
-// square-root behaviour of cos(theta_o) at the wedge edge. The disc q < q_lo counts as pi q_lo^2 f(0, 0).
+// square-root behaviour of cos(theta_o) at the wedge edge. The disc q < q_lo counts as pi q_lo^2 f(0, 0). A panel
+// edge at q_jump > 0 (a circle where f jumps, e.g. a sharp high-pass cut) keeps the rule accurate there.
 // Relative accuracy ~1e-6 for lobes wider than a few q_lo (tested through the white furnace).
-double integrate_visible_disc(double sin_theta_i, double q_lo, const std::function<double(double q, double phi)>& f);
+double integrate_visible_disc(double sin_theta_i, double q_lo, const std::function<double(double q, double phi)>& f,
+                              double q_jump = 0.0);
 
 }  // namespace surfscatter::bsdf
