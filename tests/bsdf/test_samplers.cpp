@@ -6,6 +6,8 @@
 
 #include "chi2_harness.hpp"
 #include "model_fixtures.hpp"
+#include "surfscatter/bsdf/two_scale.hpp"
+#include "surfscatter/bsdf/wedge_sampling.hpp"
 
 using namespace surfscatter;
 using namespace surfscatter::bsdf;
@@ -60,6 +62,39 @@ TEST(Samplers, GhsExact) {
 TEST(Samplers, GhsRefit) { run(cases_for(ModelKind::ghs, GhsMethod::refit, {2.5, 4.0}, {0.01, 10}), 150000); }
 
 TEST(Samplers, GhsSsa) { run(cases_for(ModelKind::ghs_ssa, GhsMethod::exact, {2.5, 3.0}, {0.01, 1, 30}), 200000); }
+
+// The two-scale sampler at the supplemental's cutoffs (N = 20, 100, 150) and micro g0 from 0.01 to 100, binned in the
+// lobe's own coordinates (chi2_test_wedge: |zeta|/k on log bins with an edge at the micro lobe's hole zeta_c/k),
+// which resolve the macro spike and the hole that a (theta, phi) grid would average away.
+TEST(Samplers, TwoScaleAtThePaperCutoffs) {
+    const double lambda = 550.0, length = 1.0, gamma = 3.0, k = wavenumber(lambda);
+    std::vector<std::pair<ModelOptions, double>> cases;
+    for (double n : {20.0, 100.0, 150.0})
+        for (double g : {0.01, 1.0, 100.0})
+            for (double t : {0.0, 30.0, 60.0, 80.0}) {
+                const double zeta_c = k / n;
+                const double micro_fraction = std::pow(1.0 + length * length * zeta_c * zeta_c, -0.5 * (gamma - 1.0));
+                auto o = test::kc_options(ModelKind::two_scale, test::sigma_for_g(g, lambda, t) / std::sqrt(micro_fraction),
+                                          length, gamma);
+                o.cutoff_wavelengths = n;
+                cases.push_back({o, t});
+            }
+    const double level = test::sidak(0.01, int(cases.size()));
+    for (const auto& [o, t] : cases) {
+        const auto bsdf = make_bsdf(o);
+        const Vec3 wi = spherical_direction(t * kDegree, 1.1);
+        const double zeta_c = k / o.cutoff_wavelengths;
+        const auto r = test::chi2_test_wedge(*bsdf, wi, lambda, 200000, {zeta_c / k});
+        const double g0 = -std::log(dynamic_cast<const TwoScaleBsdf&>(*bsdf).micro().delta_probability(wi, lambda));
+        const std::string what = "N " + std::to_string(o.cutoff_wavelengths) + " sigma " + std::to_string(o.surface.sigma) +
+                                 " theta_i " + std::to_string(t) + " micro g0 " + std::to_string(g0) + ": " + r.summary();
+        EXPECT_GT(r.p_value, level) << what;
+        EXPECT_LT(r.pdf_mismatch, 1e-6) << what;
+        EXPECT_LT(r.weight_mismatch, 1e-6) << what;
+        // Every direction is proposed: the pdf's mass is 1 less what the macro sampler sends below the horizon.
+        EXPECT_NEAR(r.expected_total + double(r.failed) / 200000, 1.0, 3e-3) << what;
+    }
+}
 
 TEST(Samplers, TwoScale) {
     // Macro slopes need gamma > 3 or a cutoff: the split provides the cutoff.

@@ -30,6 +30,7 @@ public:
     std::string name() const override { return "two_scale"; }
 
     double macro_alpha() const { return alpha_; }
+    const GhsBsdf& micro() const { return *micro_; }
 
 private:
     double macro_eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const;
