@@ -145,8 +145,11 @@ std::unique_ptr<Bsdf> make_bsdf(const ModelOptions& options) {
         case ModelKind::two_scale: {
             const double zeta_c = surface::cutoff_frequency(kTwoScaleReferenceWavelength, o.cutoff_wavelengths);
             const auto split = surface::split_psd(statistics_of(o.surface), zeta_c, surface::LowPassFilter::sharp);
-            // A macro part without slope is a mirror; keep a tiny roughness so the NDF stays a function.
-            const double alpha = std::max(1e-4, std::sqrt(split.slope2_macro));
+            // alpha = rms slope of the low-pass part, unclamped (it was floored at 1e-4, which widened the macro lobe of
+            // smooth, long-correlated surfaces); a low-pass part without slope would be a mirror, not an NDF.
+            const double alpha = std::sqrt(split.slope2_macro);
+            if (!(alpha > 0) || !std::isfinite(alpha))
+                fail("the low-pass part below {} wavelengths has rms slope {}: no macro NDF", o.cutoff_wavelengths, alpha);
             GhsSettings settings = ghs_settings(o);
             settings.name = "two_scale_micro";
             auto micro = std::make_unique<GhsBsdf>(split.micro, std::make_shared<ExactScatterCore>(split.micro),

@@ -113,7 +113,7 @@ double KCorrelation::acv_normalized(double r) const {
 }
 
 std::string KCorrelation::cache_key() const {
-    return fmt::format("kc(sigma={:.17g},L={:.17g},gamma={:.17g})", sigma_, length_, gamma_);
+    return fmt::format("kc(L={:.17g},gamma={:.17g})", length_, gamma_);
 }
 
 double KCorrelation::mean_square_slope(double smoothing_um, double cutoff_zeta) const {
@@ -149,7 +149,7 @@ double GaussianAcv::inverse_radial_cdf(double u) const {
 }
 
 std::string GaussianAcv::cache_key() const {
-    return fmt::format("gauss(sigma={:.17g},l={:.17g})", sigma_, length_);
+    return fmt::format("gauss(l={:.17g})", length_);
 }
 
 double GaussianAcv::mean_square_slope(double smoothing_um, double cutoff_zeta) const {

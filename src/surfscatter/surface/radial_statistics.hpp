@@ -21,7 +21,9 @@ public:
     double acv(double r) const;                         // C(r) = sigma_h^2 rho(r), um^2
     virtual double radial_cdf(double zeta) const = 0;   // mass of P-hat inside |zeta'| <= zeta, in [0, 1]
     virtual double correlation_length() const = 0;      // characteristic length (um) that scales tables
-    virtual std::string cache_key() const = 0;          // stable text naming the model and all parameters
+    // Stable text naming the model and every parameter that shapes P-hat and rho (sigma_h does not: the tables built
+    // from it are unit-mass shapes, shared by all surfaces that differ only in sigma_h).
+    virtual std::string cache_key() const = 0;
     // Radius (rad/um) where P-hat jumps (a sharp filter's cut), 0 if P-hat is continuous: the lobe tables add the
     // discontinuous first-order term analytically and quadratures put a break there.
     virtual double psd_jump_radius() const { return 0.0; }
