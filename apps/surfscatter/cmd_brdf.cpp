@@ -1,4 +1,5 @@
 // surfscatter brdf eval | albedo | sample | slice: the scattering models of docs/MODELS.md from the command line.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -47,7 +48,12 @@ void require_theta(double t, const char* what) {
     if (t < 0 || t >= 90) fail("{} must be in [0, 90) degrees, got {}", what, t);
 }
 
-bsdf::ModelOptions model_options(const BrdfArgs& a, const std::string& model) {
+// `spec` is a model name, optionally with the surface statistics to use after a colon (brdf slice --models
+// ghs:file,ghs:measured overlays the KC-fit and measured-PSD versions of one model on the same --surface).
+bsdf::ModelOptions model_options(const BrdfArgs& a, const std::string& spec) {
+    const std::size_t colon = spec.find(':');
+    const std::string model = spec.substr(0, colon);
+    const std::string psd = colon == std::string::npos ? a.psd : spec.substr(colon + 1);
     bsdf::ModelOptions o;
     o.model = bsdf::parse_model(model, "--model");
     o.method = bsdf::parse_method(a.method, "--method");
@@ -63,9 +69,9 @@ bsdf::ModelOptions model_options(const BrdfArgs& a, const std::string& model) {
     o.macro_ndf = bsdf::parse_macro_ndf(a.macro_ndf, "--macro-ndf");
     o.material = a.material;
     const bool needs_surface = o.model != bsdf::ModelKind::ggx || o.alpha_from != bsdf::AlphaFrom::none;
-    if (!a.surface_file.empty()) {
-        if (!a.psd.empty() && a.psd != "file") fail("give either --psd or --surface, not both");
-        o.surface.psd = bsdf::PsdKind::file;
+    const bool from_map = psd.empty() || psd == "file" || psd == "measured";
+    if (!a.surface_file.empty() && from_map) {
+        o.surface.psd = psd.empty() ? bsdf::PsdKind::file : bsdf::parse_psd(psd, "--psd");
         o.surface.surface_file = a.surface_file;
         o.surface.form = surface::parse_form(a.form, "--form");
         if (!a.height_map) {
@@ -74,9 +80,12 @@ bsdf::ModelOptions model_options(const BrdfArgs& a, const std::string& model) {
             std::fprintf(stderr, "surfscatter: brdf: %s\n", surface::describe(*a.height_map).c_str());
         }
         o.surface.height_map = a.height_map;
-    } else if (!a.psd.empty()) {
-        o.surface.psd = bsdf::parse_psd(a.psd, "--psd");
-        if (o.surface.psd == bsdf::PsdKind::file) fail("--psd file needs --surface MAP");
+    } else if (!a.surface_file.empty() && a.psd == psd) {
+        fail("--surface takes --psd file (KC fitted to the map, the default) or measured (its own PSD), got --psd {}", psd);
+    } else if (!psd.empty()) {
+        o.surface.psd = bsdf::parse_psd(psd, "--psd");
+        if (o.surface.psd == bsdf::PsdKind::file || o.surface.psd == bsdf::PsdKind::measured)
+            fail("--psd {} needs --surface MAP", psd);
         if (o.surface.psd == bsdf::PsdKind::gaussian && a.gamma != 0) fail("--gamma applies to --psd kc only");
         if (o.surface.psd == bsdf::PsdKind::kc && a.gamma == 0) fail("--psd kc needs --gamma");
         o.surface.sigma = a.sigma;
@@ -87,6 +96,19 @@ bsdf::ModelOptions model_options(const BrdfArgs& a, const std::string& model) {
              "--psd gaussian --sigma S --corr-length l, or --surface MAP", model);
     }
     return o;
+}
+
+// The model of `spec`, its notes (e.g. how a measured PSD is extrapolated) on stderr, each once per run.
+std::unique_ptr<bsdf::Bsdf> build_model(const BrdfArgs& a, const std::string& spec) {
+    static std::vector<std::string> printed;
+    std::vector<std::string> notes;
+    auto model = bsdf::make_bsdf(model_options(a, spec), &notes);
+    for (const std::string& note : notes)
+        if (std::find(printed.begin(), printed.end(), note) == printed.end()) {
+            std::fprintf(stderr, "surfscatter: brdf: note: %s\n", note.c_str());
+            printed.push_back(note);
+        }
+    return model;
 }
 
 void check_common(const BrdfArgs& a) {
@@ -104,7 +126,7 @@ void eval(const BrdfArgs& a) {
     if (a.theta_i.size() != 1) fail("--theta-i takes one angle for brdf eval, got {}", a.theta_i.size());
     if (a.theta_o.empty()) fail("--theta-o is required");
     for (double t : a.theta_o) require_theta(t, "--theta-o");
-    const auto model = bsdf::make_bsdf(model_options(a, a.model));
+    const auto model = build_model(a, a.model);
     const std::vector<double> phis = a.phi_o.empty() ? std::vector<double>{a.phi_i + 180.0} : a.phi_o;
     const Vec3 wi = incident(a.theta_i[0], a.phi_i);
     std::printf("theta_o,phi_o,brdf\n");
@@ -119,7 +141,7 @@ void eval(const BrdfArgs& a) {
 void albedo(const BrdfArgs& a) {
     check_common(a);
     if (a.theta_i.size() != 1) fail("--theta-i takes one angle for brdf albedo, got {}", a.theta_i.size());
-    const auto model = bsdf::make_bsdf(model_options(a, a.model));
+    const auto model = build_model(a, a.model);
     const auto r = bsdf::directional_albedo(*model, a.theta_i[0] * kDegree, a.wavelength);
     std::printf("albedo = %s\nspecular = %s\n", format_number(r.total()).c_str(), format_number(r.specular).c_str());
 }
@@ -128,7 +150,7 @@ void sample(const BrdfArgs& a) {
     check_common(a);
     if (a.theta_i.size() != 1) fail("--theta-i takes one angle for brdf sample, got {}", a.theta_i.size());
     if (a.count <= 0) fail("--count must be > 0, got {}", a.count);
-    const auto model = bsdf::make_bsdf(model_options(a, a.model));
+    const auto model = build_model(a, a.model);
     const Vec3 wi = incident(a.theta_i[0], a.phi_i);
     std::mt19937_64 rng(a.seed);
     std::uniform_real_distribution<double> uniform(0.0, 1.0);
@@ -148,7 +170,7 @@ void slice(const BrdfArgs& a) {
     if (a.plot.empty() && a.csv.empty()) fail("brdf slice needs --plot out.png and/or --csv out.csv");
     const std::vector<std::string> names = a.models.empty() ? std::vector<std::string>{a.model} : a.models;
     std::vector<std::unique_ptr<bsdf::Bsdf>> models;
-    for (const auto& n : names) models.push_back(bsdf::make_bsdf(model_options(a, n)));
+    for (const auto& n : names) models.push_back(build_model(a, n));
     std::string csv = a.csv;
     if (csv.empty()) csv = std::filesystem::path(a.plot).replace_extension(".csv").string();
     std::ofstream out(csv);
@@ -186,11 +208,13 @@ void add_model_options(CLI::App* cmd, BrdfArgs& a, bool several_thetas) {
     cmd->add_option("--cutoff-wavelengths", a.cutoff_wavelengths, "two-scale: split at zeta_c = k/N (default 100)");
     cmd->add_option("--macro-ndf", a.macro_ndf, "two-scale macro NDF: ggx (default) | beckmann");
     cmd->add_option("--material", a.material, "built-in metal (Au, Ag, Al, Cu, ...), n,k file, or perfect");
-    cmd->add_option("--psd", a.psd, "surface statistics: kc | gaussian");
+    cmd->add_option("--psd", a.psd, "surface statistics: kc | gaussian | file (KC fitted to --surface) | measured "
+                                    "(the --surface map's own radial PSD)");
     cmd->add_option("--sigma", a.sigma, "rms height (um)");
     cmd->add_option("--corr-length", a.corr_length, "correlation length (um): KC L, or Gaussian l");
     cmd->add_option("--gamma", a.gamma, "KC exponent gamma > 1");
-    cmd->add_option("--surface", a.surface_file, "height map (any format `surface info` reads): KC fitted to it");
+    cmd->add_option("--surface", a.surface_file, "height map (any format `surface info` reads): KC fitted to it "
+                                                 "(--psd file, default) or its own PSD (--psd measured)");
     cmd->add_option("--form", a.form, "form removed from --surface: none | plane (default) | poly2 | poly3 | poly4");
     cmd->add_option("--wavelength", a.wavelength, "wavelength (nm)")->required();
     if (several_thetas)
@@ -224,7 +248,8 @@ const Command command("brdf", [](CLI::App& app) {
 
     CLI::App* slice_cmd = brdf_cmd->add_subcommand("slice", "in-plane log-scale slices of several models (CSV + PNG)");
     add_model_options(slice_cmd, *a, true);
-    slice_cmd->add_option("--models", a->models, "models to overlay, comma separated")->delimiter(',');
+    slice_cmd->add_option("--models", a->models, "models to overlay, comma separated; model:psd picks the surface "
+                                                 "statistics per model (ghs:file,ghs:measured)")->delimiter(',');
     slice_cmd->add_option("--plot", a->plot, "output PNG");
     slice_cmd->add_option("--csv", a->csv, "output CSV (default: the PNG path with .csv)");
     slice_cmd->callback([a] { slice(*a); });

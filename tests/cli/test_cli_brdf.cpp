@@ -70,6 +70,34 @@ TEST(CliBrdf, SliceWritesCsvAndPng) {
     std::filesystem::remove_all(dir);
 }
 
+// --psd measured uses the map's own PSD and reports its extrapolation; slice overlays the KC-fit and measured versions
+// of one model (model:psd); --psd kc or gaussian together with --surface is an error.
+TEST(CliBrdf, MeasuredPsdRouteAndOverlay) {
+    const auto dir = surfscatter::test::scratch_directory("surfscatter_cli_brdf_measured");
+    const std::string map = (dir / "kc.gsf").string();
+    ASSERT_EQ(run_cli({"surface", "synth", "--model", "kc", "--sigma", "0.05", "--corr-length", "1", "--gamma", "3",
+                       "--size", "256", "--spacing", "0.1", "--seed", "4", "-o", map})
+                  .exit_code,
+              0);
+    const auto r = run_cli({"brdf", "eval", "--model", "ghs", "--psd", "measured", "--surface", map, "--wavelength",
+                            "550", "--theta-i", "30", "--theta-o", "10,30,50"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.out_lines().size(), 4u);
+    EXPECT_NE(r.err.find("note: measured PSD of"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("extrapolated"), std::string::npos) << r.err;
+    const auto s = run_cli({"brdf", "slice", "--models", "ghs:file,ghs:measured", "--surface", map, "--wavelength",
+                            "550", "--theta-i", "30", "--csv", (dir / "overlay.csv").string()});
+    ASSERT_EQ(s.exit_code, 0) << s.err;
+    const std::string csv = surfscatter::test::read_whole_file((dir / "overlay.csv").string());
+    EXPECT_NE(csv.find("\nghs:file,"), std::string::npos);
+    EXPECT_NE(csv.find("\nghs:measured,"), std::string::npos);
+    const auto bad = run_cli({"brdf", "eval", "--psd", "kc", "--surface", map, "--wavelength", "550", "--theta-i", "30",
+                              "--theta-o", "10"});
+    EXPECT_EQ(bad.exit_code, 2);
+    EXPECT_NE(bad.err.find("--surface takes --psd file"), std::string::npos) << bad.err;
+    std::filesystem::remove_all(dir);
+}
+
 TEST(CliBrdf, BadParametersExitWithStatus2) {
     const auto expect_bad = [](std::initializer_list<std::string> args, const std::string& text) {
         const auto r = run_cli(args);

@@ -6,6 +6,8 @@
 
 #include "render_test_util.hpp"
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/surface/height_map_io.hpp"
+#include "surfscatter/surface/synthesis.hpp"
 
 using namespace surfscatter;
 using namespace surfscatter::render;
@@ -68,6 +70,21 @@ TEST(XmlLoader, IncludeAndReferences) {
         <shape type="disk"><bsdf type="diffuse"><ref name="reflectance" id="checks"/></bsdf></shape>)";
     std::ofstream(dir / "main.xml") << scene_xml(body);
     EXPECT_NO_THROW(load_scene(dir / "main.xml"));
+}
+
+// A GHS from a height map's own PSD: <string name="psd" value="measured"/> with surface_file; the extrapolation of
+// the measured PSD reaches the user as a scene note with the bsdf's file and line.
+TEST(XmlLoader, MeasuredPsdFromASurfaceFile) {
+    const fs::path dir = temp_dir("test_xml");
+    surface::write_gsf(surface::synthesize_surface(surface::KCorrelation(0.05, 1.0, 3.0), {256, 256, 0.1}, 5),
+                       dir / "map.gsf");
+    const std::string body = R"(<shape type="rectangle"><bsdf type="ghs"><string name="psd" value="measured"/>
+            <string name="surface_file" value="map.gsf"/></bsdf></shape>)";
+    std::ofstream(dir / "measured.xml") << scene_xml(body);
+    const auto scene = load_scene(dir / "measured.xml");
+    ASSERT_EQ(scene->notes.size(), 1u);
+    EXPECT_EQ(scene->notes[0].rfind((dir / "measured.xml").string() + ":", 0), 0u) << scene->notes[0];
+    EXPECT_NE(scene->notes[0].find("measured PSD of"), std::string::npos) << scene->notes[0];
 }
 
 TEST(XmlLoader, ErrorsCarryFileAndLine) {

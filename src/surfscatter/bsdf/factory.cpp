@@ -2,6 +2,9 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
+
+#include <fmt/format.h>
 
 #include "surfscatter/bsdf/ggx.hpp"
 #include "surfscatter/bsdf/ghs.hpp"
@@ -12,6 +15,7 @@
 #include "surfscatter/surface/height_map_io.hpp"
 #include "surfscatter/surface/height_map_slope.hpp"
 #include "surfscatter/surface/kc_fit.hpp"
+#include "surfscatter/surface/psd_estimate_table.hpp"
 #include "surfscatter/surface/psd_split.hpp"
 #include "surfscatter/surface/refit.hpp"
 
@@ -39,50 +43,97 @@ void validate_surface(const SurfaceOptions& s) {
                 fail("corr_length must be > 0 um, got {}", s.corr_length);
             break;
         case PsdKind::file:
-            if (s.surface_file.empty()) fail("surface_file is empty: give a height map file");
+        case PsdKind::measured:
+            if (s.surface_file.empty()) fail("surface_file is empty: give a height map file for psd {}", to_string(s.psd));
             break;
     }
 }
 
-// KC parameters of the surface: given, or fitted to the height map (kc_fit.hpp).
-surface::KCorrelation kc_of(const SurfaceOptions& s) {
-    if (s.psd == PsdKind::kc) return surface::KCorrelation(s.sigma, s.corr_length, s.gamma);
-    if (s.psd == PsdKind::file) {
-        surface::KcFitOptions options;
-        options.form = s.form;
-        const auto fit = surface::fit_surface(*s.height_map, options).kc;
-        return surface::KCorrelation(fit.sigma_h_um, fit.corr_length_um, fit.gamma);
+// The surface of a model's options: its height map (psd file or measured; read by load_height_map unless the caller
+// shares one already read) and the statistics, built once however many derived quantities (KC fit, PSD, slope) the
+// model needs.
+class SurfaceSource {
+public:
+    explicit SurfaceSource(SurfaceOptions s) : options_(std::move(s)) { load_height_map(options_); }
+
+    const surface::HeightMap* map() const { return options_.height_map.get(); }
+    surface::Form form() const { return options_.form; }
+
+    // KC parameters: given, or fitted to the height map after form removal (kc_fit.hpp).
+    surface::KCorrelation kc() const {
+        if (options_.psd == PsdKind::kc)
+            return surface::KCorrelation(options_.sigma, options_.corr_length, options_.gamma);
+        if (options_.psd == PsdKind::file) {
+            surface::KcFitOptions fit_options;
+            fit_options.form = options_.form;
+            const auto fit = surface::fit_surface(*map(), fit_options).kc;
+            return surface::KCorrelation(fit.sigma_h_um, fit.corr_length_um, fit.gamma);
+        }
+        fail("this option needs a K-correlation surface (psd kc, or file for the KC fitted to a height map), got psd {}",
+             to_string(options_.psd));
     }
-    fail("this option needs a K-correlation surface (psd kc or a height map), got psd {}", to_string(s.psd));
-}
 
-std::shared_ptr<const surface::RadialStatistics> statistics_of(const SurfaceOptions& s) {
-    if (s.psd == PsdKind::gaussian) return std::make_shared<surface::GaussianAcv>(s.sigma, s.corr_length);
-    return std::make_shared<surface::KCorrelation>(kc_of(s));
-}
+    std::shared_ptr<const surface::RadialStatistics> statistics(std::vector<std::string>* notes) {
+        if (statistics_) return statistics_;
+        switch (options_.psd) {
+            case PsdKind::gaussian:
+                statistics_ = std::make_shared<surface::GaussianAcv>(options_.sigma, options_.corr_length);
+                break;
+            case PsdKind::measured: {
+                // Rings are merged only up to 4 effective samples (the KC fit's 100 flatten a PSD that falls within
+                // the first decade of the data into one low bin: sigma came out 12 % low for a surface with two
+                // correlation lengths); the lobe averages the larger scatter of the lowest bins.
+                surface::PsdTableOptions table;
+                table.min_effective_samples = 4.0;
+                table.form = options_.form;
+                auto measured = std::make_shared<surface::TabulatedPsd>(surface::tabulated_psd(*map(), table));
+                if (notes) notes->push_back(extrapolation_note(*measured));
+                statistics_ = std::move(measured);
+                break;
+            }
+            default: statistics_ = std::make_shared<surface::KCorrelation>(kc()); break;
+        }
+        return statistics_;
+    }
 
-std::function<double(double)> ggx_alpha(const ModelOptions& o) {
+private:
+    // What of the measured PSD is data and what is extrapolated (TabulatedPsd: flat below the first sample, the last
+    // decade's power law beyond the last), and from which wavelength on a lobe reaches the extrapolated part: the
+    // visible disc spans |zeta| <= k (1 + sin theta_i) <= 2 k, so wavelengths below 4 pi / zeta_last do at grazing
+    // incidence, below 2 pi / zeta_last already at normal incidence.
+    std::string extrapolation_note(const surface::TabulatedPsd& psd) const {
+        const double lo = psd.first_zeta(), hi = psd.last_zeta();
+        return fmt::format(
+            "measured PSD of {}: data cover zeta {:.3g} .. {:.3g} rad/um (lateral periods {:.3g} .. {:.3g} um); "
+            "extrapolated flat below ({:.2g} % of sigma^2) and as zeta^{:.2f} above ({:.2g} % of sigma^2); lobes "
+            "reach the extrapolated range at wavelengths below {:.0f} nm (below {:.0f} nm at normal incidence)",
+            options_.surface_file, lo, hi, kTwoPi / hi, kTwoPi / lo, 100.0 * psd.radial_cdf(lo), psd.tail_slope(),
+            100.0 * (1.0 - psd.radial_cdf(hi)), 2e3 * kTwoPi / hi, 1e3 * kTwoPi / hi);
+    }
+
+    SurfaceOptions options_;
+    std::shared_ptr<const surface::RadialStatistics> statistics_;
+};
+
+std::function<double(double)> ggx_alpha(const ModelOptions& o, SurfaceSource& surface, std::vector<std::string>* notes) {
     const auto constant = [](double a) { return std::function<double(double)>([a](double) { return a; }); };
-    const SurfaceOptions& s = o.surface;
     switch (o.alpha_from) {
         case AlphaFrom::none: return constant(o.alpha);
         case AlphaFrom::measured:
         case AlphaFrom::smoothed: {
             const double smoothing = o.alpha_from == AlphaFrom::smoothed ? o.smoothing : 0.0;
-            if (s.psd == PsdKind::file) {
-                const surface::HeightMap& map = *s.height_map;
-                return constant(smoothing > 0 ? surface::rms_slope_smoothed(map, smoothing, s.form)
-                                              : surface::rms_slope(map, s.form));
-            }
+            if (const surface::HeightMap* map = surface.map())  // its own slopes, whether the PSD is fitted or measured
+                return constant(smoothing > 0 ? surface::rms_slope_smoothed(*map, smoothing, surface.form())
+                                              : surface::rms_slope(*map, surface.form()));
             const double no_cutoff = std::numeric_limits<double>::infinity();
-            const double slope2 = statistics_of(s)->mean_square_slope(smoothing, no_cutoff);
+            const double slope2 = surface.statistics(notes)->mean_square_slope(smoothing, no_cutoff);
             if (!std::isfinite(slope2) || !(slope2 > 0))
                 fail("alpha_from {}: the rms slope of this PSD diverges (KC needs gamma > 3, or smoothing > 0, or a "
                      "height map)", to_string(o.alpha_from));
             return constant(std::sqrt(slope2));  // alpha_GGX = alpha_Beckmann = rms slope (THEORY 4.2)
         }
         case AlphaFrom::kc_link: {
-            const double length = kc_of(s).correlation_length();
+            const double length = surface.kc().correlation_length();
             return [length](double lambda_nm) { return kc_link_alpha(length, lambda_nm); };
         }
     }
@@ -99,6 +150,13 @@ GhsSettings ghs_settings(const ModelOptions& o) {
 
 }  // namespace
 
+void load_height_map(SurfaceOptions& surface) {
+    if ((surface.psd == PsdKind::file || surface.psd == PsdKind::measured) && !surface.height_map &&
+        !surface.surface_file.empty())
+        surface.height_map =
+            std::make_shared<const surface::HeightMap>(surface::read_height_map(surface.surface_file, std::nullopt));
+}
+
 void validate(const ModelOptions& o) {
     if (o.model == ModelKind::ggx && o.alpha_from == AlphaFrom::none &&
         (!(o.alpha > 0) || !std::isfinite(o.alpha)))
@@ -111,32 +169,27 @@ void validate(const ModelOptions& o) {
         fail("cutoff_wavelengths must be > 0, got {}", o.cutoff_wavelengths);
     if (o.material.empty()) fail("material is empty: give a metal name, a file or 'perfect'");
     if (needs_surface(o)) validate_surface(o.surface);
-    if (o.model == ModelKind::ghs && o.method == GhsMethod::refit && o.surface.psd == PsdKind::gaussian)
-        fail("method refit needs a K-correlation surface (psd kc or a height map), got psd gaussian");
+    if (o.model == ModelKind::ghs && o.method == GhsMethod::refit &&
+        (o.surface.psd == PsdKind::gaussian || o.surface.psd == PsdKind::measured))
+        fail("method refit needs a K-correlation surface (psd kc, or file for the KC fitted to a height map), got psd {}",
+             to_string(o.surface.psd));
 }
 
-void load_height_map(SurfaceOptions& surface) {
-    if (surface.psd == PsdKind::file && !surface.height_map && !surface.surface_file.empty())
-        surface.height_map =
-            std::make_shared<const surface::HeightMap>(surface::read_height_map(surface.surface_file, std::nullopt));
-}
-
-std::unique_ptr<Bsdf> make_bsdf(const ModelOptions& options) {
-    validate(options);
-    ModelOptions o = options;
-    if (needs_surface(o)) load_height_map(o.surface);
+std::unique_ptr<Bsdf> make_bsdf(const ModelOptions& o, std::vector<std::string>* notes) {
+    validate(o);
     auto material = material::Conductor::from_name(o.material);
+    SurfaceSource surface(needs_surface(o) ? o.surface : SurfaceOptions{});
     switch (o.model) {
-        case ModelKind::ggx: return std::make_unique<GgxBsdf>(std::move(material), ggx_alpha(o));
+        case ModelKind::ggx: return std::make_unique<GgxBsdf>(std::move(material), ggx_alpha(o, surface, notes));
         case ModelKind::ghs_ssa:
-            return make_ghs_ssa(statistics_of(o.surface), std::move(material), o.ssa_form, o.fresnel);
+            return make_ghs_ssa(surface.statistics(notes), std::move(material), o.ssa_form, o.fresnel);
         case ModelKind::ghs: {
-            auto stats = statistics_of(o.surface);
+            auto stats = surface.statistics(notes);
             std::shared_ptr<const ScatterCore> core;
             if (o.method == GhsMethod::exact) {
                 core = std::make_shared<ExactScatterCore>(stats);
             } else {
-                const surface::KCorrelation kc = kc_of(o.surface);
+                const surface::KCorrelation kc = surface.kc();
                 const double x = surface::refit_self_convolutions(kc, kRefitOrders).exponent_x;
                 core = std::make_shared<RefitScatterCore>(kc, x, o.truncation, o.epsilon);
             }
@@ -144,7 +197,7 @@ std::unique_ptr<Bsdf> make_bsdf(const ModelOptions& options) {
         }
         case ModelKind::two_scale: {
             const double zeta_c = surface::cutoff_frequency(kTwoScaleReferenceWavelength, o.cutoff_wavelengths);
-            const auto split = surface::split_psd(statistics_of(o.surface), zeta_c, surface::LowPassFilter::sharp);
+            const auto split = surface::split_psd(surface.statistics(notes), zeta_c, surface::LowPassFilter::sharp);
             // alpha = rms slope of the low-pass part, unclamped (it was floored at 1e-4, which widened the macro lobe of
             // smooth, long-correlated surfaces); a low-pass part without slope would be a mirror, not an NDF.
             const double alpha = std::sqrt(split.slope2_macro);

@@ -1,7 +1,11 @@
 #pragma once
 // Builds a scattering model from its options, validating every option first (throws surfscatter::Error naming the
-// option and the bad value, e.g. "gamma must be > 1, got 0.8").
+// option and the bad value, e.g. "gamma must be > 1, got 0.8"). A height map (psd file or measured) is read once per
+// model. `notes`, if given, receives what the user should know about the result without it being an error: for a
+// measured PSD, the range the data cover and how it is extrapolated beyond.
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "surfscatter/bsdf/bsdf.hpp"
 #include "surfscatter/bsdf/model_options.hpp"
@@ -9,9 +13,9 @@
 namespace surfscatter::bsdf {
 
 void validate(const ModelOptions& options);
-std::unique_ptr<Bsdf> make_bsdf(const ModelOptions& options);
+std::unique_ptr<Bsdf> make_bsdf(const ModelOptions& options, std::vector<std::string>* notes = nullptr);
 
-// Reads surface.surface_file (if psd = file and it is not read yet) into surface.height_map, so that a front end
+// Reads surface.surface_file (if psd = file or measured and it is not read yet) into surface.height_map, so that a front end
 // can report on it (surface::describe) and make_bsdf does not read it again.
 void load_height_map(SurfaceOptions& surface);
 

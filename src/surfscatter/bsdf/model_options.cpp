@@ -50,8 +50,8 @@ constexpr std::array<std::pair<const char*, AlphaFrom>, 4> kAlphaFrom{
      {"kc_link", AlphaFrom::kc_link}}};
 constexpr std::array<std::pair<const char*, MacroNdf>, 2> kMacroNdf{
     {{"ggx", MacroNdf::ggx}, {"beckmann", MacroNdf::beckmann}}};
-constexpr std::array<std::pair<const char*, PsdKind>, 3> kPsd{
-    {{"kc", PsdKind::kc}, {"gaussian", PsdKind::gaussian}, {"file", PsdKind::file}}};
+constexpr std::array<std::pair<const char*, PsdKind>, 4> kPsd{
+    {{"kc", PsdKind::kc}, {"gaussian", PsdKind::gaussian}, {"file", PsdKind::file}, {"measured", PsdKind::measured}}};
 
 }  // namespace
 

@@ -19,14 +19,15 @@ enum class FresnelMode { incident, half, rr };           // R(theta_i), F(theta_
 enum class SsaForm { energy, strict };                   // THEORY 1.4
 enum class AlphaFrom { none, measured, smoothed, kc_link };  // GGX roughness: given, or from the surface (THEORY 4)
 enum class MacroNdf { ggx, beckmann };                   // two-scale macro-roughness NDF
-enum class PsdKind { kc, gaussian, file };               // surface statistics source
+enum class PsdKind { kc, gaussian, file, measured };     // surface statistics: KC, Gaussian ACV, KC fitted to a height
+                                                         // map, or the map's own radial PSD
 
 struct SurfaceOptions {
     PsdKind psd = PsdKind::kc;
     double sigma = 0;         // rms height, um (kc, gaussian)
     double corr_length = 0;   // um: KC L, or Gaussian l in C = sigma^2 exp(-r^2/l^2)
     double gamma = 0;         // KC exponent, > 1
-    std::string surface_file; // height map (psd = file): any format surface::read_height_map reads
+    std::string surface_file; // height map (psd = file or measured): any format read_height_map reads
     surface::Form form = surface::Form::plane;  // removed from the height map before its statistics
     // The map read from surface_file when the caller has read it already (to report on it, load_height_map());
     // make_bsdf reads surface_file itself otherwise.

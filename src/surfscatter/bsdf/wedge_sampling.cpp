@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace surfscatter::bsdf {
@@ -94,38 +95,41 @@ double integrate_visible_disc(double s, double q_lo, const std::function<double(
     breaks.erase(std::remove_if(breaks.begin(), breaks.end(), [&](double q) { return q < q_lo || q > q_max; }),
                  breaks.end());
     // Near grazing incidence (cos^2 theta_i < 0.1), on arcs that come near the horizon (cos^2 theta_o < 0.1 at their
-    // end), a lobe that grows fast as cos theta_o -> 0 (rough fractal surfaces: S_g ~ g^-4, g ~ (cos i + cos o)^2)
-    // changes by orders of magnitude within a layer where cos theta_o ~ cos theta_i, i.e. at w = sqrt(1 - phi/phi_max)
-    // ~ cos theta_i from the arc's end, inside the rule's last node (K was 1 % off at 85 deg for sigma 2 um, L 0.5 um,
-    // gamma 1.5). There the rule covers [0, 0.9 phi_max] and the last tenth is integrated in w (cos theta_o is smooth
-    // in w): 4-node panels growing by 3x from w = 0.01 cos theta_i to sqrt(0.1), and one panel below.
+    // end), a lobe that grows fast as cos theta_o -> 0 (S_g ~ g near grazing, ~ g^-4 for rough fractal surfaces,
+    // g ~ (cos i + cos o)^2) can change by orders of magnitude within a layer where cos theta_o ~ cos theta_i, i.e. at
+    // w = sqrt(1 - phi/phi_max) ~ cos theta_i from the arc's end, between or beyond the rule's last nodes (K was 1 %
+    // off at 85 deg for sigma 2 um, L 0.5 um, gamma 1.5). Where f at the arc's end exceeds its smallest value at the
+    // nodes by more than 20 % (a lobe that decreases toward the horizon, the usual case, puts little weight there),
+    // the rule covers [0, 0.9 phi_max] instead and the last tenth is integrated in w (cos theta_o is smooth in w):
+    // 4-node panels doubling from w = 0.01 cos theta_i to sqrt(0.1), and one panel below.
     const double cos_i = std::sqrt(std::max(1.0 - s * s, 0.0));
     std::vector<double> w_edges{0.0};
-    if (cos_i * cos_i < 0.1)
-        for (double w = 0.01 * std::max(cos_i, 1e-7); w < std::sqrt(0.1); w *= 2.0) w_edges.push_back(w);
+    for (double w = 0.01 * std::max(cos_i, 1e-7); w < std::sqrt(0.1); w *= 2.0) w_edges.push_back(w);
     w_edges.push_back(std::sqrt(0.1));
     auto ring = [&](double q) {
         const double phi_max = wedge_half_angle(q, s);
         if (!(phi_max > 0)) return 0.0;
-        const double reach = q < q_inner ? 1.0 - (q + s) * (q + s) : 0.0;  // cos^2 theta_o at the arc's end
-        const bool graded = cos_i * cos_i < 0.1 && reach < 0.1;
-        const double bulk = graded ? 0.9 * phi_max : phi_max;
-        double sum = 0;
+        double sum = 0, smallest = std::numeric_limits<double>::infinity();
         for (int a = 0; a < kAzimuthNodes; ++a) {
-            const double t = rule.x[a];
-            if (graded)
-                sum += rule.w[a] * bulk * f(q, bulk * t);
-            else
-                sum += rule.w[a] * 2.0 * phi_max * (1.0 - t) * f(q, phi_max * (1.0 - (1.0 - t) * (1.0 - t)));
+            const double t = rule.x[a], value = f(q, phi_max * (1.0 - (1.0 - t) * (1.0 - t)));
+            smallest = std::min(smallest, value);
+            sum += rule.w[a] * 2.0 * phi_max * (1.0 - t) * value;
         }
-        if (graded)  // phi = phi_max (1 - w^2), d phi = 2 phi_max w dw
-            for (std::size_t e = 0; e + 1 < w_edges.size(); ++e) {
-                const double a = w_edges[e], b = w_edges[e + 1];
-                for (int i = 0; i < 4; ++i) {
-                    const double w = 0.5 * (a + b) + 0.5 * (b - a) * kGaussX[i];
-                    sum += 0.5 * (b - a) * kGaussW[i] * 2.0 * phi_max * w * f(q, phi_max * (1.0 - w * w));
+        const double reach = q < q_inner ? 1.0 - (q + s) * (q + s) : 0.0;  // cos^2 theta_o at the arc's end
+        if (cos_i * cos_i < 0.1 && reach < 0.1) {
+            if (f(q, phi_max) > 1.2 * smallest) {
+                const double bulk = 0.9 * phi_max;
+                sum = 0;
+                for (int a = 0; a < kAzimuthNodes; ++a) sum += rule.w[a] * bulk * f(q, bulk * rule.x[a]);
+                for (std::size_t e = 0; e + 1 < w_edges.size(); ++e) {  // phi = phi_max (1 - w^2)
+                    const double lo = w_edges[e], hi = w_edges[e + 1];
+                    for (int i = 0; i < 4; ++i) {
+                        const double w = 0.5 * (lo + hi) + 0.5 * (hi - lo) * kGaussX[i];
+                        sum += 0.5 * (hi - lo) * kGaussW[i] * 2.0 * phi_max * w * f(q, phi_max * (1.0 - w * w));
+                    }
                 }
             }
+        }
         return 2.0 * sum * q;  // both halves of the wedge, polar Jacobian
     };
     double total = kPi * q_lo * q_lo * f(0.0, 0.0);

@@ -66,9 +66,11 @@ public:
     // map may carry any name, as in Mitsuba).
     virtual std::vector<TexturePtr> take_textures() = 0;
 
-    // A surface_file height map (psd file) is read once per scene, however many BSDFs use it, and reported in the
-    // scene's notes; this sets surface.height_map to the shared copy.
+    // A surface_file height map (psd file or measured) is read once per scene, however many BSDFs use it, and
+    // reported in the scene's notes; this sets surface.height_map to the shared copy.
     virtual void share_height_map(bsdf::SurfaceOptions& surface) = 0;
+    // A note for the user about this object (e.g. how a measured PSD is extrapolated), with its file and line.
+    virtual void add_note(const std::string& note) = 0;
 };
 
 }  // namespace surfscatter::render

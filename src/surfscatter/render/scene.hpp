@@ -96,7 +96,9 @@ public:
     FilmSettings film;
     SamplerSettings sampler;
     IntegratorSettings integrator;
-    std::vector<std::string> notes;  // for the user, from the loader: e.g. each height map read and its valid fraction
+    // For the user, from the loader: each height map read and its valid fraction, what the models report about
+    // themselves (e.g. how a measured PSD is extrapolated, with the bsdf's file and line).
+    std::vector<std::string> notes;
 
 private:
     struct Shape;

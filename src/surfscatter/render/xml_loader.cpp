@@ -296,6 +296,7 @@ private:
         }
         bool has(const std::string& name) const override { return named_.count(name) != 0; }
         void share_height_map(bsdf::SurfaceOptions& surface) override { loader_.share_height_map(surface); }
+        void add_note(const std::string& note) override { loader_.scene_->notes.push_back(owner_.where() + ": " + note); }
 
         // Unnamed nested objects of a kind (<emitter>, <film>, ...).
         std::vector<Node> take_unnamed(const char* tag) {
@@ -512,7 +513,7 @@ private:
 
     // Each surface_file is read once per scene (several BSDFs may use it) and reported in the scene's notes.
     void share_height_map(bsdf::SurfaceOptions& surface) {
-        if (surface.psd != bsdf::PsdKind::file) return;
+        if (surface.psd != bsdf::PsdKind::file && surface.psd != bsdf::PsdKind::measured) return;
         auto& map = height_maps_[surface.surface_file];
         if (!map) {
             bsdf::load_height_map(surface);

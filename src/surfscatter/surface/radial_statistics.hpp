@@ -4,6 +4,7 @@
 // C(r) = int P(zeta) e^{i zeta.r} d2zeta, so int P d2zeta = sigma_h^2; P-hat = P / sigma_h^2 has unit mass over the
 // zeta-plane and rho(r) = C(r)/sigma_h^2 = 2 pi H0{P-hat}(r), P-hat = (1/2pi) H0{rho} (hankel.hpp).
 // Cyclic frequency f = zeta/(2 pi): PSD_f(f) = 4 pi^2 P(2 pi f).
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -111,6 +112,10 @@ private:
 class TabulatedPsd final : public NumericalRadialStatistics {
 public:
     TabulatedPsd(std::vector<double> zeta, std::vector<double> psd);
+    // The data's range (rad/um) and the tail's power (P ~ zeta^tail_slope beyond last_zeta): what is extrapolated.
+    double first_zeta() const { return std::exp(log_zeta_samples_.front()); }
+    double last_zeta() const { return std::exp(log_zeta_samples_.back()); }
+    double tail_slope() const { return tail_slope_; }
 
 private:
     double psd_raw(double zeta) const override;

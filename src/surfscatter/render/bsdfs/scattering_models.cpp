@@ -128,7 +128,10 @@ MaterialPtr plugins::scattering_model(Properties& props, const std::string& type
         }
         bsdf::validate(o);
         props.share_height_map(o.surface);
-        return make_model_material(std::shared_ptr<const bsdf::Bsdf>(bsdf::make_bsdf(o)));
+        std::vector<std::string> notes;
+        auto model = bsdf::make_bsdf(o, &notes);
+        for (const std::string& note : notes) props.add_note(note);
+        return make_model_material(std::shared_ptr<const bsdf::Bsdf>(std::move(model)));
     } catch (const Error& e) {
         props.fail("bsdf '{}': {}", type, e.what());
     }
