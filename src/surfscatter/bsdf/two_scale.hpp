@@ -2,12 +2,15 @@
 // Two-scale model with the structure of Holzschuch & Pacanowski 2017 (THEORY 3):
 //   f_r = e^{-g0,micro} F(theta_d) D(h) G2(i, o) / (4 cos theta_i cos theta_o)     macro (microfacet) part
 //       + f_GHS,micro(i, o)                                                        micro (diffraction) part
-// where the PSD is split at zeta_c = k_ref / N (psd_split.hpp, sharp low-pass): D is a GGX or Beckmann NDF with
-// alpha = rms slope of the low-pass part, f_GHS,micro the full GHS scattered lobe (exact S_g, K renormalised) of
-// the high-pass part, and e^{-g0,micro} = exp(-(2 k sigma_rel,micro cos theta_i)^2) the fraction of light the micro
-// roughness leaves specular: the micro GHS's coherent delta is what the macro facets spread out, so there is no
-// delta left. HP17 evaluate this fraction at the facet angle theta_d (A_s(theta_d)); we use theta_i so that the
-// macro and micro parts share exactly the energy R of the GHS (albedo <= 1 is then guaranteed).
+// where the PSD is split at zeta_c = k_ref / N (psd_split.hpp, sharp low-pass, exact statistics of both parts in
+// sharp_cut.hpp): D is a GGX or Beckmann NDF with alpha = rms slope of the low-pass part, f_GHS,micro the full GHS
+// scattered lobe (exact S_g, K renormalised) of the high-pass part, and e^{-g0,micro} = exp(-(2 k sigma_rel,micro
+// cos theta_i)^2) the fraction of light the micro roughness leaves specular: the micro GHS's coherent delta is what the
+// macro facets spread out, so there is no delta left. HP17 evaluate this fraction at the facet angle theta_d
+// (A_s(theta_d)); we use theta_i, so that the micro part carries exactly R (1 - e^{-g0}) and the macro part e^{-g0}
+// times its microfacet albedo, which shadowing keeps below the facets' mean F(theta_d): for a perfect conductor the
+// albedo is at most R = 1 (for a metal whose F(theta_d) exceeds R(theta_i) it can exceed R slightly; docs/MODELS.md
+// gives the measured bounds, tests/bsdf/test_albedo.cpp).
 // Approximations (documented in docs/MODELS.md): the micro lobe is NOT convolved with the macro NDF (HP17's "Dirac"
 // case); the split uses the reference wavelength 550 nm for every query so that the macro NDF and micro statistics
 // are wavelength-independent (the micro lobe itself is evaluated at the query wavelength).

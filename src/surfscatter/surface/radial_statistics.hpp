@@ -82,7 +82,7 @@ private:
 // Isotropic statistics defined numerically by a radial P(zeta) function: sigma_h^2 = int P d2zeta, rho = 2pi H0{P-hat}
 // computed once by FFTLog on a log grid (256 points per decade, 22 decades around the support) and interpolated
 // (cubic in ln r; absolute accuracy ~5e-8, tested against KC). The radial CDF comes from a 4-point cumulative rule
-// (~1e-9). The length scale is the inverse median radius of P-hat. Base of TabulatedPsd and FilteredStatistics.
+// (~1e-9). The length scale is the inverse median radius of P-hat. Base of TabulatedPsd and GaussianFilteredStatistics.
 class NumericalRadialStatistics : public RadialStatistics {
 public:
     double sigma_h() const override { return sigma_; }
