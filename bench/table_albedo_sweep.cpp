@@ -16,10 +16,7 @@
 
 #include "disc_albedo.hpp"
 #include "surfscatter/bsdf/factory.hpp"
-#include "surfscatter/bsdf/two_scale.hpp"
-#include "surfscatter/bsdf/wedge_sampling.hpp"
 #include "surfscatter/core/progress.hpp"
-#include "surfscatter/surface/psd_split.hpp"
 
 using namespace surfscatter;
 using namespace surfscatter::bsdf;
@@ -86,11 +83,7 @@ int main(int argc, char** argv) {
         for (double lambda : lambdas)
             for (double theta : thetas) {
                 const Vec3 wi = spherical_direction(theta * kDegree, 0.4);
-                std::vector<double> jumps;
-                if (m.options.model == ModelKind::two_scale)
-                    jumps.push_back(surface::cutoff_frequency(kTwoScaleReferenceWavelength, m.options.cutoff_wavelengths) /
-                                    wavenumber(lambda));
-                const double albedo = test::disc_albedo(*bsdf, wi, lambda, jumps);
+                const double albedo = test::disc_albedo(*bsdf, wi, lambda, test::lobe_jumps(m.options, lambda));
                 const double excess = m.exact ? std::abs(albedo - 1.0) : albedo - 1.0;
                 Worst& w = worst[m.label];
                 ++w.count;

@@ -15,6 +15,10 @@
 #include <vector>
 
 #include "surfscatter/bsdf/bsdf.hpp"
+#include "surfscatter/bsdf/model_options.hpp"
+#include "surfscatter/bsdf/two_scale.hpp"
+#include "surfscatter/bsdf/wedge_sampling.hpp"
+#include "surfscatter/surface/psd_split.hpp"
 #include "surfscatter/math/quadrature.hpp"
 
 namespace surfscatter::bsdf::test {
@@ -75,6 +79,12 @@ inline double disc_albedo(const Bsdf& bsdf, const Vec3& wi, double lambda_nm, co
         }
     }
     return total + bsdf.delta_reflectance(wi, lambda_nm);
+}
+
+// The radii (in q = |zeta|/k) where a model's lobe jumps at wavelength lambda: the two-scale micro lobe's hole.
+inline std::vector<double> lobe_jumps(const ModelOptions& o, double lambda_nm) {
+    if (o.model != ModelKind::two_scale) return {};
+    return {surface::cutoff_frequency(kTwoScaleReferenceWavelength, o.cutoff_wavelengths) / wavenumber(lambda_nm)};
 }
 
 }  // namespace surfscatter::bsdf::test

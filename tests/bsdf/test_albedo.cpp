@@ -13,10 +13,7 @@
 #include "model_fixtures.hpp"
 #include <fmt/format.h>
 
-#include "surfscatter/bsdf/two_scale.hpp"
-#include "surfscatter/bsdf/wedge_sampling.hpp"
 #include "surfscatter/material/conductor.hpp"
-#include "surfscatter/surface/psd_split.hpp"
 
 using namespace surfscatter;
 using namespace surfscatter::bsdf;
@@ -88,11 +85,7 @@ TEST(Albedo, EveryModelWithinHalfAPercentOfItsDocumentedValue) {
         for (double lambda : {360.0, 830.0})
             for (double theta : {0.0, 60.0, 85.0, 89.5, 89.99}) {
                 const Vec3 wi = spherical_direction(theta * kDegree, 0.4);
-                std::vector<double> jumps;
-                if (c.options.model == ModelKind::two_scale)
-                    jumps.push_back(surface::cutoff_frequency(kTwoScaleReferenceWavelength, c.options.cutoff_wavelengths) /
-                                    wavenumber(lambda));
-                const double albedo = test::disc_albedo(*bsdf, wi, lambda, jumps);
+                const double albedo = test::disc_albedo(*bsdf, wi, lambda, test::lobe_jumps(c.options, lambda));
                 const double r = material.reflectance(wi.z, lambda);
                 const bool exact = c.options.model == ModelKind::ghs || c.options.model == ModelKind::ghs_ssa;
                 const double excess = exact ? std::abs(albedo / r - 1) : std::max(0.0, albedo / r - 1);

@@ -87,19 +87,8 @@ TEST(SpectralMis, WavelengthDependentLobesUnderUniformSky) {
         scene.integrator.max_depth = 2;  // one bounce: the plane cannot see itself anyway
         // Eight independent renders give the Monte Carlo standard error (emitter sampling alone is noisy here: a
         // uniform sky sample rarely lands in a cos^41 lobe).
-        double sum = 0, sum2 = 0;
-        const int seeds = 8;
-        for (int seed = 1; seed <= seeds; ++seed) {
-            RenderOptions options;
-            options.spp = 128;
-            options.seed = static_cast<std::uint64_t>(seed);
-            options.progress = false;
-            const double m = test::mean_y(surfscatter::render::render(scene, options)).mean;
-            sum += m;
-            sum2 += m * m;
-        }
-        const double mean = sum / seeds;
-        const double standard_error = std::sqrt(std::max(0.0, sum2 / seeds - mean * mean) / (seeds - 1));
+        const test::MeanY y = test::mean_y_over_seeds_of(scene, 128, 8);
+        const double mean = y.mean, standard_error = y.standard_error;
         EXPECT_NEAR(mean, expected_y, 4 * standard_error) << strategy;
         if (std::string(strategy) != "emitter") { EXPECT_NEAR(mean, expected_y, 0.01 * expected_y) << strategy; }
     }
