@@ -91,8 +91,19 @@ TEST(Samplers, TwoScaleAtThePaperCutoffs) {
         EXPECT_GT(r.p_value, level) << what;
         EXPECT_LT(r.pdf_mismatch, 1e-6) << what;
         EXPECT_LT(r.weight_mismatch, 1e-6) << what;
-        // Every direction is proposed: the pdf's mass is 1 less what the macro sampler sends below the horizon.
+        // Every direction is proposed: the pdf's mass is 1 less what the macro sampler sends below the horizon, and
+        // the pdf is positive wherever f is (a grid of directions, including inside the micro lobe's hole).
         EXPECT_NEAR(r.expected_total + double(r.failed) / 200000, 1.0, 3e-3) << what;
+        int uncovered = 0;
+        for (double to = 0.25; to < 90; to += 0.5)
+            for (double phi = 0; phi < kTwoPi; phi += 0.1) {
+                const Vec3 wo = spherical_direction(to * kDegree, phi);
+                if (bsdf->eval(wi, wo, lambda) > 0 && !(bsdf->pdf(wi, wo, lambda) > 0)) ++uncovered;
+            }
+        for (double q : {0.1, 0.5, 0.9})
+            if (const auto wo = wedge_direction(wi, q * zeta_c / k, 0.3))
+                if (bsdf->eval(wi, *wo, lambda) > 0 && !(bsdf->pdf(wi, *wo, lambda) > 0)) ++uncovered;
+        EXPECT_EQ(uncovered, 0) << what;
     }
 }
 
