@@ -15,8 +15,8 @@ namespace surfscatter::bsdf {
 void validate(const ModelOptions& options);
 std::unique_ptr<Bsdf> make_bsdf(const ModelOptions& options, std::vector<std::string>* notes = nullptr);
 
-// Reads surface.surface_file (if psd = file or measured and it is not read yet) into surface.height_map, so that a front end
-// can report on it (surface::describe) and make_bsdf does not read it again.
+// Reads surface.surface_file (if psd = file or measured and it is not read yet) into surface.height_map, so that a
+// front end can report on it (surface::describe) and make_bsdf does not read it again.
 void load_height_map(SurfaceOptions& surface);
 
 }  // namespace surfscatter::bsdf
