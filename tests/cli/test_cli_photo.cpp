@@ -355,7 +355,10 @@ TEST_F(PhotoPipeline, HostileInputsExitWithStatus2AndOneLine) {
                           {path("truncated.jpg"), "truncated"});
 }
 
-TEST_F(PhotoPipeline, ColorcorrectLinearisesACameraCurvedJpeg) {
+// Needs none of PhotoPipeline's rendered views: its own scratch directory.
+TEST(PhotoCli, ColorcorrectLinearisesACameraCurvedJpeg) {
+    const fs::path dir = test::scratch_directory("surfscatter_curved_chart_" + std::to_string(::getpid()));
+    const auto path = [&](const std::string& name) { return (dir / name).string(); };
     // The chart under a warm cast, then a camera's S-curve on top of gamma 2.2, as an 8-bit JPEG.
     const cv::Mat light = synthetic::chart_photo(cast_chart_patches(), {960, 720}, kChartCorners);
     cv::Mat bgr8(light.size(), CV_8UC3);
@@ -387,6 +390,7 @@ TEST_F(PhotoPipeline, ColorcorrectLinearisesACameraCurvedJpeg) {
     expect_one_line_error(run_cli({"colorcorrect", path("curved_chart.jpg"), "--linearize", "log", "-o",
                                    path("x.png"), "--ccm", path("x.json")}),
                           {"linearisation 'log'"});
+    fs::remove_all(dir);
 }
 
 // ---- The real photographs of OpenCV's ArUco tutorial (../shared/data/realdata/photos).
