@@ -34,6 +34,10 @@ void BoardOptions::add_to(CLI::App& cmd, const std::string& types, const std::st
         ->capture_default_str();
 }
 
+bool BoardOptions::board_options_given() const {
+    return !squares.empty() || !markers.empty() || square_length != 0.0 || marker_separation != 0.0;
+}
+
 photo::BoardSpec BoardOptions::spec() const {
     photo::BoardSpec spec;
     spec.type = photo::board_type_by_name(board);
@@ -42,11 +46,15 @@ photo::BoardSpec BoardOptions::spec() const {
     if (spec.type == photo::BoardType::Grid) {
         if (markers.empty()) fail("--board grid needs --markers WxH");
         if (!squares.empty()) fail("--squares is for charuco and chess boards; a grid board takes --markers WxH");
+        if (square_length != 0.0) fail("--square-length is for charuco and chess boards, not a grid board");
         parse_size(markers, "--markers", spec.markers_x, spec.markers_y);
         spec.marker_separation = marker_separation;
     } else {
         if (squares.empty()) fail("--board {} needs --squares WxH", board);
         if (!markers.empty()) fail("--markers is for grid boards; a {} board takes --squares WxH", board);
+        if (marker_separation != 0.0) fail("--marker-separation is for grid boards, not a {} board", board);
+        if (spec.type == photo::BoardType::Chessboard && marker_length != 0.0)
+            fail("--marker-length is for boards with markers, not a chessboard");
         parse_size(squares, "--squares", spec.squares_x, spec.squares_y);
         spec.square_length = square_length;
     }

@@ -18,8 +18,11 @@ struct BoardOptions {
     // `types` lists the board types the command accepts, for the help text; `default_board` is "" if --board may
     // be left out.
     void add_to(CLI::App& cmd, const std::string& types, const std::string& default_board);
-    // The spec of --board (validated); throws Error naming the bad option.
+    // The spec of --board (validated); throws Error naming the bad option or one its board type does not use.
     photo::BoardSpec spec() const;
+    // Whether any option that only a board uses was given (--squares, --markers, --square-length,
+    // --marker-separation).
+    bool board_options_given() const;
 };
 
 // Parses "WxH" (e.g. "7x5") of an option `option`; throws Error naming it.

@@ -125,6 +125,8 @@ void run(const Options& o) {
     if (o.board.board.empty() && o.board.marker_length <= 0.0)
         fail("--marker-length must be positive, got {}", o.board.marker_length);
     if (!o.board.board.empty() && o.marker_id) fail("--marker-id is for a single marker, not with --board");
+    if (o.board.board.empty() && o.board.board_options_given())
+        fail("--squares, --markers, --square-length and --marker-separation describe a board: give --board too");
     const photo::CameraModel camera = photo::read_camera(o.camera);
     const photo::Photo image = photo::read_photo(o.photo);
     photo::require_image_size(camera, image.rgb.size(), "photo '" + o.photo + "'");

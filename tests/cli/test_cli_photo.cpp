@@ -287,6 +287,14 @@ TEST_F(PhotoPipeline, BoardPoseBadInputsExitWithStatus2AndOneLine) {
                                    "4x3", "--marker-length", "0.05", "--marker-separation", "0.01", "-o",
                                    path("b.json")}),
                           {"too few board corners", "1 grid marker"});
+    // Board options without a board, or a board that does not use them, are not ignored.
+    expect_one_line_error(run_cli({"pose", path("marker.png"), "--camera", camera, "--marker-length", "0.05",
+                                   "--squares", "5x5", "-o", path("b.json")}),
+                          {"--squares", "give --board too"});
+    expect_one_line_error(run_cli({"pose", path("marker.png"), "--camera", camera, "--board", "charuco", "--squares",
+                                   "10x7", "--square-length", "0.03", "--marker-length", "0.022",
+                                   "--marker-separation", "0.01", "-o", path("b.json")}),
+                          {"--marker-separation is for grid boards"});
     expect_one_line_error(run_cli({"pose", path("marker.png"), "--camera", camera, "--marker-length", "0.05",
                                    "--dictionary", path("missing_dictionary.yml"), "-o", path("b.json")}),
                           {"dictionary file", path("missing_dictionary.yml"), "does not exist"});
