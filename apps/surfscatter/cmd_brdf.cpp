@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "command.hpp"
+#include "list_options.hpp"
 #include "surfscatter/bsdf/albedo.hpp"
 #include "surfscatter/bsdf/factory.hpp"
 #include "surfscatter/core/error.hpp"
@@ -37,11 +38,50 @@ struct BrdfArgs {
     std::vector<double> theta_o, phi_o;
     // sample
     long long count = 1000;
-    unsigned long long seed = 1;
+    long long seed = 1;
     // slice
     std::vector<std::string> models;
     std::string plot, csv;
+    // Model options given on the command line, as named in ModelOptions ("smoothing", "surface_file").
+    std::vector<std::string> given;
 };
+
+// The long names of the options given to `cmd`, spelt as in ModelOptions (--no-renormalization: renormalization).
+std::vector<std::string> given_options(const CLI::App* cmd) {
+    std::vector<std::string> names;
+    for (const CLI::Option* option : cmd->get_options()) {
+        if (option->count() == 0 || option->get_lnames().empty()) continue;
+        std::string name = option->get_lnames().front();
+        std::replace(name.begin(), name.end(), '-', '_');
+        if (name == "no_renormalization") name = "renormalization";
+        if (name == "surface") name = "surface_file";
+        names.push_back(name);
+    }
+    return names;
+}
+
+// The option as the user typed it, from its ModelOptions name.
+std::string flag_name(std::string name) {
+    if (name == "renormalization") return "--no-renormalization";
+    if (name == "surface_file") return "--surface";
+    std::replace(name.begin(), name.end(), '_', '-');
+    return "--" + name;
+}
+
+// An option given for a model that does not use it is an error, never silently ignored.
+void check_given_options_apply(const BrdfArgs& a, const std::vector<bsdf::ModelOptions>& models,
+                               const std::vector<std::string>& model_names) {
+    for (const std::string& name : a.given) {
+        std::string why;
+        for (const bsdf::ModelOptions& o : models) {
+            why = bsdf::inapplicable_option(o, name);
+            if (why.empty()) break;
+        }
+        if (!why.empty())
+            fail("{} does not apply to {} {}: {}", flag_name(name), model_names.size() > 1 ? "--models" : "--model",
+                 fmt::join(model_names, ","), why);
+    }
+}
 
 void require_theta(double t, const char* what) {
     require_finite(t, what);
@@ -98,11 +138,11 @@ bsdf::ModelOptions model_options(const BrdfArgs& a, const std::string& spec) {
     return o;
 }
 
-// The model of `spec`, its notes (e.g. how a measured PSD is extrapolated) on stderr, each once per run.
-std::unique_ptr<bsdf::Bsdf> build_model(const BrdfArgs& a, const std::string& spec) {
+// The model of `options`, its notes (e.g. how a measured PSD is extrapolated) on stderr, each once per run.
+std::unique_ptr<bsdf::Bsdf> build_model(const bsdf::ModelOptions& options) {
     static std::vector<std::string> printed;
     std::vector<std::string> notes;
-    auto model = bsdf::make_bsdf(model_options(a, spec), &notes);
+    auto model = bsdf::make_bsdf(options, &notes);
     for (const std::string& note : notes)
         if (std::find(printed.begin(), printed.end(), note) == printed.end()) {
             std::fprintf(stderr, "surfscatter: brdf: note: %s\n", note.c_str());
@@ -121,27 +161,35 @@ void check_common(const BrdfArgs& a) {
 
 Vec3 incident(double theta_deg, double phi_deg) { return spherical_direction(theta_deg * kDegree, phi_deg * kDegree); }
 
+// The single model of eval, albedo and sample, checked for options it does not use.
+std::unique_ptr<bsdf::Bsdf> single_model(const BrdfArgs& a) {
+    const bsdf::ModelOptions o = model_options(a, a.model);
+    check_given_options_apply(a, {o}, {a.model});
+    return build_model(o);
+}
+
 void eval(const BrdfArgs& a) {
     check_common(a);
     if (a.theta_i.size() != 1) fail("--theta-i takes one angle for brdf eval, got {}", a.theta_i.size());
     if (a.theta_o.empty()) fail("--theta-o is required");
     for (double t : a.theta_o) require_theta(t, "--theta-o");
-    const auto model = build_model(a, a.model);
+    const auto model = single_model(a);
     const std::vector<double> phis = a.phi_o.empty() ? std::vector<double>{a.phi_i + 180.0} : a.phi_o;
     const Vec3 wi = incident(a.theta_i[0], a.phi_i);
-    std::printf("theta_o,phi_o,brdf\n");
+    for (double p : phis) require_finite(p, "--phi-o");
+    // Evaluated first, so that an error (a wavelength outside the material's data) prints nothing but itself.
+    std::string rows = "theta_o,phi_o,brdf\n";
     for (double t : a.theta_o)
-        for (double p : phis) {
-            require_finite(p, "--phi-o");
-            const double f = model->eval(wi, incident(t, p), a.wavelength);
-            std::printf("%s,%s,%s\n", format_number(t).c_str(), format_number(p).c_str(), format_number(f).c_str());
-        }
+        for (double p : phis)
+            rows += fmt::format("{},{},{}\n", format_number(t), format_number(p),
+                                format_number(model->eval(wi, incident(t, p), a.wavelength)));
+    std::fputs(rows.c_str(), stdout);
 }
 
 void albedo(const BrdfArgs& a) {
     check_common(a);
     if (a.theta_i.size() != 1) fail("--theta-i takes one angle for brdf albedo, got {}", a.theta_i.size());
-    const auto model = build_model(a, a.model);
+    const auto model = single_model(a);
     const auto r = bsdf::directional_albedo(*model, a.theta_i[0] * kDegree, a.wavelength);
     std::printf("albedo = %s\nspecular = %s\n", format_number(r.total()).c_str(), format_number(r.specular).c_str());
 }
@@ -150,10 +198,12 @@ void sample(const BrdfArgs& a) {
     check_common(a);
     if (a.theta_i.size() != 1) fail("--theta-i takes one angle for brdf sample, got {}", a.theta_i.size());
     if (a.count <= 0) fail("--count must be > 0, got {}", a.count);
-    const auto model = build_model(a, a.model);
+    if (a.seed < 0) fail("--seed must be >= 0, got {}", a.seed);
+    const auto model = single_model(a);
     const Vec3 wi = incident(a.theta_i[0], a.phi_i);
-    std::mt19937_64 rng(a.seed);
+    std::mt19937_64 rng(static_cast<std::uint64_t>(a.seed));
     std::uniform_real_distribution<double> uniform(0.0, 1.0);
+    model->eval(wi, wi, a.wavelength);  // a wavelength outside the material's data fails before any output
     std::printf("x,y,z,weight,pdf,delta\n");
     for (long long n = 0; n < a.count; ++n) {
         const double ul = uniform(rng), u1 = uniform(rng), u2 = uniform(rng);
@@ -168,9 +218,14 @@ void sample(const BrdfArgs& a) {
 void slice(const BrdfArgs& a) {
     check_common(a);
     if (a.plot.empty() && a.csv.empty()) fail("brdf slice needs --plot out.png and/or --csv out.csv");
+    if (!a.models.empty() && std::count(a.given.begin(), a.given.end(), "model"))
+        fail("brdf slice takes either --model or --models, not both");
     const std::vector<std::string> names = a.models.empty() ? std::vector<std::string>{a.model} : a.models;
+    std::vector<bsdf::ModelOptions> options;
+    for (const auto& n : names) options.push_back(model_options(a, n));
+    check_given_options_apply(a, options, names);
     std::vector<std::unique_ptr<bsdf::Bsdf>> models;
-    for (const auto& n : names) models.push_back(build_model(a, n));
+    for (const auto& o : options) models.push_back(build_model(o));
     std::string csv = a.csv;
     if (csv.empty()) csv = std::filesystem::path(a.plot).replace_extension(".csv").string();
     std::ofstream out(csv);
@@ -218,7 +273,7 @@ void add_model_options(CLI::App* cmd, BrdfArgs& a, bool several_thetas) {
     cmd->add_option("--form", a.form, "form removed from --surface: none | plane (default) | poly2 | poly3 | poly4");
     cmd->add_option("--wavelength", a.wavelength, "wavelength (nm)")->required();
     if (several_thetas)
-        cmd->add_option("--theta-i", a.theta_i, "incidence angles (deg), comma separated")->delimiter(',')->required();
+        add_number_list(cmd, "--theta-i", a.theta_i, "incidence angles (deg), comma separated")->required();
     else
         cmd->add_option("--theta-i", a.theta_i, "incidence angle (deg)")->required();
     cmd->add_option("--phi-i", a.phi_i, "incidence azimuth (deg, default 0)");
@@ -231,28 +286,39 @@ const Command command("brdf", [](CLI::App& app) {
 
     CLI::App* eval_cmd = brdf_cmd->add_subcommand("eval", "CSV theta_o,phi_o,brdf for every (theta_o, phi_o)");
     add_model_options(eval_cmd, *a, false);
-    eval_cmd->add_option("--theta-o", a->theta_o, "outgoing angles (deg), comma separated")->delimiter(',')->required();
-    eval_cmd->add_option("--phi-o", a->phi_o, "outgoing azimuths (deg, default phi_i + 180: specular side)")
-        ->delimiter(',');
-    eval_cmd->callback([a] { eval(*a); });
+    add_number_list(eval_cmd, "--theta-o", a->theta_o, "outgoing angles (deg), comma separated")->required();
+    add_number_list(eval_cmd, "--phi-o", a->phi_o, "outgoing azimuths (deg, default phi_i + 180: specular side)");
+    eval_cmd->callback([a, eval_cmd] {
+        a->given = given_options(eval_cmd);
+        eval(*a);
+    });
 
     CLI::App* albedo_cmd = brdf_cmd->add_subcommand("albedo", "directional albedo and its specular (delta) part");
     add_model_options(albedo_cmd, *a, false);
-    albedo_cmd->callback([a] { albedo(*a); });
+    albedo_cmd->callback([a, albedo_cmd] {
+        a->given = given_options(albedo_cmd);
+        albedo(*a);
+    });
 
     CLI::App* sample_cmd = brdf_cmd->add_subcommand("sample", "CSV x,y,z,weight,pdf,delta of sampled directions");
     add_model_options(sample_cmd, *a, false);
     sample_cmd->add_option("--count", a->count, "number of samples (default 1000)");
     sample_cmd->add_option("--seed", a->seed, "random seed (default 1)");
-    sample_cmd->callback([a] { sample(*a); });
+    sample_cmd->callback([a, sample_cmd] {
+        a->given = given_options(sample_cmd);
+        sample(*a);
+    });
 
     CLI::App* slice_cmd = brdf_cmd->add_subcommand("slice", "in-plane log-scale slices of several models (CSV + PNG)");
     add_model_options(slice_cmd, *a, true);
-    slice_cmd->add_option("--models", a->models, "models to overlay, comma separated; model:psd picks the surface "
-                                                 "statistics per model (ghs:file,ghs:measured)")->delimiter(',');
+    add_string_list(slice_cmd, "--models", a->models, "models to overlay, comma separated; model:psd picks the surface "
+                                                      "statistics per model (ghs:file,ghs:measured)");
     slice_cmd->add_option("--plot", a->plot, "output PNG");
     slice_cmd->add_option("--csv", a->csv, "output CSV (default: the PNG path with .csv)");
-    slice_cmd->callback([a] { slice(*a); });
+    slice_cmd->callback([a, slice_cmd] {
+        a->given = given_options(slice_cmd);
+        slice(*a);
+    });
 });
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "command.hpp"
+#include "list_options.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/photo/compare.hpp"
 #include "surfscatter/photo/photo_io.hpp"
@@ -97,7 +98,7 @@ const Command command("compare", [](CLI::App& app) {
     sub->add_option("photo", o->photo, "photograph (linear EXR or PNG/JPEG/TIFF), ideally colour-corrected")->required();
     sub->add_option("renders", o->renders, "renderings of the same size")->required();
     sub->add_option("--mask", o->mask, "8-bit image, non-zero = compared (default: everything)");
-    sub->add_option("--labels", o->labels, "one label per rendering, comma-separated")->delimiter(',');
+    add_string_list(sub, "--labels", o->labels, "one label per rendering, comma-separated");
     sub->add_option("--input-encoding", o->encoding, "samples of PNG/JPEG/TIFF inputs: srgb or linear")
         ->capture_default_str();
     sub->add_option("-o,--output", o->output, "comparison sheet (.png)")->required();

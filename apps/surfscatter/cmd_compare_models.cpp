@@ -2,13 +2,17 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <set>
 
 #include <fmt/format.h>
 
 #include "command.hpp"
+#include "list_options.hpp"
+#include "scene_defines.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/paths.hpp"
 #include "surfscatter/core/progress.hpp"
+#include "surfscatter/core/resources.hpp"
 #include "surfscatter/io/image.hpp"
 #include "surfscatter/render/camera.hpp"
 #include "surfscatter/render/integrator.hpp"
@@ -29,6 +33,7 @@ struct CompareArgs {
     int threads = 0;
     double smoothing = 1.0;
     std::vector<double> focus{0.09, 0.0, 0.001};  // the photo-setup's plate centre, metres
+    bool focus_given = false;
     double focus_radius = 0.06;                   // metres; 0 shows whole images
     std::string output_dir = "out/compare-models";
     bool quiet = false;
@@ -62,14 +67,14 @@ struct Box {
 // Pixel box around the focus point: the projections of the square of half-size focus_radius about it
 // in the z = focus plane (the sample lies flat), padded to the film.
 Box crop_box(const render::Scene& scene, const CompareArgs& args) {
-    if (args.focus.size() != 3) fail("--focus needs x,y,z, got {} numbers", args.focus.size());
     const render::Camera camera(scene.camera, scene.film.width, scene.film.height);
     const Vec3 centre(args.focus[0], args.focus[1], args.focus[2]);
     double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
     for (double dx : {-1.0, 1.0})
         for (double dy : {-1.0, 1.0}) {
             const auto p = camera.project(centre + Vec3(dx, dy, 0) * args.focus_radius);
-            if (!p) fail("--focus point is behind the camera of view {}", args.view);
+            if (!p) fail("--focus point ({}, {}, {}) is behind the camera of view {}", args.focus[0], args.focus[1],
+                         args.focus[2], args.view);
             x0 = std::min(x0, p->x);
             y0 = std::min(y0, p->y);
             x1 = std::max(x1, p->x);
@@ -124,31 +129,45 @@ std::string overview(const CompareArgs& args, const std::map<std::string, std::s
 
 void run(const CompareArgs& args) {
     if (args.view < 1 || args.view > 3) fail("--view must be 1, 2 or 3, got {}", args.view);
-    require_positive(args.spp, "--spp");
-    require_positive(args.width, "--width");
-    require_positive(args.height, "--height");
-    require_non_negative(args.smoothing, "--smoothing");
-    std::map<std::string, std::string> common;
-    for (const std::string& item : args.defines) {
-        const auto eq = item.find('=');
-        if (eq == std::string::npos || eq == 0) fail("-D expects name=value, got '{}'", item);
-        common[item.substr(0, eq)] = item.substr(eq + 1);
-    }
+    if (args.spp < 1) fail("--spp must be positive, got {}", args.spp);
+    if (args.width < 1 || args.height < 1) fail("--width and --height must be positive, got {}x{}", args.width, args.height);
+    require_thread_count(args.threads, "--threads");
+    require_positive(args.smoothing, "--smoothing");
+    require_non_negative(args.focus_radius, "--focus-radius");
+    if (args.focus.size() != 3) fail("--focus needs x,y,z, got {} numbers", args.focus.size());
+    if (args.focus_given && args.focus_radius == 0) fail("--focus does not apply with --focus-radius 0 (whole images)");
+    const std::map<std::string, std::string> user = parse_defines(args.defines);
+    std::map<std::string, std::string> common = user;
     common["view"] = std::to_string(args.view);
     common["width"] = std::to_string(args.width);
     common["height"] = std::to_string(args.height);
+    const auto list = panels(args.smoothing);
+    for (const auto& [name, value] : user) {
+        const bool set_by_panel = std::any_of(list.begin(), list.end(), [&](const Panel& p) { return p.defines.count(name); });
+        if (name == "view" || name == "width" || name == "height" || set_by_panel)
+            fail("-D {}: compare-models sets this parameter itself (see --view, --width, --height, --smoothing)", name);
+    }
+
+    // Every panel's scene is loaded before anything is rendered: a bad parameter is reported at once, and each -D
+    // is checked against all the scenes together (a parameter only some models use is fine).
+    std::set<std::string> used;
+    std::vector<std::unique_ptr<render::Scene>> scenes;
+    for (const Panel& panel : list) {
+        std::map<std::string, std::string> defines = common;
+        for (const auto& [k, v] : panel.defines) defines[k] = v;
+        scenes.push_back(render::load_scene(args.scene, defines, &used));
+    }
+    for (const auto& [name, value] : user)
+        if (!used.count(name)) fail("-D {}={}: none of the scenes uses ${}", name, printable(value), name);
     const std::filesystem::path dir(args.output_dir);
     std::filesystem::create_directories(dir);
     install_interrupt_handler();
 
     std::vector<std::string> sheet_args;
     std::optional<Box> crop;
-    const auto list = panels(args.smoothing);
     for (std::size_t i = 0; i < list.size(); ++i) {
         const Panel& panel = list[i];
-        std::map<std::string, std::string> defines = common;
-        for (const auto& [k, v] : panel.defines) defines[k] = v;
-        auto scene = render::load_scene(args.scene, defines);
+        render::Scene* scene = scenes[i].get();
         // Only the crop around the sample is rendered (Mitsuba's film crop window), at the full film's resolution.
         if (i == 0 && args.focus_radius > 0) crop = crop_box(*scene, args);
         if (crop) {
@@ -167,6 +186,7 @@ void run(const CompareArgs& args) {
         const std::filesystem::path exr = dir / (panel.name + ".exr");
         render::write_film(film, scene->film, exr);
         sheet_args.push_back(panel.label + "=" + (dir / (panel.name + ".png")).string());
+        scenes[i].reset();
         if (stats.interrupted) break;
     }
     // Two rows as in the supplemental: the four models of Figs. 3/5/7, then the two-scale cutoffs of Figs. 4/6/8,
@@ -189,14 +209,16 @@ const Command command("compare-models", [](CLI::App& app) {
     sub->add_option("--spp", args->spp, "Samples per pixel");
     sub->add_option("--width", args->width, "Image width");
     sub->add_option("--height", args->height, "Image height");
-    sub->add_option("--threads", args->threads, "Worker threads (default: all cores)");
+    sub->add_option("--threads", args->threads, "Worker threads, 1..256 (default 0: all cores)");
     sub->add_option("--smoothing", args->smoothing, "Gaussian smoothing std for the smoothed GGX, um");
-    sub->add_option("--focus", args->focus, "World point (x,y,z, metres) the sheet's panels are cropped around")
-        ->delimiter(',')->expected(3);
+    add_number_list(sub, "--focus", args->focus, "World point (x,y,z, metres) the sheet's panels are cropped around");
     sub->add_option("--focus-radius", args->focus_radius, "Half-size of the cropped square, metres (0: whole images)");
     sub->add_option("-o,--output-dir", args->output_dir, "Directory for the renders (EXR + PNG) and sheet.png");
     sub->add_flag("--quiet", args->quiet, "No progress bars");
-    sub->callback([args] { run(*args); });
+    sub->callback([args, sub] {
+        args->focus_given = sub->count("--focus") > 0;
+        run(*args);
+    });
 });
 
 }  // namespace

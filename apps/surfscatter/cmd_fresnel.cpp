@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "command.hpp"
+#include "list_options.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/material/conductor.hpp"
 #include "surfscatter/math/vec.hpp"
@@ -44,9 +45,8 @@ const Command command("fresnel", [](CLI::App& app) {
     sub->add_option("--material", args->material, "Built-in metal, 'perfect', or a .yml/.csv refractive index file")
         ->required();
     sub->add_option("--wavelength", args->wavelength, "Wavelength in nm")->required();
-    sub->add_option("--theta", args->thetas, "Angles of incidence in degrees from the normal, in [0, 90), comma-separated")
-        ->required()
-        ->delimiter(',');
+    add_number_list(sub, "--theta", args->thetas, "Angles of incidence in degrees from the normal, in [0, 90), comma-separated")
+        ->required();
     sub->add_option("--polarization", args->polarization, "s, p or unpolarized (the mean of s and p)")
         ->check(CLI::IsMember({"s", "p", "unpolarized"}));
     sub->callback([args] { run_fresnel(*args); });

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "command.hpp"
+#include "list_options.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/material/refractive_index.hpp"
 
@@ -36,9 +37,7 @@ const Command command("ior", [](CLI::App& app) {
                     "Built-in metal (Ag Al Au Be Cr Cu Ni Pd Pt Ti W, Lorentz-Drude of Rakic 1998), "
                     "a refractiveindex.info .yml file or a wavelength_nm,n,k .csv file")
         ->required();
-    sub->add_option("--wavelength", args->wavelengths, "Wavelengths in nm, comma-separated")
-        ->required()
-        ->delimiter(',');
+    add_number_list(sub, "--wavelength", args->wavelengths, "Wavelengths in nm, comma-separated")->required();
     sub->callback([args] { run_ior(*args); });
 });
 

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "command.hpp"
+#include "list_options.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/paths.hpp"
 #include "surfscatter/material/conductor.hpp"
@@ -35,7 +36,7 @@ struct MetalsArgs {
 int to_8bit(double encoded) { return static_cast<int>(std::lround(std::clamp(encoded, 0.0, 1.0) * 255.0)); }
 
 void run_metals(MetalsArgs a) {
-    require_positive(a.temperature, "--temperature");
+    spectrum::require_blackbody_temperature(a.temperature, "--temperature");
     require_positive(a.min_wavelength, "--min-wavelength");
     require_finite(a.max_wavelength, "--max-wavelength");
     if (!(a.max_wavelength > a.min_wavelength))
@@ -43,6 +44,9 @@ void run_metals(MetalsArgs a) {
     if (a.materials.empty()) a.materials = material::builtin_metal_names();
     std::vector<material::Conductor> metals;
     for (const auto& m : a.materials) metals.push_back(material::Conductor::from_name(m));
+    std::error_code ec;
+    if (std::filesystem::exists(a.out, ec) && !std::filesystem::is_directory(a.out, ec))
+        fail("--out {} exists and is not a directory", a.out.string());
     std::filesystem::create_directories(a.out);
 
     // Normal-incidence reflectance, 1 nm steps.
@@ -122,8 +126,8 @@ const Command command("metals", [](CLI::App& app) {
     auto* sub = app.add_subcommand(
         "metals", "Write normal-incidence reflectance spectra and lamp-lit colour swatches of metals (CSV, JSON, PNG)");
     sub->add_option("--out", args->out, "Output directory")->capture_default_str();
-    sub->add_option("--material", args->materials, "Metals (built-in names or .yml/.csv files); default: all built-ins")
-        ->delimiter(',');
+    add_string_list(sub, "--material", args->materials,
+                    "Metals (built-in names or .yml/.csv files); default: all built-ins");
     sub->add_option("--temperature", args->temperature, "Black-body lamp temperature in K")->capture_default_str();
     sub->add_option("--min-wavelength", args->min_wavelength, "Start of the reflectance plot, nm")->capture_default_str();
     sub->add_option("--max-wavelength", args->max_wavelength, "End of the reflectance plot, nm")->capture_default_str();

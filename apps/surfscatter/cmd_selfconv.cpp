@@ -57,9 +57,8 @@ void write_curves(const surface::KCorrelation& kc, const surface::RefitResult& f
 }
 
 void run(const SelfconvArgs& args) {
-    require_finite(args.gamma, "--gamma");
-    if (!(args.gamma > 1.0)) fail("--gamma must be > 1, got {}", args.gamma);
-    require_positive(args.corr_length, "--corr-length");
+    surface::require_kc_gamma(args.gamma, "--gamma");
+    surface::require_surface_length(args.corr_length, "--corr-length");
     if (args.orders < 1 || args.orders > kMaxOrders) fail("--orders must be in [1, {}], got {}", kMaxOrders, args.orders);
     const surface::KCorrelation kc(1.0, args.corr_length, args.gamma);
     const surface::RefitResult fit = surface::refit_self_convolutions(kc, args.orders);

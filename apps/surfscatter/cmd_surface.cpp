@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "command.hpp"
+#include "statistics_options.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/paths.hpp"
 #include "surfscatter/surface/gwyddion_file.hpp"
@@ -28,11 +29,10 @@ namespace surfscatter::cli {
 namespace {
 
 struct SynthArgs {
-    std::string model = "kc";
-    double sigma = 0, corr_length = 0, spacing = 0;
-    std::optional<double> gamma;
+    StatisticsOptions statistics;
+    double spacing = 0;
     long long size = 0;
-    unsigned long long seed = 1;
+    long long seed = 1;
     std::string output;
     std::string title;
 };
@@ -51,25 +51,9 @@ struct FitArgs : MapArgs {
     std::string plot, csv;
 };
 
-std::unique_ptr<surface::RadialStatistics> synthesis_model(const SynthArgs& args) {
-    require_positive(args.sigma, "--sigma");
-    require_positive(args.corr_length, "--corr-length");
-    if (args.model == "kc") {
-        if (!args.gamma) fail("--gamma is required for --model kc");
-        require_finite(*args.gamma, "--gamma");
-        if (!(*args.gamma > 1.0))
-            fail("--gamma must be > 1 (the KC variance is infinite otherwise), got {}", *args.gamma);
-        return std::make_unique<surface::KCorrelation>(args.sigma, args.corr_length, *args.gamma);
-    }
-    if (args.model == "gaussian") {
-        if (args.gamma) fail("--gamma applies to --model kc only");
-        return std::make_unique<surface::GaussianAcv>(args.sigma, args.corr_length);
-    }
-    fail("--model must be kc or gaussian, got '{}'", args.model);
-}
-
 void synth(const SynthArgs& args) {
-    const auto model = synthesis_model(args);
+    const auto model = args.statistics.make();
+    if (args.seed < 0) fail("--seed must be >= 0, got {}", args.seed);
     surface::require_valid_spacing(args.spacing, "--spacing");
     if (args.size < static_cast<long long>(surface::kMinHeightMapSize))
         fail("--size must be at least {} samples, got {}", surface::kMinHeightMapSize, args.size);
@@ -77,9 +61,10 @@ void synth(const SynthArgs& args) {
     if (extension != ".gsf" && extension != ".gwy") fail("-o must name a .gsf or .gwy file, got '{}'", args.output);
     const auto n = static_cast<std::size_t>(args.size);
     surface::HeightMap map = surface::synthesize_surface(*model, {n, n, args.spacing}, args.seed);
+    const StatisticsOptions& s = args.statistics;
     map.title = args.title.empty()
-                    ? fmt::format("{} sigma_h={} um L_c={} um{} seed={}", args.model, args.sigma, args.corr_length,
-                                  args.gamma ? fmt::format(" gamma={}", *args.gamma) : "", args.seed)
+                    ? fmt::format("{} sigma_h={} um L_c={} um{} seed={}", s.model, s.sigma, s.corr_length,
+                                  s.gamma ? fmt::format(" gamma={}", *s.gamma) : "", args.seed)
                     : args.title;
     if (extension == ".gwy") surface::gwyddion_write_gwy(map, args.output);
     else surface::write_gsf(map, args.output);
@@ -201,6 +186,9 @@ void fit(const FitArgs& args) {
     if (args.smoothing) require_positive(*args.smoothing, "--smoothing");
     surface::KcFitOptions options;
     const surface::HeightMap map = read_map(args, options.form);
+    if (args.smoothing && *args.smoothing > std::max(map.width(), map.height()))
+        fail("--smoothing {} um is wider than the {:g} x {:g} um map (the smoothed map would be flat)", *args.smoothing,
+             map.width(), map.height());
     options.min_ring = args.min_ring;
     options.max_nyquist_fraction = args.max_zeta_fraction;
     const surface::SurfaceFit result = surface::fit_surface(map, options);
@@ -249,10 +237,7 @@ const Command command("surface", [](CLI::App& app) {
 
     auto s = std::make_shared<SynthArgs>();
     CLI::App* synth_cmd = surface_cmd->add_subcommand("synth", "Random Gaussian surface with a KC PSD -> .gsf/.gwy");
-    synth_cmd->add_option("--model", s->model, "PSD model: kc (K-correlation) or gaussian (Gaussian ACV)");
-    synth_cmd->add_option("--sigma", s->sigma, "rms height sigma_h (um)")->required();
-    synth_cmd->add_option("--corr-length", s->corr_length, "correlation length L_c (um)")->required();
-    synth_cmd->add_option("--gamma", s->gamma, "KC exponent gamma > 1 (--model kc)");
+    s->statistics.add_to(*synth_cmd);
     synth_cmd->add_option("--size", s->size, "samples per side N (N x N map)")->required();
     synth_cmd->add_option("--spacing", s->spacing, "pixel spacing (um)")->required();
     synth_cmd->add_option("--seed", s->seed, "random seed (same seed, same surface)");

@@ -1,6 +1,7 @@
 // surfscatter: command-line front end. Exit status 0 on success, 2 on bad input (one line on stderr).
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <map>
 #include <vector>
 
@@ -8,6 +9,7 @@
 
 #include "command.hpp"
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/progress.hpp"
 
 namespace surfscatter::cli {
 
@@ -24,6 +26,39 @@ Command::Command(std::string name, std::function<void(CLI::App&)> setup) {
 
 std::string format_number(double v) { return fmt::format("{:.10g}", v); }
 
+namespace {
+
+// CLI11 reads an empty value ("--wavelength ''") as 0 for a number: refuse it for every option and positional.
+void refuse_empty_values(CLI::App& app) {
+    const CLI::Validator non_empty(
+        [](std::string& value) { return value.empty() ? std::string("empty value") : std::string(); }, "NON-EMPTY");
+    for (CLI::Option* option : app.get_options())
+        if (option->get_items_expected_max() > 0) option->check(non_empty);
+    for (CLI::App* sub : app.get_subcommands({})) refuse_empty_values(*sub);
+}
+
+// CLI11 answers a misspelt subcommand with "A subcommand is required": name it and list the known ones instead.
+void check_subcommand_names(CLI::App& app, int argc, char** argv) {
+    CLI::App* current = &app;
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        if (arg.empty() || arg[0] == '-') return;  // options (and their values) follow: CLI11 takes over
+        const auto subs = current->get_subcommands({});
+        if (subs.empty()) return;
+        const auto it = std::find_if(subs.begin(), subs.end(), [&](CLI::App* s) { return s->check_name(arg); });
+        if (it == subs.end()) {
+            std::vector<std::string> names;
+            for (CLI::App* s : subs) names.push_back(s->get_name());
+            const std::string where = current == &app ? std::string("surfscatter") : "surfscatter " + current->get_name();
+            throw surfscatter::Error(fmt::format("unknown subcommand '{}' of {} (known: {})",
+                                                 surfscatter::printable(arg), where, fmt::join(names, ", ")));
+        }
+        current = *it;
+    }
+}
+
+}  // namespace
+
 }  // namespace surfscatter::cli
 
 int main(int argc, char** argv) {
@@ -33,8 +68,12 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     app.set_version_flag("--version", "surfscatter 0.1.0");
     for (auto& [name, setup] : surfscatter::cli::registry()) setup(app);
+    surfscatter::cli::refuse_empty_values(app);
     try {
+        surfscatter::cli::check_subcommand_names(app, argc, argv);
         app.parse(argc, argv);
+        // A job stopped by Ctrl-C or SIGTERM wrote what it had; its status says it did not finish (128 + signal).
+        if (surfscatter::interrupt_requested()) return 128 + surfscatter::interrupt_signal();
     } catch (const CLI::CallForHelp& e) {
         return app.exit(e);
     } catch (const CLI::CallForAllHelp& e) {
@@ -42,10 +81,14 @@ int main(int argc, char** argv) {
     } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        std::fprintf(stderr, "surfscatter: error: %s\n", e.what());
+        std::fprintf(stderr, "surfscatter: error: %s\n", surfscatter::printable(e.what(), 400).c_str());
         return 2;
     } catch (const surfscatter::Error& e) {
         std::fprintf(stderr, "surfscatter: error: %s\n", e.what());
+        return 2;
+    } catch (const std::filesystem::filesystem_error& e) {
+        // Paths come from the user: a name too long, a permission denied, a file where a directory should be.
+        std::fprintf(stderr, "surfscatter: error: %s\n", surfscatter::printable(e.what(), 400).c_str());
         return 2;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "surfscatter: internal error: %s\n", e.what());

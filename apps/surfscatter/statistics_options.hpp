@@ -21,9 +21,6 @@ struct StatisticsOptions {
     std::unique_ptr<surface::RadialStatistics> make() const;  // throws Error naming the bad option
 };
 
-// Parses "x1,x2,..." of finite non-negative numbers; `option` names the flag in errors.
-std::vector<double> parse_number_list(const std::string& text, const char* option);
-
 // Adds a subcommand that prints CSV "<x>,<value>" for a list given as --<x> x1,x2,...: `value(stats, x)`.
 using StatisticsFunction = double (*)(const surface::RadialStatistics&, double);
 void add_statistics_table_command(CLI::App& app, const std::string& name, const std::string& description,

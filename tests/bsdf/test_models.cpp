@@ -97,9 +97,9 @@ TEST(Factory, RejectsBadOptionsNamingThem) {
             EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
         }
     };
-    expect_error(test::kc_options(ModelKind::ghs, 0.1, 1.0, 0.8), "gamma must be > 1, got 0.8");
-    expect_error(test::kc_options(ModelKind::ghs, -1, 1.0, 3), "sigma must be > 0");
-    expect_error(test::kc_options(ModelKind::ghs, 0.1, 0, 3), "corr_length must be > 0");
+    expect_error(test::kc_options(ModelKind::ghs, 0.1, 1.0, 0.8), "gamma must be between 1.01 and 100 (KC), got 0.8");
+    expect_error(test::kc_options(ModelKind::ghs, -1, 1.0, 3), "sigma must be between 1e-09 and 1e+09 um, got -1");
+    expect_error(test::kc_options(ModelKind::ghs, 0.1, 0, 3), "corr_length must be between 1e-09 and 1e+09 um, got 0");
     ModelOptions ggx;
     ggx.model = ModelKind::ggx;
     expect_error(ggx, "alpha must be > 0");

@@ -49,15 +49,17 @@ inline std::string read_whole_file(const std::string& path) {
     return text.str();
 }
 
-// run_cli({"ior", "--material", "Au", "--wavelength", "550"})
-inline CliResult run_cli(std::initializer_list<std::string> args) {
+// run_cli({"ior", "--material", "Au", "--wavelength", "550"}). With `timeout_seconds` > 0 the command is killed
+// after that long (exit code 137), so that a hang fails the test instead of stalling the suite.
+inline CliResult run_cli(const std::vector<std::string>& args, int timeout_seconds = 0) {
     char out_path[] = "/tmp/surfscatter_cli_out_XXXXXX";
     char err_path[] = "/tmp/surfscatter_cli_err_XXXXXX";
     const int out_fd = mkstemp(out_path);
     const int err_fd = mkstemp(err_path);
     if (out_fd >= 0) close(out_fd);
     if (err_fd >= 0) close(err_fd);
-    std::string command = shell_quote(SURFSCATTER_CLI);
+    std::string command = timeout_seconds > 0 ? "timeout -s KILL " + std::to_string(timeout_seconds) + " " : "";
+    command += shell_quote(SURFSCATTER_CLI);
     // Appended piece by piece: `" " + std::string` trips g++ 12's false -Wrestrict warning.
     for (const auto& a : args) {
         command += ' ';
@@ -77,5 +79,7 @@ inline CliResult run_cli(std::initializer_list<std::string> args) {
     std::remove(err_path);
     return result;
 }
+
+inline CliResult run_cli(std::initializer_list<std::string> args) { return run_cli(std::vector<std::string>(args)); }
 
 }  // namespace surfscatter::test

@@ -115,5 +115,5 @@ TEST(CliBrdf, BadParametersExitWithStatus2) {
                "--model must be one of");
     expect_bad({"brdf", "albedo", "--psd", "kc", "--sigma", "0.1", "--corr-length", "1", "--gamma", "0.8",
                 "--wavelength", "550", "--theta-i", "10"},
-               "gamma must be > 1, got 0.8");
+               "gamma must be between 1.01 and 100 (KC), got 0.8");
 }

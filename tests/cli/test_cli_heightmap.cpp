@@ -153,7 +153,7 @@ TEST(CliHeightmap, BadInputExitsWithStatus2AndOneLine) {
              {{"surface", "synth", "--sigma", "0.1", "--corr-length", "2", "--gamma", "3", "--size", "64",
                "--spacing", "1", "-o", (dir / "x.tiff").string()},
               "-o must name a .gsf or .gwy file"},
-             {{"surface", "fit", (dir / "missing.gsf").string()}, "cannot open"},
+             {{"surface", "fit", (dir / "missing.gsf").string()}, "height map file not found"},
              {{"surface", "fit"}, "map"},
          }) {
         const auto result = run_cli(args);

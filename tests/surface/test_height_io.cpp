@@ -148,7 +148,7 @@ TEST(HeightIo, MalformedGsfNamesFileAndProblem) {
     EXPECT_NE(message_for(hand_made_gsf(good, std::vector<float>(64, std::numeric_limits<float>::quiet_NaN())))
                   .find("every one of the 8 x 8 points is invalid"),
               std::string::npos);
-    EXPECT_NE(error_of([&] { ss::read_gsf(temp_path("does_not_exist.gsf")); }).find("cannot open"),
+    EXPECT_NE(error_of([&] { ss::read_gsf(temp_path("does_not_exist.gsf")); }).find("height map file not found"),
               std::string::npos);
     std::vector<float> small(16, 0.0f);
     EXPECT_NE(message_for(hand_made_gsf("XRes = 4\nYRes = 4\nXYUnits = m\nZUnits = m\n", small)).find("at least 8"),

@@ -70,7 +70,7 @@ TEST(HeightMap, RejectsBadGridsWithClearMessages) {
     std::vector<double> h(64, 0.0);
     h[9] = std::numeric_limits<double>::infinity();
     EXPECT_EQ(error_of([&] { ss::HeightMap(8, 8, 1.0, 1.0, h, "scan.csv"); }),
-              "scan.csv: height at column 1, row 1 is inf (every height must be finite)");
+              "scan.csv: height at column 1, row 1 is inf um (every height must be finite and within +-1e+09 um)");
     // A NaN at a valid point is an error; at an invalid point it is what the mask is for.
     h[9] = kNaN;
     std::vector<std::uint8_t> valid(64, 1);

@@ -32,15 +32,13 @@ bool needs_surface(const ModelOptions& o) {
 void validate_surface(const SurfaceOptions& s) {
     switch (s.psd) {
         case PsdKind::kc:
-            if (!(s.sigma > 0) || !std::isfinite(s.sigma)) fail("sigma must be > 0 um, got {}", s.sigma);
-            if (!(s.corr_length > 0) || !std::isfinite(s.corr_length))
-                fail("corr_length must be > 0 um, got {}", s.corr_length);
-            if (!(s.gamma > 1) || !std::isfinite(s.gamma)) fail("gamma must be > 1, got {}", s.gamma);
+            surface::require_surface_length(s.sigma, "sigma");
+            surface::require_surface_length(s.corr_length, "corr_length");
+            surface::require_kc_gamma(s.gamma, "gamma");
             break;
         case PsdKind::gaussian:
-            if (!(s.sigma > 0) || !std::isfinite(s.sigma)) fail("sigma must be > 0 um, got {}", s.sigma);
-            if (!(s.corr_length > 0) || !std::isfinite(s.corr_length))
-                fail("corr_length must be > 0 um, got {}", s.corr_length);
+            surface::require_surface_length(s.sigma, "sigma");
+            surface::require_surface_length(s.corr_length, "corr_length");
             break;
         case PsdKind::file:
         case PsdKind::measured:

@@ -64,6 +64,38 @@ AlphaFrom parse_alpha_from(std::string_view t, const char* what) { return parse_
 MacroNdf parse_macro_ndf(std::string_view t, const char* what) { return parse_enum(t, what, kMacroNdf); }
 PsdKind parse_psd(std::string_view t, const char* what) { return parse_enum(t, what, kPsd); }
 
+std::string inapplicable_option(const ModelOptions& o, std::string_view name) {
+    const ModelKind m = o.model;
+    const bool ghs = m == ModelKind::ghs, ggx = m == ModelKind::ggx;
+    const bool refit = ghs && o.method == GhsMethod::refit;
+    const bool with_surface = !ggx || o.alpha_from != AlphaFrom::none;
+    const PsdKind psd = o.surface.psd;
+    const bool from_map = psd == PsdKind::file || psd == PsdKind::measured;
+    const auto unless = [](bool applies, const char* why) { return applies ? std::string() : std::string(why); };
+    if (name == "method") return unless(ghs, "used by model ghs only");
+    if (name == "truncation") return unless(refit, "used by model ghs with method refit only");
+    if (name == "epsilon")
+        return unless(refit && o.truncation == Truncation::poisson_mass,
+                      "used by model ghs with method refit and truncation poisson_mass only");
+    if (name == "fresnel") return unless(!ggx, "used by models ghs, ghs_ssa and two_scale only");
+    if (name == "renormalization") return unless(ghs || m == ModelKind::two_scale, "used by models ghs and two_scale only");
+    if (name == "ssa_form") return unless(m == ModelKind::ghs_ssa, "used by model ghs_ssa only");
+    if (name == "alpha") return unless(ggx && o.alpha_from == AlphaFrom::none, "used by model ggx with alpha_from none only");
+    if (name == "alpha_from") return unless(ggx, "used by model ggx only");
+    if (name == "smoothing") return unless(ggx && o.alpha_from == AlphaFrom::smoothed, "used with alpha_from smoothed only");
+    if (name == "cutoff_wavelengths" || name == "macro_ndf") return unless(m == ModelKind::two_scale, "used by model two_scale only");
+    if (name == "psd" || name == "sigma" || name == "corr_length" || name == "gamma" || name == "surface_file" ||
+        name == "form") {
+        if (!with_surface) return "model ggx with alpha_from none takes no surface";
+        if (name == "sigma" || name == "corr_length")
+            return unless(!from_map, "a height map gives its own statistics (psd file or measured)");
+        if (name == "gamma") return unless(psd == PsdKind::kc, "used with psd kc only");
+        if (name == "surface_file" || name == "form")
+            return unless(from_map, "used with a height map (psd file or measured) only");
+    }
+    return {};
+}
+
 std::string to_string(ModelKind v) { return enum_name(v, kModels); }
 std::string to_string(GhsMethod v) { return enum_name(v, kMethods); }
 std::string to_string(Truncation v) { return enum_name(v, kTruncations); }

@@ -66,6 +66,12 @@ AlphaFrom parse_alpha_from(std::string_view text, const char* what = "alpha_from
 MacroNdf parse_macro_ndf(std::string_view text, const char* what = "macro_ndf");
 PsdKind parse_psd(std::string_view text, const char* what = "psd");
 
+// Why the option `name` (snake_case, as in ModelOptions: "smoothing", "surface_file", "renormalization") has no
+// effect for the model and modes of `options`, as a phrase such as "used with alpha_from smoothed only"; empty if it
+// takes effect or is not a model option. The CLI and the scene loader turn a non-empty answer into an error naming
+// the option as the user wrote it, so that no option is silently ignored.
+std::string inapplicable_option(const ModelOptions& options, std::string_view name);
+
 // Canonical (snake_case) names.
 std::string to_string(ModelKind v);
 std::string to_string(GhsMethod v);

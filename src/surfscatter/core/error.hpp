@@ -3,6 +3,7 @@
 // came from (parameter name, file:line); the CLI prints it as it is and exits with status 2.
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include <fmt/format.h>
 
@@ -23,5 +24,9 @@ template <typename... Args>
 void require_finite(double value, const char* what);
 void require_positive(double value, const char* what);
 void require_non_negative(double value, const char* what);
+
+// Text from a user's file or argument, fit to be quoted in a one-line message: bytes outside printable ASCII
+// become \xNN (a binary file never reaches the terminal raw) and text longer than `max_chars` is cut with "...".
+std::string printable(std::string_view text, std::size_t max_chars = 60);
 
 }  // namespace surfscatter

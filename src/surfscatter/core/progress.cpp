@@ -10,7 +10,12 @@ namespace surfscatter {
 namespace {
 volatile std::sig_atomic_t g_interrupted = 0;
 
-extern "C" void on_interrupt(int) { g_interrupted = 1; }
+// The first signal asks the job to stop and write what it has; the default action is restored so that a second
+// Ctrl-C ends the process at once if writing takes too long.
+extern "C" void on_interrupt(int signal_number) {
+    g_interrupted = signal_number;
+    std::signal(signal_number, SIG_DFL);
+}
 }  // namespace
 
 void install_interrupt_handler() {
@@ -18,8 +23,9 @@ void install_interrupt_handler() {
     std::signal(SIGTERM, on_interrupt);
 }
 bool interrupt_requested() { return g_interrupted != 0; }
+int interrupt_signal() { return g_interrupted; }
 void clear_interrupt() { g_interrupted = 0; }
-void request_interrupt() { g_interrupted = 1; }
+void request_interrupt() { g_interrupted = SIGINT; }
 
 std::string format_duration(double seconds) {
     if (!(seconds >= 0.0)) return "--";

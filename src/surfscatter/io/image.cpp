@@ -19,15 +19,28 @@
 #include <png.h>
 
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/input_file.hpp"
+#include "surfscatter/core/resources.hpp"
 
 namespace surfscatter::io {
 
-Image::Image(int width_, int height_, int channels_, float fill)
-    : width(width_), height(height_), channels(channels_),
-      pixels(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_) * static_cast<std::size_t>(channels_),
-             fill) {
+namespace {
+
+// An image of a size read from a file header may not fit in memory: one clear error instead of std::bad_alloc.
+void require_image_memory(double width, double height, double bytes_per_pixel, const std::string& what) {
+    constexpr double kCheckAbove = 64.0 * 1024 * 1024;  // smaller images are not worth a look at /proc/meminfo
+    const double bytes = width * height * bytes_per_pixel;
+    if (bytes > kCheckAbove) require_memory(bytes, fmt::format("{} ({}x{})", what, width, height));
+}
+
+}  // namespace
+
+Image::Image(int width_, int height_, int channels_, float fill) : width(width_), height(height_), channels(channels_) {
     if (width_ <= 0 || height_ <= 0) fail("image size must be positive, got {}x{}", width_, height_);
     if (channels_ < 1 || channels_ > 4) fail("image must have 1 to 4 channels, got {}", channels_);
+    require_image_memory(width_, height_, 4.0 * channels_, "an image");
+    pixels.assign(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_) * static_cast<std::size_t>(channels_),
+                  fill);
 }
 
 namespace {
@@ -74,6 +87,13 @@ Image read_png(const std::filesystem::path& path) {
     if (!png_image_begin_read_from_file(&png, path.c_str())) fail("cannot read PNG {}: {}", path.string(), png.message);
     const bool alpha = (png.format & PNG_FORMAT_FLAG_ALPHA) != 0;
     png.format = alpha ? PNG_FORMAT_RGBA : PNG_FORMAT_RGB;
+    try {
+        // The decoded bytes and the float image together.
+        require_image_memory(png.width, png.height, 5.0 * PNG_IMAGE_PIXEL_CHANNELS(png.format), "PNG " + path.string());
+    } catch (const Error&) {
+        png_image_free(&png);
+        throw;
+    }
     std::vector<std::uint8_t> bytes(PNG_IMAGE_SIZE(png));
     if (!png_image_finish_read(&png, nullptr, bytes.data(), 0, nullptr)) {
         png_image_free(&png);
@@ -117,6 +137,12 @@ Image read_jpeg(const std::filesystem::path& path) {
     jpeg_start_decompress(&info);
     width = static_cast<int>(info.output_width);
     height = static_cast<int>(info.output_height);
+    try {
+        require_image_memory(width, height, 15.0, "JPEG " + path.string());  // 3 bytes and 3 floats per pixel
+    } catch (const Error&) {
+        jpeg_destroy_decompress(&info);
+        throw;
+    }
     bytes.resize(static_cast<std::size_t>(width) * height * 3);
     while (info.output_scanline < info.output_height) {
         JSAMPROW row = bytes.data() + static_cast<std::size_t>(info.output_scanline) * width * 3;
@@ -235,7 +261,7 @@ Image read_hdr(const std::filesystem::path& path) {
 }  // namespace
 
 Image read_image(const std::filesystem::path& path) {
-    if (!std::filesystem::exists(path)) fail("image file not found: {}", path.string());
+    require_readable_file(path, "image file");
     const std::string ext = lower_extension(path);
     if (ext == ".png") return read_png(path);
     if (ext == ".jpg" || ext == ".jpeg") return read_jpeg(path);

@@ -8,6 +8,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/input_file.hpp"
 #include "surfscatter/material/tabulated_index.hpp"
 #include "surfscatter/material/wavelength_check.hpp"
 
@@ -144,7 +145,7 @@ std::vector<double> parse_numbers(const std::string& text, const std::string& wh
         } catch (const std::exception&) {
             used = 0;
         }
-        if (used != word.size() || !std::isfinite(v)) fail("{}: '{}' is not a number", where, word);
+        if (used != word.size() || !std::isfinite(v)) fail("{}: '{}' is not a number", where, printable(word));
         values.push_back(v);
     }
     return values;
@@ -191,21 +192,30 @@ Curve formula_curve(int formula, const YAML::Node& entry, const std::string& whe
     if (limits.size() != 2 || !(limits[0] > 0) || !(limits[1] > limits[0]))
         fail("{}: wavelength_range must be two increasing positive numbers (um), got '{}'", where, range.Scalar());
     const auto c = parse_numbers(coefficients.Scalar(), where + " coefficients");
-    dispersion_formula_index(formula, c, limits[0]);  // validates the formula number and coefficient count
-    return {[formula, c](double l) { return dispersion_formula_index(formula, c, l / kNmPerUm); },
-            limits[0] * kNmPerUm, limits[1] * kNmPerUm};
+    // Every error, now or when a wavelength is evaluated later, names the file and entry.
+    const auto index = [formula, c, where](double lambda_um) {
+        try {
+            return dispersion_formula_index(formula, c, lambda_um);
+        } catch (const Error& e) {
+            fail("{}: {}", where, e.what());
+        }
+    };
+    index(limits[0]);  // validates the formula number and coefficient count
+    return {[index](double l) { return index(l / kNmPerUm); }, limits[0] * kNmPerUm, limits[1] * kNmPerUm};
 }
 
 }  // namespace
 
 std::shared_ptr<const RefractiveIndex> load_refractiveindex_info_yaml(const std::string& path) {
+    return parse_refractiveindex_info_yaml(read_input_file(path, "refractive index file"), path);
+}
+
+std::shared_ptr<const RefractiveIndex> parse_refractiveindex_info_yaml(const std::string& text, const std::string& path) {
     YAML::Node root;
     try {
-        root = YAML::LoadFile(path);
-    } catch (const YAML::BadFile&) {
-        fail("cannot open refractive index file '{}'", path);
+        root = YAML::Load(text);
     } catch (const YAML::Exception& e) {
-        fail("{}:{}: malformed YAML: {}", path, e.mark.line + 1, e.msg);
+        fail("{}:{}: malformed YAML: {}", path, e.mark.line + 1, printable(e.msg));
     }
     const YAML::Node data = root.IsMap() ? root["DATA"] : YAML::Node();
     if (!data || !data.IsSequence() || data.size() == 0)
@@ -234,11 +244,11 @@ std::shared_ptr<const RefractiveIndex> load_refractiveindex_info_yaml(const std:
             try {
                 formula = std::stoi(type.substr(8));
             } catch (const std::exception&) {
-                fail("{}: unknown type '{}'", where, type);
+                fail("{}: unknown type '{}'", where, printable(type));
             }
             set(n, formula_curve(formula, entry, where), "n");
         } else {
-            fail("{}: unknown type '{}' (tabulated nk, tabulated n, tabulated k, formula 1-9)", where, type);
+            fail("{}: unknown type '{}' (tabulated nk, tabulated n, tabulated k, formula 1-9)", where, printable(type));
         }
     }
     if (!n) fail("{}: DATA has k but no n", path);

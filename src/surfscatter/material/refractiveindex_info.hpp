@@ -18,5 +18,7 @@ double dispersion_formula_index(int formula, const std::vector<double>& c, doubl
 
 // Throws Error naming the file (and the DATA entry or line) for anything the loader cannot use.
 std::shared_ptr<const RefractiveIndex> load_refractiveindex_info_yaml(const std::string& path);
+// Same from the file's text; `path` names it in messages.
+std::shared_ptr<const RefractiveIndex> parse_refractiveindex_info_yaml(const std::string& text, const std::string& path);
 
 }  // namespace surfscatter::material

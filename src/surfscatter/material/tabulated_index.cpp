@@ -3,10 +3,11 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <fstream>
+#include <sstream>
 #include <string_view>
 
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/input_file.hpp"
 #include "surfscatter/material/wavelength_check.hpp"
 
 namespace surfscatter::material {
@@ -69,11 +70,14 @@ std::vector<std::string_view> split_commas(std::string_view line) {
 }  // namespace
 
 std::shared_ptr<const RefractiveIndex> load_csv_refractive_index(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) fail("cannot open refractive index file '{}'", path);
+    return parse_csv_refractive_index(read_input_file(path, "refractive index file"), path);
+}
+
+std::shared_ptr<const RefractiveIndex> parse_csv_refractive_index(const std::string& text, const std::string& path) {
     std::vector<double> lambda, n, k;
     bool header_allowed = true;
     int line_number = 0;
+    std::istringstream in(text);
     for (std::string line; std::getline(in, line);) {
         ++line_number;
         if (!line.empty() && line.back() == '\r') line.pop_back();
@@ -87,7 +91,7 @@ std::shared_ptr<const RefractiveIndex> load_csv_refractive_index(const std::stri
                 header_allowed = false;
                 continue;
             }
-            fail("{}:{}: expected 'wavelength_nm,n,k' with three numbers, got '{}'", path, line_number, line);
+            fail("{}:{}: expected 'wavelength_nm,n,k' with three numbers, got '{}'", path, line_number, printable(line));
         }
         header_allowed = false;
         if (!(values[0] > 0) || !std::isfinite(values[0]))

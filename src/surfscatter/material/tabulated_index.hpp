@@ -42,5 +42,7 @@ private:
 // CSV with rows `wavelength_nm,n,k`: lines starting with '#' and blank lines are skipped, one optional header row
 // (first field not a number) is allowed. Throws Error naming path:line for anything malformed.
 std::shared_ptr<const RefractiveIndex> load_csv_refractive_index(const std::string& path);
+// Same from the file's text; `path` names it in messages.
+std::shared_ptr<const RefractiveIndex> parse_csv_refractive_index(const std::string& text, const std::string& path);
 
 }  // namespace surfscatter::material

@@ -2,16 +2,63 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/resources.hpp"
 #include "surfscatter/spectrum/color.hpp"
 
 namespace surfscatter::render {
 
-Film::Film(int width, int height)
-    : width_(width), height_(height), sum_(static_cast<std::size_t>(width) * height), alpha_(sum_.size(), 0.0),
-      count_(sum_.size(), 0) {
-    if (width <= 0 || height <= 0) fail("film size must be positive, got {}x{}", width, height);
+namespace {
+
+// Bytes a rendered pixel holds at once: the film's XYZ sum (24), alpha (8) and sample count (4), the pixel's random
+// stream (16), the developed images (up to 2 x 16) and the 8-bit PNG copy (4), rounded up for the libraries' own
+// buffers.
+constexpr double kBytesPerPixel = 128;
+
+void check_size(int width, int height, const char* what) {
+    if (width < 1 || height < 1 || width > kMaxFilmSide || height > kMaxFilmSide)
+        fail("{} must be between 1x1 and {}x{} pixels, got {}x{}", what, kMaxFilmSide, kMaxFilmSide, width, height);
+    require_memory(kBytesPerPixel * width * height, fmt::format("a {}x{} {}", width, height, what));
+}
+
+// The largest value an EXR of the film's component format holds; beyond it the file would hold Inf.
+double largest_component(const FilmSettings& settings) {
+    return settings.component_format == "float16" ? 65504.0 : double(std::numeric_limits<float>::max());
+}
+
+void require_representable(double value, int x, int y, double largest, const FilmSettings& settings) {
+    if (!(std::abs(value) <= largest))
+        fail("pixel ({}, {}) is {}, beyond the {:g} a {} image holds: lower the exposure ({} stops) or the emitters{}",
+             x, y, value, largest, largest == 65504.0 ? "float16" : "float32", settings.exposure,
+             largest == 65504.0 ? ", or write component_format float32" : "");
+}
+
+spectrum::Mat3 adaptation(const FilmSettings& settings);
+
+}  // namespace
+
+Film::Film(int width, int height) : width_(width), height_(height) {
+    check_size(width, height, "film");
+    sum_.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+    alpha_.assign(sum_.size(), 0.0);
+    count_.assign(sum_.size(), 0);
+}
+
+std::uint32_t Film::samples(int x, int y) const { return count_[index(x, y)]; }
+
+void FilmSettings::check() const {
+    check_size(width, height, "film");
+    const auto right = std::int64_t{crop_offset_x} + output_width(), bottom = std::int64_t{crop_offset_y} + output_height();
+    if (crop_width < 0 || crop_height < 0 || crop_offset_x < 0 || crop_offset_y < 0 || right > width || bottom > height)
+        fail("crop window {}x{} at ({}, {}) does not fit the {}x{} film", output_width(), output_height(), crop_offset_x,
+             crop_offset_y, width, height);
+    if (!(std::abs(exposure) <= kMaxExposureStops))
+        fail("exposure must be between -{} and {} stops, got {}", kMaxExposureStops, kMaxExposureStops, exposure);
+    if (component_format != "float16" && component_format != "float32")
+        fail("component_format must be float16 or float32, got '{}'", component_format);
+    adaptation(*this);  // validates the white balance
 }
 
 Vec3 Film::xyz(int x, int y) const {
@@ -49,7 +96,11 @@ io::Image Film::develop(const FilmSettings& settings) const {
     for (int y = 0; y < height_; ++y)
         for (int x = 0; x < width_; ++x) {
             const Vec3 rgb = spectrum::xyz_to_linear_srgb(adapt * xyz(x, y));
-            for (int c = 0; c < 3; ++c) image.at(x, y, c) = static_cast<float>(rgb[c]);
+            for (int c = 0; c < 3; ++c) {
+                // Only an absurdly bright emitter times a large exposure gets here; never write Inf or NaN.
+                require_representable(rgb[c], x, y, std::numeric_limits<float>::max(), settings);
+                image.at(x, y, c) = static_cast<float>(rgb[c]);
+            }
         }
     return image;
 }
@@ -68,6 +119,7 @@ io::Image Film::develop_pixel_format(const FilmSettings& settings, std::vector<s
         for (int x = 0; x < width_; ++x) {
             const Vec3 v = adapt * xyz(x, y);
             const Vec3 out = channels[0] == "R" ? spectrum::xyz_to_linear_srgb(v) : v;
+            for (int c = 0; c < 3; ++c) require_representable(out[c], x, y, largest_component(settings), settings);
             if (channels[0] == "Y") image.at(x, y, 0) = static_cast<float>(out.y);
             else
                 for (int c = 0; c < 3; ++c) image.at(x, y, c) = static_cast<float>(out[c]);

@@ -14,7 +14,7 @@ namespace surfscatter::render {
 
 class Film {
 public:
-    Film(int width, int height);
+    Film(int width, int height);  // throws Error beyond kMaxFilmSide or the memory available
     int width() const { return width_; }
     int height() const { return height_; }
     // One sample: its filter weight w, the XYZ it carries and whether it covers the pixel. Each pixel is owned by
@@ -27,6 +27,7 @@ public:
     }
     Vec3 xyz(int x, int y) const;    // sum(w XYZ) / N (0 if no sample)
     double alpha(int x, int y) const;
+    std::uint32_t samples(int x, int y) const;  // samples taken at the pixel (an interrupted render has fewer)
     // Linear sRGB image after white balance and exposure (3 channels).
     io::Image develop(const FilmSettings& settings) const;
     // The image in the film's pixel_format (rgb, rgba, luminance, luminance_alpha, xyz, xyza), after white balance

@@ -11,6 +11,7 @@
 
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/progress.hpp"
+#include "surfscatter/core/resources.hpp"
 #include "surfscatter/render/estimator.hpp"
 #include "surfscatter/spectrum/cie.hpp"
 
@@ -30,7 +31,8 @@ std::unique_ptr<RadianceEstimator> make_estimator(const Scene& scene) {
 }  // namespace
 
 Film render(const Scene& scene, const RenderOptions& options, RenderStats* stats) {
-    scene.film.check_crop();
+    scene.film.check();
+    require_thread_count(options.threads, "threads");
     const Camera camera(scene.camera, scene.film.width, scene.film.height);
     const FilterPtr filter = scene.film.filter ? scene.film.filter : make_gaussian_filter();
     const int width = scene.film.output_width(), height = scene.film.output_height();
@@ -65,19 +67,18 @@ Film render(const Scene& scene, const RenderOptions& options, RenderStats* stats
     const double window_y1 = scene.film.sample_border ? unbounded : offset_y + height;
 
     const int tiles_x = (width + kTileSize - 1) / kTileSize, tiles_y = (height + kTileSize - 1) / kTileSize;
-    const int per_pass = std::max(1, spp / 16);
+    // Passes of 1, 2, 4, ... samples up to spp/16: an early Ctrl-C still leaves every pixel with samples.
+    const int max_pass = std::max(1, spp / 16);
+    int per_pass = 1;
     Progress progress("render", static_cast<std::uint64_t>(spp) * tiles_x * tiles_y, options.progress);
     std::atomic<std::uint64_t> rays{0};
     const auto start = std::chrono::steady_clock::now();
     int done = 0;
-    bool interrupted = false;
 
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
-    while (done < spp) {
-        if (interrupt_requested()) {
-            interrupted = true;
-            break;
-        }
+    // Ctrl-C is polled before every sample, so a render stops within one sample per thread at any spp; the film
+    // keeps per-pixel sample counts, so the pixels of the unfinished pass stay correct means of what they have.
+    while (done < spp && !interrupt_requested()) {
         const int count = std::min(per_pass, spp - done);
         arena.execute([&] {
             tbb::parallel_for(tbb::blocked_range<int>(0, tiles_x * tiles_y), [&](const tbb::blocked_range<int>& range) {
@@ -88,7 +89,7 @@ Film render(const Scene& scene, const RenderOptions& options, RenderStats* stats
                         for (int x = x0; x < std::min(x0 + kTileSize, width); ++x) {
                             Sampler& sampler = samplers[static_cast<std::size_t>(y) * width + x];
                             const double cx = x + offset_x + 0.5, cy = y + offset_y + 0.5;
-                            for (int s = 0; s < count; ++s) {
+                            for (int s = 0; s < count && !interrupt_requested(); ++s) {
                                 const SampledWavelengths w = SampledWavelengths::sample_visible(sampler.next());
                                 const ReconstructionFilter::Sample fs = filter->sample(
                                     sampler.next2(), {window_x0 - cx, window_y0 - cy}, {window_x1 - cx, window_y1 - cy});
@@ -112,11 +113,19 @@ Film render(const Scene& scene, const RenderOptions& options, RenderStats* stats
             });
         });
         done += count;
+        per_pass = std::min(2 * per_pass, max_pass);
     }
     progress.finish();
     if (stats) {
-        stats->samples_per_pixel = done;
-        stats->interrupted = interrupted;
+        std::uint32_t fewest = UINT32_MAX, most = 0;
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) {
+                fewest = std::min(fewest, film.samples(x, y));
+                most = std::max(most, film.samples(x, y));
+            }
+        stats->samples_per_pixel = static_cast<int>(fewest);
+        stats->max_samples_per_pixel = static_cast<int>(most);
+        stats->interrupted = static_cast<int>(fewest) < spp;
         stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         stats->rays = rays.load();
     }

@@ -4,6 +4,8 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "surfscatter/render/transform.hpp"
@@ -19,14 +21,22 @@ struct TriangleMesh {
 
 TriangleMesh make_rectangle();             // [-1, 1]^2 at z = 0, normal +z, uv = (x + 1, y + 1) / 2
 TriangleMesh make_cube();                  // [-1, 1]^3, outward normals, flat faces, each face uv [0, 1]^2
+// Largest mesh file read (docs/RELIABILITY.md); the memory available is checked as well.
+inline constexpr std::uint64_t kMaxMeshFileBytes = std::uint64_t{4} << 30;
+
 // Wavefront OBJ (v, vt, vn, f with polygons fanned into triangles; other statements skipped as OBJ allows).
 // Corners with the same (v, vt, vn) indices share a vertex. flip_tex_coords maps v to 1 - v (Mitsuba's default).
+// Errors name file:line. parse_obj reads the file's text (`name` names it in messages).
 TriangleMesh load_obj(const std::filesystem::path& path, bool flip_tex_coords = true);
+TriangleMesh parse_obj(std::string_view text, const std::string& name, bool flip_tex_coords = true);
 // PLY, ascii or binary (little or big endian): vertex x y z [nx ny nz] [u v | s t | texture_u texture_v], face lists.
+// Errors name the file (and the header line). parse_ply reads the file's bytes.
 TriangleMesh load_ply(const std::filesystem::path& path);
+TriangleMesh parse_ply(std::string_view bytes, const std::string& name);
 // Mitsuba's .serialized format (zlib-compressed, versions 3 and 4): mesh number `shape_index` of the file.
 // `face_normals` is set if the file asks for face normals.
 TriangleMesh load_serialized(const std::filesystem::path& path, int shape_index, bool& face_normals);
+TriangleMesh parse_serialized(std::string_view bytes, const std::string& name, int shape_index, bool& face_normals);
 
 // Mitsuba's vertex normals for a mesh that has none: at each vertex, the face normals of the triangles around it
 // weighted by the triangle's angle at that vertex.

@@ -20,6 +20,13 @@
 
 namespace surfscatter::render {
 
+// An Error whose message already starts with the scene file and line; the loader adds the location of the element
+// being built to any other Error (xml_loader.cpp), so every scene error names its file:line exactly once.
+class SceneError : public Error {
+public:
+    using Error::Error;
+};
+
 class Properties {
 public:
     virtual ~Properties() = default;
@@ -30,11 +37,11 @@ public:
     // Throw Error("file:line: message") for the element or for one of its parameters.
     template <typename... Args>
     [[noreturn]] void fail(fmt::format_string<Args...> format, Args&&... args) const {
-        throw Error(where() + ": " + fmt::format(format, std::forward<Args>(args)...));
+        throw SceneError(where() + ": " + fmt::format(format, std::forward<Args>(args)...));
     }
     template <typename... Args>
     [[noreturn]] void fail_param(const std::string& name, fmt::format_string<Args...> format, Args&&... args) const {
-        throw Error(where(name) + ": " + fmt::format(format, std::forward<Args>(args)...));
+        throw SceneError(where(name) + ": " + fmt::format(format, std::forward<Args>(args)...));
     }
 
     virtual bool has(const std::string& name) const = 0;

@@ -28,13 +28,6 @@ struct Scene::Embree {
     }
 };
 
-void FilmSettings::check_crop() const {
-    if (crop_width < 0 || crop_height < 0 || crop_offset_x < 0 || crop_offset_y < 0 ||
-        crop_offset_x + output_width() > width || crop_offset_y + output_height() > height)
-        fail("crop window {}x{} at ({}, {}) does not fit the {}x{} film", output_width(), output_height(), crop_offset_x,
-             crop_offset_y, width, height);
-}
-
 Frame Hit::shading_frame() const {
     const Vec3 s = dpdu - ns * dot(ns, dpdu);
     const double length = s.length();
@@ -57,6 +50,32 @@ namespace {
 double triangle_area(const TriangleMesh& m, std::size_t i) {
     const auto& t = m.triangles[i];
     return 0.5 * cross(m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]]).length();
+}
+
+void require_in_scene(const Vec3& p, const char* what) {
+    for (int c = 0; c < 3; ++c)
+        if (!(std::abs(p[c]) <= kMaxSceneCoordinate))
+            fail("{} ({}, {}, {}) is not finite or beyond the +-{:g} a scene may span", what, p.x, p.y, p.z,
+                 kMaxSceneCoordinate);
+}
+
+// Every vertex inside the scene's range, normals and uvs finite, indices in range: nothing the tracer could turn
+// into NaN or an out-of-bounds read.
+void check_mesh(const TriangleMesh& mesh) {
+    if (mesh.positions.size() > std::numeric_limits<std::uint32_t>::max() ||
+        mesh.triangles.size() > std::numeric_limits<std::uint32_t>::max())
+        fail("a mesh may hold at most 2^32 - 1 vertices and triangles, got {} and {}", mesh.positions.size(),
+             mesh.triangles.size());
+    for (const Vec3& p : mesh.positions) require_in_scene(p, "vertex");
+    for (const Vec3& n : mesh.normals)
+        if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z) || !(n.length() > 0))
+            fail("vertex normal ({}, {}, {}) is not a finite non-zero vector", n.x, n.y, n.z);
+    for (const Vec2& uv : mesh.uvs)
+        if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) fail("texture coordinate ({}, {}) is not finite", uv.x, uv.y);
+    for (const auto& t : mesh.triangles)
+        for (std::uint32_t index : t)
+            if (index >= mesh.positions.size())
+                fail("triangle vertex index {} out of range ({} vertices)", index, mesh.positions.size());
 }
 
 // Embree user-geometry callbacks: the analytic shape's own double-precision intersection.
@@ -115,6 +134,7 @@ void Scene::add_shape(ShapeGeometry geometry, MaterialPtr material, SpectrumPtr 
         shape.mesh = std::move(*mesh);
         const TriangleMesh& m = shape.mesh;
         if (m.triangles.empty()) fail("a mesh shape has no triangles");
+        check_mesh(m);
         g = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
         auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                                       3 * sizeof(float), m.positions.size()));
@@ -135,6 +155,10 @@ void Scene::add_shape(ShapeGeometry geometry, MaterialPtr material, SpectrumPtr 
     } else {
         shape.analytic = std::get<AnalyticShapePtr>(geometry);
         shape.area = shape.analytic->area();
+        Vec3 lo, hi;
+        shape.analytic->bounds(lo, hi);
+        require_in_scene(lo, "shape bound");
+        require_in_scene(hi, "shape bound");
         g = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_USER);
         rtcSetGeometryUserPrimitiveCount(g, 1);
         rtcSetGeometryUserData(g, const_cast<AnalyticShape*>(shape.analytic.get()));

@@ -14,6 +14,14 @@
 
 namespace surfscatter::render {
 
+// Limits of a scene (docs/RELIABILITY.md). Embree stores positions as float: coordinates up to 1e15 (and products
+// of them in the tracer) stay finite and far from float's 3.4e38.
+inline constexpr double kMaxSceneCoordinate = 1e15;
+// A film side, in pixels; the memory the film needs is checked against what is available as well.
+inline constexpr int kMaxFilmSide = 1 << 16;
+// Exposure in stops, either way: 2^64 times any finite radiance of a scene stays inside float.
+inline constexpr double kMaxExposureStops = 64;
+
 struct FilmSettings {
     int width = 768;
     int height = 576;
@@ -28,7 +36,9 @@ struct FilmSettings {
     int crop_offset_x = 0, crop_offset_y = 0, crop_width = 0, crop_height = 0;
     int output_width() const { return crop_width > 0 ? crop_width : width; }
     int output_height() const { return crop_height > 0 ? crop_height : height; }
-    void check_crop() const;  // throws Error if the window leaves the film
+    // Throws Error naming the bad setting: sizes outside [1, kMaxFilmSide], a crop window leaving the film, more
+    // memory than is available, an exposure beyond kMaxExposureStops or an unknown white balance.
+    void check() const;
 };
 
 struct SamplerSettings {

@@ -63,7 +63,8 @@ private:
 
 spectrum::RgbSigmoid fit_scaled(const std::array<double, 3>& rgb, double& scale) {
     for (double v : rgb)
-        if (!(v >= 0) || !std::isfinite(v)) fail("RGB values must be finite and non-negative, got ({}, {}, {})", rgb[0], rgb[1], rgb[2]);
+        if (!(v >= 0 && v <= kMaxSpectrumValue))
+            fail("RGB values must be between 0 and {:g}, got ({}, {}, {})", kMaxSpectrumValue, rgb[0], rgb[1], rgb[2]);
     // Reflectances up to 1 are fitted as they are; brighter values (emitters, EXR texels) fit rgb / max, times max.
     const double peak = std::max({rgb[0], rgb[1], rgb[2]});
     scale = peak > 1 ? peak : (peak > 0 ? 1.0 : 0.0);
@@ -85,6 +86,11 @@ double d65_normalisation() {
     return value;
 }
 
+void require_spectrum_value(double value, const char* what) {
+    if (!(value >= 0 && value <= kMaxSpectrumValue))
+        fail("{} must be between 0 and {:g}, got {}", what, kMaxSpectrumValue, value);
+}
+
 }  // namespace
 
 double d65_normalised(double lambda_nm) {
@@ -94,7 +100,7 @@ double d65_normalised(double lambda_nm) {
 }
 
 SpectrumPtr make_constant_spectrum(double value) {
-    if (!std::isfinite(value) || value < 0) fail("spectrum value must be finite and non-negative, got {}", value);
+    require_spectrum_value(value, "spectrum value");
     return std::make_shared<Constant>(value);
 }
 
@@ -102,14 +108,20 @@ SpectrumPtr make_tabulated_spectrum(std::vector<double> lambda_nm, std::vector<d
     if (lambda_nm.size() < 2 || lambda_nm.size() != values.size()) fail("a spectrum table needs at least two lambda:value pairs");
     for (std::size_t i = 0; i < lambda_nm.size(); ++i) {
         if (i > 0 && !(lambda_nm[i] > lambda_nm[i - 1])) fail("spectrum wavelengths must increase, got {} after {}", lambda_nm[i], lambda_nm[i - 1]);
-        if (!(values[i] >= 0)) fail("spectrum values must be non-negative, got {} at {} nm", values[i], lambda_nm[i]);
+        if (!(values[i] >= 0 && values[i] <= kMaxSpectrumValue))
+            fail("spectrum value at {} nm must be between 0 and {:g}, got {}", lambda_nm[i], kMaxSpectrumValue, values[i]);
     }
     return std::make_shared<Tabulated>(std::move(lambda_nm), std::move(values));
 }
 
 SpectrumPtr make_blackbody_spectrum(double temperature_k, double scale) {
-    if (!(temperature_k > 0)) fail("blackbody temperature must be positive, got {}", temperature_k);
-    if (!(scale >= 0) || !std::isfinite(scale)) fail("blackbody scale must be finite and non-negative, got {}", scale);
+    spectrum::require_blackbody_temperature(temperature_k, "blackbody temperature");
+    require_spectrum_value(scale, "blackbody scale");
+    // The peak of the scaled radiance over the rendered wavelengths must be a spectrum value too.
+    double peak = 0;
+    for (double lambda = spectrum::kSampledLambdaMin; lambda <= spectrum::kSampledLambdaMax; lambda += 1.0)
+        peak = std::max(peak, spectrum::blackbody_radiance(lambda, temperature_k));
+    require_spectrum_value(scale * peak, "blackbody scale x radiance");
     return std::make_shared<Blackbody>(temperature_k, scale);
 }
 

@@ -24,6 +24,10 @@ public:
 };
 using SpectrumPtr = std::shared_ptr<const SpectrumSource>;
 
+// Largest value a spectrum of the scene may take (radiance, intensity, reflectance, texel): path weights times it
+// stay far inside the double range, and the film's check on its float output (film.hpp) is the only bound left.
+inline constexpr double kMaxSpectrumValue = 1e30;
+
 SpectrumPtr make_constant_spectrum(double value);
 // Piecewise-linear through (lambda_nm, value) pairs (strictly increasing lambdas), constant beyond the ends.
 SpectrumPtr make_tabulated_spectrum(std::vector<double> lambda_nm, std::vector<double> values);

@@ -1,11 +1,13 @@
 #include "surfscatter/render/xml_loader.hpp"
 
 #include <algorithm>
+#include <cctype>
+#include <cerrno>
 #include <cmath>
-#include <fstream>
+#include <cstdlib>
 #include <map>
 #include <set>
-#include <sstream>
+#include <string_view>
 #include <variant>
 #include <vector>
 
@@ -13,6 +15,7 @@
 
 #include "surfscatter/bsdf/factory.hpp"
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/input_file.hpp"
 #include "surfscatter/render/plugins.hpp"
 #include "surfscatter/surface/height_map.hpp"
 
@@ -41,13 +44,66 @@ struct Node {
     pugi::xml_node xml;
     const Source* source = nullptr;
 
-    std::string where() const { return fmt::format("{}:{}", source->path.string(), source->line_of(xml.offset_debug())); }
+    std::string where() const {
+        std::ptrdiff_t offset = xml.offset_debug();
+        // Text is located at its first visible character, not at the line break before it.
+        for (const char* c = xml.value(); xml.type() == pugi::node_pcdata && std::isspace(static_cast<unsigned char>(*c)); ++c)
+            if (offset >= 0) ++offset;
+        return fmt::format("{}:{}", source->path.string(), source->line_of(offset));
+    }
     std::string tag() const { return xml.name(); }
 };
 
+// The text of a text node without the whitespace around it, fit for a message.
+std::string shown_text(const pugi::xml_node& text) {
+    std::string_view value = text.value();
+    const auto first = value.find_first_not_of(" \t\r\n"), last = value.find_last_not_of(" \t\r\n");
+    return printable(first == std::string_view::npos ? std::string_view() : value.substr(first, last - first + 1));
+}
+
+// Errors at an element carry its file:line (SceneError, properties.hpp); `located` adds the location of the element
+// being built to any other Error, in one place.
 template <typename... Args>
 [[noreturn]] void fail_at(const Node& node, fmt::format_string<Args...> format, Args&&... args) {
-    throw Error(node.where() + ": " + fmt::format(format, std::forward<Args>(args)...));
+    throw SceneError(node.where() + ": " + fmt::format(format, std::forward<Args>(args)...));
+}
+
+// Runs `build`; a library Error without a location is reported at `node`, prefixed by `context` ("bsdf 'ghs': ").
+template <typename F>
+decltype(auto) located(const Node& node, const std::string& context, F&& build) {
+    try {
+        return build();
+    } catch (const SceneError&) {
+        throw;
+    } catch (const Error& e) {
+        fail_at(node, "{}{}", context, e.what());
+    }
+}
+
+// Splits an attribute list such as "0, -1.6, 0.9" or "1 0 0": items are separated by commas and/or whitespace, and
+// an empty item (",," or a leading or trailing comma) is an error, never skipped.
+std::vector<std::string> split_list(const Node& node, const std::string& text, const std::string& what) {
+    std::vector<std::string> items;
+    const auto is_space = [](char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; };
+    if (std::all_of(text.begin(), text.end(), is_space)) return items;
+    std::size_t start = 0;
+    for (int field = 1;; ++field) {
+        const std::size_t comma = text.find(',', start);
+        const std::string part = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+        if (std::all_of(part.begin(), part.end(), is_space))
+            fail_at(node, "{}: item {} of '{}' is empty", what, field, printable(text));
+        for (std::size_t i = 0; i < part.size();) {
+            while (i < part.size() && is_space(part[i])) ++i;
+            std::size_t j = i;
+            while (j < part.size() && !is_space(part[j])) ++j;
+            if (j > i) items.push_back(part.substr(i, j - i));
+            i = j;
+        }
+        if (items.size() > kMaxSceneListItems)
+            fail_at(node, "{}: more than {} items in one list", what, kMaxSceneListItems);
+        if (comma == std::string::npos) return items;
+        start = comma + 1;
+    }
 }
 
 using Object = std::variant<MaterialPtr, TexturePtr>;
@@ -55,16 +111,25 @@ using render::Properties;
 
 class Loader {
 public:
-    explicit Loader(std::map<std::string, std::string> defines) : defines_(std::move(defines)) {}
+    explicit Loader(std::map<std::string, std::string> defines)
+        : defines_(defines), command_line_defines_(std::move(defines)) {}
 
-    std::unique_ptr<Scene> load(const Source& root) {
+    // `used_parameters` null: a -D name the scene never uses is an error; else the names used are added to it.
+    std::unique_ptr<Scene> load(const Source& root, std::set<std::string>* used_parameters) {
         scene_ = std::make_unique<Scene>();
-        const Node scene_node{root.document.child("scene"), &root};
-        if (!scene_node.xml) throw Error(fmt::format("{}:1: the root element must be <scene>", root.path.string()));
+        const Node scene_node = root_of(root);
         check_version(scene_node);
         load_children(scene_node);
         if (!has_sensor_) fail_at(scene_node, "the scene has no <sensor>");
-        scene_->commit();
+        located(scene_node, "", [&] { scene_->commit(); });
+        if (used_parameters) {
+            used_parameters->insert(used_defines_.begin(), used_defines_.end());
+        } else {
+            for (const auto& [name, value] : command_line_defines_)
+                if (!used_defines_.count(name))
+                    fail("-D {}={}: the scene {} never uses ${} (a misspelt parameter would be silently ignored)", name,
+                         printable(value), root.path.string(), name);
+        }
         return std::move(scene_);
     }
 
@@ -90,43 +155,57 @@ private:
             std::size_t j = i + 1;
             while (j < text.size() && (std::isalnum(static_cast<unsigned char>(text[j])) || text[j] == '_')) ++j;
             const std::string name = text.substr(i + 1, j - i - 1);
-            if (name.empty()) fail_at(node, "'$' without a parameter name in '{}'", text);
+            if (name.empty()) fail_at(node, "'$' without a parameter name in '{}'", printable(text));
             const auto it = defines_.find(name);
             if (it == defines_.end())
                 fail_at(node, "parameter ${} is not defined (pass -D {}=... or add <default name=\"{}\" .../>)", name, name, name);
+            used_defines_.insert(name);
             out += it->second;
             i = j;
         }
         return out;
     }
 
-    void check_attributes(const Node& node, std::initializer_list<const char*> allowed) {
+    static void check_attributes(const Node& node, std::initializer_list<const char*> allowed) {
         for (const auto& attr : node.xml.attributes()) {
             const bool ok = std::any_of(allowed.begin(), allowed.end(), [&](const char* a) { return std::string(a) == attr.name(); });
-            if (!ok) fail_at(node, "unknown attribute '{}' of <{}>", attr.name(), node.tag());
+            if (!ok) fail_at(node, "unknown attribute '{}' of <{}>", printable(attr.name()), node.tag());
         }
     }
 
-    double parse_double(const Node& node, const std::string& text, const std::string& what) {
-        std::size_t used = 0;
-        double v = 0;
-        try {
-            v = std::stod(text, &used);
-        } catch (const std::exception&) {
-            used = 0;
+    // A value element (<float>, <translate>, <default>, ...): its attributes only, no text and no child elements.
+    static void check_leaf(const Node& node, std::initializer_list<const char*> allowed) {
+        check_attributes(node, allowed);
+        for (pugi::xml_node child : node.xml.children()) {
+            if (child.type() == pugi::node_comment) continue;
+            const Node c{child, node.source};
+            if (child.type() == pugi::node_element) fail_at(c, "<{}> cannot contain elements, got <{}>", node.tag(), c.tag());
+            fail_at(c, "<{}> cannot contain text, got '{}' (values go in attributes)", node.tag(), shown_text(child));
         }
-        while (used < text.size() && std::isspace(static_cast<unsigned char>(text[used]))) ++used;
-        if (used == 0 || used != text.size() || !std::isfinite(v)) fail_at(node, "{}: '{}' is not a finite number", what, text);
+    }
+
+    // Text between the elements of a plugin or transform would be silently dropped: refuse it.
+    static void check_no_text(const Node& node) {
+        for (pugi::xml_node child : node.xml.children())
+            if (child.type() == pugi::node_pcdata || child.type() == pugi::node_cdata)
+                fail_at(Node{child, node.source}, "unexpected text '{}' inside <{}>", shown_text(child), node.tag());
+    }
+
+    static double parse_double(const Node& node, const std::string& text, const std::string& what) {
+        const char* begin = text.c_str();
+        char* end = nullptr;
+        errno = 0;
+        const double v = std::strtod(begin, &end);
+        // ERANGE on underflow still gives the nearest double (a denormal or 0): keep it; overflow is not finite.
+        const bool whole = end != begin && end == begin + text.size() && !std::isspace(static_cast<unsigned char>(text[0]));
+        if (!whole || !std::isfinite(v) || (errno == ERANGE && std::abs(v) > 1.0))
+            fail_at(node, "{}: '{}' is not a finite number", what, printable(text));
         return v;
     }
 
-    std::vector<double> parse_list(const Node& node, const std::string& text, const std::string& what) {
+    static std::vector<double> parse_list(const Node& node, const std::string& text, const std::string& what) {
         std::vector<double> values;
-        std::string item;
-        std::string normalised = text;
-        std::replace(normalised.begin(), normalised.end(), ',', ' ');
-        std::istringstream in(normalised);
-        while (in >> item) values.push_back(parse_double(node, item, what));
+        for (const std::string& item : split_list(node, text, what)) values.push_back(parse_double(node, item, what));
         return values;
     }
 
@@ -155,6 +234,7 @@ private:
     class ElementProperties final : public Properties {
     public:
         ElementProperties(Loader& loader, const Node& owner) : loader_(loader), owner_(owner) {
+            check_no_text(owner);
             for (pugi::xml_node child : owner.xml.children()) {
                 if (child.type() != pugi::node_element) continue;
                 const Node node{child, owner.source};
@@ -165,7 +245,7 @@ private:
                     unnamed_.push_back({node});
                     continue;
                 }
-                if (named_.count(name)) render::fail_at(node, "parameter '{}' given twice", name);
+                if (named_.count(name)) render::fail_at(node, "parameter '{}' given twice", printable(name));
                 named_.emplace(name, Property{node});
             }
         }
@@ -194,7 +274,7 @@ private:
             if (!node) return fallback;
             if (node->tag() != "float" && node->tag() != "integer")
                 render::fail_at(*node, "parameter '{}' must be a <float>, got <{}>", name, node->tag());
-            loader_.check_attributes(*node, {"name", "value"});
+            check_leaf(*node, {"name", "value"});
             return loader_.parse_double(*node, loader_.attribute(*node, "value"), name);
         }
         double get_float_required(const std::string& name) override {
@@ -204,7 +284,7 @@ private:
         int get_int(const std::string& name, int fallback) override {
             const Node* node = find_typed(name, "integer");
             if (!node) return fallback;
-            loader_.check_attributes(*node, {"name", "value"});
+            check_leaf(*node, {"name", "value"});
             const double v = loader_.parse_double(*node, loader_.attribute(*node, "value"), name);
             if (v != std::floor(v) || std::abs(v) > 2e9) render::fail_at(*node, "{}: '{}' is not an integer", name, v);
             return static_cast<int>(v);
@@ -212,7 +292,7 @@ private:
         bool get_bool(const std::string& name, bool fallback) override {
             const Node* node = find_typed(name, "boolean");
             if (!node) return fallback;
-            loader_.check_attributes(*node, {"name", "value"});
+            check_leaf(*node, {"name", "value"});
             const std::string v = loader_.attribute(*node, "value");
             if (v == "true") return true;
             if (v == "false") return false;
@@ -221,7 +301,7 @@ private:
         std::string get_string(const std::string& name, const std::string& fallback) override {
             const Node* node = find_typed(name, "string");
             if (!node) return fallback;
-            loader_.check_attributes(*node, {"name", "value"});
+            check_leaf(*node, {"name", "value"});
             return loader_.attribute(*node, "value");
         }
         std::optional<std::variant<double, std::string>> get_float_or_string(const std::string& name) override {
@@ -229,7 +309,7 @@ private:
             if (!node) return std::nullopt;
             if (node->tag() != "float" && node->tag() != "string")
                 render::fail_at(*node, "parameter '{}' must be a <float> or a <string>, got <{}>", name, node->tag());
-            loader_.check_attributes(*node, {"name", "value"});
+            check_leaf(*node, {"name", "value"});
             const std::string value = loader_.attribute(*node, "value");
             if (node->tag() == "float") return loader_.parse_double(*node, value, name);
             return value;
@@ -239,8 +319,12 @@ private:
             if (!node) return std::nullopt;
             if (node->tag() != "point" && node->tag() != "vector")
                 render::fail_at(*node, "parameter '{}' must be a <point>, got <{}>", name, node->tag());
-            loader_.check_attributes(*node, {"name", "value", "x", "y", "z"});
-            return loader_.parse_xyz(*node, 0.0);
+            check_leaf(*node, {"name", "value", "x", "y", "z"});
+            const Vec3 p = loader_.parse_xyz(*node, 0.0);
+            for (int c = 0; c < 3; ++c)
+                if (!(std::abs(p[c]) <= kMaxSceneCoordinate))
+                    render::fail_at(*node, "{}: {} is beyond the +-{:g} a scene may span", name, p[c], kMaxSceneCoordinate);
+            return p;
         }
         Transform get_transform(const std::string& name) override {
             const Node* node = find_typed(name, "transform");
@@ -249,7 +333,7 @@ private:
         fs::path get_file(const std::string& name) override {
             const Node* node = find_typed(name, "string");
             if (!node) render::fail_at(owner_, "<{}> needs the parameter '{}'", owner_.tag(), name);
-            loader_.check_attributes(*node, {"name", "value"});
+            check_leaf(*node, {"name", "value"});
             return loader_.resolve(*node, loader_.attribute(*node, "value"));
         }
         TexturePtr get_texture(const std::string& name, double fallback) override {
@@ -312,9 +396,9 @@ private:
         }
         void check_all_used(const std::string& plugin) {
             for (auto& [name, p] : named_)
-                if (!p.used) render::fail_at(p.node, "unknown parameter '{}' of {} (<{}>)", name, plugin, p.node.tag());
+                if (!p.used) render::fail_at(p.node, "unknown parameter '{}' of {} (<{}>)", printable(name), plugin, p.node.tag());
             for (const Property& p : unnamed_)
-                if (!p.used) render::fail_at(p.node, "unexpected <{}> inside {}", p.node.tag(), plugin);
+                if (!p.used) render::fail_at(p.node, "unexpected <{}> inside {}", printable(p.node.tag()), plugin);
         }
 
     private:
@@ -328,6 +412,7 @@ private:
 
     Transform build_transform(const Node& node) {
         check_attributes(node, {"name"});
+        check_no_text(node);
         Transform t;
         for (pugi::xml_node child : node.xml.children()) {
             if (child.type() != pugi::node_element) continue;
@@ -336,17 +421,17 @@ private:
             Transform op;
             try {
                 if (tag == "translate") {
-                    check_attributes(c, {"value", "x", "y", "z"});
+                    check_leaf(c, {"value", "x", "y", "z"});
                     op = Transform::translate(parse_xyz(c, 0.0));
                 } else if (tag == "scale") {
-                    check_attributes(c, {"value", "x", "y", "z"});
+                    check_leaf(c, {"value", "x", "y", "z"});
                     op = Transform::scale(parse_xyz(c, 1.0));
                 } else if (tag == "rotate") {
-                    check_attributes(c, {"value", "x", "y", "z", "angle"});
+                    check_leaf(c, {"value", "x", "y", "z", "angle"});
                     const Vec3 axis = parse_xyz(c, 0.0);
                     op = Transform::rotate(axis, parse_double(c, attribute(c, "angle"), "angle"));
                 } else if (tag == "matrix") {
-                    check_attributes(c, {"value"});
+                    check_leaf(c, {"value"});
                     const auto v = parse_list(c, attribute(c, "value"), "matrix");
                     if (v.size() != 16 && v.size() != 9) fail_at(c, "<matrix> needs 16 (or 9) numbers, got {}", v.size());
                     std::array<double, 16> m{};
@@ -358,7 +443,7 @@ private:
                     }
                     op = Transform::from_rows(m);
                 } else if (tag == "lookat") {
-                    check_attributes(c, {"origin", "target", "up"});
+                    check_leaf(c, {"origin", "target", "up"});
                     auto vec = [&](const char* a) {
                         const auto v = parse_list(c, attribute(c, a), a);
                         if (v.size() != 3) fail_at(c, "lookat {} needs 3 numbers", a);
@@ -367,14 +452,19 @@ private:
                     const Vec3 up = c.xml.attribute("up") ? vec("up") : Vec3(0, 1, 0);
                     op = Transform::look_at(vec("origin"), vec("target"), up);
                 } else {
-                    fail_at(c, "unknown transform operation <{}>", tag);
+                    fail_at(c, "unknown transform operation <{}>", printable(tag));
                 }
+            } catch (const SceneError&) {
+                throw;
             } catch (const Error& e) {
-                const std::string message = e.what();
-                if (message.rfind(c.source->path.string(), 0) == 0) throw;
-                fail_at(c, "{}", message);
+                fail_at(c, "{}", e.what());
             }
             t = op * t;  // later operations apply after earlier ones (Mitsuba)
+            for (const auto& row : t.m)
+                for (double x : row)
+                    if (!std::isfinite(x) || std::abs(x) > kMaxSceneCoordinate)
+                        fail_at(c, "the transform reaches {} (beyond the +-{:g} a scene may span)", x,
+                                kMaxSceneCoordinate);
         }
         return t;
     }
@@ -383,7 +473,8 @@ private:
 
     // Mitsuba's spectral variants multiply an emitter's constant value by the D65 illuminant (normalised to Y = 1).
     static SpectrumPtr make_d65_illuminant(double value) {
-        if (!(value >= 0) || !std::isfinite(value)) fail("spectrum value must be finite and non-negative, got {}", value);
+        if (!(value >= 0 && value <= kMaxSpectrumValue))
+            fail("spectrum value must be between 0 and {:g}, got {}", kMaxSpectrumValue, value);
         return make_rgb_illuminant({value, value, value});
     }
 
@@ -393,12 +484,12 @@ private:
         const std::string tag = node.tag();
         try {
             if (tag == "float") {
-                check_attributes(node, {"name", "value"});
+                check_leaf(node, {"name", "value"});
                 const double v = parse_double(node, attribute(node, "value"), "value");
                 return illuminant ? make_d65_illuminant(v) : make_constant_spectrum(v);
             }
             if (tag == "rgb") {
-                check_attributes(node, {"name", "value"});
+                check_leaf(node, {"name", "value"});
                 const auto v = parse_list(node, attribute(node, "value"), "rgb");
                 if (v.size() != 1 && v.size() != 3) fail_at(node, "<rgb> needs 1 or 3 numbers, got {}", v.size());
                 const std::array<double, 3> rgb = v.size() == 1 ? std::array<double, 3>{v[0], v[0], v[0]}
@@ -408,12 +499,12 @@ private:
                 return illuminant ? make_rgb_illuminant(rgb) : make_rgb_reflectance(rgb);
             }
             if (tag == "spectrum") return build_spectrum_element(node, illuminant);
+        } catch (const SceneError&) {
+            throw;
         } catch (const Error& e) {
-            const std::string message = e.what();
-            if (message.rfind(node.source->path.string() + ":", 0) == 0) throw;
-            fail_at(node, "{}", message);
+            fail_at(node, "{}", e.what());
         }
-        fail_at(node, "expected <float>, <spectrum> or <rgb>, got <{}>", tag);
+        fail_at(node, "expected <float>, <spectrum> or <rgb>, got <{}>", printable(tag));
     }
 
     // <spectrum value="0.5"/>, value="400:0.1, 500:0.3, ..." (piecewise linear), filename="x.spd" (Mitsuba's
@@ -427,7 +518,6 @@ private:
             SpectrumPtr s;
             if (type == "blackbody") {
                 const double temperature = props.get_float_required("temperature");
-                if (!(temperature > 0)) fail_at(node, "blackbody temperature must be positive, got {}", temperature);
                 s = make_blackbody_spectrum(temperature, scale);
             } else {
                 s = make_d65_illuminant(scale);
@@ -435,26 +525,35 @@ private:
             props.check_all_used("spectrum '" + type + "'");
             return s;
         }
-        if (!type.empty()) fail_at(node, "unknown spectrum type '{}' (a value, a value list, filename, blackbody, d65)", type);
-        check_attributes(node, {"name", "value", "filename"});
+        if (!type.empty())
+            fail_at(node, "unknown spectrum type '{}' (a value, a value list, filename, blackbody, d65)", printable(type));
+        check_leaf(node, {"name", "value", "filename"});
         std::vector<double> lambdas, values;
         if (node.xml.attribute("filename")) {
             if (node.xml.attribute("value")) fail_at(node, "<spectrum> takes either value or filename, not both");
             const fs::path path = resolve(node, attribute(node, "filename"));
-            std::ifstream in(path);
-            if (!in) fail_at(node, "cannot open spectrum file {}", path.string());
-            std::string line;
-            for (int number = 1; std::getline(in, line); ++number) {
+            const std::string text = located(node, "", [&] { return read_input_file(path, "spectrum file"); });
+            int number = 0;
+            for (std::size_t start = 0; start < text.size();) {
+                const std::size_t end = std::min(text.find('\n', start), text.size());
+                std::string line = text.substr(start, end - start);
+                start = end + 1;
+                ++number;
                 const auto hash = line.find('#');
                 if (hash != std::string::npos) line.resize(hash);
-                std::istringstream ls(line);
-                double lambda = 0, value = 0;
-                if (!(ls >> lambda)) continue;  // blank or comment line
-                std::string rest;
-                if (!(ls >> value) || (ls >> rest))
-                    fail_at(node, "{}:{}: expected 'wavelength value', got '{}'", path.string(), number, line);
-                lambdas.push_back(lambda);
-                values.push_back(value);
+                std::vector<std::string> words;
+                for (std::size_t i = 0; i < line.size();) {
+                    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+                    std::size_t j = i;
+                    while (j < line.size() && !std::isspace(static_cast<unsigned char>(line[j]))) ++j;
+                    if (j > i) words.push_back(line.substr(i, j - i));
+                    i = j;
+                }
+                if (words.empty()) continue;  // blank or comment line
+                const std::string where = fmt::format("{}:{}", path.string(), number);
+                if (words.size() != 2) fail_at(node, "{}: expected 'wavelength value', got '{}'", where, printable(line));
+                lambdas.push_back(parse_double(node, words[0], where + ": wavelength"));
+                values.push_back(parse_double(node, words[1], where + ": value"));
             }
         } else {
             const std::string value = attribute(node, "value");
@@ -462,13 +561,9 @@ private:
                 const double v = parse_double(node, value, "spectrum value");
                 return illuminant ? make_d65_illuminant(v) : make_constant_spectrum(v);
             }
-            std::string normalised = value;
-            std::replace(normalised.begin(), normalised.end(), ',', ' ');
-            std::istringstream in(normalised);
-            std::string pair;
-            while (in >> pair) {
+            for (const std::string& pair : split_list(node, value, "spectrum")) {
                 const auto colon = pair.find(':');
-                if (colon == std::string::npos) fail_at(node, "spectrum entry '{}' is not lambda:value", pair);
+                if (colon == std::string::npos) fail_at(node, "spectrum entry '{}' is not lambda:value", printable(pair));
                 lambdas.push_back(parse_double(node, pair.substr(0, colon), "wavelength"));
                 values.push_back(parse_double(node, pair.substr(colon + 1), "spectrum value"));
             }
@@ -490,7 +585,7 @@ private:
         static const std::map<std::string, Factory> factories = {{"bitmap", plugins::bitmap},
                                                                   {"checkerboard", plugins::checkerboard}};
         const auto it = factories.find(type);
-        if (it == factories.end()) fail_at(node, "unknown texture plugin '{}' (bitmap, checkerboard)", type);
+        if (it == factories.end()) fail_at(node, "unknown texture plugin '{}' (bitmap, checkerboard)", printable(type));
         ElementProperties props(*this, node);
         TexturePtr texture = build(node, "texture '" + type + "'", [&] { return it->second(props); });
         props.check_all_used("texture '" + type + "'");
@@ -501,14 +596,7 @@ private:
     // Runs a plugin factory; an error without a file:line gets the element's.
     template <typename Build>
     auto build(const Node& node, const std::string& plugin, Build&& build_object) -> decltype(build_object()) {
-        try {
-            return build_object();
-        } catch (const Error& e) {
-            const std::string message = e.what();
-            for (const auto& source : sources_)
-                if (message.rfind(source->path.string() + ":", 0) == 0) throw;
-            fail_at(node, "{}: {}", plugin, message);
-        }
+        return located(node, plugin + ": ", build_object);
     }
 
     // Each surface_file is read once per scene (several BSDFs may use it) and reported in the scene's notes.
@@ -543,7 +631,7 @@ private:
         if (!model && it == factories.end())
             fail_at(node, "unknown bsdf plugin '{}' (diffuse, conductor, roughconductor, dielectric, thindielectric, "
                           "roughdielectric, plastic, roughplastic, twosided, blendbsdf, mask, bumpmap, normalmap, "
-                          "ghs, ghs_ssa, ggx_stats, two_scale)", type);
+                          "ghs, ghs_ssa, ggx_stats, two_scale)", printable(type));
         ElementProperties props(*this, node);
         MaterialPtr material = build(node, "bsdf '" + type + "'", [&] {
             return model ? plugins::scattering_model(props, type) : it->second(props);
@@ -565,7 +653,8 @@ private:
             {"sphere", plugins::sphere}, {"cylinder", plugins::cylinder}};
         const auto it = factories.find(type);
         if (it == factories.end())
-            fail_at(node, "unknown shape plugin '{}' (obj, ply, serialized, rectangle, disk, cube, sphere, cylinder)", type);
+            fail_at(node, "unknown shape plugin '{}' (obj, ply, serialized, rectangle, disk, cube, sphere, cylinder)",
+                    printable(type));
         register_name(node);
         ElementProperties props(*this, node);
         std::vector<MaterialPtr> bsdfs = props.take_bsdfs();
@@ -576,7 +665,8 @@ private:
         if (!emitters.empty()) {
             const Node& e = emitters[0];
             check_attributes(e, {"type", "id", "name"});
-            if (attribute(e, "type") != "area") fail_at(e, "a shape's emitter must be of type 'area', got '{}'", attribute(e, "type"));
+            if (attribute(e, "type") != "area")
+                fail_at(e, "a shape's emitter must be of type 'area', got '{}'", printable(attribute(e, "type")));
             ElementProperties eprops(*this, e);
             radiance = plugins::area(eprops);
             eprops.check_all_used("emitter 'area'");
@@ -601,7 +691,7 @@ private:
             {"constant", plugins::constant}, {"envmap", plugins::envmap}};
         const auto it = factories.find(type);
         if (it == factories.end())
-            fail_at(node, "unknown emitter plugin '{}' (point, spot, directional, area, constant, envmap)", type);
+            fail_at(node, "unknown emitter plugin '{}' (point, spot, directional, area, constant, envmap)", printable(type));
         register_name(node);
         ElementProperties props(*this, node);
         EmitterPtr emitter = build(node, "emitter '" + type + "'", [&] { return it->second(props); });
@@ -612,7 +702,8 @@ private:
     void build_sensor(const Node& node) {
         check_attributes(node, {"type", "id"});
         const std::string type = attribute(node, "type");
-        if (type != "perspective" && type != "thinlens") fail_at(node, "unknown sensor plugin '{}' (perspective, thinlens)", type);
+        if (type != "perspective" && type != "thinlens")
+            fail_at(node, "unknown sensor plugin '{}' (perspective, thinlens)", printable(type));
         if (has_sensor_) fail_at(node, "only one <sensor> is supported");
         has_sensor_ = true;
         register_name(node);
@@ -634,7 +725,7 @@ private:
     void build_film(const Node& node) {
         check_attributes(node, {"type", "id", "name"});
         const std::string type = attribute(node, "type");
-        if (type != "hdrfilm") fail_at(node, "unknown film plugin '{}' (hdrfilm)", type);
+        if (type != "hdrfilm") fail_at(node, "unknown film plugin '{}' (hdrfilm)", printable(type));
         ElementProperties props(*this, node);
         FilterPtr filter = make_gaussian_filter();
         const std::vector<Node> filters = props.take_unnamed("rfilter");
@@ -653,7 +744,7 @@ private:
             {"mitchell", plugins::mitchell}, {"catmullrom", plugins::catmullrom}, {"lanczos", plugins::lanczos}};
         const auto it = factories.find(type);
         if (it == factories.end())
-            fail_at(node, "unknown rfilter plugin '{}' (box, tent, gaussian, mitchell, catmullrom, lanczos)", type);
+            fail_at(node, "unknown rfilter plugin '{}' (box, tent, gaussian, mitchell, catmullrom, lanczos)", printable(type));
         ElementProperties props(*this, node);
         FilterPtr filter = build(node, "rfilter '" + type + "'", [&] { return it->second(props); });
         props.check_all_used("rfilter '" + type + "'");
@@ -663,7 +754,7 @@ private:
     void build_sampler(const Node& node) {
         check_attributes(node, {"type", "id", "name"});
         const std::string type = attribute(node, "type");
-        if (type != "independent") fail_at(node, "unknown sampler plugin '{}' (independent)", type);
+        if (type != "independent") fail_at(node, "unknown sampler plugin '{}' (independent)", printable(type));
         ElementProperties props(*this, node);
         scene_->sampler.sample_count = props.get_int("sample_count", scene_->sampler.sample_count);
         if (scene_->sampler.sample_count <= 0) fail_at(node, "sample_count must be positive");
@@ -678,7 +769,7 @@ private:
         const std::string type = attribute(node, "type");
         if (type == "aov")
             fail_at(node, "integrator 'aov' is not supported: surfscatter renders radiance only (use path or direct)");
-        if (type != "path" && type != "direct") fail_at(node, "unknown integrator plugin '{}' (path, direct)", type);
+        if (type != "path" && type != "direct") fail_at(node, "unknown integrator plugin '{}' (path, direct)", printable(type));
         ElementProperties props(*this, node);
         scene_->integrator = build(node, "integrator '" + type + "'", [&] {
             return type == "path" ? plugins::path(props) : plugins::direct(props);
@@ -694,18 +785,18 @@ private:
             const Node node{child, scene_node.source};
             const std::string tag = node.tag();
             if (tag == "default") {
-                check_attributes(node, {"name", "value"});
+                check_leaf(node, {"name", "value"});
                 const std::string name = node.xml.attribute("name").value();
                 if (name.empty()) fail_at(node, "<default> needs a name");
                 if (!node.xml.attribute("value")) fail_at(node, "<default> needs a value");
                 defines_.emplace(name, node.xml.attribute("value").value());  // -D values win
             } else if (tag == "include") {
-                check_attributes(node, {"filename"});
+                check_leaf(node, {"filename"});
                 const fs::path path = resolve(node, attribute(node, "filename"));
-                if (++include_depth_ > 16) fail_at(node, "includes nested too deeply (a cycle?)");
-                const Source& included = open(path, &node);
-                const Node root{included.document.child("scene"), &included};
-                if (!root.xml) fail_at(node, "included file {} has no <scene> root", path.string());
+                if (++include_depth_ > kMaxIncludeDepth)
+                    fail_at(node, "includes nested more than {} deep (a cycle?)", kMaxIncludeDepth);
+                if (++include_count_ > kMaxIncludes) fail_at(node, "more than {} <include>s in one scene", kMaxIncludes);
+                const Node root = root_of(open(path, &node));
                 check_version(root);
                 load_children(root);
                 --include_depth_;
@@ -723,17 +814,35 @@ private:
                 if (!node.xml.attribute("id")) fail_at(node, "a top-level <{}> needs an id", tag);
                 const std::string id = attribute(node, "id");
                 if (objects_.count(id) || names_.count(id) || !pending_.emplace(id, node).second)
-                    fail_at(node, "duplicate id '{}'", id);
+                    fail_at(node, "duplicate id '{}'", printable(id));
             } else {
-                fail_at(node, "unknown element <{}> in <scene>", tag);
+                fail_at(node, "unknown element <{}> in <scene>", printable(tag));
             }
         }
+    }
+
+    // The <scene> element of a file: the one element at the top, with nothing but comments beside it.
+    static Node root_of(const Source& source) {
+        Node root{pugi::xml_node(), &source};
+        for (pugi::xml_node child : source.document.children()) {
+            const Node c{child, &source};
+            if (child.type() == pugi::node_comment || child.type() == pugi::node_declaration ||
+                child.type() == pugi::node_doctype || child.type() == pugi::node_pi)
+                continue;
+            if (child.type() != pugi::node_element) fail_at(c, "unexpected text '{}' outside <scene>", shown_text(child));
+            if (root.xml) fail_at(c, "a second root element <{}> (a file holds one <scene>)", printable(c.tag()));
+            if (c.tag() != "scene") fail_at(c, "the root element must be <scene>, got <{}>", printable(c.tag()));
+            root.xml = child;
+        }
+        if (!root.xml) fail("{}:1: the file has no <scene> element", source.path.string());
+        check_no_text(root);
+        return root;
     }
 
     fs::path resolve(const Node& node, const std::string& filename) {
         fs::path p(filename);
         if (p.is_relative()) p = node.source->path.parent_path() / p;
-        if (!fs::exists(p)) fail_at(node, "file not found: {}", p.string());
+        located(node, "", [&] { require_readable_file(p, "file"); });
         return p;
     }
 
@@ -741,21 +850,22 @@ private:
         if (!node.xml.attribute("id")) return;
         const std::string id = attribute(node, "id");
         if (names_.count(id) || (!pending_.count(id) && objects_.count(id)) || !objects_.emplace(id, std::move(object)).second)
-            fail_at(node, "duplicate id '{}'", id);
+            fail_at(node, "duplicate id '{}'", printable(id));
     }
 
     // Shapes, emitters and sensors may carry an id (a name only: nothing refers to them).
     void register_name(const Node& node) {
         if (!node.xml.attribute("id")) return;
         const std::string id = attribute(node, "id");
-        if (objects_.count(id) || pending_.count(id) || !names_.insert(id).second) fail_at(node, "duplicate id '{}'", id);
+        if (objects_.count(id) || pending_.count(id) || !names_.insert(id).second)
+            fail_at(node, "duplicate id '{}'", printable(id));
     }
 
     // A top-level object defined earlier and not built yet: build it now (once; a cycle of references is an error).
     void build_pending(const Node& ref, const std::string& id) {
         const auto it = pending_.find(id);
         if (it == pending_.end()) return;
-        if (!building_.insert(id).second) fail_at(ref, "reference cycle through id '{}'", id);
+        if (!building_.insert(id).second) fail_at(ref, "reference cycle through id '{}'", printable(id));
         const Node node = it->second;
         if (node.tag() == "bsdf") build_bsdf(node);
         else build_texture(node);
@@ -773,29 +883,27 @@ private:
 
     // Mitsuba 2 and 3 scenes (version="2.x.y" or "3.x.y"); 0.x scenes use Mitsuba 0.6's different names.
     void check_version(const Node& scene_node) {
-        for (const auto& attr : scene_node.xml.attributes())
-            if (std::string(attr.name()) != "version")
-                fail_at(scene_node, "unknown attribute '{}' of <scene>", attr.name());
+        check_attributes(scene_node, {"version"});
         if (!scene_node.xml.attribute("version"))
             fail_at(scene_node, "<scene> needs a version attribute (version=\"3.0.0\")");
         const std::string version = attribute(scene_node, "version");
         int major = -1, minor = -1, patch = -1;
         char extra = 0;
         if (std::sscanf(version.c_str(), "%d.%d.%d%c", &major, &minor, &patch, &extra) != 3 || minor < 0 || patch < 0)
-            fail_at(scene_node, "scene version '{}' is not major.minor.patch", version);
+            fail_at(scene_node, "scene version '{}' is not major.minor.patch", printable(version));
         if (major != 2 && major != 3)
             fail_at(scene_node, "scene version {} is not supported: surfscatter reads Mitsuba 2.x and 3.x scenes{}", version,
                     major < 2 ? " (upgrade 0.x scenes with Mitsuba's converter: parameter names changed)" : "");
     }
 
     Object lookup(const Node& node, const char* kind) {
-        check_attributes(node, {"id", "name"});
+        check_leaf(node, {"id", "name"});
         const std::string id = attribute(node, "id");
         if (!objects_.count(id)) build_pending(node, id);
         const auto it = objects_.find(id);
-        if (it == objects_.end()) fail_at(node, "reference to undefined id '{}'", id);
+        if (it == objects_.end()) fail_at(node, "reference to undefined id '{}'", printable(id));
         const bool is_bsdf = std::holds_alternative<MaterialPtr>(it->second);
-        if (is_bsdf != (std::string(kind) == "bsdf")) fail_at(node, "id '{}' does not name a {}", id, kind);
+        if (is_bsdf != (std::string(kind) == "bsdf")) fail_at(node, "id '{}' does not name a {}", printable(id), kind);
         return it->second;
     }
 
@@ -803,14 +911,9 @@ public:
     const Source& open(const fs::path& path, const Node* from) {
         auto source = std::make_unique<Source>();
         source->path = path;
-        std::ifstream in(path, std::ios::binary);
-        if (!in) {
-            if (from) fail_at(*from, "cannot open scene file {}", path.string());
-            fail("cannot open scene file {}", path.string());
-        }
-        std::ostringstream buffer;
-        buffer << in.rdbuf();
-        return parse(std::move(source), buffer.str());
+        std::string text = from ? located(*from, "", [&] { return read_input_file(path, "scene file"); })
+                                : read_input_file(path, "scene file");
+        return parse(std::move(source), std::move(text));
     }
 
     const Source& parse(std::unique_ptr<Source> source, std::string text) {
@@ -819,11 +922,34 @@ public:
         for (std::size_t i = 0; i < source->text.size(); ++i)
             if (source->text[i] == '\n') source->line_starts.push_back(i + 1);
         const pugi::xml_parse_result result =
-            source->document.load_buffer(source->text.data(), source->text.size(), pugi::parse_default | pugi::parse_comments);
+            source->document.load_buffer(source->text.data(), source->text.size(),
+                                         pugi::parse_default | pugi::parse_comments | pugi::parse_fragment);
         if (!result)
             fail("{}:{}: XML syntax error: {}", source->path.string(), source->line_of(result.offset), result.description());
+        check_depth(*source);
         sources_.push_back(std::move(source));
         return *sources_.back();
+    }
+
+    // The loader builds nested plugins recursively: bound the nesting before building, walking the tree without
+    // recursion so that a hostile file cannot exhaust the stack here either.
+    static void check_depth(const Source& source) {
+        pugi::xml_node node = source.document.first_child();
+        int depth = 1;
+        while (node) {
+            if (depth > kMaxElementDepth)
+                fail_at(Node{node, &source}, "elements nested more than {} deep", kMaxElementDepth);
+            if (node.first_child()) {
+                node = node.first_child();
+                ++depth;
+                continue;
+            }
+            while (node && !node.next_sibling()) {
+                node = node.parent();
+                --depth;
+            }
+            if (node) node = node.next_sibling();
+        }
     }
 
 private:
@@ -835,26 +961,30 @@ private:
     std::set<std::string> names_;
     std::map<std::string, Node> pending_;  // top-level BSDFs and textures not referenced yet
     std::set<std::string> building_;
+    std::map<std::string, std::string> command_line_defines_;
+    std::set<std::string> used_defines_;
     bool has_sensor_ = false;
     int include_depth_ = 0;
+    int include_count_ = 0;
 };
 
 }  // namespace
 
-std::unique_ptr<Scene> load_scene(const std::filesystem::path& path, const std::map<std::string, std::string>& defines) {
-    if (!std::filesystem::exists(path)) fail("scene file not found: {}", path.string());
+std::unique_ptr<Scene> load_scene(const std::filesystem::path& path, const std::map<std::string, std::string>& defines,
+                                  std::set<std::string>* used_parameters) {
     Loader loader(defines);
     const Source& root = loader.open(path, nullptr);
-    return loader.load(root);
+    return loader.load(root, used_parameters);
 }
 
 std::unique_ptr<Scene> load_scene_from_string(const std::string& xml, const std::filesystem::path& virtual_path,
-                                              const std::map<std::string, std::string>& defines) {
+                                              const std::map<std::string, std::string>& defines,
+                                              std::set<std::string>* used_parameters) {
     Loader loader(defines);
     auto source = std::make_unique<Source>();
     source->path = virtual_path;
     const Source& root = loader.parse(std::move(source), xml);
-    return loader.load(root);
+    return loader.load(root, used_parameters);
 }
 
 }  // namespace surfscatter::render

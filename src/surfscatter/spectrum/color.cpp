@@ -71,7 +71,7 @@ Vec3 xyz_from_chromaticity(const Vec2& xy, double luminance) {
 Vec3 srgb_white_xyz() { return xyz_from_chromaticity(kD65Chromaticity); }
 
 Vec3 blackbody_white_xyz(double temperature_K) {
-    require_positive(temperature_K, "blackbody temperature (K)");
+    require_blackbody_temperature(temperature_K, "blackbody temperature");
     const Vec3 xyz = spectrum_to_xyz([&](double l) { return blackbody_radiance(l, temperature_K); });
     if (!(xyz.y > 0.0)) fail("a black body at {} K emits no visible light", temperature_K);
     return xyz / xyz.y;
@@ -84,8 +84,7 @@ Vec3 white_point_xyz(const std::string& white) {
     const char* end = number.data() + number.size();
     const auto [ptr, ec] = std::from_chars(number.data(), end, temperature);
     if (!number.empty() && ec == std::errc() && ptr == end) {
-        if (!(temperature > 0.0) || !std::isfinite(temperature))
-            fail("white balance temperature must be positive, got '{}'", white);
+        require_blackbody_temperature(temperature, "white balance temperature");
         return blackbody_white_xyz(temperature);
     }
     if (white == "D65" || white == "d65") return srgb_white_xyz();

@@ -34,9 +34,9 @@ HeightMap::HeightMap(std::size_t nx, std::size_t ny, double spacing_x_um, double
             heights_[i] = 0.0;
             continue;
         }
-        if (!std::isfinite(heights_[i]))
-            fail("{}: height at column {}, row {} is {} (every height must be finite)", origin, i % nx, i / nx,
-                 heights_[i]);
+        if (!(std::abs(heights_[i]) <= kMaxHeightUm))
+            fail("{}: height at column {}, row {} is {} um (every height must be finite and within +-{:g} um)", origin,
+                 i % nx, i / nx, heights_[i], kMaxHeightUm);
         ++valid_count_;
     }
     if (valid_count_ == 0) fail("{}: every one of the {} x {} points is invalid", origin, nx, ny);

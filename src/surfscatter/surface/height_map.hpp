@@ -3,9 +3,10 @@
 // optional mask of invalid points (instrument drop-outs, NaN in the file, a mask stored with the data).
 //
 // Storage is row-major: height(ix, iy) = heights()[iy * nx() + ix], x along a row, y down the rows (the order of
-// Gwyddion Simple Field files). Every height is finite and both spacings are positive; the constructor checks this
-// so that no later computation sees NaN or a degenerate grid. Invalid points hold height 0 and are skipped by
-// every statistic (form fit, rms, slopes, PSD, ACV); valid_fraction() says how much of the map they left.
+// Gwyddion Simple Field files). Every height is finite and at most kMaxHeightUm in size, and both spacings are
+// positive; the constructor checks this so that no later computation sees NaN, overflow or a degenerate grid.
+// Invalid points hold height 0 and are skipped by every statistic (form fit, rms, slopes, PSD, ACV);
+// valid_fraction() says how much of the map they left.
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -18,6 +19,9 @@ inline constexpr std::size_t kMinHeightMapSize = 8;
 // Accepted pixel spacings (um): 1 pm to 1 m. Beyond that, products like dx dy dzeta^2 leave the double range.
 inline constexpr double kMinSpacingUm = 1e-6;
 inline constexpr double kMaxSpacingUm = 1e6;
+
+// Largest |height| accepted (um, 1 km): squares and sums of squares over any map stay far inside the double range.
+inline constexpr double kMaxHeightUm = 1e9;
 
 // Throws Error "<what> must be between 1e-06 and 1000000 um, got <spacing>" unless the spacing is accepted.
 void require_valid_spacing(double spacing_um, const std::string& what);

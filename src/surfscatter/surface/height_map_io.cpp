@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/input_file.hpp"
 #include "surfscatter/surface/gwyddion_file.hpp"
 #include "surfscatter/surface/height_map_parse.hpp"
 #include "surfscatter/surface/height_map_x3p.hpp"
@@ -27,7 +28,7 @@ constexpr double kMetreInUm = 1e6;
 // Micrometres per unit of a GSF length unit string.
 double gsf_length_unit(const std::string& path, const std::string& key, const std::string& unit) {
     const auto um = parse::length_unit_in_um(unit);
-    if (!um) fail("{}: {} = '{}' is not a length unit (m, mm, um, nm or pm)", path, key, unit);
+    if (!um) fail("{}: {} = '{}' is not a length unit (m, mm, um, nm or pm)", path, key, printable(unit));
     return *um;
 }
 
@@ -39,7 +40,7 @@ std::size_t parse_resolution(const std::string& path, const std::map<std::string
     const std::string& text = it->second;
     const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
     if (ec != std::errc() || end != text.data() + text.size() || value == 0)
-        fail("{}: {} = '{}' is not a positive integer", path, key, text);
+        fail("{}: {} = '{}' is not a positive integer", path, key, printable(text));
     return value;
 }
 
@@ -48,7 +49,7 @@ double parse_real(const std::string& path, const std::map<std::string, std::stri
     const auto it = header.find(key);
     if (it == header.end()) return fallback;
     const auto value = parse::to_double(it->second);
-    if (!value || !std::isfinite(*value)) fail("{}: {} = '{}' is not a finite number", path, key, it->second);
+    if (!value || !std::isfinite(*value)) fail("{}: {} = '{}' is not a finite number", path, key, printable(it->second));
     return *value;
 }
 
@@ -93,7 +94,7 @@ HeightMap read_gsf(const std::filesystem::path& file) {
         if (line.empty()) continue;
         const std::size_t equals = line.find('=');
         if (equals == std::string_view::npos)
-            fail("{}:{}: GSF header line '{}' is not of the form 'name = value'", path, line_number, line);
+            fail("{}:{}: GSF header line '{}' is not of the form 'name = value'", path, line_number, printable(line));
         header.emplace(std::string(parse::trim(line.substr(0, equals))), std::string(parse::trim(line.substr(equals + 1))));
     }
 
@@ -183,7 +184,8 @@ StatedLength stated_length(const std::string& path, int line, std::string_view k
     const auto value = parse::to_double(number);
     const auto unit_um = parse::length_unit_in_um(unit);
     if (!value || !std::isfinite(*value) || !(*value > 0.0) || !unit_um)
-        fail("{}:{}: '# {}: {}' is not a positive length with a unit (m, mm, um, nm or pm)", path, line, key, text);
+        fail("{}:{}: '# {}: {}' is not a positive length with a unit (m, mm, um, nm or pm)", path, line, key,
+             printable(text));
     // Printed digits after the point, less the exponent: "10.00" -> 2, "1.5e-3" -> 4.
     const std::size_t exponent_at = number.find_first_of("eE");
     const std::string_view mantissa = number.substr(0, exponent_at);
@@ -218,7 +220,7 @@ void read_header_line(const std::string& path, int line_number, std::string_view
         header.height_unit_um = parse::length_unit_in_um(value);
         if (!header.height_unit_um)
             fail("{}:{}: '# Value units: {}' is not a length: the channel{} holds no heights", path, line_number,
-                 value, header.channel.empty() ? "" : " '" + header.channel + "'");
+                 printable(value), header.channel.empty() ? "" : " '" + printable(header.channel) + "'");
     }
 }
 
@@ -258,10 +260,11 @@ HeightMap read_text_grid(const std::filesystem::path& file, std::optional<double
             // Runs of spaces/tabs separate like one; an empty field between commas is an error.
             if (field.empty() && end < line.size() && (line[end] == ' ' || line[end] == '\t')) continue;
             const auto value = parse::to_double(field);
-            if (!value) fail("{}:{}: column {}: '{}' is not a number", path, line_number, columns + 1, field);
+            if (!value)
+                fail("{}:{}: column {}: '{}' is not a number", path, line_number, columns + 1, printable(field));
             if (std::isinf(*value))
                 fail("{}:{}: column {}: height is {} (every height must be finite; NaN marks an invalid point)",
-                     path, line_number, columns + 1, field);
+                     path, line_number, columns + 1, printable(field));
             heights.push_back(*value);
             valid.push_back(std::isnan(*value) ? 0 : 1);
             ++columns;
@@ -365,7 +368,7 @@ HeightMap read_x3p_file(const std::string& path, const X3pLayout& layout) {
 HeightMap read_height_map(const std::filesystem::path& file, std::optional<double> spacing_um,
                           std::optional<double> height_unit_um) {
     const std::string path = file.string();
-    if (std::filesystem::is_directory(file)) fail("{}: is a directory, not a height map file", path);
+    require_readable_file(file, "height map file");
     const std::string head = file_head(path, 65536);
 
     std::optional<HeightMap> map;

@@ -1,10 +1,9 @@
 #include "surfscatter/surface/height_map_parse.hpp"
 
 #include <charconv>
-#include <fstream>
-#include <iterator>
 
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/input_file.hpp"
 
 namespace surfscatter::surface::parse {
 
@@ -32,11 +31,9 @@ std::optional<double> length_unit_in_um(std::string_view unit) {
 }
 
 std::string file_bytes(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) fail("{}: cannot open height map file", path);
-    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (in.bad()) fail("{}: read error", path);
-    return bytes;
+    // Bounds what a height map file may hold: the GSF reader's 2^32 float samples.
+    constexpr std::uint64_t kMaxHeightMapFileBytes = std::uint64_t{16} << 30;
+    return read_input_file(path, "height map file", kMaxHeightMapFileBytes);
 }
 
 }  // namespace surfscatter::surface::parse

@@ -29,7 +29,10 @@ struct RingData {
 double profiled_residuals(const RingData& data, double log_l, double log_gm1, Eigen::VectorXd& residuals) {
     const std::size_t n = data.zeta.size();
     residuals.resize(static_cast<Eigen::Index>(n));
-    const KCorrelation model(1.0, std::exp(log_l), 1.0 + std::exp(log_gm1));
+    // Levenberg-Marquardt may step far outside the search box; there the cost is held at the box's edge (slightly
+    // beyond it, so the bound test below reports such a fit) instead of building an invalid KC model.
+    const double lo = std::log(kGammaMinusOneMin) - 0.5, hi = std::log(kGammaMinusOneMax) + 0.5;
+    const KCorrelation model(1.0, std::exp(std::clamp(log_l, -200.0, 200.0)), 1.0 + std::exp(std::clamp(log_gm1, lo, hi)));
     double sum_w = 0.0, sum_wd = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
         const double d = data.log_psd[i] - data.log_bias[i] - std::log(model.psd_unit(data.zeta[i]));

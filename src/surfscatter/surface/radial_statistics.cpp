@@ -37,6 +37,25 @@ double kc_slope_integral(double p, double b, double u_c) {
 
 }  // namespace
 
+void require_surface_length(double length_um, const char* what) {
+    if (!(length_um >= kMinSurfaceLengthUm && length_um <= kMaxSurfaceLengthUm))
+        fail("{} must be between {:g} and {:g} um, got {}", what, kMinSurfaceLengthUm, kMaxSurfaceLengthUm, length_um);
+}
+
+void require_kc_gamma(double gamma, const char* what) {
+    if (!(gamma >= kMinKcGamma && gamma <= kMaxKcGamma))
+        fail("{} must be between {} and {} (KC), got {}", what, kMinKcGamma, kMaxKcGamma, gamma);
+}
+
+namespace {
+
+// What the classes accept: positive lengths whose squares and inverse squares are far inside the double range.
+void require_representable_length(double length_um, const char* what) {
+    if (!(length_um >= 1e-100 && length_um <= 1e100)) fail("{} must be between 1e-100 and 1e100 um, got {}", what, length_um);
+}
+
+}  // namespace
+
 double RadialStatistics::psd(double zeta) const { return sigma_h() * sigma_h() * psd_unit(zeta); }
 double RadialStatistics::acv(double r) const { return sigma_h() * sigma_h() * acv_normalized(r); }
 
@@ -70,10 +89,9 @@ double RadialStatistics::total_integrated_scatter(double theta_i_rad, double lam
 // ---------------------------------------------------------------------------------------------------------------
 KCorrelation::KCorrelation(double sigma_h_um, double corr_length_um, double gamma)
     : sigma_(sigma_h_um), length_(corr_length_um), gamma_(gamma), nu_(0.5 * (gamma - 1.0)) {
-    require_positive(sigma_h_um, "sigma_h");
-    require_positive(corr_length_um, "correlation length");
-    require_finite(gamma, "gamma");
-    if (!(gamma > 1.0)) fail("gamma must be > 1, got {}", gamma);
+    require_representable_length(sigma_h_um, "sigma_h");
+    require_representable_length(corr_length_um, "correlation length");
+    if (!(gamma > 1.0 && gamma <= kMaxKcGamma)) fail("gamma must be in (1, {}], got {}", kMaxKcGamma, gamma);
     acv_norm_ = std::pow(2.0, 1.0 - nu_) / std::tgamma(nu_);
 }
 
@@ -127,8 +145,8 @@ double KCorrelation::mean_square_slope(double smoothing_um, double cutoff_zeta) 
 
 // ---------------------------------------------------------------------------------------------------------------
 GaussianAcv::GaussianAcv(double sigma_h_um, double corr_length_um) : sigma_(sigma_h_um), length_(corr_length_um) {
-    require_positive(sigma_h_um, "sigma_h");
-    require_positive(corr_length_um, "correlation length");
+    require_representable_length(sigma_h_um, "sigma_h");
+    require_representable_length(corr_length_um, "correlation length");
 }
 
 double GaussianAcv::psd_unit(double zeta) const {

@@ -11,6 +11,21 @@
 
 namespace surfscatter::surface {
 
+// Accepted surface statistics from the user (docs/RELIABILITY.md): lengths (sigma_h, correlation lengths) from 1 fm
+// to 1 km, and KC gamma from 1.01 (below, the self-convolution refit of selfconv and GHS refit loses its fit) to 100.
+// The CLI, the scattering models' options and the scene loader check these; the classes below accept the wider
+// ranges that internal uses need (refit orders L m^-x, fit iterations) while keeping every value they return
+// finite: lengths in [1e-100, 1e100] um, 1 < gamma <= 100 (as gamma nears 343, Gamma(nu) of the ACV's
+// normalisation leaves the double range and std::cyl_bessel_k slows down without bound).
+inline constexpr double kMinSurfaceLengthUm = 1e-9;
+inline constexpr double kMaxSurfaceLengthUm = 1e9;
+inline constexpr double kMinKcGamma = 1.01;
+inline constexpr double kMaxKcGamma = 100;
+
+// Throw Error "<what> must be between ... got ..." outside the user ranges (also for NaN and infinities).
+void require_surface_length(double length_um, const char* what);
+void require_kc_gamma(double gamma, const char* what);
+
 class RadialStatistics {
 public:
     virtual ~RadialStatistics() = default;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/resources.hpp"
 #include "surfscatter/math/vec.hpp"
 #include "surfscatter/surface/height_map_fft.hpp"
 
@@ -33,6 +34,9 @@ HeightMap synthesize_surface(const RadialStatistics& statistics, const Synthesis
     if (grid.nx < kMinHeightMapSize || grid.ny < kMinHeightMapSize)
         fail("surface size must be at least {} samples per side, got {} x {}", kMinHeightMapSize, grid.nx, grid.ny);
     require_valid_spacing(grid.spacing_um, "pixel spacing");
+    // White noise, its half spectrum, FFTW's plan buffers and the map: about 48 bytes per sample at once.
+    require_memory(48.0 * static_cast<double>(grid.nx) * static_cast<double>(grid.ny),
+                   fmt::format("a {} x {} surface", grid.nx, grid.ny));
     const std::size_t nx = grid.nx, ny = grid.ny, total = nx * ny;
     auto spectrum = forward_fft_2d(white_noise(total, seed), nx, ny);
 

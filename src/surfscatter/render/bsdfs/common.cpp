@@ -90,6 +90,8 @@ ConductorIor read_conductor_ior(Properties& props) {
     try {
         const material::Conductor conductor = material::Conductor::from_name(is_file ? props.get_file("material").string() : name);
         return ConductorIor([&](double lambda) { return conductor.ior(lambda); });
+    } catch (const SceneError&) {
+        throw;
     } catch (const Error& e) {
         props.fail_param("material", "{}", e.what());
     }

@@ -5,8 +5,9 @@
 // Parameters (bsdf/model_options.hpp, the same names as the CLI): `material`, `psd`, `sigma`, `corr_length`,
 // `gamma`, `surface_file` (any height map format, read once per scene and reported with its valid fraction),
 // `form`, `fresnel` (all but two_scale's macro part), ghs and two_scale: `method`, `truncation`,
-// `epsilon`, `renormalization`; ghs_ssa: `ssa_form`, `renormalization`; ggx_stats: `alpha_from`, `smoothing`,
-// `alpha`; two_scale: `cutoff_wavelengths`, `macro_ndf`.
+// `epsilon`, `renormalization`; ghs_ssa: `ssa_form`; ggx_stats: `alpha_from`, `smoothing`,
+// `alpha`; two_scale: `cutoff_wavelengths`, `macro_ndf`. A parameter the model and modes chosen do not use is an
+// error at its line (bsdf::inapplicable_option: e.g. `smoothing` without alpha_from smoothed).
 // The models are evaluated per wavelength (one call per sampled wavelength). One-sided (use twosided).
 #include "surfscatter/bsdf/factory.hpp"
 #include "surfscatter/core/error.hpp"
@@ -80,6 +81,16 @@ void read_surface_options(Properties& props, bsdf::ModelOptions& o) {
     if (!fresnel.empty()) o.fresnel = bsdf::parse_fresnel(fresnel);
 }
 
+// An option given in the scene that the model and modes chosen do not use is an error at its line (the CLI's rule).
+void check_applicable(Properties& props, const bsdf::ModelOptions& o, const std::string& type) {
+    for (const char* name : {"material", "psd", "sigma", "corr_length", "gamma", "surface_file", "form", "fresnel",
+                             "method", "truncation", "epsilon", "renormalization", "ssa_form", "alpha_from",
+                             "smoothing", "alpha", "cutoff_wavelengths", "macro_ndf"})
+        if (props.has(name))
+            if (const std::string why = bsdf::inapplicable_option(o, name); !why.empty())
+                props.fail_param(name, "parameter '{}' does not apply to bsdf '{}': {}", name, type, why);
+}
+
 void read_ghs_options(Properties& props, bsdf::ModelOptions& o) {
     const std::string method = props.get_string("method", "");
     if (!method.empty()) o.method = bsdf::parse_method(method);
@@ -126,12 +137,15 @@ MaterialPtr plugins::scattering_model(Properties& props, const std::string& type
         } else {
             props.fail("unknown scattering model '{}'", type);
         }
+        check_applicable(props, o, type);
         bsdf::validate(o);
         props.share_height_map(o.surface);
         std::vector<std::string> notes;
         auto model = bsdf::make_bsdf(o, &notes);
         for (const std::string& note : notes) props.add_note(note);
         return make_model_material(std::shared_ptr<const bsdf::Bsdf>(std::move(model)));
+    } catch (const SceneError&) {
+        throw;
     } catch (const Error& e) {
         props.fail("bsdf '{}': {}", type, e.what());
     }

@@ -94,11 +94,15 @@ public:
                 std::array<double, 3> rgb{};
                 for (int c = 0; c < 3; ++c) {
                     const double v = image.at(x, y, image.channels < 3 ? 0 : c);
-                    if (!std::isfinite(v) || v < 0) fail("texel ({}, {}) has the negative or non-finite value {}", x, y, v);
+                    if (!(v >= 0 && v <= kMaxSpectrumValue))
+                        fail("texel ({}, {}) value {} is not between 0 and {:g}", x, y, v, kMaxSpectrumValue);
                     rgb[static_cast<std::size_t>(c)] = encoded ? spectrum::srgb_decode(v) : v;
                 }
                 const std::size_t i = static_cast<std::size_t>(y) * width_ + x;
                 const double peak = std::max({rgb[0], rgb[1], rgb[2]});
+                if (!(peak * scale <= kMaxSpectrumValue))
+                    fail("texel ({}, {}) times scale {} is {}, beyond the {:g} a spectrum may reach", x, y, scale,
+                         peak * scale, kMaxSpectrumValue);
                 luminance[i] = scale * spectrum::linear_srgb_to_xyz({rgb[0], rgb[1], rgb[2]}).y;
                 if (!(peak > 0)) continue;
                 const auto c = table.coefficients(rgb);
@@ -234,7 +238,8 @@ EmitterPtr plugins::envmap(Properties& props) {
         props.fail_param("mis_compensation", "envmap: mis_compensation is not supported");
     const std::filesystem::path file = props.get_file("filename");
     const double scale = props.get_float("scale", 1.0);
-    if (!(scale >= 0)) props.fail_param("scale", "envmap scale must be non-negative, got {}", scale);
+    if (!(scale >= 0 && scale <= kMaxSpectrumValue))
+        props.fail_param("scale", "envmap scale must be between 0 and {:g}, got {}", kMaxSpectrumValue, scale);
     const Transform to_world = props.get_transform("to_world");
     std::string ext = file.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });

@@ -21,7 +21,6 @@ FilmSettings plugins::hdrfilm(Properties& props, FilterPtr filter) {
     f.filter = std::move(filter);
     f.width = props.get_int("width", f.width);
     f.height = props.get_int("height", f.height);
-    if (f.width <= 0 || f.height <= 0) props.fail("film size must be positive, got {}x{}", f.width, f.height);
     const std::string file_format = props.get_string("file_format", "openexr");
     if (file_format != "openexr" && file_format != "exr")
         props.fail_param("file_format", "file_format must be openexr, got '{}' (rgbe and pfm are not supported)", file_format);
@@ -38,14 +37,14 @@ FilmSettings plugins::hdrfilm(Properties& props, FilterPtr filter) {
     f.crop_offset_y = props.get_int("crop_offset_y", 0);
     f.crop_width = props.get_int("crop_width", 0);
     f.crop_height = props.get_int("crop_height", 0);
-    try {
-        f.check_crop();
-    } catch (const Error& e) {
-        props.fail("{}", e.what());
-    }
     f.sample_border = props.get_bool("sample_border", false);
     f.exposure = props.get_float("exposure", f.exposure);
     f.white_balance = props.get_string("white_balance", f.white_balance);
+    try {
+        f.check();  // sizes, crop window, memory, exposure, white balance
+    } catch (const Error& e) {
+        props.fail("{}", e.what());
+    }
     return f;
 }
 

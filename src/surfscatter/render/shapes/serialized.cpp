@@ -9,12 +9,14 @@
 // Differences: none.
 #include <bit>
 #include <cstring>
-#include <fstream>
-#include <iterator>
+#include <span>
+#include <string>
+#include <string_view>
 
 #include <zlib.h>
 
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/input_file.hpp"
 #include "surfscatter/render/plugins.hpp"
 
 namespace surfscatter::render {
@@ -40,9 +42,9 @@ T load_le(const std::uint8_t* p) {
 }
 
 // Inflates the zlib stream starting at `data` until it ends.
-std::vector<std::uint8_t> inflate_stream(const std::uint8_t* data, std::size_t size, const std::filesystem::path& path) {
+std::vector<std::uint8_t> inflate_stream(const std::uint8_t* data, std::size_t size, const std::string& path) {
     z_stream z{};
-    if (inflateInit(&z) != Z_OK) fail("{}: cannot initialise zlib", path.string());
+    if (inflateInit(&z) != Z_OK) fail("{}: cannot initialise zlib", path);
     z.next_in = const_cast<Bytef*>(data);
     z.avail_in = static_cast<uInt>(std::min<std::size_t>(size, 0xFFFFFFFFu));
     std::vector<std::uint8_t> out;
@@ -54,12 +56,17 @@ std::vector<std::uint8_t> inflate_stream(const std::uint8_t* data, std::size_t s
         status = inflate(&z, Z_NO_FLUSH);
         if (status != Z_OK && status != Z_STREAM_END) {
             inflateEnd(&z);
-            fail("{}: corrupt compressed mesh data (zlib: {})", path.string(), z.msg ? z.msg : "error");
+            fail("{}: corrupt compressed mesh data (zlib: {})", path, z.msg ? z.msg : "error");
         }
         out.insert(out.end(), buffer, buffer + (sizeof buffer - z.avail_out));
+        // A few bytes can inflate to any size (a "zip bomb"): no mesh is larger than a mesh file may be.
+        if (out.size() > kMaxMeshFileBytes) {
+            inflateEnd(&z);
+            fail("{}: compressed mesh data inflates to more than {} bytes", path, kMaxMeshFileBytes);
+        }
         if (status == Z_OK && z.avail_in == 0 && z.avail_out != 0) {
             inflateEnd(&z);
-            fail("{}: compressed mesh data ends early", path.string());
+            fail("{}: compressed mesh data ends early", path);
         }
     }
     inflateEnd(&z);
@@ -69,51 +76,56 @@ std::vector<std::uint8_t> inflate_stream(const std::uint8_t* data, std::size_t s
 }  // namespace
 
 TriangleMesh load_serialized(const std::filesystem::path& path, int shape_index, bool& face_normals) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) fail("cannot open serialized file {}", path.string());
-    const std::vector<std::uint8_t> file((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (file.size() < 8) fail("{}: too short for a serialized mesh", path.string());
+    return parse_serialized(read_input_file(path, "serialized file", kMaxMeshFileBytes), path, shape_index,
+                            face_normals);
+}
+
+TriangleMesh parse_serialized(std::string_view bytes, const std::string& path, int shape_index, bool& face_normals) {
+    const std::span<const std::uint8_t> file(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
+    if (file.size() < 8) fail("{}: too short for a serialized mesh", path);
     const auto version = load_le<std::uint16_t>(&file[2]);
-    if (load_le<std::uint16_t>(&file[0]) != kFormat) fail("{}: not a Mitsuba serialized file", path.string());
-    if (version != 3 && version != 4) fail("{}: unsupported serialized version {} (3 or 4)", path.string(), version);
+    if (load_le<std::uint16_t>(&file[0]) != kFormat) fail("{}: not a Mitsuba serialized file", path);
+    if (version != 3 && version != 4) fail("{}: unsupported serialized version {} (3 or 4)", path, version);
     // End-of-file dictionary: offsets (uint64 in version 4, uint32 in 3), then the mesh count (uint32).
     const auto count = load_le<std::uint32_t>(&file[file.size() - 4]);
     if (shape_index < 0 || static_cast<std::uint32_t>(shape_index) >= count)
-        fail("{}: shape_index {} is out of range (the file holds {} meshes)", path.string(), shape_index, count);
+        fail("{}: shape_index {} is out of range (the file holds {} meshes)", path, shape_index, count);
     const std::size_t entry = version == 4 ? 8 : 4;
-    if (file.size() < 4 + entry * count) fail("{}: truncated mesh dictionary", path.string());
+    if (count > (file.size() - 4) / entry) fail("{}: truncated mesh dictionary", path);
     const std::size_t at = file.size() - 4 - entry * (count - static_cast<std::size_t>(shape_index));
     const std::size_t offset = version == 4 ? load_le<std::uint64_t>(&file[at]) : load_le<std::uint32_t>(&file[at]);
-    if (offset + 4 >= file.size() || load_le<std::uint16_t>(&file[offset]) != kFormat)
-        fail("{}: bad offset {} for mesh {}", path.string(), offset, shape_index);
+    if (offset >= file.size() - 4 || load_le<std::uint16_t>(&file[offset]) != kFormat)
+        fail("{}: bad offset {} for mesh {}", path, offset, shape_index);
     const std::vector<std::uint8_t> data = inflate_stream(&file[offset + 4], file.size() - offset - 4, path);
 
     std::size_t pos = 0;
-    auto need = [&](std::size_t bytes) {
-        if (pos + bytes > data.size()) fail("{}: mesh {} data ends early", path.string(), shape_index);
+    // Every count read from the data is checked against the bytes left before anything is allocated.
+    auto need = [&](std::uint64_t items, std::size_t item_bytes) {
+        if (items > (data.size() - pos) / item_bytes) fail("{}: mesh {} data ends early", path, shape_index);
     };
-    need(4);
+    need(1, 4);
     const auto flags = load_le<std::uint32_t>(&data[pos]);
     pos += 4;
     if (version == 4) {
         while (true) {
-            need(1);
+            need(1, 1);
             if (data[pos++] == 0) break;
         }
     }
-    need(16);
+    need(1, 16);
     const auto vertex_count = load_le<std::uint64_t>(&data[pos]);
     const auto triangle_count = load_le<std::uint64_t>(&data[pos + 8]);
     pos += 16;
-    if (vertex_count > 0xFFFFFFFFull) fail("{}: meshes with 64-bit indices are not supported", path.string());
+    if (vertex_count > 0xFFFFFFFFull) fail("{}: meshes with 64-bit indices are not supported", path);
     const bool dp = (flags & kDoublePrecision) != 0;
     const std::size_t scalar = dp ? 8 : 4;
     auto read_reals = [&](std::size_t n, auto&& store) {
-        need(n * scalar);
+        need(n, scalar);
         for (std::size_t i = 0; i < n; ++i, pos += scalar)
             store(i, dp ? load_le<double>(&data[pos]) : static_cast<double>(load_le<float>(&data[pos])));
     };
     TriangleMesh m;
+    need(3 * vertex_count, scalar);
     m.positions.resize(vertex_count);
     read_reals(3 * vertex_count, [&](std::size_t i, double v) { m.positions[i / 3][static_cast<int>(i % 3)] = v; });
     if (flags & kHasNormals) {
@@ -126,15 +138,15 @@ TriangleMesh load_serialized(const std::filesystem::path& path, int shape_index,
         read_reals(2 * vertex_count, [&](std::size_t i, double v) { (i % 2 ? m.uvs[i / 2].y : m.uvs[i / 2].x) = v; });
     }
     if (flags & kHasColors) read_reals(3 * vertex_count, [](std::size_t, double) {});
-    need(12 * triangle_count);
+    need(triangle_count, 12);
     m.triangles.resize(triangle_count);
     for (std::size_t t = 0; t < triangle_count; ++t)
         for (std::size_t k = 0; k < 3; ++k, pos += 4) {
             const auto index = load_le<std::uint32_t>(&data[pos]);
-            if (index >= vertex_count) fail("{}: mesh {} has a vertex index {} out of range", path.string(), shape_index, index);
+            if (index >= vertex_count) fail("{}: mesh {} has a vertex index {} out of range", path, shape_index, index);
             m.triangles[t][k] = index;
         }
-    if (m.triangles.empty()) fail("{}: mesh {} has no triangles", path.string(), shape_index);
+    if (m.triangles.empty()) fail("{}: mesh {} has no triangles", path, shape_index);
     face_normals = (flags & kFaceNormals) != 0;
     return m;
 }

@@ -46,7 +46,8 @@ public:
                 Vec3 linear;
                 for (int c = 0; c < 3; ++c) {
                     const double v = stored[static_cast<std::size_t>(c)];
-                    if (!std::isfinite(v) || v < 0) fail("bitmap texel ({}, {}) value {} is negative or not finite", x, y, v);
+                    if (!(v >= 0 && v <= kMaxSpectrumValue))
+                        fail("bitmap texel ({}, {}) value {} is not between 0 and {:g}", x, y, v, kMaxSpectrumValue);
                     linear[c] = encoded ? spectrum::srgb_decode(v) : v;
                 }
                 rgb_[i] = linear;

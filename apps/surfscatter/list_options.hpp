@@ -1,0 +1,26 @@
+#pragma once
+// Comma-separated list options (--wavelength 400,500,600, --models ggx,ghs). CLI11's own delimiter drops empty
+// items, so "400,,500" would silently be read as two wavelengths: these parse the list themselves and reject an
+// empty item, a non-number, and more than kMaxListItems items. Each occurrence of the option adds its items.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+namespace surfscatter::cli {
+
+// Items per list option (docs/RELIABILITY.md): far beyond any real use, small enough to be evaluated quickly.
+inline constexpr std::size_t kMaxListItems = 100'000;
+
+// Parses "x1,x2,..." of finite numbers; `option` names the flag in errors ("--wavelength: item 2 of '400,,500' is
+// empty").
+std::vector<double> parse_number_list(const std::string& text, const std::string& option);
+std::vector<std::string> parse_string_list(const std::string& text, const std::string& option);
+
+CLI::Option* add_number_list(CLI::App* cmd, const std::string& name, std::vector<double>& values,
+                             const std::string& help);
+CLI::Option* add_string_list(CLI::App* cmd, const std::string& name, std::vector<std::string>& values,
+                             const std::string& help);
+
+}  // namespace surfscatter::cli

@@ -1,0 +1,380 @@
+// Hostile inputs through the binary (issue 16): every case either exits 2 with one printable line that names the
+// bad value and where it came from (file:line for scenes), or, for a huge but valid value, exits 0 with finite
+// output. Never a crash, a hang, "internal error", NaN or Inf, or an option silently ignored. One table row per
+// case; the files they need are written once by the suite's fixture. Photo-module inputs are tested in
+// test_cli_photo.cpp.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include "cli_runner.hpp"
+#include "surfscatter/io/image.hpp"
+#include "surfscatter/surface/height_map.hpp"
+#include "surfscatter/surface/height_map_io.hpp"
+
+namespace fs = std::filesystem;
+using surfscatter::test::CliResult;
+using surfscatter::test::run_cli;
+
+namespace {
+
+fs::path dir() { return surfscatter::test::scratch_directory("surfscatter_test_cli_hostile"); }
+
+// "@D@" in a case's arguments and message stands for the scratch directory.
+std::string expand(std::string text) {
+    for (std::size_t at; (at = text.find("@D@")) != std::string::npos;) text.replace(at, 3, dir().string());
+    return text;
+}
+
+// A small renderable scene: a plane under a point light. `film`, `shape` and `scene` are inserted into the film,
+// the plane and the scene; $size and $exposure are parameters with defaults.
+std::string scene(const std::string& film = "", const std::string& shape = "", const std::string& extra = "") {
+    return "<scene version=\"3.0.0\">\n"
+           "  <default name=\"size\" value=\"8\"/>\n"
+           "  <default name=\"exposure\" value=\"0\"/>\n"
+           "  <sensor type=\"perspective\">\n"
+           "    <transform name=\"to_world\"><lookat origin=\"0, -2, 2\" target=\"0, 0, 0\" up=\"0, 0, 1\"/></transform>\n"
+           "    <film type=\"hdrfilm\"><integer name=\"width\" value=\"$size\"/><integer name=\"height\" value=\"$size\"/>\n"
+           "      <float name=\"exposure\" value=\"$exposure\"/>" + film + "</film>\n"
+           "    <sampler type=\"independent\"><integer name=\"sample_count\" value=\"2\"/></sampler>\n"
+           "  </sensor>\n"
+           "  <shape type=\"rectangle\">" + shape + "</shape>\n"
+           "  <emitter type=\"point\"><point name=\"position\" x=\"0\" y=\"0\" z=\"1\"/>\n"
+           "    <rgb name=\"intensity\" value=\"1\"/></emitter>\n" + extra +
+           "</scene>\n";
+}
+
+std::string nested(const std::string& open, const std::string& close, const std::string& inner, int depth) {
+    std::string text;
+    for (int i = 0; i < depth; ++i) text += open;
+    text += inner;
+    for (int i = 0; i < depth; ++i) text += close;
+    return text;
+}
+
+void write(const std::string& name, const std::string& bytes) {
+    std::ofstream(dir() / name, std::ios::binary) << bytes;
+}
+
+struct HostileCase {
+    std::string name;               // test name
+    std::vector<std::string> args;  // "@D@" = scratch directory
+    int exit_code;                  // 2: bad input; 0: a huge but valid value with finite output
+    std::string message;            // substring of stderr (exit 2)
+};
+
+void PrintTo(const HostileCase& c, std::ostream* os) { *os << c.name; }
+
+class Hostile : public testing::TestWithParam<HostileCase> {
+public:
+    static void SetUpTestSuite() {
+        write("ok.xml", scene());
+        write("twosided_30000.xml", scene("", nested("<bsdf type=\"twosided\">", "</bsdf>", "<bsdf type=\"diffuse\"/>", 30000)));
+        write("checker_30000.xml",
+              scene("", "<bsdf type=\"diffuse\">" +
+                            nested("<texture type=\"checkerboard\" name=\"color0\">", "</texture>", "", 30000) + "</bsdf>"));
+        write("lookat_empty.xml", "<scene version=\"3.0.0\"><sensor type=\"perspective\"><transform name=\"to_world\">\n"
+                                  "<lookat origin=\"0,, -1.6, 0.9\" target=\"0, 0, 0\" up=\"0, 0, 1\"/></transform></sensor>"
+                                  "</scene>\n");
+        write("rgb_empty.xml", scene("", "<bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"0.2,,0.5\"/></bsdf>"));
+        write("rgb_huge.xml", scene("", "<emitter type=\"area\"><rgb name=\"radiance\" value=\"1e300\"/></emitter>"));
+        write("float_text.xml", scene("", "", "  <shape type=\"sphere\"><float name=\"radius\" value=\"1\">hello</float></shape>\n"));
+        write("translate_child.xml",
+              scene("", "<transform name=\"to_world\"><translate x=\"1\"><scale value=\"2\"/></translate></transform>"));
+        write("shape_text.xml", scene("", "stray words"));
+        write("two_roots.xml", scene() + "<scene version=\"3.0.0\"/>\n");
+        std::string literal_exposure = scene();
+        literal_exposure.replace(literal_exposure.find("$exposure"), 9, "2000");
+        write("film_exposure.xml", literal_exposure);
+        write("film_white_balance.xml", scene("<string name=\"white_balance\" value=\"foo\"/>"));
+        write("blackbody_negative.xml",
+              scene("", "", "  <emitter type=\"point\"><point name=\"position\" x=\"0\" y=\"0\" z=\"2\"/>\n"
+                            "    <spectrum name=\"intensity\" type=\"blackbody\"><float name=\"temperature\" value=\"2700\"/>"
+                            "<float name=\"scale\" value=\"-1\"/></spectrum></emitter>\n"));
+        write("spectrum_negative.xml", scene("", "<emitter type=\"area\"><spectrum name=\"radiance\" value=\"-1\"/></emitter>"));
+        write("ghs.xml", scene("", "<bsdf type=\"ghs\"><string name=\"material\" value=\"Al\"/>"
+                                   "<float name=\"sigma\" value=\"0.1\"/><float name=\"corr_length\" value=\"$corr_length\"/>"
+                                   "<float name=\"gamma\" value=\"3\"/></bsdf>", "  <default name=\"corr_length\" value=\"2\"/>\n"));
+        write("ggx_stats_smoothing.xml",
+              scene("", "<bsdf type=\"ggx_stats\"><string name=\"alpha_from\" value=\"measured\"/>"
+                        "<float name=\"smoothing\" value=\"1\"/><float name=\"sigma\" value=\"0.1\"/>"
+                        "<float name=\"corr_length\" value=\"2\"/><float name=\"gamma\" value=\"4\"/></bsdf>"));
+        write("ghs_ssa_renormalization.xml",
+              scene("", "<bsdf type=\"ghs_ssa\"><boolean name=\"renormalization\" value=\"false\"/>"
+                        "<float name=\"sigma\" value=\"0.1\"/><float name=\"corr_length\" value=\"2\"/>"
+                        "<float name=\"gamma\" value=\"3\"/></bsdf>"));
+        write("include_zero.xml", "<scene version=\"3.0.0\">\n  <include filename=\"/dev/zero\"/>\n</scene>\n");
+        write("include_self.xml", "<scene version=\"3.0.0\">\n  <include filename=\"include_self.xml\"/>\n</scene>\n");
+        write("integer_huge.xml", scene("<integer name=\"crop_width\" value=\"1e10\"/>"));
+        write("matrix_huge.xml",
+              scene("", "<transform name=\"to_world\"><scale value=\"1e200\"/><scale value=\"1e200\"/></transform>"));
+        write("sphere_huge.xml", scene("", "", "  <shape type=\"sphere\"><float name=\"radius\" value=\"1e300\"/></shape>\n"));
+        write("text_outside.xml", "<scene version=\"3.0.0\"/>\ntrailing words\n");
+
+        // Meshes.
+        const std::string ply_head = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                     "property float z\nelement face 1\nproperty list uint int vertex_indices\nend_header\n"
+                                     "0 0 0\n1 0 0\n0 1 0\n";
+        write("face_4e9.ply", ply_head + "4000000000 0 1 2\n");
+        write("face_negative.ply", ply_head + "-1 0 1 2\n");
+        write("rows_1e18.ply", "ply\nformat ascii 1.0\nelement vertex 1000000000000000000\nproperty float x\nend_header\n0\n");
+        write("nan_vertex.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                                "nan 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+        write("zero_normal.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 0\nf 1//1 2//1 3//1\n");
+        for (const char* mesh : {"face_4e9.ply", "face_negative.ply", "rows_1e18.ply", "nan_vertex.ply", "zero_normal.obj"}) {
+            const std::string type = fs::path(mesh).extension() == ".ply" ? "ply" : "obj";
+            write(std::string("mesh_") + mesh + ".xml",
+                  scene("", "", "  <shape type=\"" + type + "\"><string name=\"filename\" value=\"" + mesh + "\"/></shape>\n"));
+        }
+
+        // Refractive index files.
+        fs::create_directories(dir() / "dir.yml");
+        fs::create_directories(dir() / "dir.gsf");
+        write("pole.yml", "DATA:\n  - type: formula 1\n    wavelength_range: 0.3 1.0\n    coefficients: 0 -1 0.9\n");
+        write("binary.csv", std::string("wavelength_nm,n,k\n500,1,\x01\x02\xff\x1b[31m\n", 30));
+        write("not_a_directory", "a file\n");
+
+        // Height maps: +-1e308 heights, white noise (no KC fit), and a real map for --surface.
+        std::string huge = "0 1 2 3 4 5 6 7\n";
+        for (int row = 0; row < 7; ++row) huge += row == 3 ? "1 2 3 1e308 -1e308 6 7 8\n" : "1 2 3 4 5 6 7 8\n";
+        write("huge_heights.txt", huge);
+        std::string noise;
+        std::uint64_t state = 12345;
+        for (int row = 0; row < 64; ++row) {
+            for (int col = 0; col < 64; ++col) {
+                state = state * 6364136223846793005ull + 1442695040888963407ull;
+                noise += std::to_string(static_cast<double>(state >> 11) * 0x1.0p-53 - 0.5) + (col < 63 ? " " : "\n");
+            }
+        }
+        write("white_noise.txt", noise);
+        std::vector<double> heights(64 * 64);
+        for (std::size_t i = 0; i < heights.size(); ++i) heights[i] = 0.01 * std::sin(0.3 * static_cast<double>(i % 64));
+        surfscatter::surface::write_gsf(surfscatter::surface::HeightMap(64, 64, 0.1, 0.1, heights), dir() / "h.gsf");
+    }
+};
+
+const std::string kLongName = std::string(300, 'a') + ".yml";
+const std::vector<std::string> kBrdf = {"--material", "Au", "--wavelength", "550", "--theta-i", "30"};
+const std::vector<std::string> kKc = {"--psd", "kc", "--sigma", "0.05", "--corr-length", "2", "--gamma", "3"};
+
+std::vector<std::string> join(std::vector<std::string> a, const std::vector<std::string>& b,
+                              const std::vector<std::string>& c = {}) {
+    a.insert(a.end(), b.begin(), b.end());
+    a.insert(a.end(), c.begin(), c.end());
+    return a;
+}
+
+std::vector<std::string> render(const std::string& scene_file, std::vector<std::string> extra = {}) {
+    std::vector<std::string> args = {"render", "@D@/" + scene_file, "--quiet", "-o", "@D@/out.exr"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return args;
+}
+
+const std::vector<HostileCase> kCases = {
+    // Crashes.
+    {"ThreadsHundredThousand", render("ok.xml", {"--threads", "100000"}), 2, "--threads must be between 1 and 256"},
+    {"TwosidedNested30000Deep", render("twosided_30000.xml"), 2, "twosided_30000.xml:10: elements nested more than 64 deep"},
+    {"CheckerboardNested30000Deep", render("checker_30000.xml"), 2, "checker_30000.xml:10: elements nested more than 64 deep"},
+    // Hangs.
+    {"GammaBillion", join({"brdf", "eval", "--model", "ghs", "--psd", "kc", "--sigma", "0.05", "--corr-length", "2",
+                           "--gamma", "1e9", "--theta-o", "0"}, kBrdf),
+     2, "gamma must be between 1.01 and 100"},
+    // Internal errors.
+    {"DirectoryAsYml", {"ior", "--material", "@D@/dir.yml", "--wavelength", "500"}, 2, "@D@/dir.yml is a directory"},
+    {"DirectoryAsGsf", {"surface", "fit", "@D@/dir.gsf"}, 2, "@D@/dir.gsf is a directory"},
+    {"MetalsOutIsAFile", {"metals", "--no-plot", "--out", "@D@/not_a_directory"}, 2,
+     "--out @D@/not_a_directory exists and is not a directory"},
+    {"SynthSizeMillion", {"surface", "synth", "--sigma", "1", "--corr-length", "1", "--gamma", "3", "--size", "1000000",
+                          "--spacing", "0.1", "-o", "@D@/big.gsf"},
+     2, "a 1000000 x 1000000 surface needs"},
+    {"FilmMillionSquared", render("ok.xml", {"-D", "size=1000000"}), 2, "ok.xml:6: film must be between 1x1 and 65536x65536"},
+    {"FilmBeyondMemory", render("ok.xml", {"-D", "size=65536"}), 2, "a 65536x65536 film needs"},
+    {"PlyFaceCount4e9", render("mesh_face_4e9.ply.xml"), 2, "face_4e9.ply: a list claims 4000000000 items"},
+    {"PlyFaceCountNegative", render("mesh_face_negative.ply.xml"), 2, "face_negative.ply: face row 0: list 'vertex_indices' has a negative count -1"},
+    {"PlyRows1e18", render("mesh_rows_1e18.ply.xml"), 2, "claims 1000000000000000000 items"},
+    {"FileNameTooLong", {"ior", "--material", "@D@/" + kLongName, "--wavelength", "500"}, 2, "File name too long"},
+    {"GammaHuge", join({"brdf", "eval", "--model", "ghs", "--psd", "kc", "--sigma", "0.05", "--corr-length", "2",
+                        "--gamma", "1e308", "--theta-o", "0"}, kBrdf),
+     2, "gamma must be between 1.01 and 100 (KC), got 1e+308"},
+    {"IncludeDevZero", render("include_zero.xml"), 2, "include_zero.xml:2: file /dev/zero is not a regular file"},
+    // NaN or Inf written with exit 0.
+    {"ExposureOption", render("ok.xml", {"--exposure", "2000"}), 2, "--exposure must be between -64 and 64 stops, got 2000"},
+    {"ExposureInFilm", render("film_exposure.xml"), 2, "film_exposure.xml:6: exposure must be between -64 and 64 stops"},
+    {"ExposureDefine", render("ok.xml", {"-D", "exposure=2000"}), 2, "ok.xml:6: exposure must be between -64 and 64 stops"},
+    {"RgbRadiance1e300", render("rgb_huge.xml"), 2, "rgb_huge.xml:10: RGB values must be between 0 and 1e+30"},
+    {"PsdCorrLength1e300", {"psd", "--sigma", "1", "--corr-length", "1e300", "--gamma", "3", "--zeta", "0,1"}, 2,
+     "--corr-length must be between 1e-09 and 1e+09 um, got 1e+300"},
+    {"SelfconvGammaNearOne", {"selfconv", "--gamma", "1.000000000001", "--corr-length", "1", "--orders", "13"}, 2,
+     "--gamma must be between 1.01 and 100"},
+    // Silently accepted or ignored.
+    {"EmptyWavelengthItem", {"ior", "--material", "Au", "--wavelength", "400,,500"}, 2, "--wavelength: item 2 of '400,,500' is empty"},
+    {"EmptyThetaItem", {"fresnel", "--material", "Au", "--wavelength", "500", "--theta", "0,,45"}, 2, "--theta: item 2 of '0,,45' is empty"},
+    {"EmptyModelsItem", join({"brdf", "slice", "--models", "ggx,,ghs", "--alpha", "0.1", "--csv", "@D@/s.csv"}, kBrdf), 2,
+     "--models: item 2 of 'ggx,,ghs' is empty"},
+    {"TrailingComma", {"ior", "--material", "Au", "--wavelength", "400,"}, 2, "--wavelength: item 2 of '400,' is empty"},
+    {"EmptyLookatItem", render("lookat_empty.xml"), 2, "lookat_empty.xml:2: origin: item 2 of '0,, -1.6, 0.9' is empty"},
+    {"EmptyRgbItem", render("rgb_empty.xml"), 2, "rgb_empty.xml:10: rgb: item 2 of '0.2,,0.5' is empty"},
+    {"SmoothingWithGgx", join({"brdf", "eval", "--model", "ggx", "--alpha", "0.1", "--smoothing", "5", "--theta-o", "0"}, kBrdf),
+     2, "--smoothing does not apply to --model ggx: used with alpha_from smoothed only"},
+    {"AlphaWithGhs", join({"brdf", "eval", "--model", "ghs", "--alpha", "0.3", "--theta-o", "0"}, kKc, kBrdf), 2,
+     "--alpha does not apply to --model ghs"},
+    {"CutoffWithoutTwoScale", join({"brdf", "albedo", "--model", "ghs", "--cutoff-wavelengths", "50"}, kKc, kBrdf), 2,
+     "--cutoff-wavelengths does not apply to --model ghs: used by model two_scale only"},
+    {"EpsilonWithoutPoissonMass", join({"brdf", "albedo", "--model", "ghs", "--method", "refit", "--epsilon", "1e-3"}, kKc, kBrdf),
+     2, "--epsilon does not apply to --model ghs: used by model ghs with method refit and truncation poisson_mass only"},
+    {"SigmaWithSurfaceFile", join({"brdf", "albedo", "--model", "ghs", "--surface", "@D@/h.gsf", "--sigma", "0.3"}, kBrdf), 2,
+     "--sigma does not apply to --model ghs: a height map gives its own statistics (psd file or measured)"},
+    {"FresnelWithGgx", join({"brdf", "eval", "--model", "ggx", "--alpha", "0.1", "--fresnel", "half", "--theta-o", "0"}, kBrdf),
+     2, "--fresnel does not apply to --model ggx"},
+    {"SmoothingInMeasuredGgxScene", render("ggx_stats_smoothing.xml"), 2,
+     "ggx_stats_smoothing.xml:10: parameter 'smoothing' does not apply to bsdf 'ggx_stats': used with alpha_from smoothed only"},
+    {"RenormalizationInSsaScene", render("ghs_ssa_renormalization.xml"), 2,
+     "ghs_ssa_renormalization.xml:10: parameter 'renormalization' does not apply to bsdf 'ghs_ssa'"},
+    {"RenderSeedNegative", render("ok.xml", {"--seed", "-5"}), 2, "--seed must be >= 0, got -5"},
+    {"RenderSppZero", render("ok.xml", {"--spp", "0"}), 2, "--spp must be positive, got 0"},
+    {"UnusedDefine", render("ok.xml", {"-D", "sigmaa=0.3"}), 2, "-D sigmaa=0.3: the scene @D@/ok.xml never uses $sigmaa"},
+    {"DefineTwice", render("ok.xml", {"-D", "size=4", "-D", "size=5"}), 2, "-D size is given twice"},
+    {"SynthSeedNegative", {"surface", "synth", "--sigma", "1", "--corr-length", "1", "--gamma", "3", "--size", "16",
+                           "--spacing", "0.1", "--seed", "-1", "-o", "@D@/s.gsf"},
+     2, "--seed must be >= 0, got -1"},
+    {"TextInsideFloat", render("float_text.xml"), 2, "float_text.xml:13: <float> cannot contain text, got 'hello'"},
+    {"ChildInsideTranslate", render("translate_child.xml"), 2, "translate_child.xml:10: <translate> cannot contain elements, got <scale>"},
+    {"TextInsideShape", render("shape_text.xml"), 2, "shape_text.xml:10: unexpected text 'stray words' inside <shape>"},
+    {"TextOutsideScene", render("text_outside.xml"), 2, "text_outside.xml:2: unexpected text 'trailing words' outside <scene>"},
+    {"TwoRootElements", render("two_roots.xml"), 2, "a second root element <scene>"},
+    {"FocusRadiusNegative", {"compare-models", "--focus-radius", "-1", "-o", "@D@/cmp"}, 2, "--focus-radius must be >= 0, got -1"},
+    {"FocusWithoutRadius", {"compare-models", "--focus", "0,0,0", "--focus-radius", "0", "-o", "@D@/cmp"}, 2,
+     "--focus does not apply with --focus-radius 0"},
+    {"CompareModelsDefineTheyOwn", {"compare-models", "-D", "model=ghs", "-o", "@D@/cmp"}, 2,
+     "-D model: compare-models sets this parameter itself"},
+    // Bad messages.
+    {"BlackbodyScaleNegative", render("blackbody_negative.xml"), 2,
+     "blackbody_negative.xml:14: blackbody scale must be between 0 and 1e+30, got -1"},
+    {"ConstantSpectrumNegative", render("spectrum_negative.xml"), 2,
+     "spectrum_negative.xml:10: spectrum value must be between 0 and 1e+30, got -1"},
+    {"FilmWhiteBalanceUnknown", render("film_white_balance.xml"), 2, "film_white_balance.xml:6: white_balance 'foo'"},
+    {"CorrLengthDefine1e308", render("ghs.xml", {"-D", "corr_length=1e308"}), 2,
+     "ghs.xml:10: bsdf 'ghs': corr_length must be between 1e-09 and 1e+09 um, got 1e+308"},
+    {"HeightsPlusMinus1e308", {"surface", "fit", "@D@/huge_heights.txt", "--spacing", "0.1"}, 2,
+     "height at column 3, row 4 is 1e+308 um (every height must be finite and within +-1e+09 um)"},
+    {"Smoothing1e300", {"surface", "fit", "@D@/h.gsf", "--smoothing", "1e300"}, 2,
+     "--smoothing 1e+300 um is wider than the 6.4 x 6.4 um map"},
+    {"MetalsTemperature1e300", {"metals", "--no-plot", "--temperature", "1e300", "--out", "@D@/metals"}, 2,
+     "--temperature must be in (0, 1e+09] K, got 1e+300"},
+    {"WhiteBalance1e300", render("ok.xml", {"--white-balance", "1e300"}), 2,
+     "--white-balance: white_balance '1e300': white balance temperature must be in (0, 1e+09] K"},
+    {"FitFailsOnWhiteNoise", {"surface", "fit", "@D@/white_noise.txt", "--spacing", "0.1"}, 2, "KC fit:"},
+    {"FocusNan", {"compare-models", "--focus", "nan,0,0", "-o", "@D@/cmp"}, 2, "--focus: 'nan' is not a finite number"},
+    {"EmptyWavelength", {"fresnel", "--material", "Au", "--wavelength", "", "--theta", "0"}, 2, "--wavelength: empty value"},
+    {"FormulaPoleNamesFile", {"ior", "--material", "@D@/pole.yml", "--wavelength", "950"}, 2,
+     "@D@/pole.yml: DATA entry 1: formula 1 gives no real positive index at 0.95 um"},
+    {"BinaryCsvNotEchoedRaw", {"ior", "--material", "@D@/binary.csv", "--wavelength", "500"}, 2,
+     "got '500,1,\\x01\\x02\\xff\\x1b[3"},
+    {"UnknownSubcommand", {"rendr", "x.xml"}, 2, "unknown subcommand 'rendr' of surfscatter (known: acv, brdf,"},
+    {"UnknownNestedSubcommand", {"surface", "fitt", "h.gsf"}, 2, "unknown subcommand 'fitt' of surfscatter surface"},
+    // Added: more of the same kinds.
+    {"PlyNanVertex", render("mesh_nan_vertex.ply.xml"), 2, "nan_vertex.ply: 'nan' in a property is not a finite number"},
+    {"ObjZeroNormal", render("mesh_zero_normal.obj.xml"), 2, "zero_normal.obj:4: normal (0, 0, 0) has no direction"},
+    {"IncludeCycle", render("include_self.xml"), 2, "include_self.xml:2: includes nested more than 16 deep"},
+    {"IntegerTooLarge", render("integer_huge.xml"), 2, "integer_huge.xml:7: crop_width: '10000000000' is not an integer"},
+    {"TransformOverflow", render("matrix_huge.xml"), 2, "matrix_huge.xml:10: the transform reaches 1e+200 (beyond the +-1e+15 a scene may span)"},
+    {"SphereRadius1e300", render("sphere_huge.xml"), 2, "sphere_huge.xml:13: shape 'sphere': sphere radius must be positive"},
+    {"ThreadsNegative", render("ok.xml", {"--threads", "-1"}), 2, "--threads must be between 1 and 256"},
+    {"DefineNameInvalid", render("ok.xml", {"-D", "a-b=1"}), 2, "-D a-b: a parameter name has letters, digits and '_' only"},
+    {"SppNotANumber", render("ok.xml", {"--spp", "1.5"}), 2, "--spp"},
+    // Huge but valid: a finite, correct answer.
+    {"ThreadsAtLimit", render("ok.xml", {"--threads", "256", "--spp", "1"}), 0, ""},
+    {"PsdExtremeButValid", {"psd", "--sigma", "1e9", "--corr-length", "1e9", "--gamma", "100", "--zeta", "0,1e-9,1,1e300"}, 0, ""},
+    {"AcvSmallGammaValid", {"acv", "--sigma", "1e-9", "--corr-length", "1e-9", "--gamma", "1.01", "--r", "0,1e-300,1,1e300"}, 0, ""},
+    {"MetalsHotLamp", {"metals", "--no-plot", "--temperature", "1e9", "--out", "@D@/metals_hot"}, 0, ""},
+};
+
+TEST_P(Hostile, KeepsThePromise) {
+    const HostileCase& c = GetParam();
+    std::vector<std::string> args;
+    for (const std::string& a : c.args) args.push_back(expand(a));
+    const CliResult r = run_cli(args, 120);
+    ASSERT_NE(r.exit_code, 137) << "killed after 120 s: a hang";
+    EXPECT_EQ(r.exit_code, c.exit_code) << r.err;
+    EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+    // stderr reaches a terminal: printable ASCII only, whatever the input held.
+    EXPECT_TRUE(std::all_of(r.err.begin(), r.err.end(), [](char ch) { return ch == '\n' || (ch >= 0x20 && ch < 0x7f); }))
+        << r.err;
+    if (c.exit_code == 2) {
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line expected:\n" << r.err;
+        EXPECT_NE(r.err.find(expand(c.message)), std::string::npos) << "expected: " << expand(c.message) << "\ngot: " << r.err;
+    } else {
+        std::string lower = r.out;
+        std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char ch) { return std::tolower(ch); });
+        EXPECT_EQ(lower.find("nan"), std::string::npos) << r.out;
+        EXPECT_EQ(lower.find("inf"), std::string::npos) << r.out;
+    }
+}
+
+// Ctrl-C and SIGTERM stop a render that would take hours within a second, and the image of what was rendered is
+// written (every pixel a mean of its own samples; the exit status says the job did not finish: 128 + signal).
+void expect_interrupt_writes_image(int signal_number) {
+    const fs::path scene_path = dir() / "interrupt.xml", exr = dir() / ("interrupt_" + std::to_string(signal_number) + ".exr");
+    std::ofstream(scene_path) << scene();
+    fs::remove(exr);
+    const std::string err = (dir() / "interrupt.err").string();
+    const std::vector<std::string> args = {SURFSCATTER_CLI, "render", scene_path.string(), "-D", "size=64", "--spp",
+                                           "100000000", "--quiet", "--threads", "2", "-o", exr.string()};
+    std::vector<char*> argv;
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    pid_t pid = 0;
+    ASSERT_EQ(posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ), 0);
+    posix_spawn_file_actions_destroy(&actions);
+    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+    ASSERT_EQ(kill(pid, signal_number), 0);
+    const auto sent = std::chrono::steady_clock::now();
+    int status = 0;
+    while (waitpid(pid, &status, WNOHANG) == 0) {
+        if (std::chrono::steady_clock::now() - sent > std::chrono::seconds(20)) {
+            kill(pid, SIGKILL);
+            waitpid(pid, &status, 0);
+            FAIL() << "the render did not stop within 20 s of the signal";
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
+    EXPECT_LT(seconds, 1.0) << "stopping took " << seconds << " s";
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 128 + signal_number);
+    const std::string message = surfscatter::test::read_whole_file(err);
+    EXPECT_NE(message.find("(interrupted)"), std::string::npos) << message;
+    const surfscatter::io::Image image = surfscatter::io::read_image(exr);
+    ASSERT_EQ(image.width, 64);
+    double sum = 0;
+    for (float v : image.pixels) {
+        ASSERT_TRUE(std::isfinite(v));
+        sum += v;
+    }
+    EXPECT_GT(sum, 0.0);
+}
+
+TEST(HostileInterrupt, CtrlCWritesTheImageWithinASecond) { expect_interrupt_writes_image(SIGINT); }
+TEST(HostileInterrupt, SigtermWritesTheImageWithinASecond) { expect_interrupt_writes_image(SIGTERM); }
+
+INSTANTIATE_TEST_SUITE_P(Table, Hostile, testing::ValuesIn(kCases),
+                         [](const testing::TestParamInfo<HostileCase>& param) { return param.param.name; });
+
+}  // namespace
