@@ -65,8 +65,12 @@ std::string nested(const std::string& open, const std::string& close, const std:
     return text;
 }
 
+// Written under a private name and renamed: ctest runs the cases as parallel processes that each write the same
+// files, and a reader must never see one half written.
 void write(const std::string& name, const std::string& bytes) {
-    std::ofstream(dir() / name, std::ios::binary) << bytes;
+    const fs::path partial = dir() / (name + ".partial." + std::to_string(getpid()));
+    std::ofstream(partial, std::ios::binary) << bytes;
+    fs::rename(partial, dir() / name);
 }
 
 struct HostileCase {
@@ -163,7 +167,9 @@ public:
         write("white_noise.txt", noise);
         std::vector<double> heights(64 * 64);
         for (std::size_t i = 0; i < heights.size(); ++i) heights[i] = 0.01 * std::sin(0.3 * static_cast<double>(i % 64));
-        surfscatter::surface::write_gsf(surfscatter::surface::HeightMap(64, 64, 0.1, 0.1, heights), dir() / "h.gsf");
+        const fs::path gsf_partial = dir() / ("h.partial." + std::to_string(getpid()) + ".gsf");
+        surfscatter::surface::write_gsf(surfscatter::surface::HeightMap(64, 64, 0.1, 0.1, heights), gsf_partial);
+        fs::rename(gsf_partial, dir() / "h.gsf");
     }
 };
 
@@ -328,10 +334,12 @@ TEST_P(Hostile, KeepsThePromise) {
 // Ctrl-C and SIGTERM stop a render that would take hours within a second, and the image of what was rendered is
 // written (every pixel a mean of its own samples; the exit status says the job did not finish: 128 + signal).
 void expect_interrupt_writes_image(int signal_number) {
-    const fs::path scene_path = dir() / "interrupt.xml", exr = dir() / ("interrupt_" + std::to_string(signal_number) + ".exr");
+    // Own files per signal: ctest runs the two tests at the same time.
+    const std::string stem = "interrupt_" + std::to_string(signal_number);
+    const fs::path scene_path = dir() / (stem + ".xml"), exr = dir() / (stem + ".exr");
     std::ofstream(scene_path) << scene();
     fs::remove(exr);
-    const std::string err = (dir() / "interrupt.err").string();
+    const std::string err = (dir() / (stem + ".err")).string();
     const std::vector<std::string> args = {SURFSCATTER_CLI, "render", scene_path.string(), "-D", "size=64", "--spp",
                                            "100000000", "--quiet", "--threads", "2", "-o", exr.string()};
     std::vector<char*> argv;
