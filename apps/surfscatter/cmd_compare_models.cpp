@@ -80,8 +80,12 @@ Box crop_box(const render::Scene& scene, const CompareArgs& args) {
             x1 = std::max(x1, p->x);
             y1 = std::max(y1, p->y);
         }
-    const auto clampx = [&](double v) { return std::clamp(static_cast<int>(std::lround(v)), 0, scene.film.width); };
-    const auto clampy = [&](double v) { return std::clamp(static_cast<int>(std::lround(v)), 0, scene.film.height); };
+    // Clamped as doubles first: a focus near the camera plane projects to coordinates that no int holds.
+    const auto to_pixel = [](double v, int size) {
+        return v >= 0 ? (v <= size ? static_cast<int>(std::lround(v)) : size) : 0;
+    };
+    const auto clampx = [&](double v) { return to_pixel(v, scene.film.width); };
+    const auto clampy = [&](double v) { return to_pixel(v, scene.film.height); };
     if (clampx(x1) - clampx(x0) < 8 || clampy(y1) - clampy(y0) < 4) fail("--focus region is outside view {}", args.view);
     return {clampx(x0), clampy(y0), clampx(x1), clampy(y1)};
 }
@@ -135,6 +139,11 @@ void run(const CompareArgs& args) {
     require_positive(args.smoothing, "--smoothing");
     require_non_negative(args.focus_radius, "--focus-radius");
     if (args.focus.size() != 3) fail("--focus needs x,y,z, got {} numbers", args.focus.size());
+    for (double v : args.focus)
+        if (!(std::abs(v) <= render::kMaxSceneCoordinate))
+            fail("--focus coordinates must be within +-{:g} m, got {}", render::kMaxSceneCoordinate, v);
+    if (!(args.focus_radius <= render::kMaxSceneCoordinate))
+        fail("--focus-radius must be at most {:g} m, got {}", render::kMaxSceneCoordinate, args.focus_radius);
     if (args.focus_given && args.focus_radius == 0) fail("--focus does not apply with --focus-radius 0 (whole images)");
     const std::map<std::string, std::string> user = parse_defines(args.defines);
     std::map<std::string, std::string> common = user;

@@ -340,8 +340,9 @@ void expect_interrupt_writes_image(int signal_number) {
     std::ofstream(scene_path) << scene();
     fs::remove(exr);
     const std::string err = (dir() / (stem + ".err")).string();
+    // Not --quiet: the progress bar on stderr tells when the render (and its signal handler) has started.
     const std::vector<std::string> args = {SURFSCATTER_CLI, "render", scene_path.string(), "-D", "size=64", "--spp",
-                                           "100000000", "--quiet", "--threads", "2", "-o", exr.string()};
+                                           "100000000", "--threads", "2", "-o", exr.string()};
     std::vector<char*> argv;
     for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
     argv.push_back(nullptr);
@@ -351,7 +352,16 @@ void expect_interrupt_writes_image(int signal_number) {
     pid_t pid = 0;
     ASSERT_EQ(posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ), 0);
     posix_spawn_file_actions_destroy(&actions);
-    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+    const auto started = std::chrono::steady_clock::now();
+    while (surfscatter::test::read_whole_file(err).find("render [") == std::string::npos) {
+        if (std::chrono::steady_clock::now() - started > std::chrono::seconds(60)) {
+            kill(pid, SIGKILL);
+            waitpid(pid, nullptr, 0);
+            FAIL() << "the render did not start within 60 s";
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
     ASSERT_EQ(kill(pid, signal_number), 0);
     const auto sent = std::chrono::steady_clock::now();
     int status = 0;
