@@ -139,8 +139,34 @@ public:
                                 "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
                                 "nan 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
         write("zero_normal.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 0\nf 1//1 2//1 3//1\n");
-        for (const char* mesh : {"face_4e9.ply", "face_negative.ply", "rows_1e18.ply", "nan_vertex.ply", "zero_normal.obj"}) {
-            const std::string type = fs::path(mesh).extension() == ".ply" ? "ply" : "obj";
+        // A .serialized mesh (Mitsuba, version 4) whose zlib stream claims 2^32 - 1 vertices and holds none.
+        const std::string claim = std::string("\0\0\0\0mesh\0", 9) + std::string("\xff\xff\xff\xff\0\0\0\0", 8) +
+                                  std::string(8, '\0');
+        std::string deflated;
+        {
+            // zlib's stored (uncompressed) block: header 78 01, final block of LEN/NLEN, data, Adler-32.
+            std::string z = "\x78\x01\x01";
+            const auto n = static_cast<std::uint16_t>(claim.size());
+            z += static_cast<char>(n & 0xff);
+            z += static_cast<char>(n >> 8);
+            z += static_cast<char>(~n & 0xff);
+            z += static_cast<char>((~n >> 8) & 0xff);
+            z += claim;
+            std::uint32_t a = 1, b = 0;
+            for (unsigned char c : claim) {
+                a = (a + c) % 65521;
+                b = (b + a) % 65521;
+            }
+            const std::uint32_t adler = (b << 16) | a;
+            for (int shift = 24; shift >= 0; shift -= 8) z += static_cast<char>((adler >> shift) & 0xff);
+            deflated = z;
+        }
+        write("vertices_4e9.serialized", std::string("\x1c\x04\x04\x00", 4) + deflated + std::string(8, '\0') +
+                                             std::string("\x01\x00\x00\x00", 4));
+        for (const char* mesh : {"face_4e9.ply", "face_negative.ply", "rows_1e18.ply", "nan_vertex.ply", "zero_normal.obj",
+                                 "vertices_4e9.serialized"}) {
+            const std::string extension = fs::path(mesh).extension().string();
+            const std::string type = extension.substr(1);
             write(std::string("mesh_") + mesh + ".xml",
                   scene("", "", "  <shape type=\"" + type + "\"><string name=\"filename\" value=\"" + mesh + "\"/></shape>\n"));
         }
@@ -295,10 +321,11 @@ const std::vector<HostileCase> kCases = {
     // Added: more of the same kinds.
     {"PlyNanVertex", render("mesh_nan_vertex.ply.xml"), 2, "nan_vertex.ply: 'nan' in a property is not a finite number"},
     {"ObjZeroNormal", render("mesh_zero_normal.obj.xml"), 2, "zero_normal.obj:4: normal (0, 0, 0) has no direction"},
+    {"SerializedVertices4e9", render("mesh_vertices_4e9.serialized.xml"), 2, "vertices_4e9.serialized: mesh 0 data ends early"},
     {"IncludeCycle", render("include_self.xml"), 2, "include_self.xml:2: includes nested more than 16 deep"},
     {"IntegerTooLarge", render("integer_huge.xml"), 2, "integer_huge.xml:7: crop_width: '10000000000' is not an integer"},
     {"TransformOverflow", render("matrix_huge.xml"), 2, "matrix_huge.xml:10: the transform reaches 1e+200 (beyond the +-1e+15 a scene may span)"},
-    {"SphereRadius1e300", render("sphere_huge.xml"), 2, "sphere_huge.xml:13: shape 'sphere': sphere radius must be positive"},
+    {"SphereRadius1e300", render("sphere_huge.xml"), 2, "sphere_huge.xml:13: shape 'sphere': the shape's bounding box corner (-inf, -inf, -inf) is not finite"},
     {"ThreadsNegative", render("ok.xml", {"--threads", "-1"}), 2, "--threads must be between 1 and 256"},
     {"DefineNameInvalid", render("ok.xml", {"-D", "a-b=1"}), 2, "-D a-b: a parameter name has letters, digits and '_' only"},
     {"SppNotANumber", render("ok.xml", {"--spp", "1.5"}), 2, "--spp"},

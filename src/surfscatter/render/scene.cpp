@@ -157,8 +157,8 @@ void Scene::add_shape(ShapeGeometry geometry, MaterialPtr material, SpectrumPtr 
         shape.area = shape.analytic->area();
         Vec3 lo, hi;
         shape.analytic->bounds(lo, hi);
-        require_in_scene(lo, "shape bound");
-        require_in_scene(hi, "shape bound");
+        require_in_scene(lo, "the shape's bounding box corner");
+        require_in_scene(hi, "the shape's bounding box corner");
         g = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_USER);
         rtcSetGeometryUserPrimitiveCount(g, 1);
         rtcSetGeometryUserData(g, const_cast<AnalyticShape*>(shape.analytic.get()));
