@@ -134,6 +134,10 @@ public:
                                      "0 0 0\n1 0 0\n0 1 0\n";
         write("face_4e9.ply", ply_head + "4000000000 0 1 2\n");
         write("face_negative.ply", ply_head + "-1 0 1 2\n");
+        // Found by fuzz_ply: an ascii count beyond its declared type (uchar) was cast to an integer (UB).
+        std::string uchar_head = ply_head;
+        uchar_head.replace(uchar_head.find("list uint int"), 13, "list uchar int");
+        write("count_1e28.ply", uchar_head + "1e28 0 1 2\n");
         write("rows_1e18.ply", "ply\nformat ascii 1.0\nelement vertex 1000000000000000000\nproperty float x\nend_header\n0\n");
         write("nan_vertex.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                                 "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
@@ -163,7 +167,7 @@ public:
         }
         write("vertices_4e9.serialized", std::string("\x1c\x04\x04\x00", 4) + deflated + std::string(8, '\0') +
                                              std::string("\x01\x00\x00\x00", 4));
-        for (const char* mesh : {"face_4e9.ply", "face_negative.ply", "rows_1e18.ply", "nan_vertex.ply", "zero_normal.obj",
+        for (const char* mesh : {"face_4e9.ply", "face_negative.ply", "rows_1e18.ply", "count_1e28.ply", "nan_vertex.ply", "zero_normal.obj",
                                  "vertices_4e9.serialized"}) {
             const std::string extension = fs::path(mesh).extension().string();
             const std::string type = extension.substr(1);
@@ -236,8 +240,10 @@ const std::vector<HostileCase> kCases = {
     {"FilmMillionSquared", render("ok.xml", {"-D", "size=1000000"}), 2, "ok.xml:6: film must be between 1x1 and 65536x65536"},
     {"FilmBeyondMemory", render("ok.xml", {"-D", "size=65536"}), 2, "a 65536x65536 film needs"},
     {"PlyFaceCount4e9", render("mesh_face_4e9.ply.xml"), 2, "face_4e9.ply: a list claims 4000000000 items"},
-    {"PlyFaceCountNegative", render("mesh_face_negative.ply.xml"), 2, "face_negative.ply: face row 0: list 'vertex_indices' has a negative count -1"},
+    {"PlyFaceCountNegative", render("mesh_face_negative.ply.xml"), 2, "face_negative.ply: -1 in a list count does not fit its type (range 0 to 4.29497e+09)"},
     {"PlyRows1e18", render("mesh_rows_1e18.ply.xml"), 2, "claims 1000000000000000000 items"},
+    {"PlyAsciiCountBeyondItsType", render("mesh_count_1e28.ply.xml"), 2,
+     "count_1e28.ply: 1e28 in a list count does not fit its type (range 0 to 255)"},
     {"FileNameTooLong", {"ior", "--material", "@D@/" + kLongName, "--wavelength", "500"}, 2, "File name too long"},
     {"GammaHuge", join({"brdf", "eval", "--model", "ghs", "--psd", "kc", "--sigma", "0.05", "--corr-length", "2",
                         "--gamma", "1e308", "--theta-o", "0"}, kBrdf),

@@ -18,8 +18,6 @@ namespace surfscatter::render {
 
 namespace {
 
-constexpr int kN = spectrum::kSpectrumSamples;
-
 double mean(const SampledSpectrum& s) { return s.average(); }
 
 class DirectEstimator final : public RadianceEstimator {

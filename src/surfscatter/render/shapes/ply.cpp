@@ -21,6 +21,7 @@
 #include <limits>
 #include <string>
 #include <string_view>
+#include <utility>
 
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/input_file.hpp"
@@ -41,6 +42,20 @@ std::size_t type_size(PlyType t) {
         case PlyType::f64: return 8;
     }
     return 1;
+}
+
+std::pair<double, double> type_range(PlyType t) {
+    switch (t) {
+        case PlyType::i8: return {-128.0, 127.0};
+        case PlyType::u8: return {0.0, 255.0};
+        case PlyType::i16: return {-32768.0, 32767.0};
+        case PlyType::u16: return {0.0, 65535.0};
+        case PlyType::i32: return {-2147483648.0, 2147483647.0};
+        case PlyType::u32: return {0.0, 4294967295.0};
+        case PlyType::f32: return {-double(std::numeric_limits<float>::max()), double(std::numeric_limits<float>::max())};
+        case PlyType::f64: break;
+    }
+    return {-std::numeric_limits<double>::max(), std::numeric_limits<double>::max()};
 }
 
 struct PlyProperty {
@@ -189,6 +204,9 @@ private:
             error("'{}' in {} is not a finite number", printable(token), what);
         if (type != PlyType::f32 && type != PlyType::f64 && v != std::floor(v))
             error("'{}' in {} is not an integer", printable(token), what);
+        // A value must fit its declared type, as it would in a binary file (a uchar list count of 1e28 does not).
+        const auto [lo, hi] = type_range(type);
+        if (v < lo || v > hi) error("{} in {} does not fit its type (range {:g} to {:g})", printable(token), what, lo, hi);
         return v;
     }
 
