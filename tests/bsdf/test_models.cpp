@@ -102,7 +102,7 @@ TEST(Factory, RejectsBadOptionsNamingThem) {
     expect_error(test::kc_options(ModelKind::ghs, 0.1, 0, 3), "corr_length must be between 1e-09 and 1e+09 um, got 0");
     ModelOptions ggx;
     ggx.model = ModelKind::ggx;
-    expect_error(ggx, "alpha must be > 0");
+    expect_error(ggx, "alpha must be between 0.0001 and 100, got 0");
     ggx.alpha_from = AlphaFrom::measured;
     ggx.surface = test::kc_options(ModelKind::ggx, 0.1, 1.0, 2.5).surface;
     expect_error(ggx, "diverges");

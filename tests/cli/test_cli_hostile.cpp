@@ -33,9 +33,11 @@ namespace {
 
 fs::path dir() { return surfscatter::test::scratch_directory("surfscatter_test_cli_hostile"); }
 
-// "@D@" in a case's arguments and message stands for the scratch directory.
+// "@D@" in a case's arguments and message stands for the scratch directory, "@S@" for the source tree (the fuzz
+// corpus's regression inputs).
 std::string expand(std::string text) {
     for (std::size_t at; (at = text.find("@D@")) != std::string::npos;) text.replace(at, 3, dir().string());
+    for (std::size_t at; (at = text.find("@S@")) != std::string::npos;) text.replace(at, 3, SURFSCATTER_SOURCE_DIR);
     return text;
 }
 
@@ -174,6 +176,12 @@ public:
             write(std::string("mesh_") + mesh + ".xml",
                   scene("", "", "  <shape type=\"" + type + "\"><string name=\"filename\" value=\"" + mesh + "\"/></shape>\n"));
         }
+
+        // Camera files.
+        write("huge_matrix.yml", "%YAML:1.0\n---\nimage_width: 1200\nimage_height: 900\n"
+                                 "camera_matrix: !!opencv-matrix\n   rows: 100000\n   cols: 100000\n   dt: d\n"
+                                 "   data: [ 1. ]\ndistortion_coefficients: !!opencv-matrix\n   rows: 1\n   cols: 5\n"
+                                 "   dt: d\n   data: [ 0., 0., 0., 0., 0. ]\n");
 
         // Refractive index files.
         fs::create_directories(dir() / "dir.yml");
@@ -335,6 +343,25 @@ const std::vector<HostileCase> kCases = {
     {"ThreadsNegative", render("ok.xml", {"--threads", "-1"}), 2, "--threads must be between 1 and 256"},
     {"DefineNameInvalid", render("ok.xml", {"-D", "a-b=1"}), 2, "-D a-b: a parameter name has letters, digits and '_' only"},
     {"SppNotANumber", render("ok.xml", {"--spp", "1.5"}), 2, "--spp"},
+    {"GgxAlphaHuge", join({"brdf", "eval", "--model", "ggx", "--alpha", "1e300", "--theta-o", "0"}, kBrdf), 2,
+     "alpha must be between 0.0001 and 100, got 1e+300"},
+    {"GgxAlphaTiny", join({"brdf", "eval", "--model", "ggx", "--alpha", "1e-300", "--theta-o", "0,30"}, kBrdf), 2,
+     "alpha must be between 0.0001 and 100, got 1e-300"},
+    {"GgxSmoothing1e300", join({"brdf", "eval", "--model", "ggx", "--alpha-from", "smoothed", "--smoothing", "1e300",
+                                "--theta-o", "0"}, kKc, kBrdf),
+     2, "smoothing must be between 1e-09 and 1e+09 um, got 1e+300"},
+    {"EvalWavelengthOutsideData", {"brdf", "eval", "--model", "ggx", "--alpha", "0.1", "--material", "Au",
+                                   "--wavelength", "100", "--theta-i", "30", "--theta-o", "0"},
+     2, "wavelength 100 nm is outside the range"},
+    // Findings of the fuzz targets (their inputs are in fuzz/corpus/<target>/regression-*).
+    {"FuzzHeightMapWithoutRings", {"surface", "fit", "@S@/fuzz/corpus/height_map/regression-anisotropic-spacing-no-ring"},
+     2, "KC fit: only 0 PSD rings"},
+    {"FuzzCameraMatrixAllocation", {"undistort", "@D@/any.png", "--camera",
+                                    "@S@/fuzz/corpus/camera_file/regression-malformed-matrix-48GB-allocation.yml", "-o",
+                                    "@D@/undistorted.png"},
+     2, "must be an OpenCV matrix"},
+    {"CameraMatrixTooLarge", {"undistort", "@D@/any.png", "--camera", "@D@/huge_matrix.yml", "-o", "@D@/undistorted.png"},
+     2, "'camera_matrix' is 100000 x 100000, larger than any camera matrix"},
     // Huge but valid: a finite, correct answer.
     {"ThreadsAtLimit", render("ok.xml", {"--threads", "256", "--spp", "1"}), 0, ""},
     {"PsdExtremeButValid", {"psd", "--sigma", "1e9", "--corr-length", "1e9", "--gamma", "100", "--zeta", "0,1e-9,1,1e300"}, 0, ""},
@@ -354,6 +381,7 @@ TEST_P(Hostile, KeepsThePromise) {
     EXPECT_TRUE(std::all_of(r.err.begin(), r.err.end(), [](char ch) { return ch == '\n' || (ch >= 0x20 && ch < 0x7f); }))
         << r.err;
     if (c.exit_code == 2) {
+        EXPECT_EQ(r.out, "") << "a failing command prints no partial output";
         // One error line, the last (a command may have reported on its inputs before, e.g. the height map it read).
         const std::string last = r.err.substr(r.err.rfind('\n', r.err.size() - 2) + 1);
         EXPECT_EQ(last.rfind("surfscatter: error: ", 0), 0u) << r.err;

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "surfscatter/bsdf/ggx.hpp"
+#include "surfscatter/bsdf/microfacet.hpp"
 #include "surfscatter/bsdf/ghs.hpp"
 #include "surfscatter/bsdf/ghs_ssa.hpp"
 #include "surfscatter/bsdf/scatter_core.hpp"
@@ -120,15 +121,23 @@ std::function<double(double)> ggx_alpha(const ModelOptions& o, SurfaceSource& su
         case AlphaFrom::measured:
         case AlphaFrom::smoothed: {
             const double smoothing = o.alpha_from == AlphaFrom::smoothed ? o.smoothing : 0.0;
-            if (const surface::HeightMap* map = surface.map())  // its own slopes, whether the PSD is fitted or measured
-                return constant(smoothing > 0 ? surface::rms_slope_smoothed(*map, smoothing, surface.form())
-                                              : surface::rms_slope(*map, surface.form()));
-            const double no_cutoff = std::numeric_limits<double>::infinity();
-            const double slope2 = surface.statistics(notes)->mean_square_slope(smoothing, no_cutoff);
-            if (!std::isfinite(slope2) || !(slope2 > 0))
-                fail("alpha_from {}: the rms slope of this PSD diverges (KC needs gamma > 3, or smoothing > 0, or a "
-                     "height map)", to_string(o.alpha_from));
-            return constant(std::sqrt(slope2));  // alpha_GGX = alpha_Beckmann = rms slope (THEORY 4.2)
+            double alpha = 0;  // alpha_GGX = alpha_Beckmann = rms slope (THEORY 4.2)
+            if (const surface::HeightMap* map = surface.map()) {  // its own slopes, whether the PSD is fitted or measured
+                alpha = smoothing > 0 ? surface::rms_slope_smoothed(*map, smoothing, surface.form())
+                                      : surface::rms_slope(*map, surface.form());
+            } else {
+                const double no_cutoff = std::numeric_limits<double>::infinity();
+                const double slope2 = surface.statistics(notes)->mean_square_slope(smoothing, no_cutoff);
+                if (!std::isfinite(slope2))
+                    fail("alpha_from {}: the rms slope of this PSD diverges (KC needs gamma > 3, or smoothing > 0, or "
+                         "a height map)", to_string(o.alpha_from));
+                alpha = std::sqrt(slope2);
+            }
+            if (!(alpha >= kMinMicrofacetAlpha && alpha <= kMaxMicrofacetAlpha))
+                fail("alpha_from {} gives alpha = {} (the surface's rms slope{}), outside GGX's range {} to {}",
+                     to_string(o.alpha_from), alpha, smoothing > 0 ? fmt::format(" after smoothing {} um", smoothing) : "",
+                     kMinMicrofacetAlpha, kMaxMicrofacetAlpha);
+            return constant(alpha);
         }
         case AlphaFrom::kc_link: {
             const double length = surface.kc().correlation_length();
@@ -156,11 +165,8 @@ void load_height_map(SurfaceOptions& surface) {
 }
 
 void validate(const ModelOptions& o) {
-    if (o.model == ModelKind::ggx && o.alpha_from == AlphaFrom::none &&
-        (!(o.alpha > 0) || !std::isfinite(o.alpha)))
-        fail("alpha must be > 0 (or set alpha_from), got {}", o.alpha);
-    if (o.alpha_from == AlphaFrom::smoothed && (!(o.smoothing > 0) || !std::isfinite(o.smoothing)))
-        fail("smoothing must be > 0 um with alpha_from smoothed, got {}", o.smoothing);
+    if (o.model == ModelKind::ggx && o.alpha_from == AlphaFrom::none) require_microfacet_alpha(o.alpha, "alpha");
+    if (o.alpha_from == AlphaFrom::smoothed) surface::require_surface_length(o.smoothing, "smoothing");
     if (o.truncation == Truncation::poisson_mass && !(o.epsilon > 0 && o.epsilon < 1))
         fail("epsilon must be in (0, 1), got {}", o.epsilon);
     if (o.model == ModelKind::two_scale && (!(o.cutoff_wavelengths > 0) || !std::isfinite(o.cutoff_wavelengths)))

@@ -1,8 +1,15 @@
 #include "surfscatter/bsdf/microfacet.hpp"
 
+#include "surfscatter/core/error.hpp"
+
 #include <cmath>
 
 namespace surfscatter::bsdf {
+
+void require_microfacet_alpha(double alpha, const char* what) {
+    if (!(alpha >= kMinMicrofacetAlpha && alpha <= kMaxMicrofacetAlpha))
+        fail("{} must be between {} and {}, got {}", what, kMinMicrofacetAlpha, kMaxMicrofacetAlpha, alpha);
+}
 
 double GgxDistribution::D(const Vec3& h) const {
     if (h.z <= 0) return 0.0;

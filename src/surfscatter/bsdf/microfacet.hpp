@@ -6,6 +6,14 @@
 
 namespace surfscatter::bsdf {
 
+// Roughness alpha accepted for GGX and Beckmann (docs/RELIABILITY.md): below 1e-4 the lobe is narrower than the
+// albedo quadrature resolves (an albedo of 33 at 1e-8), above 100 the surface is all grazing facets; outside that
+// alpha^2 and its inverse leave the range where D and Lambda are evaluated without overflow.
+inline constexpr double kMinMicrofacetAlpha = 1e-4;
+inline constexpr double kMaxMicrofacetAlpha = 100;
+// Throws Error "<what> must be between 0.0001 and 100, got <alpha>" outside that range (also NaN).
+void require_microfacet_alpha(double alpha, const char* what);
+
 class GgxDistribution {
 public:
     explicit GgxDistribution(double alpha) : alpha_(alpha) {}

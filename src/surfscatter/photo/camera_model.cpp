@@ -62,13 +62,22 @@ public:
     cv::Mat matrix(const char* key) const {
         const cv::FileNode n = node(key);
         cv::Mat m;
-        if (n.isMap()) {
+        // OpenCV allocates rows x cols before it reads the data: a camera file's matrices are small (3 x 3, at most
+        // 18 coefficients), so refuse a header of 10^5 x 10^5 before it becomes a 40 GB allocation (fuzz_camera_file).
+        constexpr int kMaxEntries = 64;
+        if (n.isMap() && n["rows"].isInt() && n["cols"].isInt()) {
+            const auto rows = static_cast<long long>(static_cast<int>(n["rows"])),
+                       cols = static_cast<long long>(static_cast<int>(n["cols"]));
+            if (rows < 0 || cols < 0 || rows * cols > kMaxEntries)
+                fail("camera file '{}': '{}' is {} x {}, larger than any camera matrix or coefficient list ({} entries)",
+                     name_, key, rows, cols, kMaxEntries);
             try {
                 n >> m;
             } catch (const cv::Exception&) {
                 m.release();
             }
         }
+        // Without integer rows and cols it is no OpenCV matrix (and OpenCV would size it from garbage).
         if (m.empty() || m.channels() != 1)
             fail("camera file '{}': '{}' must be an OpenCV matrix (!!opencv-matrix with rows, cols, dt, data)", name_,
                  key);

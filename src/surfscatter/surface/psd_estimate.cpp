@@ -199,7 +199,9 @@ RadialPsd radial_average(const Psd2d& psd) {
     radial.dzeta = std::max(psd.dzeta_x, psd.dzeta_y);
     const double nyquist = std::min(psd.dzeta_x * static_cast<double>(psd.nx / 2),
                                     psd.dzeta_y * static_cast<double>(psd.ny / 2));
-    const auto rings = static_cast<std::size_t>(std::floor(nyquist / radial.dzeta - 0.5)) + 1;  // incl. ring 0
+    // Rings up to Nyquist, ring 0 included; a grid far finer along one axis than the other may have ring 0 only.
+    const double ring_count = std::floor(nyquist / radial.dzeta - 0.5) + 1;
+    const std::size_t rings = ring_count >= 1 ? static_cast<std::size_t>(ring_count) : 1;
     std::vector<double> sum_zeta(rings, 0.0), sum_psd(rings, 0.0), count(rings, 0.0);
     for (std::size_t ky = 0; ky < psd.ny; ++ky)
         for (std::size_t kx = 0; kx < psd.half_nx(); ++kx) {

@@ -114,7 +114,11 @@ Microfacet Microfacet::read(Properties& props) {
     } else {
         alpha = props.get_float("alpha", 0.1);
     }
-    if (!(alpha > 0) || !std::isfinite(alpha)) props.fail("alpha must be positive, got {}", alpha);
+    try {
+        bsdf::require_microfacet_alpha(alpha, "alpha");
+    } catch (const Error& e) {
+        props.fail("{}", e.what());
+    }
     return Microfacet(distribution == "beckmann", alpha, props.get_bool("sample_visible", true));
 }
 
