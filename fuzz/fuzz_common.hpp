@@ -51,8 +51,11 @@ void expect_clean(F&& read) {
     try {
         read();
     } catch (const Error& e) {
-        // The message reaches a terminal: one line of printable text.
-        for (const char* c = e.what(); *c; ++c) FUZZ_CHECK(*c != '\n');
+        // The message reaches a terminal: one line.
+        if (std::string_view(e.what()).find('\n') != std::string_view::npos) {
+            std::fprintf(stderr, "fuzz check failed: message with a line break: %s\n", e.what());
+            std::abort();
+        }
     }
 }
 

@@ -1,5 +1,6 @@
-// Fuzz target: the height-map readers (surface/height_map_io.hpp), Gwyddion Simple Field and text grids, on the
-// same bytes; a map that loads is fitted (KC fit, rms slope) and everything it returns must be finite.
+// Fuzz target: the native height-map readers (surface/height_map_io.hpp), Gwyddion Simple Field and text grids
+// (bare, and with the header of Gwyddion's text export), on the same bytes (X3P: fuzz_x3p.cpp); a map that loads is
+// fitted (KC fit, rms slope) and everything it returns must be finite.
 #include "fuzz_common.hpp"
 #include "surfscatter/surface/height_map_io.hpp"
 #include "surfscatter/surface/height_map_slope.hpp"
@@ -30,6 +31,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const auto gsf = fuzz::write_input("map.gsf", text);
     fuzz::expect_clean([&] { check_map(surface::read_gsf(gsf)); });
     const auto grid = fuzz::write_input("map.txt", text);
+    // Without a spacing the Gwyddion text export's header states it (and the height unit); with one, the header
+    // must agree.
+    fuzz::expect_clean([&] { check_map(surface::read_text_grid(grid, std::nullopt)); });
     fuzz::expect_clean([&] { check_map(surface::read_text_grid(grid, 0.1)); });
     return 0;
 }

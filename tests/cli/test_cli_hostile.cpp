@@ -21,6 +21,7 @@
 #include <sys/wait.h>
 
 #include "cli_runner.hpp"
+#include "surface/zip_archive.hpp"
 #include "surfscatter/io/image.hpp"
 #include "surfscatter/surface/height_map.hpp"
 #include "surfscatter/surface/height_map_io.hpp"
@@ -144,6 +145,16 @@ public:
         write("nan_vertex.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                                 "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
                                 "nan 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+        // Found by fuzz_ply: an empty element without properties (0 bytes a row) divided by zero in the size check.
+        write("empty_element.ply", "ply\nformat binary_little_endian 1.0\nelement marker 0\nelement vertex 3\n"
+                                   "property float x\nproperty float y\nproperty float z\nelement face 1\n"
+                                   "property list uchar int vertex_indices\nend_header\n" +
+                                       std::string("\0\0\0\0\0\0\0\0\0\0\0\0"
+                                                   "\0\0\x80\x3f\0\0\0\0\0\0\0\0"
+                                                   "\0\0\0\0\0\0\x80\x3f\0\0\0\0"
+                                                   "\x03\0\0\0\0\x01\0\0\0\x02\0\0\0", 49));
+        write("vertex_twice.ply", "ply\nformat ascii 1.0\nelement vertex 0\nelement vertex 3\nproperty float x\n"
+                                  "property float y\nproperty float z\nend_header\n0 0 0\n1 0 0\n0 1 0\n");
         write("zero_normal.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 0\nf 1//1 2//1 3//1\n");
         // A .serialized mesh (Mitsuba, version 4) whose zlib stream claims 2^32 - 1 vertices and holds none.
         const std::string claim = std::string("\0\0\0\0mesh\0", 9) + std::string("\xff\xff\xff\xff\0\0\0\0", 8) +
@@ -169,7 +180,7 @@ public:
         }
         write("vertices_4e9.serialized", std::string("\x1c\x04\x04\x00", 4) + deflated + std::string(8, '\0') +
                                              std::string("\x01\x00\x00\x00", 4));
-        for (const char* mesh : {"face_4e9.ply", "face_negative.ply", "rows_1e18.ply", "count_1e28.ply", "nan_vertex.ply", "zero_normal.obj",
+        for (const char* mesh : {"face_4e9.ply", "face_negative.ply", "rows_1e18.ply", "count_1e28.ply", "nan_vertex.ply", "empty_element.ply", "vertex_twice.ply", "zero_normal.obj",
                                  "vertices_4e9.serialized"}) {
             const std::string extension = fs::path(mesh).extension().string();
             const std::string type = extension.substr(1);
@@ -208,6 +219,19 @@ public:
         const fs::path gsf_partial = dir() / ("h.partial." + std::to_string(getpid()) + ".gsf");
         surfscatter::surface::write_gsf(surfscatter::surface::HeightMap(64, 64, 0.1, 0.1, heights), gsf_partial);
         fs::rename(gsf_partial, dir() / "h.gsf");
+        // Found by fuzz_x3p: a value with a line break in main.xml was quoted raw (two lines of message).
+        const fs::path x3p_partial = dir() / ("line_break.partial." + std::to_string(getpid()) + ".x3p");
+        surfscatter::test::write_zip(
+            x3p_partial,
+            {{"main.xml",
+              "<?xml version=\"1.0\"?>\n<p:ISO5436_2 xmlns:p=\"http://www.opengps.eu/2008/ISO5436_2\"><Record1>"
+              "<Revision>ISO5436 - 2000</Revision><FeatureType>SUR</FeatureType><Axes>"
+              "<CX><AxisType>I</AxisType><DataType>D</DataType><Increment>1e\n06</Increment><Offset>0</Offset></CX>"
+              "<CY><AxisType>I</AxisType><DataType>D</DataType><Increment>1e-6</Increment><Offset>0</Offset></CY>"
+              "<CZ><AxisType>A</AxisType><DataType>D</DataType></CZ></Axes></Record1><Record3><MatrixDimension>"
+              "<SizeX>2</SizeX><SizeY>2</SizeY><SizeZ>1</SizeZ></MatrixDimension><DataList><Datum>0</Datum>"
+              "<Datum>1e-9</Datum><Datum>2e-9</Datum><Datum>0</Datum></DataList></Record3></p:ISO5436_2>\n"}});
+        fs::rename(x3p_partial, dir() / "line_break.x3p");
     }
 };
 
@@ -362,6 +386,11 @@ const std::vector<HostileCase> kCases = {
      2, "must be an OpenCV matrix"},
     {"CameraMatrixTooLarge", {"undistort", "@D@/any.png", "--camera", "@D@/huge_matrix.yml", "-o", "@D@/undistorted.png"},
      2, "'camera_matrix' is 100000 x 100000, larger than any camera matrix"},
+    {"FuzzPlyEmptyElementWithoutProperties", render("mesh_empty_element.ply.xml", {"--spp", "1"}), 0, ""},
+    {"PlyElementDeclaredTwice", render("mesh_vertex_twice.ply.xml"), 2,
+     "vertex_twice.ply:4: element 'vertex' is declared twice"},
+    {"FuzzX3pLineBreakInValue", {"surface", "fit", "@D@/line_break.x3p"}, 2,
+     "main.xml: Record1/Axes/CX/Increment = '1e\\x0a06' is not a finite number"},
     // Huge but valid: a finite, correct answer.
     {"ThreadsAtLimit", render("ok.xml", {"--threads", "256", "--spp", "1"}), 0, ""},
     {"PsdExtremeButValid", {"psd", "--sigma", "1e9", "--corr-length", "1e9", "--gamma", "100", "--zeta", "0,1e-9,1,1e300"}, 0, ""},

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include <fmt/format.h>
-#include <zip.h>
+#include "zip_archive.hpp"
 
 #include "height_test_util.hpp"
 #include "surfscatter/core/error.hpp"
@@ -120,11 +120,6 @@ std::string x3p_data_bin(const X3pSpec& spec) {
 }
 
 void write_x3p(const fs::path& path, const X3pSpec& spec) {
-    fs::remove(path);
-    int code = 0;
-    zip_t* archive = zip_open(path.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &code);
-    ASSERT_NE(archive, nullptr) << "libzip error " << code;
-    // libzip reads the buffers at zip_close: keep them alive until then.
     std::vector<std::pair<std::string, std::string>> entries;
     entries.emplace_back(spec.folder + "main.xml", spec.main_xml_override.empty() ? x3p_main_xml(spec) : spec.main_xml_override);
     if (!spec.data_list) {
@@ -136,12 +131,7 @@ void write_x3p(const fs::path& path, const X3pSpec& spec) {
             entries.emplace_back(spec.folder + "bindata/valid.bin", bits);
         }
     }
-    for (const auto& [name, bytes] : entries) {
-        zip_source_t* source = zip_source_buffer(archive, bytes.data(), bytes.size(), 0);
-        ASSERT_NE(source, nullptr);
-        ASSERT_GE(zip_file_add(archive, name.c_str(), source, ZIP_FL_OVERWRITE), 0) << zip_strerror(archive);
-    }
-    ASSERT_EQ(zip_close(archive), 0);
+    surfscatter::test::write_zip(path, entries);
 }
 
 // Grid, spacing, heights (um) and mask of a map read from an X3P written with `spec`.
@@ -323,6 +313,15 @@ TEST(HeightFiles, BadFilesGetOneClearError) {
     write_x3p(profile, {.folder = "s/", .main_xml_override = xml});
     EXPECT_EQ(error_of([&] { ss::read_height_map(profile, std::nullopt); }),
               profile.string() + ": FeatureType PRF is not a surface (SUR): profiles are not height maps");
+
+    // Found by fuzz_x3p: a value with a line break was quoted raw, breaking the one-line message.
+    const fs::path line_break = temp_path("line_break.x3p");
+    xml = x3p_main_xml({});
+    const std::size_t increment = xml.find("<Increment>") + std::string_view("<Increment>").size();
+    xml.replace(increment, xml.find('<', increment) - increment, "1e\n06");
+    write_x3p(line_break, {.folder = "s/", .main_xml_override = xml});
+    EXPECT_EQ(error_of([&] { ss::read_height_map(line_break, std::nullopt); }),
+              line_break.string() + ": s/main.xml: Record1/Axes/CX/Increment = '1e\\x0a06' is not a finite number");
 
     // A photograph is an image Gwyddion reads, but it has no height channel.
     const fs::path photo = fs::path(SURFSCATTER_SHARED_DATA) / "realdata" / "photos" / "gboriginal.jpg";

@@ -41,19 +41,19 @@ Archive open_archive(const std::string& path) {
 
 std::string read_entry(zip_t* archive, const std::string& path, const std::string& name) {
     const zip_int64_t index = zip_name_locate(archive, name.c_str(), 0);
-    if (index < 0) fail("{}: the archive has no entry '{}'", path, name);
+    if (index < 0) fail("{}: the archive has no entry '{}'", path, printable(name));
     zip_stat_t stat;
     if (zip_stat_index(archive, static_cast<zip_uint64_t>(index), 0, &stat) != 0 || !(stat.valid & ZIP_STAT_SIZE))
-        fail("{}: cannot read the size of '{}' in the archive", path, name);
-    if (stat.size > 8 * kMaxPoints) fail("{}: '{}' is {} bytes, larger than any height map", path, name, stat.size);
+        fail("{}: cannot read the size of '{}' in the archive", path, printable(name));
+    if (stat.size > 8 * kMaxPoints) fail("{}: '{}' is {} bytes, larger than any height map", path, printable(name), stat.size);
     zip_file_t* entry = zip_fopen_index(archive, static_cast<zip_uint64_t>(index), 0);
-    if (!entry) fail("{}: cannot open '{}' in the archive ({})", path, name, zip_strerror(archive));
+    if (!entry) fail("{}: cannot open '{}' in the archive ({})", path, printable(name), zip_strerror(archive));
     std::string bytes(static_cast<std::size_t>(stat.size), '\0');
     const zip_int64_t read = bytes.empty() ? 0 : zip_fread(entry, bytes.data(), bytes.size());
     const std::string message = read < 0 ? zip_file_strerror(entry) : "";
     zip_fclose(entry);
     if (read < 0 || static_cast<zip_uint64_t>(read) != stat.size)
-        fail("{}: '{}' in the archive is damaged ({})", path, name,
+        fail("{}: '{}' in the archive is damaged ({})", path, printable(name),
              read < 0 ? message : fmt::format("{} of {} bytes", read, stat.size));
     return bytes;
 }
@@ -75,14 +75,14 @@ pugi::xml_document parse_xml(const std::string& path, const std::string& name, c
     pugi::xml_document document;
     const pugi::xml_parse_result result = document.load_buffer(text.data(), text.size());
     if (!result)
-        fail("{}: '{}' is not well-formed XML ({} at byte {})", path, name, result.description(), result.offset);
+        fail("{}: '{}' is not well-formed XML ({} at byte {})", path, printable(name), result.description(), result.offset);
     return document;
 }
 
 class X3pReader {
 public:
     X3pReader(std::string path, std::string main_xml, pugi::xml_node root)
-        : path_(std::move(path)), main_xml_(std::move(main_xml)), root_(root) {}
+        : path_(std::move(path)), main_xml_(printable(main_xml)), root_(root) {}
 
     // Text of the element at `elements` below the root; Error if missing and `required`.
     std::string text(std::initializer_list<std::string_view> elements, bool required = true) const {
@@ -105,7 +105,7 @@ public:
         if (value.empty() && fallback) return *fallback;
         const auto parsed = parse::to_double(value);
         if (!parsed || !std::isfinite(*parsed))
-            fail("{}: {}: {} = '{}' is not a finite number", path_, main_xml_, join(elements), value);
+            fail("{}: {}: {} = '{}' is not a finite number", path_, main_xml_, join(elements), printable(value));
         return *parsed;
     }
 
@@ -113,7 +113,7 @@ public:
         const std::string value = text({"Record3", "MatrixDimension", axis});
         const auto parsed = parse::to_double(value);
         if (!parsed || !(*parsed >= 1.0) || *parsed != std::floor(*parsed) || *parsed > static_cast<double>(kMaxSide))
-            fail("{}: {}: MatrixDimension/{} = '{}' is not a size between 1 and {}", path_, main_xml_, axis, value,
+            fail("{}: {}: MatrixDimension/{} = '{}' is not a size between 1 and {}", path_, main_xml_, axis, printable(value),
                  kMaxSide);
         return static_cast<std::uint64_t>(*parsed);
     }
@@ -180,7 +180,7 @@ std::optional<X3pLayout> x3p_layout(const std::filesystem::path& file) {
             if (entry.size() <= suffix.size() || entry.substr(entry.size() - suffix.size()) != suffix) continue;
             if (!layout.main_xml.empty())
                 fail("{}: the archive holds several main.xml ('{}', '{}'); which one is the measurement?", path,
-                     layout.main_xml, entry);
+                     printable(layout.main_xml), printable(entry));
             layout.main_xml = std::string(entry);
         }
         if (layout.main_xml.empty()) return std::nullopt;
@@ -196,8 +196,8 @@ HeightMap read_x3p(const std::filesystem::path& file) {
     const auto layout = x3p_layout(file);
     if (!layout) fail("{}: a zip archive without main.xml is not an X3P file", path);
     if (layout->root != "ISO5436_2" && layout->root != "ISO5436")
-        fail("{}: {}'s root element is <{}>, not <ISO5436_2> (or <ISO5436>): not an X3P file", path, layout->main_xml,
-             layout->root);
+        fail("{}: {}'s root element is <{}>, not <ISO5436_2> (or <ISO5436>): not an X3P file", path,
+             printable(layout->main_xml), printable(layout->root));
     const Archive archive = open_archive(path);
     const pugi::xml_document document = parse_xml(path, layout->main_xml, read_entry(archive.get(), path, layout->main_xml));
     const X3pReader xml(path, layout->main_xml, document.document_element());
@@ -205,14 +205,14 @@ HeightMap read_x3p(const std::filesystem::path& file) {
 
     const std::string feature = xml.text({"Record1", "FeatureType"});
     if (feature != "SUR")
-        fail("{}: FeatureType {} is not a surface (SUR){}", path, feature,
+        fail("{}: FeatureType {} is not a surface (SUR){}", path, printable(feature),
              feature == "PRF" ? ": profiles are not height maps" : feature == "PCL" ? ": point clouds are not grids" : "");
     for (std::string_view axis : {"CX", "CY"})
         if (const std::string type = xml.text({"Record1", "Axes", axis, "AxisType"}); type != "I")
             fail("{}: axis {} has AxisType {}; only incremental axes (I, a regular grid) are height maps", path, axis,
-                 type);
+                 printable(type));
     if (const std::string type = xml.text({"Record1", "Axes", "CZ", "AxisType"}); type != "A")
-        fail("{}: axis CZ has AxisType {}, expected A (absolute heights)", path, type);
+        fail("{}: axis CZ has AxisType {}, expected A (absolute heights)", path, printable(type));
     const double dx = xml.number({"Record1", "Axes", "CX", "Increment"}, std::nullopt);
     const double dy = xml.number({"Record1", "Axes", "CY", "Increment"}, std::nullopt);
     if (!(dx > 0.0) || !(dy > 0.0))
@@ -242,7 +242,7 @@ HeightMap read_x3p(const std::filesystem::path& file) {
                 continue;
             }
             const auto raw = parse::to_double(parse::trim(z));
-            if (!raw) fail("{}: DataList value {} '{}' is not a number", path, values.size() + 1, content);
+            if (!raw) fail("{}: DataList value {} '{}' is not a number", path, values.size() + 1, printable(content));
             values.push_back(z_increment * *raw + z_offset);
         }
         if (values.size() != count)
@@ -250,7 +250,7 @@ HeightMap read_x3p(const std::filesystem::path& file) {
     } else {
         const std::string type = xml.text({"Record1", "Axes", "CZ", "DataType"});
         if (type != "I" && type != "L" && type != "F" && type != "D")
-            fail("{}: CZ DataType '{}' is not I, L, F or D", path, type);
+            fail("{}: CZ DataType '{}' is not I, L, F or D", path, printable(type));
         const std::string link = xml.text({"Record3", "DataLink", "PointDataLink"});
         values = binary_values(path, read_entry(archive.get(), path, resolve_link(archive.get(), folder, link)),
                                type[0], count, z_increment, z_offset);
@@ -258,7 +258,7 @@ HeightMap read_x3p(const std::filesystem::path& file) {
             !valid_link.empty()) {
             const std::string bits = read_entry(archive.get(), path, resolve_link(archive.get(), folder, valid_link));
             if (bits.size() != (count + 7) / 8)
-                fail("{}: '{}' holds {} bytes, but {} points need {} (inconsistent sizes)", path, valid_link,
+                fail("{}: '{}' holds {} bytes, but {} points need {} (inconsistent sizes)", path, printable(valid_link),
                      bits.size(), count, (count + 7) / 8);
             for (std::size_t i = 0; i < count; ++i)
                 if (!(static_cast<unsigned char>(bits[i / 8]) & (1u << (i % 8)))) valid[i] = 0;

@@ -156,6 +156,8 @@ private:
                 if (words[2][0] == '-' || end_ptr != words[2].c_str() + words[2].size() || errno == ERANGE)
                     header_error(line_number, "element count '{}' is not a non-negative integer", printable(words[2]));
                 e.count = count;
+                if (std::any_of(elements_.begin(), elements_.end(), [&](const PlyElement& d) { return d.name == e.name; }))
+                    header_error(line_number, "element '{}' is declared twice", printable(e.name));
                 elements_.push_back(std::move(e));
             } else if (tag == "property") {
                 if (elements_.empty()) header_error(line_number, "property before any element");
@@ -241,6 +243,7 @@ private:
     // The fewest bytes `count` more items of `size` bytes each can take: an upper bound on counts read from the
     // file, so that no count can make the reader allocate or loop beyond what the file holds.
     void require_room(std::uint64_t count, std::size_t size, const char* what) const {
+        if (count == 0) return;  // an empty element may have no properties (size 0)
         const std::uint64_t per_item = format_ == PlyFormat::ascii ? 1 : size;  // ascii: at least one digit each
         if (count > (bytes_.size() - pos_) / per_item)
             error("{} claims {} items, more than the {} bytes left in the file hold", what, count, bytes_.size() - pos_);
