@@ -61,14 +61,32 @@ TEST(Poisson, MeanVarianceAndChiSquare) {
 }
 
 TEST(Poisson, WindowsKeepTheRightOrders) {
-    // 3-sigma rule: g = 100 keeps 70..130; small g keeps only m = 1.
+    // 3-sigma rule: g = 100 keeps 70..130 (both edges integers: whole orders); g = 0.1 keeps m = 1 and m = 2 with
+    // 0.05 of its weight (the upper edge 0.1 + 3 sqrt(0.1) = 1.05 lies 0.05 into [1, 2]).
     const auto w = PoissonWindow::within_sigmas(100.0, 3.0, 1);
     EXPECT_EQ(w.first(), 70);
     EXPECT_EQ(w.last(), 130);
+    EXPECT_NEAR(w.kept_mass(), 0.9980, 1e-3);
     const auto small = PoissonWindow::within_sigmas(0.1, 3.0, 1);
     EXPECT_EQ(small.first(), 1);
-    EXPECT_EQ(small.last(), 1);
-    EXPECT_DOUBLE_EQ(small.weight(1), 1.0);
+    EXPECT_EQ(small.last(), 2);
+    const double hi = 0.1 + 3.0 * std::sqrt(0.1);
+    EXPECT_NEAR(small.kept_mass(), poisson_pmf(1, 0.1) + (hi - 1.0) * poisson_pmf(2, 0.1), 1e-15);
+    // Below g + 3 sqrt(g) = 1 the minimum order m = 1 alone, whole.
+    const auto tiny = PoissonWindow::within_sigmas(0.05, 3.0, 1);
+    EXPECT_EQ(tiny.last(), 1);
+    EXPECT_DOUBLE_EQ(tiny.kept_mass(), poisson_pmf(1, 0.05));
+    // Continuous in the mean: where an edge g -+ 3 sqrt(g) crosses an integer n (an order enters at the top or leaves
+    // at the bottom, m = 1 only at the top), the weighted series weight(m) kept_mass changes by O(dg) only.
+    for (const int sign : {1, -1})
+        for (int n : {1, 2, 3, 7, 40}) {
+            const double root = 0.5 * (-3.0 * sign + std::sqrt(9.0 + 4.0 * n)), g = root * root;  // g + sign 3 sqrt(g) = n
+            const auto below = PoissonWindow::within_sigmas(g * (1 - 1e-10), 3.0, 1);
+            const auto above = PoissonWindow::within_sigmas(g * (1 + 1e-10), 3.0, 1);
+            for (int m = 1; m <= int(g + 4 * std::sqrt(g)) + 2; ++m)
+                EXPECT_NEAR(below.weight(m) * below.kept_mass(), above.weight(m) * above.kept_mass(), 1e-7)
+                    << "g " << g << " order " << m;
+        }
     // Mass rule: the kept mass above m = 1 is within epsilon of all of it.
     for (double g : {0.1, 2.0, 50.0, 1000.0}) {
         const auto m = PoissonWindow::by_mass(g, 1e-6, 1);

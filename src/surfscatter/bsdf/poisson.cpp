@@ -11,7 +11,8 @@ double poisson_pmf(int m, double mean) {
     return std::exp(m * std::log(mean) - mean - std::lgamma(m + 1.0));
 }
 
-PoissonWindow::PoissonWindow(double mean, int first, int last) : first_(std::max(0, first)) {
+PoissonWindow::PoissonWindow(double mean, int first, int last, double first_factor, double last_factor)
+    : first_(std::max(0, first)) {
     last = std::max(last, first_);
     weights_.resize(last - first_ + 1);
     // pmf(first) in log space, then the ratio pmf(m+1)/pmf(m) = mean/(m+1); restarted in log space if it underflows.
@@ -19,6 +20,8 @@ PoissonWindow::PoissonWindow(double mean, int first, int last) : first_(std::max
         const double prev = m > first_ ? weights_[m - first_ - 1] : 0.0;
         weights_[m - first_] = prev > 1e-280 ? prev * mean / m : poisson_pmf(m, mean);
     }
+    weights_.front() *= first_factor;
+    weights_.back() *= last_factor;
     kept_mass_ = 0;
     for (double w : weights_) kept_mass_ += w;
     cdf_.resize(weights_.size());
@@ -34,10 +37,13 @@ PoissonWindow::PoissonWindow(double mean, int first, int last) : first_(std::max
 }
 
 PoissonWindow PoissonWindow::within_sigmas(double mean, double sigmas, int first_min) {
-    const double sd = std::sqrt(mean);
-    const int first = std::max(first_min, int(std::ceil(mean - sigmas * sd)));
-    const int last = std::max(first, int(std::floor(mean + sigmas * sd)));
-    return PoissonWindow(mean, first, last);
+    const double sd = std::sqrt(mean), lo = mean - sigmas * sd, hi = mean + sigmas * sd;
+    // first_min is always kept whole; an edge order beyond it enters with its fraction inside [lo, hi].
+    const int lo_order = int(std::floor(lo)), first = std::max(first_min, lo_order);
+    const int hi_order = int(std::ceil(hi)), last = std::max(first, hi_order);
+    const double first_factor = lo_order >= first_min ? 1.0 + first - lo : 1.0;
+    const double last_factor = hi_order > first ? 1.0 + hi - last : 1.0;
+    return PoissonWindow(mean, first, last, first_factor, last_factor);
 }
 
 PoissonWindow PoissonWindow::by_mass(double mean, double epsilon, int first_min) {
