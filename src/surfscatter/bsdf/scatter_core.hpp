@@ -21,10 +21,6 @@ public:
     virtual double density_at_logs(double log_g, double log_zeta) const {
         return density(surface::fast_exp(log_g), surface::fast_exp(log_zeta));
     }
-    // ln density_at_logs (-inf where the density is 0): the BSDF adds ln N and takes one exponential.
-    virtual double log_density_at_logs(double log_g, double log_zeta) const {
-        return surface::fast_log(density_at_logs(log_g, log_zeta));
-    }
     // Draws a radius in [0, zeta_max] for the lobe at g_star; u_order (may be unused) and u in [0, 1).
     virtual double sample_radius(double g_star, double zeta_max, double u_order, double u) const = 0;
     // 2-D density (per (rad/um)^2, unit mass over |zeta| <= zeta_max) of sample_radius followed by a uniform
@@ -55,9 +51,10 @@ public:
     double density_at_logs(double log_g, double log_zeta) const override {
         return table_->eval_at_logs(log_g, log_zeta);
     }
-    double log_density_at_logs(double log_g, double log_zeta) const override {
-        return table_->log_eval_at_logs(log_g, log_zeta);
-    }
+    // ln density_at_logs (-inf where the density is 0) without its exponential, for a PSD without a jump (whose table
+    // is log-valued; with a jump it would take a logarithm of the density): the BSDF adds ln N and takes one
+    // exponential.
+    double log_density_at_logs(double log_g, double log_zeta) const { return table_->log_eval_at_logs(log_g, log_zeta); }
     double sample_radius(double g_star, double zeta_max, double u_order, double u) const override;
     double sample_density(double g_star, double zeta_max, double zeta) const override;
 
