@@ -3,8 +3,9 @@
 // 89.99 deg, perfect conductor (R = 1), by the tests' own quadrature (tests/bsdf/disc_albedo.hpp). The GHS (exact;
 // refit for sigma <= 0.1 um, where its series stays short) and the SSA energy form must carry R within 0.5 %, the
 // two-scale model and GGX (alpha from the kc_link) at most R. Prints the worst case per model (the table of
-// docs/MODELS.md) and, with a path argument, every albedo as CSV. ~15-20 min on one core (the per-wavelength K tables).
-// Run: build/bench/table_albedo_sweep [out.csv]
+// docs/MODELS.md) and, with a path argument, every albedo as CSV. ~80 min on one core of the loaded VM (the
+// per-wavelength K tables of ~2000 models); --only=TEXT keeps the models whose label contains TEXT.
+// Run: build/bench/table_albedo_sweep [--only=refit] [out.csv]
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -72,9 +73,15 @@ int main(int argc, char** argv) {
                 models.push_back({"ggx kc_link", g, false});
             }
     std::ofstream csv;
-    if (argc > 1) {
-        csv.open(argv[1]);
-        csv << "model,sigma,L,gamma,lambda,theta_i,albedo\n";
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        if (arg.rfind("--only=", 0) == 0) {
+            const std::string only = arg.substr(7);
+            std::erase_if(models, [&](const Model& m) { return m.label.find(only) == std::string::npos; });
+        } else {
+            csv.open(arg);
+            csv << "model,sigma,L,gamma,lambda,theta_i,albedo\n";
+        }
     }
     std::map<std::string, Worst> worst;
     Progress progress("albedo sweep", models.size());
