@@ -9,6 +9,8 @@ function(surfscatter_module name)
   set(target surfscatter_${name})
   if(sources)
     add_library(${target} STATIC ${sources})
+    # Position-independent, so that the Python extension (python/) can link the same static libraries.
+    set_target_properties(${target} PROPERTIES POSITION_INDEPENDENT_CODE ON)
     target_include_directories(${target} PUBLIC "${PROJECT_SOURCE_DIR}/src")
     target_compile_options(${target} PRIVATE ${SURFSCATTER_WARNINGS})
     target_link_libraries(${target} PUBLIC ${ARG_DEPS})

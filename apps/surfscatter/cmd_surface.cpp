@@ -14,7 +14,6 @@
 #include "statistics_options.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/paths.hpp"
-#include "surfscatter/surface/gwyddion_file.hpp"
 #include "surfscatter/surface/height_map_acv.hpp"
 #include "surfscatter/surface/height_map_fft.hpp"
 #include "surfscatter/surface/height_map_form.hpp"
@@ -55,10 +54,9 @@ void synth(const SynthArgs& args) {
     const auto model = args.statistics.make();
     if (args.seed < 0) fail("--seed must be >= 0, got {}", args.seed);
     surface::require_valid_spacing(args.spacing, "--spacing");
+    surface::require_height_map_extension(args.output, "-o");
     if (args.size < static_cast<long long>(surface::kMinHeightMapSize))
         fail("--size must be at least {} samples, got {}", surface::kMinHeightMapSize, args.size);
-    const std::string extension = std::filesystem::path(args.output).extension().string();
-    if (extension != ".gsf" && extension != ".gwy") fail("-o must name a .gsf or .gwy file, got '{}'", args.output);
     const auto n = static_cast<std::size_t>(args.size);
     surface::HeightMap map = surface::synthesize_surface(*model, {n, n, args.spacing}, args.seed);
     const StatisticsOptions& s = args.statistics;
@@ -66,8 +64,7 @@ void synth(const SynthArgs& args) {
                     ? fmt::format("{} sigma_h={} um L_c={} um{} seed={}", s.model, s.sigma, s.corr_length,
                                   s.gamma ? fmt::format(" gamma={}", *s.gamma) : "", args.seed)
                     : args.title;
-    if (extension == ".gwy") surface::gwyddion_write_gwy(map, args.output);
-    else surface::write_gsf(map, args.output);
+    surface::write_height_map(map, args.output);
 }
 
 void add_map_options(CLI::App* cmd, MapArgs& a) {

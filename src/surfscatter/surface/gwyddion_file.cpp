@@ -1,11 +1,15 @@
 // The Gwyddion binding: the only file that includes Gwyddion and GLib headers (gwyddion_file.hpp).
 #include "surfscatter/surface/gwyddion_file.hpp"
 
+#include <dlfcn.h>
+#include <link.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <mutex>
+#include <string>
 #include <vector>
 
 #include <app/settings.h>
@@ -27,10 +31,33 @@ std::mutex& gwyddion_mutex() {
     return mutex;
 }
 
+// Gwyddion's modules link no library: they resolve libgwy*, GLib and GTK symbols in the process's global scope, where
+// an executable linked with Gwyddion has them. A host that loaded this code with RTLD_LOCAL (Python loads extension
+// modules so) keeps them out of it, and every module would fail to register; so the libraries this code was linked
+// with (its DT_NEEDED entries, Gwyddion's among them) are promoted to the global scope, as in an executable.
+void promote_linked_libraries() {
+    Dl_info self;
+    if (dladdr(reinterpret_cast<void*>(&promote_linked_libraries), &self) == 0 || self.dli_fname == nullptr) return;
+    void* handle = dlopen(self.dli_fname, RTLD_NOW | RTLD_NOLOAD);
+    if (handle == nullptr) return;  // the main program: its libraries are global already
+    link_map* map = nullptr;
+    std::vector<std::string> needed;
+    if (dlinfo(handle, RTLD_DI_LINKMAP, &map) == 0 && map != nullptr) {
+        const char* strings = nullptr;
+        for (const ElfW(Dyn)* entry = map->l_ld; entry->d_tag != DT_NULL; ++entry)
+            if (entry->d_tag == DT_STRTAB) strings = reinterpret_cast<const char*>(entry->d_un.d_ptr);
+        for (const ElfW(Dyn)* entry = map->l_ld; strings != nullptr && entry->d_tag != DT_NULL; ++entry)
+            if (entry->d_tag == DT_NEEDED) needed.emplace_back(strings + entry->d_un.d_val);
+    }
+    dlclose(handle);
+    for (const std::string& name : needed) dlopen(name.c_str(), RTLD_NOW | RTLD_NOLOAD | RTLD_GLOBAL);  // kept open
+}
+
 // Registers the file modules once per process (caller holds the mutex).
 void initialise() {
     static bool done = false;
     if (done) return;
+    promote_linked_libraries();
     gwy_widgets_type_init();
     gchar** dirs = gwy_app_settings_get_module_dirs();
     gwy_module_disable_registration("plugin-proxy");  // would run external plug-in programs

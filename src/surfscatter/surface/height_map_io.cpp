@@ -169,6 +169,17 @@ void write_gsf(const HeightMap& map, const std::filesystem::path& file) {
     if (!out) fail("{}: write error", path);
 }
 
+void require_height_map_extension(const std::filesystem::path& path, const std::string& what) {
+    const std::string extension = path.extension().string();
+    if (extension != ".gsf" && extension != ".gwy") fail("{} must name a .gsf or .gwy file, got '{}'", what, path.string());
+}
+
+void write_height_map(const HeightMap& map, const std::filesystem::path& path) {
+    require_height_map_extension(path, "height map output");
+    if (path.extension() == ".gwy") gwyddion_write_gwy(map, path);
+    else write_gsf(map, path);
+}
+
 
 namespace {
 

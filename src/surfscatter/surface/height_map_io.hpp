@@ -38,6 +38,11 @@ HeightMap read_gsf(const std::filesystem::path& path);
 
 void write_gsf(const HeightMap& map, const std::filesystem::path& path);
 
+// Writes .gsf (write_gsf) or .gwy (Gwyddion's native format, gwyddion_file.hpp) by the path's extension.
+void write_height_map(const HeightMap& map, const std::filesystem::path& path);
+// Throws Error "<what> must name a .gsf or .gwy file, got '<path>'" unless write_height_map can write `path`.
+void require_height_map_extension(const std::filesystem::path& path, const std::string& what);
+
 // A text grid, with or without Gwyddion's export header (see above).
 HeightMap read_text_grid(const std::filesystem::path& path, std::optional<double> spacing_um,
                          std::optional<double> height_unit_um = std::nullopt);
