@@ -1,0 +1,116 @@
+#!/usr/bin/python3
+"""Bsdf.eval from Python on 10^6 direction pairs against bench_bsdf's per-call figure x 10^6, and its thread scaling.
+
+The same five models as bench/bench_bsdf.cpp's BM_eval/<model>/2 (KC gamma = 3, L = 1 um, g = 10 at 550 nm,
+perfect conductor, theta_i = 30 deg, outgoing directions from the model's own sampler). Each repetition runs
+bench_bsdf (one process) and then times one Bsdf.eval call over all pairs per model, first limited to one thread
+(surfscatter.set_max_threads(1)), then with every core; the figures are medians over the repetitions, CPU seconds
+(time.process_time, all threads) and wall seconds (time.perf_counter) separately. Results go to docs/PERFORMANCE.md.
+
+    /usr/bin/python3 bench/bench_python_bsdf.py --build build
+"""
+
+import argparse
+import json
+import os
+import platform
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+MODELS = {  # bench_bsdf.cpp options_for(model, g): name -> keyword options of surfscatter.bsdf
+    0: ("ghs_exact", dict(model="ghs")),
+    1: ("ghs_refit", dict(model="ghs", method="refit")),
+    2: ("ghs_ssa", dict(model="ghs_ssa")),
+    3: ("ggx", dict(model="ggx", alpha_from="smoothed", smoothing=0.1)),
+    4: ("two_scale", dict(model="two_scale", cutoff_wavelengths=50)),
+}
+LAMBDA_NM = 550.0
+THETA_I_DEG = 30.0
+G = 10.0
+
+
+def load_average():
+    return os.getloadavg()
+
+
+def cpp_per_call(bench):
+    """ns per eval call (cpu, real) of BM_eval/<model>/2 from one bench_bsdf run."""
+    out = subprocess.run([bench, "--benchmark_filter=BM_eval/[0-4]/2$", "--benchmark_min_time=0.3",
+                          "--benchmark_format=json"], capture_output=True, text=True, check=True).stdout
+    figures = {}
+    for row in json.loads(out)["benchmarks"]:
+        model = int(row["name"].split("/")[1])
+        scale = {"ns": 1.0, "us": 1e3, "ms": 1e6}[row["time_unit"]]
+        figures[model] = (row["cpu_time"] * scale, row["real_time"] * scale)
+    return figures
+
+
+def queries(model, ss, pairs):
+    """Fixed wi and `pairs` outgoing directions from the model's sampler, as bench_bsdf's directions()."""
+    rng = np.random.default_rng(3)
+    wi = ss.direction(THETA_I_DEG, 0.0)
+    wo, _, pdf, delta = model.sample(wi, LAMBDA_NM, rng.random((pairs, 3)) * [0.999999, 1, 1] + [1e-6, 0, 0])
+    redo = (pdf == 0) | delta
+    wo[redo] = ss.direction(np.degrees(np.arccos(rng.random(redo.sum()))), rng.uniform(0, 360, redo.sum()))
+    return wi, wo
+
+
+def timed_eval(model, wi, wo):
+    cpu, wall = time.process_time(), time.perf_counter()
+    model.eval(wi, wo, LAMBDA_NM)
+    return time.process_time() - cpu, time.perf_counter() - wall
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--build", type=Path, default=Path("build"), help="build directory")
+    parser.add_argument("--pairs", type=int, default=10**6)
+    parser.add_argument("--repeats", type=int, default=5)
+    args = parser.parse_args()
+    sys.path.insert(0, str(args.build.resolve() / "python"))
+    import surfscatter as ss
+
+    cores = os.cpu_count()
+    sigma = np.sqrt(G) / (2 * 2 * np.pi / (LAMBDA_NM * 1e-3))
+    models = {m: ss.bsdf(psd="kc", sigma=sigma, corr_length=1.0, gamma=3.0, **options)
+              for m, (_, options) in MODELS.items()}
+    directions = {m: queries(model, ss, args.pairs) for m, model in models.items()}
+    for m, model in models.items():  # tables built before timing
+        wi, wo = directions[m]
+        model.eval(wi, wo[:16], LAMBDA_NM)
+
+    load_before = load_average()
+    cpp, one, many = [], [], []
+    for _ in range(args.repeats):
+        cpp.append(cpp_per_call(str(args.build / "bench" / "bench_bsdf")))
+        ss.set_max_threads(1)
+        one.append({m: timed_eval(model, *directions[m]) for m, model in models.items()})
+        ss.set_max_threads(0)
+        many.append({m: timed_eval(model, *directions[m]) for m, model in models.items()})
+    load_after = load_average()
+
+    def median(runs, m, i):
+        return float(np.median([run[m][i] for run in runs]))
+
+    print(f"machine: {platform.processor() or platform.machine()}, {cores} cores; "
+          f"load average before {load_before[0]:.2f}, after {load_after[0]:.2f}")
+    print(f"command: /usr/bin/python3 {' '.join(sys.argv)}")
+    print(f"{args.pairs} pairs, median of {args.repeats} interleaved repetitions\n")
+    print("| model | C++ eval CPU ns/call (wall) | C++ x 10^6: CPU s | Python 1 thread: CPU s, wall s | "
+          f"Python / C++ (CPU) | Python {cores} threads: CPU s, wall s | wall speed-up 1 -> {cores} |")
+    print("|---|---|---|---|---|---|---|")
+    scale = args.pairs / 1e9
+    for m, (name, _) in MODELS.items():
+        cpp_cpu, cpp_wall = median(cpp, m, 0), median(cpp, m, 1)
+        one_cpu, one_wall = median(one, m, 0), median(one, m, 1)
+        many_cpu, many_wall = median(many, m, 0), median(many, m, 1)
+        print(f"| {name} | {cpp_cpu:.1f} ({cpp_wall:.1f}) | {cpp_cpu * scale:.4f} | {one_cpu:.4f}, {one_wall:.4f} | "
+              f"{one_cpu / (cpp_cpu * scale):.2f} | {many_cpu:.4f}, {many_wall:.4f} | {one_wall / many_wall:.2f} |")
+
+
+if __name__ == "__main__":
+    main()

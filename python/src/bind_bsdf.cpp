@@ -1,0 +1,287 @@
+// surfscatter.bsdf(...) -> Bsdf: bsdf/factory.hpp and bsdf/model_options.hpp, with eval/sample/pdf/albedo over
+// numpy arrays on TBB's threads.
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+
+#include <pybind11/stl.h>
+
+#include "arrays.hpp"
+#include "bindings.hpp"
+#include "surfscatter/bsdf/albedo.hpp"
+#include "surfscatter/bsdf/factory.hpp"
+#include "surfscatter/core/error.hpp"
+#include "surfscatter/surface/height_map.hpp"
+#include "surfscatter/surface/radial_statistics.hpp"
+
+namespace surfscatter::python {
+
+namespace {
+
+using namespace pybind11::literals;
+using bsdf::ModelOptions;
+
+// A model and the options it was built from.
+struct PyBsdf {
+    std::shared_ptr<const bsdf::Bsdf> model;
+    ModelOptions options;
+};
+
+std::string text_option(py::handle value, const char* name) {
+    if (!py::isinstance<py::str>(value))
+        fail("{} must be a string, got {}", name, py::repr(value).cast<std::string>());
+    return value.cast<std::string>();
+}
+
+double number_option(py::handle value, const char* name) {
+    if (py::isinstance<py::bool_>(value)) fail("{} must be a number, got {}", name, py::repr(value).cast<std::string>());
+    return real_scalar(value, name);
+}
+
+// Every keyword option of surfscatter.bsdf, named as in ModelOptions and the XML plugins (docs/MODELS.md).
+using Setter = std::function<void(ModelOptions&, py::handle, const char*)>;
+const std::map<std::string, Setter>& option_setters() {
+    static const std::map<std::string, Setter> setters = {
+        {"method", [](ModelOptions& o, py::handle v, const char* n) { o.method = bsdf::parse_method(text_option(v, n), n); }},
+        {"truncation",
+         [](ModelOptions& o, py::handle v, const char* n) { o.truncation = bsdf::parse_truncation(text_option(v, n), n); }},
+        {"epsilon", [](ModelOptions& o, py::handle v, const char* n) { o.epsilon = number_option(v, n); }},
+        {"fresnel", [](ModelOptions& o, py::handle v, const char* n) { o.fresnel = bsdf::parse_fresnel(text_option(v, n), n); }},
+        {"renormalization",
+         [](ModelOptions& o, py::handle v, const char* n) {
+             if (!py::isinstance<py::bool_>(v)) fail("{} must be True or False, got {}", n, py::repr(v).cast<std::string>());
+             o.renormalization = v.cast<bool>();
+         }},
+        {"ssa_form", [](ModelOptions& o, py::handle v, const char* n) { o.ssa_form = bsdf::parse_ssa_form(text_option(v, n), n); }},
+        {"alpha", [](ModelOptions& o, py::handle v, const char* n) { o.alpha = number_option(v, n); }},
+        {"alpha_from",
+         [](ModelOptions& o, py::handle v, const char* n) { o.alpha_from = bsdf::parse_alpha_from(text_option(v, n), n); }},
+        {"smoothing", [](ModelOptions& o, py::handle v, const char* n) { o.smoothing = number_option(v, n); }},
+        {"cutoff_wavelengths", [](ModelOptions& o, py::handle v, const char* n) { o.cutoff_wavelengths = number_option(v, n); }},
+        {"macro_ndf",
+         [](ModelOptions& o, py::handle v, const char* n) { o.macro_ndf = bsdf::parse_macro_ndf(text_option(v, n), n); }},
+        {"psd", [](ModelOptions& o, py::handle v, const char* n) { o.surface.psd = bsdf::parse_psd(text_option(v, n), n); }},
+        {"sigma", [](ModelOptions& o, py::handle v, const char* n) { o.surface.sigma = number_option(v, n); }},
+        {"corr_length", [](ModelOptions& o, py::handle v, const char* n) { o.surface.corr_length = number_option(v, n); }},
+        {"gamma", [](ModelOptions& o, py::handle v, const char* n) { o.surface.gamma = number_option(v, n); }},
+        {"surface_file", [](ModelOptions& o, py::handle v, const char* n) { o.surface.surface_file = path_string(v, n); }},
+        {"form", [](ModelOptions& o, py::handle v, const char* n) { o.surface.form = surface::parse_form(text_option(v, n), n); }},
+    };
+    return setters;
+}
+
+// The surface= argument: statistics objects and height maps become the SurfaceOptions the XML would give.
+void set_surface(ModelOptions& o, py::handle value) {
+    if (py::isinstance<surface::KCorrelation>(value)) {
+        const auto& kc = value.cast<const surface::KCorrelation&>();
+        o.surface.psd = bsdf::PsdKind::kc;
+        o.surface.sigma = kc.sigma_h();
+        o.surface.corr_length = kc.correlation_length();
+        o.surface.gamma = kc.gamma();
+    } else if (py::isinstance<surface::GaussianAcv>(value)) {
+        const auto& g = value.cast<const surface::GaussianAcv&>();
+        o.surface.psd = bsdf::PsdKind::gaussian;
+        o.surface.sigma = g.sigma_h();
+        o.surface.corr_length = g.correlation_length();
+    } else if (py::isinstance<surface::HeightMap>(value)) {
+        const auto map = value.cast<std::shared_ptr<surface::HeightMap>>();
+        o.surface.psd = bsdf::PsdKind::file;
+        o.surface.surface_file = map->origin();
+        o.surface.height_map = map;
+    } else if (py::isinstance<py::str>(value) || py::isinstance(value, py::module_::import("os").attr("PathLike"))) {
+        o.surface.surface_file = path_string(value, "surface");
+        o.surface.psd = bsdf::PsdKind::file;
+    } else {
+        fail("surface must be a KCorrelation, a GaussianAcv, a HeightMap or the path of a height map file, got {}",
+             py::repr(value).cast<std::string>());
+    }
+}
+
+PyBsdf make(const std::string& model, py::handle surface_arg, py::handle material, const py::kwargs& options) {
+    ModelOptions o;
+    o.model = bsdf::parse_model(model, "model");
+    o.material = path_string(material, "material");
+    const auto& setters = option_setters();
+    bool surface_keywords = false;
+    for (const auto& [key, value] : options) {
+        const auto name = key.cast<std::string>();
+        const auto setter = setters.find(name);
+        if (setter == setters.end()) {
+            std::string known;
+            for (const auto& [option, unused] : setters) known += (known.empty() ? "" : ", ") + option;
+            fail("unknown option '{}' (options: model, surface, material, {})", name, known);
+        }
+        setter->second(o, value, setter->first.c_str());
+        surface_keywords |= name == "psd" || name == "sigma" || name == "corr_length" || name == "gamma" ||
+                            name == "surface_file";
+    }
+    if (!surface_arg.is_none()) {
+        if (surface_keywords) fail("give either surface= or psd/sigma/corr_length/gamma/surface_file, not both");
+        set_surface(o, surface_arg);
+    } else if (!o.surface.surface_file.empty() && !options.contains("psd")) {
+        o.surface.psd = bsdf::PsdKind::file;  // as the XML: a surface_file alone is the surface
+    }
+    py::gil_scoped_release release;
+    return {std::shared_ptr<const bsdf::Bsdf>(bsdf::make_bsdf(o)), o};
+}
+
+py::dict options_dict(const ModelOptions& o) {
+    return py::dict("model"_a = to_string(o.model), "material"_a = o.material, "method"_a = to_string(o.method),
+                    "truncation"_a = to_string(o.truncation), "epsilon"_a = o.epsilon,
+                    "fresnel"_a = to_string(o.fresnel), "renormalization"_a = o.renormalization,
+                    "ssa_form"_a = to_string(o.ssa_form), "alpha"_a = o.alpha,
+                    "alpha_from"_a = to_string(o.alpha_from), "smoothing"_a = o.smoothing,
+                    "cutoff_wavelengths"_a = o.cutoff_wavelengths, "macro_ndf"_a = to_string(o.macro_ndf),
+                    "psd"_a = to_string(o.surface.psd), "sigma"_a = o.surface.sigma,
+                    "corr_length"_a = o.surface.corr_length, "gamma"_a = o.surface.gamma,
+                    "surface_file"_a = o.surface.surface_file, "form"_a = surface::to_string(o.surface.form));
+}
+
+Vec3 vec(const double* v) { return {v[0], v[1], v[2]}; }
+
+// f(wi, wo, lambda) for eval and pdf.
+template <typename F>
+py::object pair_map(py::handle wi, py::handle wo, py::handle lambda_nm, const F& f) {
+    const Batch batch({{wi, "wi", Domain::unit_vector}, {wo, "wo", Domain::unit_vector},
+                       {lambda_nm, "lambda_nm", Domain::positive}});
+    auto out = batch.output<double>();
+    double* values = out.mutable_data();
+    batch.for_each([&](std::size_t i) {
+        values[i] = f(vec(batch.at(0, i)), vec(batch.at(1, i)), *batch.at(2, i));
+    });
+    return result(out);
+}
+
+// f(wi, lambda) for the delta lobe's figures.
+template <typename F>
+py::object incident_map(py::handle wi, py::handle lambda_nm, const F& f) {
+    const Batch batch({{wi, "wi", Domain::unit_vector}, {lambda_nm, "lambda_nm", Domain::positive}});
+    auto out = batch.output<double>();
+    double* values = out.mutable_data();
+    batch.for_each([&](std::size_t i) { values[i] = f(vec(batch.at(0, i)), *batch.at(1, i)); });
+    return result(out);
+}
+
+py::tuple sample(const bsdf::Bsdf& model, py::handle wi, py::handle lambda_nm, py::handle u) {
+    const Batch batch({{wi, "wi", Domain::unit_vector}, {lambda_nm, "lambda_nm", Domain::positive},
+                       {u, "u", Domain::random_number, true}});
+    auto wo = batch.output<double>(3);
+    auto weight = batch.output<double>();
+    auto pdf = batch.output<double>();
+    auto delta = batch.output<bool>();
+    double *w = wo.mutable_data(), *f = weight.mutable_data(), *p = pdf.mutable_data();
+    bool* d = delta.mutable_data();
+    batch.for_each([&](std::size_t i) {
+        const double* r = batch.at(2, i);
+        const auto s = model.sample(vec(batch.at(0, i)), *batch.at(1, i), r[0], Vec2(r[1], r[2]));
+        const Vec3 v = s ? s->wo : Vec3(0, 0, 0);
+        w[3 * i] = v.x;
+        w[3 * i + 1] = v.y;
+        w[3 * i + 2] = v.z;
+        f[i] = s ? s->weight : 0.0;
+        p[i] = s ? s->pdf : 0.0;
+        d[i] = s && s->delta;
+    });
+    return py::make_tuple(wo, result(weight), result(pdf), result(delta));
+}
+
+py::tuple albedo(const bsdf::Bsdf& model, py::handle theta_i_deg, py::handle lambda_nm) {
+    const Batch batch({{theta_i_deg, "theta_i_deg", Domain::incidence_deg}, {lambda_nm, "lambda_nm", Domain::positive}});
+    auto total = batch.output<double>();
+    auto specular = batch.output<double>();
+    double *t = total.mutable_data(), *s = specular.mutable_data();
+    batch.for_each([&](std::size_t i) {
+        const auto a = bsdf::directional_albedo(model, *batch.at(0, i) * kDegree, *batch.at(1, i));
+        t[i] = a.total();
+        s[i] = a.specular;
+    });
+    return py::make_tuple(result(total), result(specular));
+}
+
+constexpr const char* kBsdfDoc = R"(Builds a scattering model (docs/MODELS.md) from its options.
+
+model: 'ghs' (full GHS), 'ghs_ssa' (smooth-surface approximation), 'ggx', 'two_scale' ('-' or '_').
+surface: the surface statistics: KCorrelation(sigma, corr_length, gamma), GaussianAcv(sigma, corr_length), a
+    HeightMap (KC fitted to it after removing `form`), or the path of a height map file; or None and the XML's
+    keywords psd ('kc' | 'gaussian' | 'file'), sigma (um), corr_length (um), gamma, surface_file instead.
+material: 'perfect', a built-in metal (Au, Ag, Al, Cu, ...) or a refractive-index file (as Conductor).
+Keyword options, named and spelled as in the XML plugins and bsdf::ModelOptions:
+    method 'exact' | 'refit' (GHS lobe), truncation 'three_sigma' | 'poisson_mass', epsilon,
+    fresnel 'incident' | 'half' | 'rr', renormalization True | False, ssa_form 'energy' | 'strict',
+    alpha (GGX), alpha_from 'none' | 'measured' | 'smoothed' | 'kc_link', smoothing (um),
+    cutoff_wavelengths (two-scale N), macro_ndf 'ggx' | 'beckmann', form 'none' | 'plane' | 'poly2'..'poly4'.
+Unknown options, bad values and missing parameters raise surfscatter.Error with the library's message.
+Building a model may tabulate its lobes (seconds the first time; cached on disk, $SURFSCATTER_CACHE_DIR).
+
+Units everywhere: wavelengths lambda_nm in nm, angles *_deg in degrees, lengths in um; directions wi (toward the
+light) and wo (toward the viewer) are unit vectors (..., 3) in the local frame (z = normal) pointing away from the
+surface; BRDF values in 1/sr without the cosine.)";
+
+}  // namespace
+
+void bind_bsdf(py::module_& m) {
+    py::class_<PyBsdf>(m, "Bsdf",
+                       "A scattering model built by surfscatter.bsdf(). eval, pdf, sample, albedo and the delta-lobe "
+                       "figures are vectorised with numpy broadcasting and run in parallel (TBB) without the GIL.")
+        .def_property_readonly("name", [](const PyBsdf& b) { return b.model->name(); }, "the model's name")
+        .def_property_readonly("options", [](const PyBsdf& b) { return options_dict(b.options); },
+                               "the options the model was built from (ModelOptions names)")
+        .def_property_readonly("is_pure_delta", [](const PyBsdf& b) { return b.model->is_pure_delta(); },
+                               "True for a smooth mirror (no continuous part)")
+        .def(
+            "eval",
+            [](const PyBsdf& b, py::handle wi, py::handle wo, py::handle lambda_nm) {
+                return pair_map(wi, wo, lambda_nm,
+                                [&](const Vec3& i, const Vec3& o, double l) { return b.model->eval(i, o, l); });
+            },
+            py::arg("wi"), py::arg("wo"), py::arg("lambda_nm"),
+            "f_r(wi, wo) in 1/sr (no cosine, no specular delta) for unit vectors wi, wo (..., 3) and wavelengths "
+            "lambda_nm (nm), broadcast together; 0 where a direction is below the surface. As `brdf eval`.")
+        .def(
+            "pdf",
+            [](const PyBsdf& b, py::handle wi, py::handle wo, py::handle lambda_nm) {
+                return pair_map(wi, wo, lambda_nm,
+                                [&](const Vec3& i, const Vec3& o, double l) { return b.model->pdf(i, o, l); });
+            },
+            py::arg("wi"), py::arg("wo"), py::arg("lambda_nm"),
+            "Solid-angle density (1/sr) with which sample() draws wo given wi, of its continuous part (including "
+            "the factor 1 - delta_probability), broadcast over wi, wo (..., 3) and lambda_nm (nm).")
+        .def(
+            "sample", [](const PyBsdf& b, py::handle wi, py::handle lambda_nm, py::handle u) { return sample(*b.model, wi, lambda_nm, u); },
+            py::arg("wi"), py::arg("lambda_nm"), py::arg("u"),
+            "Draws outgoing directions: u (..., 3) holds uniform random numbers in [0, 1) (u[..., 0] picks the "
+            "delta or the continuous lobe, u[..., 1:] drive the continuous sampler), broadcast with wi (..., 3) and "
+            "lambda_nm (nm). Returns (wo (..., 3), weight, pdf, delta): weight = f cos(theta_o) / pdf for the "
+            "continuous part and delta_reflectance / pdf for the delta lobe; pdf the solid-angle density or the "
+            "delta lobe's probability; delta True where the delta lobe was chosen. Where no direction could be "
+            "drawn (wi below the surface, a sample below the horizon) wo = 0, weight = 0, pdf = 0.")
+        .def(
+            "delta_reflectance",
+            [](const PyBsdf& b, py::handle wi, py::handle lambda_nm) {
+                return incident_map(wi, lambda_nm, [&](const Vec3& i, double l) { return b.model->delta_reflectance(i, l); });
+            },
+            py::arg("wi"), py::arg("lambda_nm"),
+            "Reflectance carried by the specular delta lobe toward the mirror direction (0 if the model has none).")
+        .def(
+            "delta_probability",
+            [](const PyBsdf& b, py::handle wi, py::handle lambda_nm) {
+                return incident_map(wi, lambda_nm, [&](const Vec3& i, double l) { return b.model->delta_probability(i, l); });
+            },
+            py::arg("wi"), py::arg("lambda_nm"), "Probability that sample() chooses the delta lobe.")
+        .def(
+            "albedo", [](const PyBsdf& b, py::handle theta_i_deg, py::handle lambda_nm) { return albedo(*b.model, theta_i_deg, lambda_nm); },
+            py::arg("theta_i_deg"), py::arg("lambda_nm"),
+            "Directional albedo at incidence theta_i_deg in [0, 90) degrees and wavelength lambda_nm (nm), "
+            "broadcast: (total, specular), total = integral of f cos(theta_o) over the hemisphere plus the delta "
+            "lobe, specular = the delta lobe alone. As `brdf albedo`.")
+        .def("__repr__", [](const PyBsdf& b) {
+            return fmt::format("<surfscatter.Bsdf {} material={} psd={}>", b.model->name(), b.options.material,
+                               to_string(b.options.surface.psd));
+        });
+
+    m.def("bsdf", &make, py::arg("model") = "ghs", py::arg("surface") = py::none(), py::arg("material") = "perfect",
+          kBsdfDoc);
+}
+
+}  // namespace surfscatter::python

@@ -1,0 +1,467 @@
+// Surface statistics (surface/radial_statistics.hpp, relevant_roughness.hpp, self_convolution_table.hpp,
+// refit.hpp) and height maps (height_map*.hpp, synthesis.hpp, kc_fit.hpp, psd_estimate*.hpp).
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <tuple>
+#include <utility>
+
+#include <pybind11/stl.h>
+
+#include "arrays.hpp"
+#include "bindings.hpp"
+#include "surfscatter/core/error.hpp"
+#include "surfscatter/math/vec.hpp"
+#include "surfscatter/surface/height_map.hpp"
+#include "surfscatter/surface/height_map_acv.hpp"
+#include "surfscatter/surface/height_map_form.hpp"
+#include "surfscatter/surface/height_map_io.hpp"
+#include "surfscatter/surface/height_map_slope.hpp"
+#include "surfscatter/surface/kc_fit.hpp"
+#include "surfscatter/surface/psd_estimate.hpp"
+#include "surfscatter/surface/psd_estimate_table.hpp"
+#include "surfscatter/surface/radial_statistics.hpp"
+#include "surfscatter/surface/refit.hpp"
+#include "surfscatter/surface/relevant_roughness.hpp"
+#include "surfscatter/surface/self_convolution_table.hpp"
+#include "surfscatter/surface/synthesis.hpp"
+
+namespace surfscatter::python {
+
+namespace {
+
+using namespace surface;
+using namespace pybind11::literals;
+
+constexpr const char* kFormDoc =
+    "form: what is removed before the statistic: 'none' (the mean), 'plane' (tilt), 'poly2' .. 'poly4' "
+    "(least-squares polynomial of that total degree), as --form.";
+
+// A statistics method vectorised over one argument.
+template <double (RadialStatistics::*method)(double) const>
+py::object statistics_map(const RadialStatistics& s, py::handle x, const char* name) {
+    return map_scalars({{x, name, Domain::non_negative}}, [&](double v) { return (s.*method)(v); });
+}
+
+// The pair (dx, dy) in um from a number or a pair of numbers.
+std::pair<double, double> spacing_pair(py::handle spacing_um) {
+    const RealArray a = real_array(spacing_um, "spacing_um", Domain::positive);
+    if (a.ndim() == 0) return {*a.data(), *a.data()};
+    if (a.ndim() == 1 && a.size() == 2) return {a.data()[0], a.data()[1]};
+    fail("spacing_um must be one number or a pair (dx, dy), got an array of {} values", a.size());
+}
+
+std::shared_ptr<HeightMap> height_map_from_numpy(py::handle heights_um, py::handle spacing_um, py::handle valid,
+                                                 const std::string& origin) {
+    const RealArray h = real_array(heights_um, "heights_um", Domain::unchecked);
+    if (h.ndim() != 2) fail("heights_um must be a 2-D array (rows = y, columns = x), got {} dimensions", h.ndim());
+    const auto ny = static_cast<std::size_t>(h.shape(0)), nx = static_cast<std::size_t>(h.shape(1));
+    const auto [dx, dy] = spacing_pair(spacing_um);
+    std::vector<double> values(h.data(), h.data() + h.size());
+    if (valid.is_none()) return std::make_shared<HeightMap>(nx, ny, dx, dy, std::move(values), origin);
+    const py::array mask = py::module_::import("numpy").attr("asarray")(valid);
+    if (mask.dtype().kind() != 'b')
+        fail("valid must be a boolean array (True = valid point), got dtype {}", py::str(mask.dtype()).cast<std::string>());
+    if (mask.ndim() != 2 || static_cast<std::size_t>(mask.shape(0)) != ny || static_cast<std::size_t>(mask.shape(1)) != nx)
+        fail("valid must have the shape of heights_um ({}, {})", ny, nx);
+    const auto flags = py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>::ensure(mask);
+    std::vector<std::uint8_t> validity(flags.data(), flags.data() + flags.size());
+    return std::make_shared<HeightMap>(nx, ny, dx, dy, std::move(values), std::move(validity), origin);
+}
+
+py::array_t<double> heights_array(const HeightMap& map) {
+    py::array_t<double> out({static_cast<py::ssize_t>(map.ny()), static_cast<py::ssize_t>(map.nx())});
+    std::memcpy(out.mutable_data(), map.heights().data(), map.size() * sizeof(double));
+    return out;
+}
+
+py::object validity_array(const HeightMap& map) {
+    if (!map.has_invalid()) return py::none();
+    py::array_t<bool> out({static_cast<py::ssize_t>(map.ny()), static_cast<py::ssize_t>(map.nx())});
+    bool* v = out.mutable_data();
+    for (std::size_t i = 0; i < map.size(); ++i) v[i] = map.valid(i);
+    return out;
+}
+
+py::dict source_dict(const HeightMapSource& s) {
+    return py::dict("format"_a = s.format, "reader"_a = s.reader, "channel"_a = s.channel, "warnings"_a = s.warnings,
+                    "height_unit_um"_a = s.height_unit_um);
+}
+
+// Radial rings of a periodogram as arrays.
+py::dict radial_dict(const RadialPsd& r) {
+    return py::dict("zeta"_a = to_array(r.zeta), "psd"_a = to_array(r.psd), "count"_a = to_array(r.count),
+                    "dzeta"_a = r.dzeta);
+}
+
+// The half-plane 2-D PSD, rows = zeta_y in FFT order, columns = zeta_x >= 0.
+py::dict psd2d_dict(const Psd2d& p) {
+    RealArray values({static_cast<py::ssize_t>(p.ny), static_cast<py::ssize_t>(p.half_nx())});
+    std::memcpy(values.mutable_data(), p.values.data(), p.values.size() * sizeof(double));
+    std::vector<double> zx(p.half_nx()), zy(p.ny);
+    for (std::size_t k = 0; k < zx.size(); ++k) zx[k] = p.zeta_x(k);
+    for (std::size_t k = 0; k < zy.size(); ++k) zy[k] = p.zeta_y(k);
+    return py::dict("values"_a = values, "zeta_x"_a = to_array(zx), "zeta_y"_a = to_array(zy));
+}
+
+void bind_statistics(py::module_& m) {
+    py::class_<RadialStatistics, std::shared_ptr<RadialStatistics>>(
+        m, "RadialStatistics",
+        "Isotropic surface statistics (THEORY.md 0, 2): radial PSD P(zeta) in um^4 over the angular spatial "
+        "frequency zeta (rad/um), normalised so that its integral over the zeta-plane is sigma_h^2, and "
+        "autocovariance C(r) in um^2 over the lateral distance r (um). Base of KCorrelation, GaussianAcv and "
+        "TabulatedPsd; every method is vectorised over its array arguments (numpy broadcasting).")
+        .def_property_readonly("sigma_h", &RadialStatistics::sigma_h, "rms height sigma_h (um)")
+        .def_property_readonly("correlation_length", &RadialStatistics::correlation_length,
+                               "characteristic length (um) that scales the tables")
+        .def_property_readonly("cache_key", &RadialStatistics::cache_key, "text naming the model and its parameters")
+        .def(
+            "psd", [](const RadialStatistics& s, py::handle zeta) { return statistics_map<&RadialStatistics::psd>(s, zeta, "zeta"); },
+            py::arg("zeta"), "P(zeta) in um^4 at angular frequencies zeta >= 0 (rad/um), as `surfscatter psd`.")
+        .def(
+            "psd_unit",
+            [](const RadialStatistics& s, py::handle zeta) { return statistics_map<&RadialStatistics::psd_unit>(s, zeta, "zeta"); },
+            py::arg("zeta"), "P(zeta) / sigma_h^2 in um^2 (unit mass over the zeta-plane), zeta >= 0 in rad/um.")
+        .def(
+            "acv", [](const RadialStatistics& s, py::handle r) { return statistics_map<&RadialStatistics::acv>(s, r, "r"); },
+            py::arg("r"), "C(r) in um^2 at lateral distances r >= 0 (um), as `surfscatter acv`.")
+        .def(
+            "acv_normalized",
+            [](const RadialStatistics& s, py::handle r) { return statistics_map<&RadialStatistics::acv_normalized>(s, r, "r"); },
+            py::arg("r"), "rho(r) = C(r) / sigma_h^2 (rho(0) = 1) at r >= 0 (um).")
+        .def(
+            "radial_cdf",
+            [](const RadialStatistics& s, py::handle zeta) { return statistics_map<&RadialStatistics::radial_cdf>(s, zeta, "zeta"); },
+            py::arg("zeta"), "Mass of P/sigma_h^2 inside |zeta'| <= zeta (rad/um), in [0, 1].")
+        .def(
+            "relevant_roughness",
+            [](const RadialStatistics& s, py::handle theta_i_deg, py::handle lambda_nm) {
+                return map_scalars({{theta_i_deg, "theta_i_deg", Domain::incidence_deg},
+                                    {lambda_nm, "lambda_nm", Domain::positive}},
+                                   [&](double t, double l) { return relevant_roughness(s, t * kDegree, l); });
+            },
+            py::arg("theta_i_deg"), py::arg("lambda_nm"),
+            "sigma_rel (um): the rms height of the part of the PSD inside the visible disc for incidence "
+            "theta_i_deg in [0, 90) degrees and wavelength lambda_nm (nm), broadcast together (THEORY.md 1.1).")
+        .def(
+            "visible_disc_mass",
+            [](const RadialStatistics& s, py::handle theta_i_deg, py::handle lambda_nm) {
+                return map_scalars({{theta_i_deg, "theta_i_deg", Domain::incidence_deg},
+                                    {lambda_nm, "lambda_nm", Domain::positive}},
+                                   [&](double t, double l) { return visible_disc_mass(s, t * kDegree, l); });
+            },
+            py::arg("theta_i_deg"), py::arg("lambda_nm"),
+            "(sigma_rel / sigma_h)^2: the fraction of the PSD's mass inside the visible disc, broadcast over "
+            "theta_i_deg in [0, 90) degrees and lambda_nm (nm).")
+        .def(
+            "total_integrated_scatter",
+            [](const RadialStatistics& s, py::handle theta_i_deg, py::handle lambda_nm) {
+                return map_scalars({{theta_i_deg, "theta_i_deg", Domain::incidence_deg},
+                                    {lambda_nm, "lambda_nm", Domain::positive}},
+                                   [&](double t, double l) { return s.total_integrated_scatter(t * kDegree, l); });
+            },
+            py::arg("theta_i_deg"), py::arg("lambda_nm"),
+            "1 - exp(-(4 pi sigma_rel / lambda)^2) of a perfect conductor (THEORY.md 1.1), broadcast over "
+            "theta_i_deg in [0, 90) degrees and lambda_nm (nm).")
+        .def(
+            "mean_square_slope",
+            [](const RadialStatistics& s, double smoothing_um, double cutoff_zeta) {
+                return s.mean_square_slope(smoothing_um, cutoff_zeta);
+            },
+            py::arg("smoothing_um") = 0.0, py::arg("cutoff_zeta") = std::numeric_limits<double>::infinity(),
+            "<|grad h|^2> (dimensionless) after Gaussian smoothing of standard deviation smoothing_um (um; 0 = none) "
+            "and a sharp low-pass at cutoff_zeta (rad/um; inf = none); inf when the integral diverges.")
+        .def(
+            "self_convolution",
+            [](const RadialStatistics& s, int max_order) {
+                py::gil_scoped_release release;
+                return std::const_pointer_cast<SelfConvolutionTable>(SelfConvolutionTable::get(s, max_order));
+            },
+            py::arg("max_order"),
+            "The self-convolutions P-hat^{*m}, m = 1..max_order, of the unit-mass PSD (THEORY.md 1.2, 2.3), "
+            "tabulated once and cached on disk: a SelfConvolution.");
+
+    py::class_<KCorrelation, RadialStatistics, std::shared_ptr<KCorrelation>>(
+        m, "KCorrelation",
+        "K-correlation (ABC) statistics, THEORY.md 2.1: P = sigma^2 (gamma - 1) L^2 / (2 pi) "
+        "(1 + L^2 zeta^2)^(-(gamma + 1)/2). Parameters named as in the XML and ModelOptions.")
+        .def(py::init<double, double, double>(), py::arg("sigma"), py::arg("corr_length"), py::arg("gamma"),
+             "sigma: rms height (um, > 0); corr_length: L (um, > 0); gamma: exponent (> 1).")
+        .def_property_readonly("gamma", &KCorrelation::gamma, "exponent gamma")
+        .def(
+            "inverse_radial_cdf",
+            [](const KCorrelation& s, py::handle u) {
+                return map_scalars({{u, "u", Domain::random_number}}, [&](double v) { return s.inverse_radial_cdf(v); });
+            },
+            py::arg("u"), "zeta (rad/um) with radial_cdf(zeta) = u, for u in [0, 1).")
+        .def_property_readonly(
+            "abc",
+            [](const KCorrelation& s) {
+                const AbcParameters p = to_abc(s);
+                return py::dict("a"_a = p.a, "b"_a = p.b, "c"_a = p.c);
+            },
+            "ABC (Church) parameters in cyclic frequency: {'a': um^4, 'b': um, 'c': = gamma}.")
+        .def_static(
+            "from_abc", [](double a, double b, double c) { return from_abc({a, b, c}); }, py::arg("a"),
+            py::arg("b"), py::arg("c"), "The KCorrelation of ABC parameters a (um^4), b (um), c (> 1).")
+        .def(
+            "refit",
+            [](const KCorrelation& s, int max_order) {
+                py::gil_scoped_release release;
+                return refit_self_convolutions(s, max_order);
+            },
+            py::arg("max_order"),
+            "The supplemental's refit (THEORY.md 2.4): each self-convolution m = 1..max_order fitted by a KC of "
+            "the same gamma, then L_m = L m^-x. A Refit; as `surfscatter selfconv`.")
+        .def("__repr__", [](const KCorrelation& s) {
+            return fmt::format("surfscatter.KCorrelation(sigma={}, corr_length={}, gamma={})", s.sigma_h(),
+                               s.correlation_length(), s.gamma());
+        });
+
+    py::class_<GaussianAcv, RadialStatistics, std::shared_ptr<GaussianAcv>>(
+        m, "GaussianAcv", "Gaussian autocovariance C(r) = sigma^2 exp(-r^2 / corr_length^2).")
+        .def(py::init<double, double>(), py::arg("sigma"), py::arg("corr_length"),
+             "sigma: rms height (um, > 0); corr_length: l (um, > 0).")
+        .def(
+            "inverse_radial_cdf",
+            [](const GaussianAcv& s, py::handle u) {
+                return map_scalars({{u, "u", Domain::random_number}}, [&](double v) { return s.inverse_radial_cdf(v); });
+            },
+            py::arg("u"), "zeta (rad/um) with radial_cdf(zeta) = u, for u in [0, 1).")
+        .def("__repr__", [](const GaussianAcv& s) {
+            return fmt::format("surfscatter.GaussianAcv(sigma={}, corr_length={})", s.sigma_h(), s.correlation_length());
+        });
+
+    py::class_<TabulatedPsd, RadialStatistics, std::shared_ptr<TabulatedPsd>>(
+        m, "TabulatedPsd",
+        "Statistics of a measured radial PSD: log-log interpolation between samples, flat below the first, the "
+        "last decade's power law beyond the last (which must fall faster than zeta^-2).")
+        .def(py::init([](py::handle zeta, py::handle psd) {
+                 const RealArray z = real_array(zeta, "zeta", Domain::positive);
+                 const RealArray p = real_array(psd, "psd", Domain::positive);
+                 if (z.ndim() != 1 || p.ndim() != 1 || z.size() != p.size())
+                     fail("zeta and psd must be 1-D arrays of the same length, got {} and {} values", z.size(), p.size());
+                 return std::make_shared<TabulatedPsd>(std::vector<double>(z.data(), z.data() + z.size()),
+                                                       std::vector<double>(p.data(), p.data() + p.size()));
+             }),
+             py::arg("zeta"), py::arg("psd"),
+             "zeta: strictly increasing angular frequencies (rad/um); psd: P at them (um^4, > 0).")
+        .def("__repr__", [](const TabulatedPsd& s) { return "surfscatter.TabulatedPsd(" + s.cache_key() + ")"; });
+
+    py::class_<SelfConvolutionTable, std::shared_ptr<SelfConvolutionTable>>(
+        m, "SelfConvolution",
+        "Self-convolutions P-hat^{*m} of a unit-mass PSD, m = 1..max_order (RadialStatistics.self_convolution).")
+        .def_property_readonly("max_order", &SelfConvolutionTable::max_order, "highest order m tabulated")
+        .def(
+            "psd_unit",
+            [](const SelfConvolutionTable& t, int order, py::handle zeta) {
+                return map_scalars({{zeta, "zeta", Domain::non_negative}}, [&](double z) { return t.eval(order, z); });
+            },
+            py::arg("m"), py::arg("zeta"), "P-hat^{*m}(zeta) in um^2 at zeta >= 0 (rad/um), m in 1..max_order.")
+        .def(
+            "radial_cdf",
+            [](const SelfConvolutionTable& t, int order, py::handle zeta) {
+                return map_scalars({{zeta, "zeta", Domain::non_negative}}, [&](double z) { return t.radial_cdf(order, z); });
+            },
+            py::arg("m"), py::arg("zeta"), "Mass of P-hat^{*m} inside |zeta'| <= zeta (rad/um).")
+        .def(
+            "inverse_radial_cdf",
+            [](const SelfConvolutionTable& t, int order, py::handle u) {
+                return map_scalars({{u, "u", Domain::random_number}}, [&](double v) { return t.inverse_radial_cdf(order, v); });
+            },
+            py::arg("m"), py::arg("u"), "Radius (rad/um) at which the radial CDF of order m reaches u in [0, 1).");
+
+    py::class_<RefitResult>(m, "Refit", "Result of KCorrelation.refit: L_m = L m^-x (THEORY.md 2.4).")
+        .def_readonly("exponent_x", &RefitResult::exponent_x, "x of L_m = L m^-x")
+        .def_property_readonly(
+            "corr_length_m", [](const RefitResult& r) { return to_array(r.corr_length_m); },
+            "L_m (um) for m = 1..max_order (index m - 1)")
+        .def_property_readonly(
+            "misfit_m", [](const RefitResult& r) { return to_array(r.misfit_m); },
+            "integral of |fit - true| over the zeta-plane (fraction of unit mass), index m - 1")
+        .def("__repr__", [](const RefitResult& r) {
+            return fmt::format("surfscatter.Refit(exponent_x={}, orders={})", r.exponent_x, r.corr_length_m.size());
+        });
+}
+
+void bind_height_maps(py::module_& m) {
+    py::class_<HeightMap, std::shared_ptr<HeightMap>>(
+        m, "HeightMap",
+        "A height map h(x, y) on a regular grid: heights and spacings in um, an optional validity mask. numpy "
+        "layout: heights_um[iy, ix] (rows along y, x along a row), as Gwyddion stores them.")
+        .def(py::init(&height_map_from_numpy), py::arg("heights_um"), py::arg("spacing_um"),
+             py::arg("valid") = py::none(), py::arg("origin") = "numpy array",
+             "heights_um: 2-D array (ny, nx) of heights in um, finite at every valid point; spacing_um: pixel "
+             "spacing in um, one number or (dx, dy); valid: None (all valid) or a boolean array of the same shape "
+             "(False = invalid point: its height is ignored and may be NaN); origin: names the data in messages.")
+        .def_property_readonly("heights_um", &heights_array, "heights (ny, nx) in um (a copy; invalid points hold 0)")
+        .def_property_readonly("valid", &validity_array, "boolean mask (ny, nx), or None when every point is valid")
+        .def_property_readonly("nx", &HeightMap::nx, "points along x (columns)")
+        .def_property_readonly("ny", &HeightMap::ny, "points along y (rows)")
+        .def_property_readonly("spacing_x_um", &HeightMap::spacing_x, "pixel spacing along x (um)")
+        .def_property_readonly("spacing_y_um", &HeightMap::spacing_y, "pixel spacing along y (um)")
+        .def_property_readonly("width_um", &HeightMap::width, "nx * dx (um)")
+        .def_property_readonly("height_um", &HeightMap::height, "ny * dy (um)")
+        .def_property_readonly("valid_fraction", &HeightMap::valid_fraction, "fraction of the points that are valid")
+        .def_property_readonly("origin", &HeightMap::origin, "where the data came from (file name)")
+        .def_readwrite("title", &HeightMap::title, "title stored in .gsf files")
+        .def_property_readonly(
+            "source", [](const HeightMap& h) { return source_dict(h.source); },
+            "what the reader found: {'format', 'reader', 'channel', 'warnings', 'height_unit_um'}")
+        .def("describe", &describe, "one line: file, format, grid, spacing, valid fraction")
+        .def("__repr__", [](const HeightMap& h) { return "<surfscatter.HeightMap " + describe(h) + ">"; })
+        .def(
+            "remove_form", [](const HeightMap& h, const std::string& form) { return remove_form(h, parse_form(form, "form")); },
+            py::arg("form") = "plane", (std::string("The map minus its least-squares form. ") + kFormDoc).c_str())
+        .def(
+            "rms_height", [](const HeightMap& h, const std::string& form) { return rms_height(h, parse_form(form, "form")); },
+            py::arg("form") = "plane", (std::string("rms height (um) about the form over the valid points. ") + kFormDoc).c_str())
+        .def(
+            "rms_slope",
+            [](const HeightMap& h, const std::string& form, std::optional<double> smoothing_um) {
+                const Form f = parse_form(form, "form");
+                return smoothing_um ? rms_slope_smoothed(h, *smoothing_um, f) : rms_slope(h, f);
+            },
+            py::arg("form") = "plane", py::arg("smoothing_um") = py::none(),
+            (std::string("rms slope (central differences) of the form-removed map, after Gaussian smoothing of "
+                         "standard deviation smoothing_um (um) if given. ") + kFormDoc).c_str())
+        .def(
+            "moments",
+            [](const HeightMap& h, const std::string& form) {
+                const HeightMoments hm = height_moments(remove_form(h, parse_form(form, "form")));
+                return py::dict("rms"_a = hm.rms, "skewness"_a = hm.skewness, "kurtosis"_a = hm.kurtosis);
+            },
+            py::arg("form") = "plane",
+            (std::string("{'rms' (um), 'skewness', 'kurtosis'} of the form-removed map, as `surface info`. ") + kFormDoc).c_str())
+        .def(
+            "acv_measures",
+            [](const HeightMap& h, const std::string& form) {
+                const AcvMeasures a = acv_measures(remove_form(h, parse_form(form, "form")));
+                return py::dict("correlation_length_um"_a = a.correlation_length_um,
+                                "autocorrelation_length_um"_a = a.autocorrelation_length_um,
+                                "texture_aspect_ratio"_a = a.texture_aspect_ratio, "str_is_bound"_a = a.str_is_bound,
+                                "slowest_direction_deg"_a = a.slowest_direction_deg);
+            },
+            py::arg("form") = "plane",
+            (std::string("ACF measures of the form-removed map (height_map_acv.hpp): correlation length (1/e), "
+                         "Sal and Str (ISO 25178-2, s = 0.2), as `surface info`. ") + kFormDoc).c_str())
+        .def(
+            "psd",
+            [](const HeightMap& h, const std::string& form) {
+                const Psd2d p = estimate_psd(h, Window::hann, parse_form(form, "form"));
+                py::dict out = psd2d_dict(p);
+                out["radial"] = radial_dict(radial_average(p));
+                return out;
+            },
+            py::arg("form") = "plane",
+            (std::string("Hann-windowed periodogram of the form-removed map (psd_estimate.hpp): {'values': "
+                         "half-plane P (ny, nx//2 + 1) in um^4, 'zeta_x', 'zeta_y' (rad/um, zeta_y in FFT order), "
+                         "'radial': {'zeta', 'psd', 'count', 'dzeta'}}. ") + kFormDoc).c_str())
+        .def(
+            "write", [](const HeightMap& h, py::handle path) { write_height_map(h, path_string(path, "path")); },
+            py::arg("path"), "Writes .gsf or .gwy (by extension), heights in m as Gwyddion writes them.");
+
+    m.def(
+        "read_height_map",
+        [](py::handle path, std::optional<double> spacing_um, std::optional<double> height_unit_um) {
+            const std::string file = path_string(path, "path");
+            py::gil_scoped_release release;
+            return std::make_shared<HeightMap>(read_height_map(file, spacing_um, height_unit_um));
+        },
+        py::arg("path"), py::arg("spacing_um") = py::none(), py::arg("height_unit_um") = py::none(),
+        "Reads any height map: every format Gwyddion reads (.gwy, .gsf, .sdf, MetroPro .dat, .opd, Nanoscope, ...), "
+        "X3P, Gwyddion's text export, or a CSV/whitespace grid (docs/HEIGHTMAPS.md). spacing_um and height_unit_um "
+        "(um per height unit) are needed for a bare text grid; for files that state them they may only agree.");
+
+    m.def(
+        "synthesize",
+        [](const RadialStatistics& statistics, py::handle size, double spacing_um, std::uint64_t seed) {
+            std::size_t nx = 0, ny = 0;
+            if (py::isinstance<py::int_>(size)) nx = ny = size.cast<std::size_t>();
+            else if (py::isinstance<py::sequence>(size) && py::len(size) == 2)
+                std::tie(nx, ny) = size.cast<std::pair<std::size_t, std::size_t>>();
+            else fail("size must be n or (nx, ny) (whole numbers of samples), got {}", py::repr(size).cast<std::string>());
+            const SynthesisGrid grid{nx, ny, spacing_um};
+            py::gil_scoped_release release;
+            return std::make_shared<HeightMap>(synthesize_surface(statistics, grid, seed));
+        },
+        py::arg("statistics"), py::arg("size"), py::arg("spacing_um"), py::arg("seed") = 1,
+        "A random Gaussian surface with the PSD of `statistics` (spectral synthesis, synthesis.hpp) on an n x n "
+        "(size = n) or nx x ny (size = (nx, ny)) grid of spacing_um; the same seed gives the same surface as "
+        "`surfscatter surface synth --seed`.");
+
+    m.def(
+        "measured_statistics",
+        [](const HeightMap& map, const std::string& form, std::size_t min_ring, double max_zeta_fraction,
+           double bins_per_decade, double min_effective_samples) {
+            PsdTableOptions options;
+            options.form = parse_form(form, "form");
+            options.min_ring = min_ring;
+            options.max_nyquist_fraction = max_zeta_fraction;
+            options.bins_per_decade = bins_per_decade;
+            options.min_effective_samples = min_effective_samples;
+            py::gil_scoped_release release;
+            return std::make_shared<TabulatedPsd>(tabulated_psd(map, options));
+        },
+        py::arg("height_map"), py::arg("form") = "plane", py::arg("min_ring") = PsdTableOptions{}.min_ring,
+        py::arg("max_zeta_fraction") = PsdTableOptions{}.max_nyquist_fraction,
+        py::arg("bins_per_decade") = PsdTableOptions{}.bins_per_decade,
+        py::arg("min_effective_samples") = PsdTableOptions{}.min_effective_samples,
+        "The map's own radial PSD as statistics (psd_estimate_table.hpp): ring means of the Hann periodogram from "
+        "ring min_ring up to max_zeta_fraction of Nyquist, merged into log bins of 1/bins_per_decade decade holding "
+        "at least min_effective_samples independent samples; a TabulatedPsd.");
+
+    py::class_<SurfaceFit>(m, "SurfaceFit",
+                           "A KC fit to a height map (fit_surface), with the names `surfscatter surface fit` prints.")
+        .def_property_readonly("sigma_h", [](const SurfaceFit& f) { return f.kc.sigma_h_um; }, "fitted sigma_h (um)")
+        .def_property_readonly("corr_length", [](const SurfaceFit& f) { return f.kc.corr_length_um; }, "fitted L (um)")
+        .def_property_readonly("gamma", [](const SurfaceFit& f) { return f.kc.gamma; }, "fitted gamma")
+        .def_property_readonly("zeta_min", [](const SurfaceFit& f) { return f.kc.zeta_min; }, "band used, rad/um")
+        .def_property_readonly("zeta_max", [](const SurfaceFit& f) { return f.kc.zeta_max; }, "band used, rad/um")
+        .def_property_readonly("rings", [](const SurfaceFit& f) { return f.kc.rings; }, "rings in the band")
+        .def_property_readonly("log_residual_rms", [](const SurfaceFit& f) { return f.kc.log_residual_rms; },
+                               "weighted rms of ln(data / model)")
+        .def_readonly("rms_height_map", &SurfaceFit::rms_height_um, "rms of the form-removed map (um, band-limited)")
+        .def_readonly("rms_slope", &SurfaceFit::rms_slope, "rms slope of the form-removed map (central differences)")
+        .def_readonly("rms_slope_psd", &SurfaceFit::rms_slope_from_psd, "rms slope from the 2-D periodogram")
+        .def_property_readonly(
+            "statistics",
+            [](const SurfaceFit& f) { return std::make_shared<KCorrelation>(f.kc.sigma_h_um, f.kc.corr_length_um, f.kc.gamma); },
+            "the fitted KCorrelation")
+        .def_property_readonly("radial", [](const SurfaceFit& f) { return radial_dict(f.radial); },
+                               "the rings that were fitted: {'zeta' (rad/um), 'psd' (um^4), 'count', 'dzeta'}")
+        .def_property_readonly("psd2d", [](const SurfaceFit& f) { return psd2d_dict(f.psd); },
+                               "the 2-D periodogram: {'values' (ny, nx//2 + 1), 'zeta_x', 'zeta_y'}")
+        .def("__repr__", [](const SurfaceFit& f) {
+            return fmt::format("surfscatter.SurfaceFit(sigma_h={}, corr_length={}, gamma={})", f.kc.sigma_h_um,
+                               f.kc.corr_length_um, f.kc.gamma);
+        });
+
+    m.def(
+        "fit_surface",
+        [](const HeightMap& map, const std::string& form, std::size_t min_ring, double max_zeta_fraction) {
+            KcFitOptions options;
+            options.form = parse_form(form, "form");
+            options.min_ring = min_ring;
+            options.max_nyquist_fraction = max_zeta_fraction;
+            py::gil_scoped_release release;
+            return fit_surface(map, options);
+        },
+        py::arg("height_map"), py::arg("form") = "plane", py::arg("min_ring") = KcFitOptions{}.min_ring,
+        py::arg("max_zeta_fraction") = KcFitOptions{}.max_nyquist_fraction,
+        "Fits a K-correlation PSD to a HeightMap (kc_fit.hpp): weighted log least squares over the rings of the "
+        "Hann periodogram from ring min_ring to max_zeta_fraction of Nyquist, after removing `form`. A SurfaceFit "
+        "(as `surfscatter surface fit --min-ring --max-zeta-fraction --form`). Error if the map does not resolve "
+        "the correlation length or gamma.");
+}
+
+}  // namespace
+
+void bind_surface(py::module_& m) {
+    bind_statistics(m);
+    bind_height_maps(m);
+}
+
+}  // namespace surfscatter::python

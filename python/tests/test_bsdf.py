@@ -1,0 +1,193 @@
+"""surfscatter.bsdf: eval and albedo against `surfscatter brdf eval/albedo`, eval/sample/pdf consistency on arrays,
+broadcasting, options named as in the XML, and bad input."""
+
+import numpy as np
+import pytest
+
+import surfscatter as ss
+from conftest import CLI_RTOL, cli_csv, cli_values, numbers, shared
+
+KC = dict(sigma=0.05, corr_length=2.0, gamma=3.0)
+KC_CLI = ["--psd", "kc", "--sigma", 0.05, "--corr-length", 2.0, "--gamma", 3.0]
+
+# (keyword options of surfscatter.bsdf, the same as CLI options)
+MODELS = [
+    (dict(model="ghs", **KC), ["--model", "ghs", *KC_CLI]),
+    (dict(model="ghs", method="refit", **KC), ["--model", "ghs", "--method", "refit", *KC_CLI]),
+    (dict(model="ghs", fresnel="half", renormalization=False, **KC),
+     ["--model", "ghs", "--fresnel", "half", "--no-renormalization", *KC_CLI]),
+    (dict(model="ghs_ssa", **KC), ["--model", "ghs-ssa", *KC_CLI]),
+    (dict(model="ghs_ssa", psd="gaussian", sigma=0.03, corr_length=1.0),
+     ["--model", "ghs-ssa", "--psd", "gaussian", "--sigma", 0.03, "--corr-length", 1.0]),
+    (dict(model="ggx", alpha=0.2), ["--model", "ggx", "--alpha", 0.2]),
+    (dict(model="ggx", alpha_from="smoothed", smoothing=0.1, **KC),
+     ["--model", "ggx", "--alpha-from", "smoothed", "--smoothing", 0.1, *KC_CLI]),
+    (dict(model="two_scale", cutoff_wavelengths=50, **KC), ["--model", "two-scale", "--cutoff-wavelengths", 50, *KC_CLI]),
+]
+THETA_O = np.array([0.0, 15.0, 29.0, 30.0, 31.0, 60.0, 85.0])
+PHI_O = np.array([0.0, 90.0, 170.0, 180.0])
+
+
+@pytest.mark.parametrize("options, cli", MODELS, ids=lambda v: str(v))
+def test_eval_and_albedo_equal_the_cli(options, cli):
+    model = ss.bsdf(material="Au", **options)
+    table = cli_csv("brdf", "eval", *cli, "--material", "Au", "--wavelength", 550, "--theta-i", 30,
+                    "--theta-o", numbers(THETA_O), "--phi-o", numbers(PHI_O))
+    wi = ss.direction(30.0, 0.0)
+    wo = ss.direction(table["theta_o"], table["phi_o"])
+    np.testing.assert_allclose(model.eval(wi, wo, 550.0), table["brdf"], rtol=CLI_RTOL, atol=1e-300)
+    albedo = cli_values("brdf", "albedo", *cli, "--material", "Au", "--wavelength", 550, "--theta-i", 30)
+    total, specular = model.albedo(30.0, 550.0)
+    assert total == pytest.approx(albedo["albedo"], rel=CLI_RTOL)
+    assert specular == pytest.approx(albedo["specular"], rel=CLI_RTOL, abs=1e-300)
+
+
+def test_a_height_map_as_surface_equals_the_cli_with_surface():
+    path = shared("realdata", "heightmaps", "opd-1.opd")
+    table = cli_csv("brdf", "eval", "--model", "ghs", "--surface", path, "--material", "Ag", "--wavelength", 500,
+                    "--theta-i", 20, "--theta-o", numbers(THETA_O))
+    wi, wo = ss.direction(20.0, 0.0), ss.direction(table["theta_o"], table["phi_o"])
+    expected = table["brdf"]
+    from_path = ss.bsdf("ghs", surface=path, material="Ag")
+    from_map = ss.bsdf("ghs", surface=ss.read_height_map(path), material="Ag")
+    from_keyword = ss.bsdf("ghs", surface_file=str(path), material="Ag")
+    for model in (from_path, from_map, from_keyword):
+        np.testing.assert_allclose(model.eval(wi, wo, 500.0), expected, rtol=CLI_RTOL)
+    assert from_map.options["psd"] == "file"
+
+
+@pytest.mark.parametrize("options", [m[0] for m in MODELS], ids=lambda v: str(v))
+def test_sample_weight_is_f_cos_over_pdf_and_pdf_matches(options):
+    model = ss.bsdf(material="Cu", **options)
+    rng = np.random.default_rng(11)
+    n = 4000
+    theta_i = np.repeat([0.0, 35.0, 70.0], n)
+    wi = ss.direction(theta_i, rng.uniform(0, 360, theta_i.size))
+    lam = rng.uniform(420, 680, theta_i.size)
+    wo, weight, pdf, delta = model.sample(wi, lam, rng.random((theta_i.size, 3)))
+    assert wo.shape == wi.shape and weight.shape == pdf.shape == delta.shape == lam.shape
+    drawn = pdf > 0
+    assert drawn.mean() > 0.9
+    cont = drawn & ~delta
+    f = model.eval(wi[cont], wo[cont], lam[cont])
+    np.testing.assert_allclose(np.linalg.norm(wo[drawn], axis=-1), 1.0, rtol=1e-12)
+    np.testing.assert_allclose(weight[cont], f * wo[cont, 2] / pdf[cont], rtol=1e-9)
+    np.testing.assert_allclose(model.pdf(wi[cont], wo[cont], lam[cont]), pdf[cont], rtol=1e-9)
+    if delta.any():
+        mirror = wi[delta] * np.array([-1.0, -1.0, 1.0])
+        np.testing.assert_allclose(wo[delta], mirror, atol=1e-15)
+        np.testing.assert_allclose(pdf[delta], model.delta_probability(wi[delta], lam[delta]), rtol=1e-12)
+        np.testing.assert_allclose(weight[delta], model.delta_reflectance(wi[delta], lam[delta]) / pdf[delta],
+                                   rtol=1e-12)
+    np.testing.assert_array_equal(weight[~drawn], 0.0)
+    # The mean weight estimates the directional albedo (continuous + delta): within 4 standard errors.
+    for t in (0.0, 35.0, 70.0):
+        single = model.sample(ss.direction(t, 0.0), 550.0, rng.random((n, 3)))[1]
+        error = 4 * single.std() / np.sqrt(n) + 1e-12
+        assert single.mean() == pytest.approx(model.albedo(t, 550.0)[0], abs=error)
+
+
+def test_broadcasting_matches_elementwise_calls():
+    model = ss.bsdf("ghs", material="Au", **KC)
+    wi = ss.direction(np.array([0.0, 20.0, 50.0])[:, None], 10.0)[:, :, None, :]  # (3, 1, 1, 3)
+    wo = ss.direction(np.array([10.0, 25.0, 40.0, 70.0]), 190.0)[None, None, :, :]  # (1, 1, 4, 3)
+    lam = np.array([450.0, 650.0])[None, :, None]  # (1, 2, 1)
+    f = model.eval(wi, wo, lam)
+    assert f.shape == (3, 2, 4)
+    for i in range(3):
+        for j in range(2):
+            for k in range(4):
+                assert f[i, j, k] == model.eval(wi[i, 0, 0], wo[0, 0, k], float(lam[0, j, 0]))
+    assert np.isscalar(model.eval(wi[0, 0, 0], wo[0, 0, 0], 550.0))
+    assert model.pdf(wi, wo, lam).shape == (3, 2, 4)
+    total, specular = model.albedo(np.array([[0.0], [40.0]]), [500.0, 600.0, 700.0])
+    assert total.shape == specular.shape == (2, 3)
+    wo_s, weight, pdf, delta = model.sample(wi[:, :, 0, :], lam[:, :, 0], np.full((1, 1, 3), 0.5))
+    assert wo_s.shape == (3, 2, 3) and weight.shape == (3, 2) and delta.dtype == bool
+    assert model.eval(np.empty((0, 3)), ss.direction(0.0), 550.0).shape == (0,)
+    # float32 and integer inputs are accepted; the result is float64.
+    assert model.eval(wi.astype(np.float32), wo.astype(np.float32), 550).dtype == np.float64
+
+
+def test_directions_below_the_surface_give_zero():
+    model = ss.bsdf("ggx", alpha=0.3)
+    below = ss.direction(120.0, 0.0)
+    assert model.eval(below, ss.direction(10.0, 180.0), 550.0) == 0.0
+    wo, weight, pdf, delta = model.sample(below, 550.0, [0.5, 0.5, 0.5])
+    assert weight == 0.0 and pdf == 0.0 and not delta
+    np.testing.assert_array_equal(wo, 0.0)
+
+
+def test_options_and_repr():
+    model = ss.bsdf("two-scale", surface=ss.KCorrelation(**KC), material="Al", macro_ndf="beckmann",
+                    cutoff_wavelengths=75)
+    options = model.options
+    assert options["model"] == "two_scale" and options["macro_ndf"] == "beckmann"
+    assert options["cutoff_wavelengths"] == 75 and options["sigma"] == 0.05 and options["material"] == "Al"
+    assert "two" in model.name.lower() or model.name
+    assert "Al" in repr(model)
+    gaussian = ss.bsdf("ghs_ssa", surface=ss.GaussianAcv(0.03, 1.0))
+    assert gaussian.options["psd"] == "gaussian"
+    assert not ss.bsdf("ggx", alpha=0.1).is_pure_delta
+    assert "surface" in ss.bsdf.__doc__ and "lambda_nm" in ss.Bsdf.eval.__doc__
+
+
+@pytest.mark.parametrize(
+    "make, message",
+    [
+        (lambda: ss.bsdf("phong"), "model"),
+        (lambda: ss.bsdf("ghs", **KC, roughness=3), "unknown option 'roughness'"),
+        (lambda: ss.bsdf("ghs", **KC, method="fast"), "method"),
+        (lambda: ss.bsdf("ghs", **KC, method=3), "method must be a string"),
+        (lambda: ss.bsdf("ghs", **KC, epsilon="small"), "epsilon must hold real numbers"),
+        (lambda: ss.bsdf("ghs", **KC, renormalization="no"), "renormalization must be True or False"),
+        (lambda: ss.bsdf("ghs", sigma=np.nan, corr_length=2, gamma=3), "sigma must be finite"),
+        (lambda: ss.bsdf("ghs", sigma=0.1, corr_length=2, gamma=0.5), "gamma must be > 1, got 0.5"),
+        (lambda: ss.bsdf("ghs"), "sigma must be > 0"),
+        (lambda: ss.bsdf("ghs", surface=ss.KCorrelation(**KC), sigma=0.1), "not both"),
+        (lambda: ss.bsdf("ghs", surface=3.5), "surface must be a KCorrelation, a GaussianAcv, a HeightMap or"),
+        (lambda: ss.bsdf("ghs", surface=ss.TabulatedPsd(np.geomspace(1, 10, 5), np.geomspace(1, 1e-4, 5))),
+         "surface must be a KCorrelation"),
+        (lambda: ss.bsdf("ggx"), "alpha must be > 0"),
+        (lambda: ss.bsdf("ggx", alpha=0.1, material="Kryptonite"), "Kryptonite"),
+        (lambda: ss.bsdf("ghs", surface="/nonexistent.gsf"), "/nonexistent.gsf"),
+    ],
+)
+def test_bad_options_raise_error_naming_them(make, message):
+    with pytest.raises(ss.Error, match=message):
+        make()
+
+
+@pytest.mark.parametrize(
+    "call, message",
+    [
+        (lambda b: b.eval([0, 0, 1], [0, 0, np.nan], 550), "wo must be finite, got nan"),
+        (lambda b: b.eval([0, 0, 1], [0, 0, 1], np.inf), "lambda_nm must be finite, got inf"),
+        (lambda b: b.eval([0, 0, 1], [0, 0, 1], [550, -1]), r"lambda_nm must be > 0, got -1 at index \(1,\)"),
+        (lambda b: b.eval([0, 0, 2], [0, 0, 1], 550), r"wi must be unit vectors, got \|wi\| = 2"),
+        (lambda b: b.eval([0, 0, 1, 0], [0, 0, 1], 550), r"wi must have shape \(..., 3\), got shape \(4,\)"),
+        (lambda b: b.eval(np.zeros((2, 3)) + [0, 0, 1], np.zeros((3, 3)) + [0, 0, 1], 550), "do not broadcast"),
+        (lambda b: b.eval("up", [0, 0, 1], 550), "wi must hold real numbers"),
+        (lambda b: b.eval([[0, 0, 1], [0, 1]], [0, 0, 1], 550), "wi must be an array of real numbers"),
+        (lambda b: b.eval([True, False, True], [0, 0, 1], 550), "wi must hold real numbers, got dtype bool"),
+        (lambda b: b.pdf([0, 0, 1], [0, 0, 1j], 550), "wo must hold real numbers, got dtype complex"),
+        (lambda b: b.sample([0, 0, 1], 550, [0.5, 0.5, 1.0]), r"u must be in \[0, 1\), got 1"),
+        (lambda b: b.sample([0, 0, 1], 550, [0.5, 0.5]), r"u must have shape \(..., 3\)"),
+        (lambda b: b.sample([0, 0, 1], 550, [0.5, np.nan, 0.1]), "u must be finite"),
+        (lambda b: b.albedo(90, 550), r"theta_i_deg must be in \[0, 90\) degrees, got 90"),
+        (lambda b: b.albedo(30, 100), "outside the range"),
+        (lambda b: b.delta_reflectance([0, 0, 1], None), "lambda_nm must hold real numbers"),
+        (lambda b: b.eval(object(), [0, 0, 1], 550), "wi must hold real numbers"),
+    ],
+)
+def test_bad_arrays_raise_error_naming_them(call, message):
+    with pytest.raises(ss.Error, match=message):
+        call(ss.bsdf("ghs", material="Au", **KC))
+
+
+def test_direction_helper():
+    w = ss.direction([0.0, 90.0], [0.0, 90.0])
+    np.testing.assert_allclose(w, [[0, 0, 1], [0, 1, 0]], atol=1e-15)
+    assert ss.direction(30.0).shape == (3,)
+    with pytest.raises(ss.Error, match="theta_deg must be finite"):
+        ss.direction(np.nan, 0.0)
