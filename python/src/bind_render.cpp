@@ -92,6 +92,14 @@ py::array_t<float> xyz_image(const render::Film& film) {
     return to_float_image(pixels.data(), film.height(), film.width(), 3);
 }
 
+py::array_t<float> alpha_image(const render::Film& film) {
+    py::array_t<float> out({static_cast<py::ssize_t>(film.height()), static_cast<py::ssize_t>(film.width())});
+    float* a = out.mutable_data();
+    for (int y = 0; y < film.height(); ++y)
+        for (int x = 0; x < film.width(); ++x) *a++ = static_cast<float>(film.alpha(x, y));
+    return out;
+}
+
 py::dict render_scene(py::handle scene_path, std::optional<int> spp, py::handle params, int threads,
                       std::optional<std::uint64_t> seed, std::optional<double> exposure,
                       std::optional<std::string> white_balance, bool progress) {
@@ -121,6 +129,7 @@ py::dict render_scene(py::handle scene_path, std::optional<int> spp, py::handle 
                          stats.samples_per_pixel);
     }
     return py::dict("rgb"_a = to_float_image(rgb.pixels.data(), rgb.height, rgb.width, 3), "xyz"_a = xyz_image(*film),
+                    "alpha"_a = alpha_image(*film),
                     "spp"_a = stats.samples_per_pixel, "interrupted"_a = stats.interrupted,
                     "seconds"_a = stats.seconds, "rays"_a = stats.rays, "notes"_a = scene->notes);
 }
@@ -139,7 +148,8 @@ spp: samples per pixel (None: the scene's sampler); threads: worker threads (0: 
 temperature in K such as '2700', overriding the film's; progress: percentage and ETA on stderr.
 Returns a dict: 'rgb' the linear sRGB image (height, width, 3) float32 after white balance and exposure (what the
 CLI writes to EXR), 'xyz' the film's CIE 1931 XYZ (height, width, 3) float32 before them (Y = 1 for a constant
-unit radiance), 'spp' samples per pixel completed, 'interrupted', 'seconds', 'rays', 'notes' (the loader's
+unit radiance), 'alpha' (height, width) float32 the film's alpha (the filter-weighted fraction of samples that hit
+a shape, as Mitsuba's), 'spp' samples per pixel completed, 'interrupted', 'seconds', 'rays', 'notes' (the loader's
 remarks, e.g. the height maps it read). Deterministic for a given seed, whatever the thread count.
 Ctrl-C stops the render after its current pass and returns what it has ('interrupted': True, a RuntimeWarning).)");
 }
