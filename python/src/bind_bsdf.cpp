@@ -26,6 +26,7 @@ using bsdf::ModelOptions;
 struct PyBsdf {
     std::shared_ptr<const bsdf::Bsdf> model;
     ModelOptions options;
+    std::vector<std::string> notes;  // what make_bsdf says about the result (e.g. a measured PSD's extrapolation)
 };
 
 std::string text_option(py::handle value, const char* name) {
@@ -71,31 +72,41 @@ const std::map<std::string, Setter>& option_setters() {
     return setters;
 }
 
-// The surface= argument: statistics objects and height maps become the SurfaceOptions the XML would give.
-void set_surface(ModelOptions& o, py::handle value) {
+// The surface= argument: statistics objects and height maps become the SurfaceOptions the XML would give. A height
+// map (object or file) is the surface of psd 'file' (KC fitted to it) unless psd 'measured' (its own PSD) was given.
+void set_surface(ModelOptions& o, py::handle value, bool psd_given) {
+    const bool statistics = py::isinstance<surface::KCorrelation>(value) || py::isinstance<surface::GaussianAcv>(value);
+    if (statistics && psd_given) fail("psd applies to a height map surface (file or measured), not to {}",
+                                      py::repr(value).cast<std::string>());
     if (py::isinstance<surface::KCorrelation>(value)) {
         const auto& kc = value.cast<const surface::KCorrelation&>();
         o.surface.psd = bsdf::PsdKind::kc;
         o.surface.sigma = kc.sigma_h();
         o.surface.corr_length = kc.correlation_length();
         o.surface.gamma = kc.gamma();
-    } else if (py::isinstance<surface::GaussianAcv>(value)) {
+        return;
+    }
+    if (py::isinstance<surface::GaussianAcv>(value)) {
         const auto& g = value.cast<const surface::GaussianAcv&>();
         o.surface.psd = bsdf::PsdKind::gaussian;
         o.surface.sigma = g.sigma_h();
         o.surface.corr_length = g.correlation_length();
-    } else if (py::isinstance<surface::HeightMap>(value)) {
+        return;
+    }
+    if (py::isinstance<surface::HeightMap>(value)) {
         const auto map = value.cast<std::shared_ptr<surface::HeightMap>>();
-        o.surface.psd = bsdf::PsdKind::file;
         o.surface.surface_file = map->origin();
         o.surface.height_map = map;
     } else if (py::isinstance<py::str>(value) || py::isinstance(value, py::module_::import("os").attr("PathLike"))) {
         o.surface.surface_file = path_string(value, "surface");
-        o.surface.psd = bsdf::PsdKind::file;
     } else {
         fail("surface must be a KCorrelation, a GaussianAcv, a HeightMap or the path of a height map file, got {}",
              py::repr(value).cast<std::string>());
     }
+    if (!psd_given) o.surface.psd = bsdf::PsdKind::file;
+    else if (o.surface.psd != bsdf::PsdKind::file && o.surface.psd != bsdf::PsdKind::measured)
+        fail("a height map surface takes psd 'file' (KC fitted to it, the default) or 'measured' (its own PSD), got "
+             "psd '{}'", to_string(o.surface.psd));
 }
 
 PyBsdf make(const std::string& model, py::handle surface_arg, py::handle material, const py::kwargs& options) {
@@ -103,7 +114,7 @@ PyBsdf make(const std::string& model, py::handle surface_arg, py::handle materia
     o.model = bsdf::parse_model(model, "model");
     o.material = path_string(material, "material");
     const auto& setters = option_setters();
-    bool surface_keywords = false;
+    bool parameter_keywords = false;
     for (const auto& [key, value] : options) {
         const auto name = key.cast<std::string>();
         const auto setter = setters.find(name);
@@ -113,17 +124,24 @@ PyBsdf make(const std::string& model, py::handle surface_arg, py::handle materia
             fail("unknown option '{}' (options: model, surface, material, {})", name, known);
         }
         setter->second(o, value, setter->first.c_str());
-        surface_keywords |= name == "psd" || name == "sigma" || name == "corr_length" || name == "gamma" ||
-                            name == "surface_file";
+        parameter_keywords |= name == "sigma" || name == "corr_length" || name == "gamma" || name == "surface_file";
     }
+    const bool psd_given = options.contains("psd");
     if (!surface_arg.is_none()) {
-        if (surface_keywords) fail("give either surface= or psd/sigma/corr_length/gamma/surface_file, not both");
-        set_surface(o, surface_arg);
-    } else if (!o.surface.surface_file.empty() && !options.contains("psd")) {
+        if (parameter_keywords) fail("give either surface= or sigma/corr_length/gamma/surface_file, not both");
+        set_surface(o, surface_arg, psd_given);
+    } else if (!o.surface.surface_file.empty() && !psd_given) {
         o.surface.psd = bsdf::PsdKind::file;  // as the XML: a surface_file alone is the surface
     }
-    py::gil_scoped_release release;
-    return {std::shared_ptr<const bsdf::Bsdf>(bsdf::make_bsdf(o)), o};
+    std::vector<std::string> notes;
+    std::shared_ptr<const bsdf::Bsdf> built;
+    {
+        py::gil_scoped_release release;
+        built = bsdf::make_bsdf(o, &notes);
+    }
+    for (const std::string& note : notes)
+        if (PyErr_WarnEx(PyExc_UserWarning, note.c_str(), 1) != 0) throw py::error_already_set();  // warnings as errors
+    return {std::move(built), o, std::move(notes)};
 }
 
 py::dict options_dict(const ModelOptions& o) {
@@ -203,8 +221,9 @@ constexpr const char* kBsdfDoc = R"(Builds a scattering model (docs/MODELS.md) f
 
 model: 'ghs' (full GHS), 'ghs_ssa' (smooth-surface approximation), 'ggx', 'two_scale' ('-' or '_').
 surface: the surface statistics: KCorrelation(sigma, corr_length, gamma), GaussianAcv(sigma, corr_length), a
-    HeightMap (KC fitted to it after removing `form`), or the path of a height map file; or None and the XML's
-    keywords psd ('kc' | 'gaussian' | 'file'), sigma (um), corr_length (um), gamma, surface_file instead.
+    HeightMap or the path of a height map file (after removing `form`: KC fitted to it, or with psd='measured' its
+    own radial PSD); or None and the XML's keywords psd ('kc' | 'gaussian' | 'file' | 'measured'), sigma (um),
+    corr_length (um), gamma, surface_file instead.
 material: 'perfect', a built-in metal (Au, Ag, Al, Cu, ...) or a refractive-index file (as Conductor).
 Keyword options, named and spelled as in the XML plugins and bsdf::ModelOptions:
     method 'exact' | 'refit' (GHS lobe), truncation 'three_sigma' | 'poisson_mass', epsilon,
@@ -227,6 +246,9 @@ void bind_bsdf(py::module_& m) {
         .def_property_readonly("name", [](const PyBsdf& b) { return b.model->name(); }, "the model's name")
         .def_property_readonly("options", [](const PyBsdf& b) { return options_dict(b.options); },
                                "the options the model was built from (ModelOptions names)")
+        .def_readonly("notes", &PyBsdf::notes,
+                      "what the user should know about the model without it being an error (e.g. the range a "
+                      "measured PSD covers and how it is extrapolated); each is also issued as a UserWarning")
         .def_property_readonly("is_pure_delta", [](const PyBsdf& b) { return b.model->is_pure_delta(); },
                                "True for a smooth mirror (no continuous part)")
         .def(

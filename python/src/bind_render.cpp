@@ -125,8 +125,10 @@ py::dict render_scene(py::handle scene_path, std::optional<int> spp, py::handle 
     const io::Image rgb = film->develop(scene->film);
     if (signal) {
         if (!signal->matches(PyExc_KeyboardInterrupt)) throw *signal;
-        PyErr_WarnFormat(PyExc_RuntimeWarning, 1, "surfscatter.render interrupted: the image holds %d of the samples per pixel asked",
-                         stats.samples_per_pixel);
+        if (PyErr_WarnFormat(PyExc_RuntimeWarning, 1,
+                             "surfscatter.render interrupted: the image holds %d of the samples per pixel asked",
+                             stats.samples_per_pixel) != 0)
+            throw py::error_already_set();
     }
     return py::dict("rgb"_a = to_float_image(rgb.pixels.data(), rgb.height, rgb.width, 3), "xyz"_a = xyz_image(*film),
                     "alpha"_a = alpha_image(*film),

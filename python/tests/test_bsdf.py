@@ -56,6 +56,22 @@ def test_a_height_map_as_surface_equals_the_cli_with_surface():
     assert from_map.options["psd"] == "file"
 
 
+def test_the_measured_psd_of_a_height_map_equals_the_cli_and_reports_its_extrapolation():
+    path = shared("realdata", "heightmaps", "opd-1.opd")
+    table = cli_csv("brdf", "eval", "--model", "ghs", "--psd", "measured", "--surface", path, "--material", "Ag",
+                    "--wavelength", 500, "--theta-i", 20, "--theta-o", numbers(THETA_O))
+    wi, wo = ss.direction(20.0, 0.0), ss.direction(table["theta_o"], table["phi_o"])
+    with pytest.warns(UserWarning) as warned:
+        model = ss.bsdf("ghs", surface=ss.read_height_map(path), psd="measured", material="Ag")
+    assert model.notes and [str(w.message) for w in warned] == model.notes
+    assert model.options["psd"] == "measured"
+    np.testing.assert_allclose(model.eval(wi, wo, 500.0), table["brdf"], rtol=CLI_RTOL)
+    with pytest.raises(ss.Error, match="a height map surface takes psd 'file'"):
+        ss.bsdf("ghs", surface=path, psd="kc")
+    with pytest.raises(ss.Error, match="psd applies to a height map surface"):
+        ss.bsdf("ghs", surface=ss.KCorrelation(**KC), psd="measured")
+
+
 @pytest.mark.parametrize("options", [m[0] for m in MODELS], ids=lambda v: str(v))
 def test_sample_weight_is_f_cos_over_pdf_and_pdf_matches(options):
     model = ss.bsdf(material="Cu", **options)
@@ -145,6 +161,7 @@ def test_options_and_repr():
         (lambda: ss.bsdf("ghs", sigma=0.1, corr_length=2, gamma=0.5), "gamma must be > 1, got 0.5"),
         (lambda: ss.bsdf("ghs"), "sigma must be > 0"),
         (lambda: ss.bsdf("ghs", surface=ss.KCorrelation(**KC), sigma=0.1), "not both"),
+        (lambda: ss.bsdf("ghs", psd="measured"), "measured"),
         (lambda: ss.bsdf("ghs", surface=3.5), "surface must be a KCorrelation, a GaussianAcv, a HeightMap or"),
         (lambda: ss.bsdf("ghs", surface=ss.TabulatedPsd(np.geomspace(1, 10, 5), np.geomspace(1, 1e-4, 5))),
          "surface must be a KCorrelation"),
