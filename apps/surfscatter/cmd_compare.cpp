@@ -26,21 +26,12 @@ struct Options {
     std::string output;
 };
 
-cv::Mat read_mask(const std::string& path, cv::Size size) {
-    if (!std::filesystem::exists(path)) fail("mask '{}' does not exist", path);
-    cv::Mat mask = cv::imread(path, cv::IMREAD_GRAYSCALE);
-    if (mask.empty()) fail("mask '{}' could not be decoded", path);
-    if (mask.size() != size)
-        fail("mask '{}' is {}x{} pixels but the photo is {}x{}", path, mask.cols, mask.rows, size.width, size.height);
-    return mask;
-}
-
 void run(const Options& o) {
     if (!o.labels.empty() && o.labels.size() != o.renders.size())
         fail("--labels has {} entries for {} renderings", o.labels.size(), o.renders.size());
     const auto encoding = photo::encoding_by_name(o.encoding);
     const cv::Mat photo_rgb = photo::read_photo(o.photo, encoding).rgb;
-    const cv::Mat mask = o.mask.empty() ? cv::Mat() : read_mask(o.mask, photo_rgb.size());
+    const cv::Mat mask = o.mask.empty() ? cv::Mat() : photo::read_mask(o.mask, photo_rgb.size());
     std::vector<cv::Mat> renders;
     std::vector<photo::ComparisonMetrics> metrics;
     for (std::size_t i = 0; i < o.renders.size(); ++i) {

@@ -75,7 +75,7 @@ void expect_gold_corners(const std::string& photo_path, const std::string& dicti
             const cv::Point2f shift = refined.corners[k] - detected[k];
             EXPECT_LT(cv::norm(shift), cell / 2) << "marker " << id << ", corner " << k;
             const cv::Point2f radial = detected[k] - centre;
-            outward += shift.dot(radial) / cv::norm(radial) / (4.0 * gold.size());
+            outward += shift.dot(radial) / cv::norm(radial) / (4.0 * static_cast<double>(gold.size()));
         }
         worst_refined = std::max(worst_refined, worst_coordinate(refined.corners, figures));
     }

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <fmt/format.h>
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/quality/qualityssim.hpp>
 
@@ -162,6 +163,16 @@ cv::Mat comparison_sheet(const cv::Mat& photo, const std::vector<cv::Mat>& rende
         place(coloured, column, 1, {mi.label + " difference"});
     }
     return sheet;
+}
+
+cv::Mat read_mask(const std::filesystem::path& path, cv::Size photo_size) {
+    if (!std::filesystem::exists(path)) fail("mask '{}' does not exist", path.string());
+    cv::Mat mask = cv::imread(path.string(), cv::IMREAD_GRAYSCALE);
+    if (mask.empty()) fail("mask '{}' could not be decoded", path.string());
+    if (mask.size() != photo_size)
+        fail("mask '{}' is {}x{} pixels but the photo is {}x{}", path.string(), mask.cols, mask.rows, photo_size.width,
+             photo_size.height);
+    return mask;
 }
 
 }  // namespace surfscatter::photo

@@ -9,6 +9,7 @@
 //   SSIM   OpenCV quality::QualitySSIM (Gaussian window) on the sRGB-encoded images divided by the peak, averaged
 //          over the mask and the three channels;
 //   dE00   mean CIEDE2000 over the mask, CIELAB relative to the D65 white with Y = 1.
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,9 @@ struct ComparisonMetrics {
 };
 
 // Mask: CV_8UC1 of the photo's size, non-zero = compared; empty Mat = the whole image.
+// read_mask reads one from an 8-bit image file; throws Error naming it if it is missing, undecodable or not of
+// `photo_size`.
+cv::Mat read_mask(const std::filesystem::path& path, cv::Size photo_size);
 // Throws Error if sizes differ, the mask is empty or the rendering is black inside the mask.
 double exposure_scale(const cv::Mat& photo, const cv::Mat& render, const cv::Mat& mask);
 ComparisonMetrics compare_to_photo(const cv::Mat& photo, const cv::Mat& render, const cv::Mat& mask,

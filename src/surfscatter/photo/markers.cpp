@@ -143,24 +143,33 @@ BoardType board_type_by_name(const std::string& name) {
     fail("unknown board type '{}' (expected charuco, chessboard or grid)", name);
 }
 
-void validate(const BoardSpec& board) {
+std::string board_type_name(BoardType type) {
+    switch (type) {
+        case BoardType::Charuco: return "charuco";
+        case BoardType::Chessboard: return "chessboard";
+        case BoardType::Grid: return "grid";
+    }
+    return "charuco";  // unreachable: every BoardType is named above
+}
+
+void validate(const BoardSpec& board, const BoardParameterNames& names) {
     if (board.type == BoardType::Grid) {
-        require_length(board.marker_length, "--marker-length");
-        require_side(board.markers_x, 1, "--markers");
-        require_side(board.markers_y, 1, "--markers");
+        require_length(board.marker_length, names.marker_length.c_str());
+        require_side(board.markers_x, 1, names.markers.c_str());
+        require_side(board.markers_y, 1, names.markers.c_str());
         if (board.markers_x * board.markers_y < 2)
             fail("a grid board needs at least 2 markers, got {}x{}", board.markers_x, board.markers_y);
-        require_length(board.marker_separation, "--marker-separation");
+        require_length(board.marker_separation, names.marker_separation.c_str());
         require_dictionary_size(std::int64_t{board.markers_x} * board.markers_y, board, "grid");
         return;
     }
-    require_side(board.squares_x, 3, "--squares");
-    require_side(board.squares_y, 3, "--squares");
-    require_length(board.square_length, "--square-length");
+    require_side(board.squares_x, 3, names.squares.c_str());
+    require_side(board.squares_y, 3, names.squares.c_str());
+    require_length(board.square_length, names.square_length.c_str());
     if (board.type == BoardType::Charuco) {
-        require_length(board.marker_length, "--marker-length");
+        require_length(board.marker_length, names.marker_length.c_str());
         if (board.marker_length >= board.square_length)
-            fail("--marker-length {} must be smaller than --square-length {}", board.marker_length,
+            fail("{} {} must be smaller than {} {}", names.marker_length, board.marker_length, names.square_length,
                  board.square_length);
         require_dictionary_size(std::int64_t{board.squares_x} * board.squares_y / 2, board, "ChArUco");
     }

@@ -41,6 +41,7 @@ DetectedMarkers detect_markers(const cv::Mat& linear_rgb, const cv::Ptr<cv::aruc
 
 enum class BoardType { Charuco, Chessboard, Grid };
 BoardType board_type_by_name(const std::string& name);  // "charuco" | "chessboard" | "grid"
+std::string board_type_name(BoardType type);             // the same names
 
 // Limits of a board (documented in docs/PHOTO.md): squares or markers per side, and lengths in metres.
 inline constexpr int kMaxBoardSide = 200;
@@ -56,9 +57,15 @@ struct BoardSpec {
     std::string dictionary = "4X4_50"; // Charuco and Grid: a name or a file (load_dictionary)
 };
 
+// How messages name a board's parameters: the CLI's options, unless a front end passes its own (Python's keywords).
+struct BoardParameterNames {
+    std::string squares = "--squares", square_length = "--square-length", markers = "--markers",
+                marker_length = "--marker-length", marker_separation = "--marker-separation";
+};
+
 // Throws Error for sizes outside the limits, lengths not in [kMinBoardLength, kMaxBoardLength], a marker not
 // smaller than a square, or a dictionary too small for the board.
-void validate(const BoardSpec& board);
+void validate(const BoardSpec& board, const BoardParameterNames& names = {});
 
 // The OpenCV boards of a spec (type Charuco, resp. Grid).
 cv::Ptr<cv::aruco::CharucoBoard> make_charuco_board(const BoardSpec& board);

@@ -191,7 +191,7 @@ Pose solve_planar_pose(const std::vector<cv::Point3d>& world, const std::vector<
 
 MarkerPose estimate_marker_pose(const cv::Mat& linear_rgb, const CameraModel& camera, const MarkerPoseOptions& options) {
     CV_Assert(linear_rgb.type() == CV_32FC3);
-    require_positive(options.marker_length, "--marker-length");
+    require_positive(options.marker_length, options.length_name.c_str());
     const auto dictionary = load_dictionary(options.dictionary);
     const DetectedMarkers found = detect_markers(linear_rgb, dictionary);
     if (found.ids.empty()) fail("no ArUco marker of dictionary {} found in the image", options.dictionary);

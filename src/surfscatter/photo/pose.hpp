@@ -76,6 +76,7 @@ struct MarkerPoseOptions {
     double marker_length = 0.0;  // metres, black square edge
     std::string dictionary = "4X4_50";  // a name or a file (load_dictionary)
     std::optional<int> marker_id;  // required when several markers are visible
+    std::string length_name = "--marker-length";  // how messages name marker_length
 };
 
 struct MarkerPose {
