@@ -38,6 +38,7 @@ const char* domain_text(Domain domain) {
     switch (domain) {
         case Domain::non_negative: return ">= 0";
         case Domain::positive: return "> 0";
+        case Domain::wavelength_nm: return "> 0 nm";
         case Domain::unit_interval: return "in [0, 1]";
         case Domain::random_number: return "in [0, 1)";
         case Domain::incidence_deg: return "in [0, 90) degrees";
@@ -66,7 +67,7 @@ void check_values(const RealArray& a, const char* name, Domain domain, bool vect
     if (ok) return;
     const auto shape = shape_of(a);
     for (std::size_t i = 0; i < n; ++i) {
-        if (!std::isfinite(v[i])) fail("{} must be finite, got {}{}", name, v[i], where(shape, i));
+        if (!std::isfinite(v[i])) fail("{} must be a finite number, got {}{}", name, v[i], where(shape, i));
         if (!in_domain(v[i], domain)) fail("{} must be {}, got {}{}", name, domain_text(domain), v[i], where(shape, i));
     }
     const std::vector<py::ssize_t> batch(shape.begin(), shape.end() - 1);

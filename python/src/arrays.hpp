@@ -24,6 +24,7 @@ enum class Domain {
     any,
     non_negative,     // >= 0
     positive,         // > 0
+    wavelength_nm,    // > 0, in nm (the message names the unit, as the CLI's --wavelength)
     unit_interval,    // [0, 1]
     random_number,    // [0, 1): uniform random numbers
     incidence_deg,    // [0, 90): an angle of incidence in degrees (docs/CONVENTIONS.md)
@@ -39,7 +40,8 @@ inline constexpr double kUnitTolerance = 1e-6;
 constexpr bool in_domain(double v, Domain domain) {
     switch (domain) {
         case Domain::non_negative: return v >= 0;
-        case Domain::positive: return v > 0;
+        case Domain::positive:
+        case Domain::wavelength_nm: return v > 0;
         case Domain::unit_interval: return v >= 0 && v <= 1;
         case Domain::random_number: return v >= 0 && v < 1;
         case Domain::incidence_deg: return v >= 0 && v < 90;

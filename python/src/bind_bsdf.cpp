@@ -162,7 +162,7 @@ Vec3 vec(const double* v) { return {v[0], v[1], v[2]}; }
 template <typename F>
 py::object pair_map(py::handle wi, py::handle wo, py::handle lambda_nm, const F& f) {
     const Batch batch({{wi, "wi", Domain::unit_vector}, {wo, "wo", Domain::unit_vector},
-                       {lambda_nm, "lambda_nm", Domain::positive}});
+                       {lambda_nm, "lambda_nm", Domain::wavelength_nm}});
     auto out = batch.output<double>();
     double* values = out.mutable_data();
     batch.for_each([&](std::size_t i) {
@@ -174,7 +174,7 @@ py::object pair_map(py::handle wi, py::handle wo, py::handle lambda_nm, const F&
 // f(wi, lambda) for the delta lobe's figures.
 template <typename F>
 py::object incident_map(py::handle wi, py::handle lambda_nm, const F& f) {
-    const Batch batch({{wi, "wi", Domain::unit_vector}, {lambda_nm, "lambda_nm", Domain::positive}});
+    const Batch batch({{wi, "wi", Domain::unit_vector}, {lambda_nm, "lambda_nm", Domain::wavelength_nm}});
     auto out = batch.output<double>();
     double* values = out.mutable_data();
     batch.for_each([&](std::size_t i) { values[i] = f(vec(batch.at(0, i)), *batch.at(1, i)); });
@@ -182,7 +182,7 @@ py::object incident_map(py::handle wi, py::handle lambda_nm, const F& f) {
 }
 
 py::tuple sample(const bsdf::Bsdf& model, py::handle wi, py::handle lambda_nm, py::handle u) {
-    const Batch batch({{wi, "wi", Domain::unit_vector}, {lambda_nm, "lambda_nm", Domain::positive},
+    const Batch batch({{wi, "wi", Domain::unit_vector}, {lambda_nm, "lambda_nm", Domain::wavelength_nm},
                        {u, "u", Domain::random_number, true}});
     auto wo = batch.output<double>(3);
     auto weight = batch.output<double>();
@@ -205,7 +205,7 @@ py::tuple sample(const bsdf::Bsdf& model, py::handle wi, py::handle lambda_nm, p
 }
 
 py::tuple albedo(const bsdf::Bsdf& model, py::handle theta_i_deg, py::handle lambda_nm) {
-    const Batch batch({{theta_i_deg, "theta_i_deg", Domain::incidence_deg}, {lambda_nm, "lambda_nm", Domain::positive}});
+    const Batch batch({{theta_i_deg, "theta_i_deg", Domain::incidence_deg}, {lambda_nm, "lambda_nm", Domain::wavelength_nm}});
     auto total = batch.output<double>();
     auto specular = batch.output<double>();
     double *t = total.mutable_data(), *s = specular.mutable_data();

@@ -25,7 +25,7 @@ void bind_material(py::module_& m) {
             "ior",
             [](const Conductor& c, py::handle lambda_nm) {
                 if (c.is_perfect()) fail("the perfect conductor has no finite refractive index");
-                const Batch batch({{lambda_nm, "lambda_nm", Domain::positive}});
+                const Batch batch({{lambda_nm, "lambda_nm", Domain::wavelength_nm}});
                 auto out = batch.output<std::complex<double>>();
                 std::complex<double>* values = out.mutable_data();
                 batch.for_each([&](std::size_t i) { values[i] = c.ior(*batch.at(0, i)); });
@@ -41,7 +41,7 @@ void bind_material(py::module_& m) {
                     fail("polarization must be s, p or unpolarized, got '{}'", polarization);
                 const char pol = polarization[0];
                 return map_scalars({{cos_theta, "cos_theta", Domain::unit_interval},
-                                    {lambda_nm, "lambda_nm", Domain::positive}},
+                                    {lambda_nm, "lambda_nm", Domain::wavelength_nm}},
                                    [&](double cos_t, double lambda) {
                                        const auto r = c.reflectance_sp(cos_t, lambda);
                                        return pol == 's' ? r.rs : pol == 'p' ? r.rp : r.unpolarized();

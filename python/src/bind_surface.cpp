@@ -125,12 +125,12 @@ void bind_statistics(py::module_& m) {
             [](const RadialStatistics& s, py::handle zeta) { return statistics_map<&RadialStatistics::psd_unit>(s, zeta, "zeta"); },
             py::arg("zeta"), "P(zeta) / sigma_h^2 in um^2 (unit mass over the zeta-plane), zeta >= 0 in rad/um.")
         .def(
-            "acv", [](const RadialStatistics& s, py::handle r) { return statistics_map<&RadialStatistics::acv>(s, r, "r"); },
-            py::arg("r"), "C(r) in um^2 at lateral distances r >= 0 (um), as `surfscatter acv`.")
+            "acv", [](const RadialStatistics& s, py::handle r_um) { return statistics_map<&RadialStatistics::acv>(s, r_um, "r_um"); },
+            py::arg("r_um"), "C(r) in um^2 at lateral distances r_um >= 0 (um), as `surfscatter acv`.")
         .def(
             "acv_normalized",
-            [](const RadialStatistics& s, py::handle r) { return statistics_map<&RadialStatistics::acv_normalized>(s, r, "r"); },
-            py::arg("r"), "rho(r) = C(r) / sigma_h^2 (rho(0) = 1) at r >= 0 (um).")
+            [](const RadialStatistics& s, py::handle r_um) { return statistics_map<&RadialStatistics::acv_normalized>(s, r_um, "r_um"); },
+            py::arg("r_um"), "rho(r) = C(r) / sigma_h^2 (rho(0) = 1) at lateral distances r_um >= 0 (um).")
         .def(
             "radial_cdf",
             [](const RadialStatistics& s, py::handle zeta) { return statistics_map<&RadialStatistics::radial_cdf>(s, zeta, "zeta"); },
@@ -139,7 +139,7 @@ void bind_statistics(py::module_& m) {
             "relevant_roughness",
             [](const RadialStatistics& s, py::handle theta_i_deg, py::handle lambda_nm) {
                 return map_scalars({{theta_i_deg, "theta_i_deg", Domain::incidence_deg},
-                                    {lambda_nm, "lambda_nm", Domain::positive}},
+                                    {lambda_nm, "lambda_nm", Domain::wavelength_nm}},
                                    [&](double t, double l) { return relevant_roughness(s, t * kDegree, l); });
             },
             py::arg("theta_i_deg"), py::arg("lambda_nm"),
@@ -149,7 +149,7 @@ void bind_statistics(py::module_& m) {
             "visible_disc_mass",
             [](const RadialStatistics& s, py::handle theta_i_deg, py::handle lambda_nm) {
                 return map_scalars({{theta_i_deg, "theta_i_deg", Domain::incidence_deg},
-                                    {lambda_nm, "lambda_nm", Domain::positive}},
+                                    {lambda_nm, "lambda_nm", Domain::wavelength_nm}},
                                    [&](double t, double l) { return visible_disc_mass(s, t * kDegree, l); });
             },
             py::arg("theta_i_deg"), py::arg("lambda_nm"),
@@ -159,7 +159,7 @@ void bind_statistics(py::module_& m) {
             "total_integrated_scatter",
             [](const RadialStatistics& s, py::handle theta_i_deg, py::handle lambda_nm) {
                 return map_scalars({{theta_i_deg, "theta_i_deg", Domain::incidence_deg},
-                                    {lambda_nm, "lambda_nm", Domain::positive}},
+                                    {lambda_nm, "lambda_nm", Domain::wavelength_nm}},
                                    [&](double t, double l) { return s.total_integrated_scatter(t * kDegree, l); });
             },
             py::arg("theta_i_deg"), py::arg("lambda_nm"),
@@ -276,10 +276,10 @@ void bind_statistics(py::module_& m) {
     py::class_<RefitResult>(m, "Refit", "Result of KCorrelation.refit: L_m = L m^-x (THEORY.md 2.4).")
         .def_readonly("exponent_x", &RefitResult::exponent_x, "x of L_m = L m^-x")
         .def_property_readonly(
-            "corr_length_m", [](const RefitResult& r) { return to_array(r.corr_length_m); },
-            "L_m (um) for m = 1..max_order (index m - 1)")
+            "corr_length_um", [](const RefitResult& r) { return to_array(r.corr_length_m); },
+            "the fitted L_m (um) for m = 1..max_order (index m - 1)")
         .def_property_readonly(
-            "misfit_m", [](const RefitResult& r) { return to_array(r.misfit_m); },
+            "misfit", [](const RefitResult& r) { return to_array(r.misfit_m); },
             "integral of |fit - true| over the zeta-plane (fraction of unit mass), index m - 1")
         .def("__repr__", [](const RefitResult& r) {
             return fmt::format("surfscatter.Refit(exponent_x={}, orders={})", r.exponent_x, r.corr_length_m.size());

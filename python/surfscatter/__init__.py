@@ -10,7 +10,7 @@ A thin layer over the C++ library, like the `surfscatter` command-line tool (doc
 - scattering models: bsdf(model, surface=..., material=..., **options) -> Bsdf with .eval, .pdf, .sample,
   .albedo over numpy arrays, in parallel without the GIL; direction(theta_deg, phi_deg);
 - rendering: render(scene, spp=..., params={...}) -> {'rgb', 'xyz', ...} float32 images;
-- photographs: read_photo, write_photo, calibrate, pose, undistort, colorcorrect, compare.
+- photographs: read_photo, write_photo, read_camera, Board, calibrate, pose, undistort, colorcorrect, compare.
 
 Units everywhere: wavelengths in nm (lambda_nm), lengths in micrometres (sigma, corr_length, *_um), angles in
 degrees (*_deg), spatial frequencies zeta in rad/um; directions are unit vectors (..., 3) in the local frame

@@ -157,7 +157,7 @@ def test_options_and_repr():
         (lambda: ss.bsdf("ghs", **KC, method=3), "method must be a string"),
         (lambda: ss.bsdf("ghs", **KC, epsilon="small"), "epsilon must hold real numbers"),
         (lambda: ss.bsdf("ghs", **KC, renormalization="no"), "renormalization must be True or False"),
-        (lambda: ss.bsdf("ghs", sigma=np.nan, corr_length=2, gamma=3), "sigma must be finite"),
+        (lambda: ss.bsdf("ghs", sigma=np.nan, corr_length=2, gamma=3), "sigma must be a finite number"),
         (lambda: ss.bsdf("ghs", sigma=0.1, corr_length=2, gamma=0.5), "gamma must be > 1, got 0.5"),
         (lambda: ss.bsdf("ghs"), "sigma must be > 0"),
         (lambda: ss.bsdf("ghs", surface=ss.KCorrelation(**KC), sigma=0.1), "not both"),
@@ -178,9 +178,9 @@ def test_bad_options_raise_error_naming_them(make, message):
 @pytest.mark.parametrize(
     "call, message",
     [
-        (lambda b: b.eval([0, 0, 1], [0, 0, np.nan], 550), "wo must be finite, got nan"),
-        (lambda b: b.eval([0, 0, 1], [0, 0, 1], np.inf), "lambda_nm must be finite, got inf"),
-        (lambda b: b.eval([0, 0, 1], [0, 0, 1], [550, -1]), r"lambda_nm must be > 0, got -1 at index \(1,\)"),
+        (lambda b: b.eval([0, 0, 1], [0, 0, np.nan], 550), "wo must be a finite number, got nan"),
+        (lambda b: b.eval([0, 0, 1], [0, 0, 1], np.inf), "lambda_nm must be a finite number, got inf"),
+        (lambda b: b.eval([0, 0, 1], [0, 0, 1], [550, -1]), r"lambda_nm must be > 0 nm, got -1 at index \(1,\)"),
         (lambda b: b.eval([0, 0, 2], [0, 0, 1], 550), r"wi must be unit vectors, got \|wi\| = 2"),
         (lambda b: b.eval([0, 0, 1, 0], [0, 0, 1], 550), r"wi must have shape \(..., 3\), got shape \(4,\)"),
         (lambda b: b.eval(np.zeros((2, 3)) + [0, 0, 1], np.zeros((3, 3)) + [0, 0, 1], 550), "do not broadcast"),
@@ -190,7 +190,7 @@ def test_bad_options_raise_error_naming_them(make, message):
         (lambda b: b.pdf([0, 0, 1], [0, 0, 1j], 550), "wo must hold real numbers, got dtype complex"),
         (lambda b: b.sample([0, 0, 1], 550, [0.5, 0.5, 1.0]), r"u must be in \[0, 1\), got 1"),
         (lambda b: b.sample([0, 0, 1], 550, [0.5, 0.5]), r"u must have shape \(..., 3\)"),
-        (lambda b: b.sample([0, 0, 1], 550, [0.5, np.nan, 0.1]), "u must be finite"),
+        (lambda b: b.sample([0, 0, 1], 550, [0.5, np.nan, 0.1]), "u must be a finite number"),
         (lambda b: b.albedo(90, 550), r"theta_i_deg must be in \[0, 90\) degrees, got 90"),
         (lambda b: b.albedo(30, 100), "outside the range"),
         (lambda b: b.delta_reflectance([0, 0, 1], None), "lambda_nm must hold real numbers"),
@@ -206,5 +206,5 @@ def test_direction_helper():
     w = ss.direction([0.0, 90.0], [0.0, 90.0])
     np.testing.assert_allclose(w, [[0, 0, 1], [0, 1, 0]], atol=1e-15)
     assert ss.direction(30.0).shape == (3,)
-    with pytest.raises(ss.Error, match="theta_deg must be finite"):
+    with pytest.raises(ss.Error, match="theta_deg must be a finite number"):
         ss.direction(np.nan, 0.0)

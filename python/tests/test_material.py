@@ -58,9 +58,9 @@ def test_perfect_conductor():
 @pytest.mark.parametrize(
     "call, message",
     [
-        (lambda c: c.ior(np.nan), "lambda_nm must be finite, got nan"),
-        (lambda c: c.ior([500, np.inf]), r"lambda_nm must be finite, got inf at index \(1,\)"),
-        (lambda c: c.ior(-5), "lambda_nm must be > 0, got -5"),
+        (lambda c: c.ior(np.nan), "lambda_nm must be a finite number, got nan"),
+        (lambda c: c.ior([500, np.inf]), r"lambda_nm must be a finite number, got inf at index \(1,\)"),
+        (lambda c: c.ior(-5), "lambda_nm must be > 0 nm, got -5"),
         (lambda c: c.ior(200), "wavelength 200 nm is outside the range"),
         (lambda c: c.ior("500"), "lambda_nm must hold real numbers"),
         (lambda c: c.ior([[500], [500, 600]]), "lambda_nm must be an array of real numbers"),

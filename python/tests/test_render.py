@@ -71,7 +71,7 @@ def test_ctrl_c_stops_the_render_and_keeps_what_it_has():
         (dict(scene=SCENE, params={"view": [1]}), r"params\['view'\] must be a string or a number"),
         (dict(scene=SCENE, spp=0), "spp must be > 0"),
         (dict(scene=SCENE, threads=-2), "threads must be >= 0"),
-        (dict(scene=SCENE, params=SMALL, spp=1, exposure=float("nan")), "exposure must be finite"),
+        (dict(scene=SCENE, params=SMALL, spp=1, exposure=float("nan")), "exposure must be a finite number"),
         (dict(scene=SCENE, params=SMALL, spp=1, white_balance="purple"), "white_balance 'purple'"),
         (dict(scene=42), "scene must be a path"),
     ],

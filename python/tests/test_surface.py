@@ -84,8 +84,8 @@ def test_refit_equals_the_cli():
     table = np.array([[float(v) for v in line.split(",")] for line in out[2:]])
     fit = ss.KCorrelation(1.0, 1.5, 3.0).refit(13)
     assert fit.exponent_x == pytest.approx(float(out[0][4:]), rel=CLI_RTOL)
-    np.testing.assert_allclose(fit.corr_length_m, table[:, 1], rtol=CLI_RTOL)
-    np.testing.assert_allclose(fit.misfit_m, table[:, 2], rtol=CLI_RTOL, atol=1e-15)
+    np.testing.assert_allclose(fit.corr_length_um, table[:, 1], rtol=CLI_RTOL)
+    np.testing.assert_allclose(fit.misfit, table[:, 2], rtol=CLI_RTOL, atol=1e-15)
 
 
 def test_self_convolutions_of_gamma_2_are_kc_with_l_over_m():
@@ -203,7 +203,7 @@ def test_height_map_round_trip_through_gsf_with_invalid_points(tmp_path):
         (lambda: ss.KCorrelation(0.1, 2, 0.5), "gamma must be > 1, got 0.5"),
         (lambda: ss.KCorrelation(0.1, np.nan, 3), "correlation length"),
         (lambda: ss.KCorrelation(0.1, 2, 3).psd(-1.0), "zeta must be >= 0, got -1"),
-        (lambda: ss.KCorrelation(0.1, 2, 3).acv([0, np.inf]), r"r must be finite, got inf at index \(1,\)"),
+        (lambda: ss.KCorrelation(0.1, 2, 3).acv([0, np.inf]), r"r_um must be a finite number, got inf at index \(1,\)"),
         (lambda: ss.KCorrelation(0.1, 2, 3).relevant_roughness(90, 550), r"theta_i_deg must be in \[0, 90\) degrees"),
         (lambda: ss.KCorrelation(0.1, 2, 3).relevant_roughness([[0, 1]], [1, 2, 3]), "do not broadcast"),
         (lambda: ss.HeightMap(np.full((16, 16), np.nan), 1.0), "finite"),
