@@ -98,9 +98,19 @@ photo::BoardParameterNames python_board_names() {
     return {"squares", "square_length_m", "markers", "marker_length_m", "marker_separation_m"};
 }
 
-photo::BoardSpec validated(photo::BoardSpec spec) {
-    photo::validate(spec, python_board_names());
-    return spec;
+// A board of `type` with `count` squares (charuco, chessboard) or markers (grid), validated by the library.
+photo::BoardSpec make_board(photo::BoardType type, py::handle count, double square_length_m, double marker_length_m,
+                            double marker_separation_m, const std::string& dictionary) {
+    photo::BoardSpec b;
+    b.type = type;
+    if (type == photo::BoardType::Grid) std::tie(b.markers_x, b.markers_y) = size_pair(count, "markers");
+    else std::tie(b.squares_x, b.squares_y) = size_pair(count, "squares");
+    b.square_length = square_length_m;
+    b.marker_length = marker_length_m;
+    b.marker_separation = marker_separation_m;
+    b.dictionary = dictionary;
+    photo::validate(b, python_board_names());
+    return b;
 }
 
 photo::CameraModel camera_input(py::handle value) {
@@ -199,13 +209,7 @@ void bind_photo(py::module_& m) {
         .def_static(
             "charuco",
             [](py::handle squares, double square_length_m, double marker_length_m, const std::string& dictionary) {
-                photo::BoardSpec b;
-                b.type = photo::BoardType::Charuco;
-                std::tie(b.squares_x, b.squares_y) = size_pair(squares, "squares");
-                b.square_length = square_length_m;
-                b.marker_length = marker_length_m;
-                b.dictionary = dictionary;
-                return validated(b);
+                return make_board(photo::BoardType::Charuco, squares, square_length_m, marker_length_m, 0.0, dictionary);
             },
             py::arg("squares"), py::arg("square_length_m"), py::arg("marker_length_m"), py::arg("dictionary") = "4X4_50",
             "A ChArUco board of squares = (x, y) chessboard squares of square_length_m metres with markers of "
@@ -214,11 +218,7 @@ void bind_photo(py::module_& m) {
         .def_static(
             "chessboard",
             [](py::handle squares, double square_length_m) {
-                photo::BoardSpec b;
-                b.type = photo::BoardType::Chessboard;
-                std::tie(b.squares_x, b.squares_y) = size_pair(squares, "squares");
-                b.square_length = square_length_m;
-                return validated(b);
+                return make_board(photo::BoardType::Chessboard, squares, square_length_m, 0.0, 0.0, photo::BoardSpec{}.dictionary);
             },
             py::arg("squares"), py::arg("square_length_m"),
             "A chess board of squares = (x, y) squares (not inner corners) of square_length_m metres, as --board "
@@ -226,13 +226,7 @@ void bind_photo(py::module_& m) {
         .def_static(
             "grid",
             [](py::handle markers, double marker_length_m, double marker_separation_m, const std::string& dictionary) {
-                photo::BoardSpec b;
-                b.type = photo::BoardType::Grid;
-                std::tie(b.markers_x, b.markers_y) = size_pair(markers, "markers");
-                b.marker_length = marker_length_m;
-                b.marker_separation = marker_separation_m;
-                b.dictionary = dictionary;
-                return validated(b);
+                return make_board(photo::BoardType::Grid, markers, 0.0, marker_length_m, marker_separation_m, dictionary);
             },
             py::arg("markers"), py::arg("marker_length_m"), py::arg("marker_separation_m"),
             py::arg("dictionary") = "4X4_50",
