@@ -1,11 +1,15 @@
 #!/usr/bin/python3
-"""Bsdf.eval from Python on 10^6 direction pairs against bench_bsdf's per-call figure x 10^6, and its thread scaling.
+"""Bsdf.eval from Python on 10^6 direction pairs against bench_bsdf's per-call figure x 10^6, and its thread scaling;
+and a 256 x 256 BRDF table from Python against the same table from one `surfscatter brdf eval` process.
 
 The same five models as bench/bench_bsdf.cpp's BM_eval/<model>/2 (KC gamma = 3, L = 1 um, g = 10 at 550 nm,
 perfect conductor, theta_i = 30 deg, outgoing directions from the model's own sampler). Each repetition runs
 bench_bsdf (one process) and then times one Bsdf.eval call over all pairs per model, first limited to one thread
-(surfscatter.set_max_threads(1)), then with every core; the figures are medians over the repetitions, CPU seconds
-(time.process_time, all threads) and wall seconds (time.perf_counter) separately. Results go to docs/PERFORMANCE.md.
+(surfscatter.set_max_threads(1)), then with every core; then the table: GHS (exact) on a 256 x 256 grid of
+theta_o in [0, 89] deg and phi_o in [0, 360) deg, in Python (building the model from its cached tables, and eval
+on the grid) and by the CLI (the process's whole run, its CSV written to /dev/null). The figures are medians over the
+repetitions, CPU seconds (time.process_time, all threads; the CLI's from os.wait4) and wall seconds
+(time.perf_counter) separately. Results go to docs/PERFORMANCE.md.
 
     /usr/bin/python3 bench/bench_python_bsdf.py --build build
 """
@@ -59,6 +63,29 @@ def queries(model, ss, pairs):
     return wi, wo
 
 
+def timed_table_python(ss, options, theta_o, phi_o):
+    """CPU and wall seconds of building the model and evaluating it on the theta_o x phi_o grid."""
+    cpu, wall = time.process_time(), time.perf_counter()
+    model = ss.bsdf(**options)
+    table = model.eval(ss.direction(THETA_I_DEG, 0.0), ss.direction(theta_o[:, None], phi_o[None, :]), LAMBDA_NM)
+    assert table.shape == (theta_o.size, phi_o.size)
+    return time.process_time() - cpu, time.perf_counter() - wall
+
+
+def timed_table_cli(cli, sigma, theta_o, phi_o):
+    """CPU (user + system of the process) and wall seconds of the same table by `surfscatter brdf eval`."""
+    args = [cli, "brdf", "eval", "--model", "ghs", "--psd", "kc", "--sigma", repr(sigma), "--corr-length", "1",
+            "--gamma", "3", "--wavelength", repr(LAMBDA_NM), "--theta-i", repr(THETA_I_DEG),
+            "--theta-o", ",".join(repr(float(t)) for t in theta_o), "--phi-o", ",".join(repr(float(p)) for p in phi_o)]
+    wall = time.perf_counter()
+    with open(os.devnull, "w") as sink:
+        process = subprocess.Popen(args, stdout=sink)
+        _, status, usage = os.wait4(process.pid, 0)
+    wall = time.perf_counter() - wall
+    assert status == 0, f"{' '.join(args[:12])} ... failed"
+    return usage.ru_utime + usage.ru_stime, wall
+
+
 def timed_eval(model, wi, wo):
     cpu, wall = time.process_time(), time.perf_counter()
     model.eval(wi, wo, LAMBDA_NM)
@@ -70,6 +97,7 @@ def main():
     parser.add_argument("--build", type=Path, default=Path("build"), help="build directory")
     parser.add_argument("--pairs", type=int, default=10**6)
     parser.add_argument("--repeats", type=int, default=5)
+    parser.add_argument("--table", type=int, default=256, help="n of the n x n BRDF table")
     args = parser.parse_args()
     sys.path.insert(0, str(args.build.resolve() / "python"))
     import surfscatter as ss
@@ -83,14 +111,21 @@ def main():
         wi, wo = directions[m]
         model.eval(wi, wo[:16], LAMBDA_NM)
 
+    theta_o = np.linspace(0.0, 89.0, args.table)
+    phi_o = np.linspace(0.0, 360.0, args.table, endpoint=False)
+    table_options = dict(model="ghs", psd="kc", sigma=sigma, corr_length=1.0, gamma=3.0)
+    cli = str(args.build / "apps" / "surfscatter" / "surfscatter")
+
     load_before = load_average()
-    cpp, one, many = [], [], []
+    cpp, one, many, table_py, table_cli = [], [], [], [], []
     for _ in range(args.repeats):
         cpp.append(cpp_per_call(str(args.build / "bench" / "bench_bsdf")))
         ss.set_max_threads(1)
         one.append({m: timed_eval(model, *directions[m]) for m, model in models.items()})
         ss.set_max_threads(0)
         many.append({m: timed_eval(model, *directions[m]) for m, model in models.items()})
+        table_py.append({0: timed_table_python(ss, table_options, theta_o, phi_o)})
+        table_cli.append({0: timed_table_cli(cli, sigma, theta_o, phi_o)})
     load_after = load_average()
 
     def median(runs, m, i):
@@ -110,6 +145,11 @@ def main():
         many_cpu, many_wall = median(many, m, 0), median(many, m, 1)
         print(f"| {name} | {cpp_cpu:.1f} ({cpp_wall:.1f}) | {cpp_cpu * scale:.4f} | {one_cpu:.4f}, {one_wall:.4f} | "
               f"{one_cpu / (cpp_cpu * scale):.2f} | {many_cpu:.4f}, {many_wall:.4f} | {one_wall / many_wall:.2f} |")
+    n = args.table
+    print(f"\n{n} x {n} GHS BRDF table (model built from cached tables, then evaluated), {cores} threads:")
+    print("| | CPU s | wall s |\n|---|---|---|")
+    print(f"| Python: surfscatter.bsdf + Bsdf.eval | {median(table_py, 0, 0):.3f} | {median(table_py, 0, 1):.3f} |")
+    print(f"| CLI: one `surfscatter brdf eval` process | {median(table_cli, 0, 0):.3f} | {median(table_cli, 0, 1):.3f} |")
 
 
 if __name__ == "__main__":
