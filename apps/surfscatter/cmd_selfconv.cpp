@@ -17,8 +17,6 @@
 namespace surfscatter::cli {
 namespace {
 
-constexpr int kMaxOrders = 5000;
-
 struct SelfconvArgs {
     double gamma = 0, corr_length = 0;
     int orders = 0;
@@ -59,7 +57,7 @@ void write_curves(const surface::KCorrelation& kc, const surface::RefitResult& f
 void run(const SelfconvArgs& args) {
     surface::require_kc_gamma(args.gamma, "--gamma");
     surface::require_surface_length(args.corr_length, "--corr-length");
-    if (args.orders < 1 || args.orders > kMaxOrders) fail("--orders must be in [1, {}], got {}", kMaxOrders, args.orders);
+    surface::require_refit_orders(args.orders, "--orders");
     const surface::KCorrelation kc(1.0, args.corr_length, args.gamma);
     const surface::RefitResult fit = surface::refit_self_convolutions(kc, args.orders);
     std::printf("x = %s\n", format_number(fit.exponent_x).c_str());

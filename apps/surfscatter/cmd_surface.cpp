@@ -180,12 +180,10 @@ void write_psd_image(const surface::Psd2d& psd, std::size_t block, const std::st
 double psd_image_edge(std::size_t n, double dzeta) { return -(static_cast<double>(n / 2) + 0.5) * dzeta; }
 
 void fit(const FitArgs& args) {
-    if (args.smoothing) require_positive(*args.smoothing, "--smoothing");
+    if (args.smoothing) require_positive(*args.smoothing, "--smoothing");  // before reading the map
     surface::KcFitOptions options;
     const surface::HeightMap map = read_map(args, options.form);
-    if (args.smoothing && *args.smoothing > std::max(map.width(), map.height()))
-        fail("--smoothing {} um is wider than the {:g} x {:g} um map (the smoothed map would be flat)", *args.smoothing,
-             map.width(), map.height());
+    if (args.smoothing) surface::require_smoothing(*args.smoothing, map, "--smoothing");
     options.min_ring = args.min_ring;
     options.max_nyquist_fraction = args.max_zeta_fraction;
     const surface::SurfaceFit result = surface::fit_surface(map, options);

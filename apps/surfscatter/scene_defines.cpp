@@ -1,9 +1,7 @@
 #include "scene_defines.hpp"
 
-#include <algorithm>
-#include <cctype>
-
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/render/xml_loader.hpp"
 
 namespace surfscatter::cli {
 
@@ -13,7 +11,7 @@ std::map<std::string, std::string> parse_defines(const std::vector<std::string>&
         const auto eq = item.find('=');
         if (eq == std::string::npos || eq == 0) fail("-D expects name=value, got '{}'", printable(item));
         const std::string name = item.substr(0, eq);
-        if (!std::all_of(name.begin(), name.end(), [](unsigned char c) { return std::isalnum(c) || c == '_'; }))
+        if (!render::is_parameter_name(name))
             fail("-D {}: a parameter name has letters, digits and '_' only (as $name in the scene)", printable(name));
         if (!defines.emplace(name, item.substr(eq + 1)).second) fail("-D {} is given twice", name);
     }

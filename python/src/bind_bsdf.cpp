@@ -4,6 +4,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <pybind11/stl.h>
 
@@ -133,6 +134,13 @@ PyBsdf make(const std::string& model, py::handle surface_arg, py::handle materia
     } else if (!o.surface.surface_file.empty() && !psd_given) {
         o.surface.psd = bsdf::PsdKind::file;  // as the XML: a surface_file alone is the surface
     }
+    // An option the model does not use is an error, as at the CLI and in scenes (never silently ignored).
+    std::vector<std::string> given;
+    for (const auto& [key, value] : options) given.push_back(key.cast<std::string>());
+    if (!surface_arg.is_none()) given.emplace_back("surface");
+    for (const std::string& name : given)
+        if (const std::string why = bsdf::inapplicable_option(o, name == "surface" ? "psd" : name); !why.empty())
+            fail("{} does not apply to model {}: {}", name, model, why);
     std::vector<std::string> notes;
     std::shared_ptr<const bsdf::Bsdf> built;
     {

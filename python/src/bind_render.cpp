@@ -1,5 +1,6 @@
 // surfscatter.render(scene, ...): render/xml_loader.hpp + render/integrator.hpp, as `surfscatter render`.
 #include <atomic>
+#include <cmath>
 #include <chrono>
 #include <condition_variable>
 #include <exception>
@@ -14,6 +15,7 @@
 #include "bindings.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/progress.hpp"
+#include "surfscatter/core/resources.hpp"
 #include "surfscatter/render/integrator.hpp"
 #include "surfscatter/render/xml_loader.hpp"
 
@@ -31,6 +33,9 @@ std::map<std::string, std::string> scene_defines(py::handle params) {
     for (const auto& [key, value] : params.cast<py::dict>()) {
         if (!py::isinstance<py::str>(key)) fail("params: names must be strings, got {}", py::repr(key).cast<std::string>());
         const auto name = key.cast<std::string>();
+        if (!render::is_parameter_name(name))
+            fail("params['{}']: a parameter name has letters, digits and '_' only (as $name in the scene)",
+                 printable(name));
         if (py::isinstance<py::bool_>(value)) defines[name] = value.cast<bool>() ? "true" : "false";
         else if (py::isinstance<py::str>(value) || py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value))
             defines[name] = py::str(value).cast<std::string>();
@@ -100,11 +105,12 @@ py::array_t<float> alpha_image(const render::Film& film) {
     return out;
 }
 
-py::dict render_scene(py::handle scene_path, std::optional<int> spp, py::handle params, int threads,
-                      std::optional<std::uint64_t> seed, std::optional<double> exposure,
+py::dict render_scene(py::handle scene_path, std::optional<int> spp, py::handle params, long long threads,
+                      std::optional<long long> seed, std::optional<double> exposure,
                       std::optional<std::string> white_balance, bool progress) {
-    if (spp && *spp <= 0) fail("spp must be > 0 (None: the scene's sampler), got {}", *spp);
-    if (threads < 0) fail("threads must be >= 0 (0: all cores), got {}", threads);
+    if (spp && *spp <= 0) fail("spp must be positive, got {}", *spp);
+    require_thread_count(threads, "threads");
+    if (seed && *seed < 0) fail("seed must be >= 0, got {}", *seed);
     const std::string path = path_string(scene_path, "scene");
     const auto defines = scene_defines(params);
     std::unique_ptr<render::Scene> scene;
@@ -112,12 +118,25 @@ py::dict render_scene(py::handle scene_path, std::optional<int> spp, py::handle 
         py::gil_scoped_release release;
         scene = render::load_scene(path, defines);
     }
-    if (exposure) scene->film.exposure = real_scalar(py::float_(*exposure), "exposure");
-    if (white_balance) scene->film.white_balance = *white_balance;
+    // The scene's film was checked when it was loaded: what can fail now is the caller's overrides.
+    if (exposure) {
+        scene->film.exposure = *exposure;
+        if (!(std::abs(*exposure) <= render::kMaxExposureStops))
+            fail("exposure must be between -{} and {} stops, got {}", render::kMaxExposureStops,
+                 render::kMaxExposureStops, *exposure);
+    }
+    if (white_balance) {
+        scene->film.white_balance = *white_balance;
+        try {
+            scene->film.check();
+        } catch (const Error& e) {
+            fail("white_balance: {}", e.what());
+        }
+    }
     render::RenderOptions options;
     options.spp = spp.value_or(0);
-    options.threads = threads;
-    options.seed = seed;
+    options.threads = static_cast<int>(threads);
+    if (seed) options.seed = static_cast<std::uint64_t>(*seed);
     options.progress = progress;
     std::optional<render::Film> film;
     render::RenderStats stats;
@@ -125,14 +144,16 @@ py::dict render_scene(py::handle scene_path, std::optional<int> spp, py::handle 
     const io::Image rgb = film->develop(scene->film);
     if (signal) {
         if (!signal->matches(PyExc_KeyboardInterrupt)) throw *signal;
-        if (PyErr_WarnFormat(PyExc_RuntimeWarning, 1,
-                             "surfscatter.render interrupted: the image holds %d of the samples per pixel asked",
-                             stats.samples_per_pixel) != 0)
-            throw py::error_already_set();
+        const std::string held = stats.max_samples_per_pixel > stats.samples_per_pixel
+                                     ? fmt::format("{} to {}", stats.samples_per_pixel, stats.max_samples_per_pixel)
+                                     : fmt::format("{}", stats.samples_per_pixel);
+        const std::string text = "surfscatter.render interrupted: its pixels hold " + held + " samples each";
+        if (PyErr_WarnEx(PyExc_RuntimeWarning, text.c_str(), 1) != 0) throw py::error_already_set();
     }
     return py::dict("rgb"_a = to_float_image(rgb.pixels.data(), rgb.height, rgb.width, 3), "xyz"_a = xyz_image(*film),
                     "alpha"_a = alpha_image(*film),
-                    "spp"_a = stats.samples_per_pixel, "interrupted"_a = stats.interrupted,
+                    "spp"_a = stats.samples_per_pixel, "max_spp"_a = stats.max_samples_per_pixel,
+                    "interrupted"_a = stats.interrupted,
                     "seconds"_a = stats.seconds, "rays"_a = stats.rays, "notes"_a = scene->notes);
 }
 
@@ -151,9 +172,10 @@ temperature in K such as '2700', overriding the film's; progress: percentage and
 Returns a dict: 'rgb' the linear sRGB image (height, width, 3) float32 after white balance and exposure (what the
 CLI writes to EXR), 'xyz' the film's CIE 1931 XYZ (height, width, 3) float32 before them (Y = 1 for a constant
 unit radiance), 'alpha' (height, width) float32 the film's alpha (the filter-weighted fraction of samples that hit
-a shape, as Mitsuba's), 'spp' samples per pixel completed, 'interrupted', 'seconds', 'rays', 'notes' (the loader's
-remarks, e.g. the height maps it read). Deterministic for a given seed, whatever the thread count.
-Ctrl-C stops the render after its current pass and returns what it has ('interrupted': True, a RuntimeWarning).)");
+a shape, as Mitsuba's), 'spp' the samples every pixel got and 'max_spp' the most any pixel got (they differ only
+after an interruption), 'interrupted', 'seconds', 'rays', 'notes' (the loader's remarks, e.g. the height maps it
+read). Deterministic for a given seed, whatever the thread count. Ctrl-C stops the render within a sample per thread
+and returns what it has, each pixel the mean of its own samples ('interrupted': True, a RuntimeWarning).)");
 }
 
 }  // namespace surfscatter::python

@@ -175,9 +175,10 @@ void bind_statistics(py::module_& m) {
             "and a sharp low-pass at cutoff_zeta (rad/um; inf = none); inf when the integral diverges.")
         .def(
             "self_convolution",
-            [](const RadialStatistics& s, int max_order) {
+            [](const RadialStatistics& s, long long max_order) {
+                require_refit_orders(max_order, "max_order");
                 py::gil_scoped_release release;
-                return std::const_pointer_cast<SelfConvolutionTable>(SelfConvolutionTable::get(s, max_order));
+                return std::const_pointer_cast<SelfConvolutionTable>(SelfConvolutionTable::get(s, static_cast<int>(max_order)));
             },
             py::arg("max_order"),
             "The self-convolutions P-hat^{*m}, m = 1..max_order, of the unit-mass PSD (THEORY.md 1.2, 2.3), "
@@ -187,8 +188,14 @@ void bind_statistics(py::module_& m) {
         m, "KCorrelation",
         "K-correlation (ABC) statistics, THEORY.md 2.1: P = sigma^2 (gamma - 1) L^2 / (2 pi) "
         "(1 + L^2 zeta^2)^(-(gamma + 1)/2). Parameters named as in the XML and ModelOptions.")
-        .def(py::init<double, double, double>(), py::arg("sigma"), py::arg("corr_length"), py::arg("gamma"),
-             "sigma: rms height (um, > 0); corr_length: L (um, > 0); gamma: exponent (> 1).")
+        .def(py::init([](double sigma, double corr_length, double gamma) {
+                 require_surface_length(sigma, "sigma");  // the user's ranges, as the CLI and the scenes check them
+                 require_surface_length(corr_length, "corr_length");
+                 require_kc_gamma(gamma, "gamma");
+                 return std::make_shared<KCorrelation>(sigma, corr_length, gamma);
+             }),
+             py::arg("sigma"), py::arg("corr_length"), py::arg("gamma"),
+             "sigma: rms height (um); corr_length: L (um), both in [1e-9, 1e9]; gamma: exponent in [1.01, 100].")
         .def_property_readonly("gamma", &KCorrelation::gamma, "exponent gamma")
         .def(
             "inverse_radial_cdf",
@@ -208,9 +215,10 @@ void bind_statistics(py::module_& m) {
             py::arg("b"), py::arg("c"), "The KCorrelation of ABC parameters a (um^4), b (um), c (> 1).")
         .def(
             "refit",
-            [](const KCorrelation& s, int max_order) {
+            [](const KCorrelation& s, long long max_order) {
+                require_refit_orders(max_order, "max_order");
                 py::gil_scoped_release release;
-                return refit_self_convolutions(s, max_order);
+                return refit_self_convolutions(s, static_cast<int>(max_order));
             },
             py::arg("max_order"),
             "The supplemental's refit (THEORY.md 2.4): each self-convolution m = 1..max_order fitted by a KC of "
@@ -222,8 +230,12 @@ void bind_statistics(py::module_& m) {
 
     py::class_<GaussianAcv, RadialStatistics, std::shared_ptr<GaussianAcv>>(
         m, "GaussianAcv", "Gaussian autocovariance C(r) = sigma^2 exp(-r^2 / corr_length^2).")
-        .def(py::init<double, double>(), py::arg("sigma"), py::arg("corr_length"),
-             "sigma: rms height (um, > 0); corr_length: l (um, > 0).")
+        .def(py::init([](double sigma, double corr_length) {
+                 require_surface_length(sigma, "sigma");
+                 require_surface_length(corr_length, "corr_length");
+                 return std::make_shared<GaussianAcv>(sigma, corr_length);
+             }),
+             py::arg("sigma"), py::arg("corr_length"), "sigma: rms height (um); corr_length: l (um), both in [1e-9, 1e9].")
         .def(
             "inverse_radial_cdf",
             [](const GaussianAcv& s, py::handle u) {
@@ -322,7 +334,9 @@ void bind_height_maps(py::module_& m) {
             "rms_slope",
             [](const HeightMap& h, const std::string& form, std::optional<double> smoothing_um) {
                 const Form f = parse_form(form, "form");
-                return smoothing_um ? rms_slope_smoothed(h, *smoothing_um, f) : rms_slope(h, f);
+                if (!smoothing_um) return rms_slope(h, f);
+                require_smoothing(*smoothing_um, h, "smoothing_um");
+                return rms_slope_smoothed(h, *smoothing_um, f);
             },
             py::arg("form") = "plane", py::arg("smoothing_um") = py::none(),
             (std::string("rms slope (central differences) of the form-removed map, after Gaussian smoothing of "
@@ -377,7 +391,8 @@ void bind_height_maps(py::module_& m) {
 
     m.def(
         "synthesize",
-        [](const RadialStatistics& statistics, py::handle size, double spacing_um, std::uint64_t seed) {
+        [](const RadialStatistics& statistics, py::handle size, double spacing_um, long long seed) {
+            if (seed < 0) fail("seed must be >= 0, got {}", seed);
             std::size_t nx = 0, ny = 0;
             if (py::isinstance<py::int_>(size)) nx = ny = size.cast<std::size_t>();
             else if (py::isinstance<py::sequence>(size) && py::len(size) == 2)
@@ -385,7 +400,7 @@ void bind_height_maps(py::module_& m) {
             else fail("size must be n or (nx, ny) (whole numbers of samples), got {}", py::repr(size).cast<std::string>());
             const SynthesisGrid grid{nx, ny, spacing_um};
             py::gil_scoped_release release;
-            return std::make_shared<HeightMap>(synthesize_surface(statistics, grid, seed));
+            return std::make_shared<HeightMap>(synthesize_surface(statistics, grid, static_cast<std::uint64_t>(seed)));
         },
         py::arg("statistics"), py::arg("size"), py::arg("spacing_um"), py::arg("seed") = 1,
         "A random Gaussian surface with the PSD of `statistics` (spectral synthesis, synthesis.hpp) on an n x n "

@@ -8,6 +8,7 @@
 #include "arrays.hpp"
 #include "bindings.hpp"
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/resources.hpp"
 #include "surfscatter/math/vec.hpp"
 
 namespace surfscatter::python {
@@ -18,8 +19,8 @@ std::mutex thread_limit_mutex;
 // Never destroyed: at interpreter exit TBB may be torn down before static destructors would run.
 auto* const thread_limit = new std::unique_ptr<tbb::global_control>();
 
-void set_max_threads(int threads) {
-    if (threads < 0) fail("threads must be >= 0 (0: all cores), got {}", threads);
+void set_max_threads(long long threads) {
+    require_thread_count(threads, "threads");
     const std::lock_guard lock(thread_limit_mutex);
     thread_limit->reset();
     if (threads > 0)

@@ -35,7 +35,7 @@ def test_error_is_a_value_error_named_in_the_package():
     assert ss.Error.__module__ == "surfscatter"
     with pytest.raises(ValueError) as raised:
         ss.KCorrelation(0.1, 1.0, 0.5)
-    assert str(raised.value) == "gamma must be > 1, got 0.5"
+    assert str(raised.value) == "gamma must be between 1.01 and 100 (KC), got 0.5"
     assert "\n" not in str(raised.value)
 
 

@@ -14,6 +14,9 @@ import surfscatter as ss
 import synthetic
 from conftest import CLI, shared
 from test_photo import CAMERA_YML
+from test_render import SCENE, SMALL
+
+DEFINES = sum((["-D", f"{k}={v}"] for k, v in SMALL.items()), [])
 
 KC = ["--psd", "kc", "--sigma", "0.1", "--corr-length", "1", "--gamma", "3"]
 KC_PY = dict(psd="kc", sigma=0.1, corr_length=1, gamma=3)
@@ -68,6 +71,22 @@ def cases(f):
          lambda: ss.bsdf(**GGX_PY).albedo(90, 550), {"--theta-i": "theta_i_deg"}),
         ("wavelength", ["brdf", "albedo", *GGX, "--wavelength", "-5", "--theta-i", "10"],
          lambda: ss.bsdf(**GGX_PY).albedo(10, -5), {"--wavelength": "lambda_nm"}),
+        ("inapplicable", ["brdf", "albedo", "--wavelength", "550", "--theta-i", "10", *GGX, "--smoothing", "0.5"],
+         lambda: ss.bsdf(smoothing=0.5, **GGX_PY), {"--smoothing": "smoothing", "--model": "model"}),
+        ("gamma", ["psd", "--model", "kc", "--sigma", "0.1", "--corr-length", "1", "--gamma", "0.5", "--zeta", "1"],
+         lambda: ss.KCorrelation(0.1, 1, 0.5), {"--gamma": "gamma"}),
+        ("length", ["acv", "--model", "gaussian", "--sigma", "1e12", "--corr-length", "1", "--r", "1"],
+         lambda: ss.GaussianAcv(1e12, 1), {"--sigma": "sigma"}),
+        ("orders", ["selfconv", "--gamma", "3", "--corr-length", "1", "--orders", "6000"],
+         lambda: ss.KCorrelation(0.1, 1, 3).refit(6000), {"--orders": "max_order"}),
+        ("threads", ["render", SCENE, "--threads", "1000", "-o", out / "r.exr"],
+         lambda: ss.render(SCENE, threads=1000), {"--threads": "threads"}),
+        ("exposure", ["render", SCENE, *DEFINES, "--exposure", "100", "-o", out / "r.exr"],
+         lambda: ss.render(SCENE, params=SMALL, exposure=100), {"--exposure": "exposure"}),
+        ("white balance", ["render", SCENE, *DEFINES, "--white-balance", "purple", "-o", out / "r.exr"],
+         lambda: ss.render(SCENE, params=SMALL, white_balance="purple"), {"--white-balance": "white_balance"}),
+        ("unused parameter", ["render", SCENE, *DEFINES, "-D", "colour=1", "-o", out / "r.exr"],
+         lambda: ss.render(SCENE, params={**SMALL, "colour": 1}), {}),
         ("height map", ["surface", "info", "/nonexistent/map.gwy"], lambda: ss.read_height_map("/nonexistent/map.gwy"),
          {}),
         ("scene", ["render", "/nonexistent/scene.xml", "-o", out / "r.exr"], lambda: ss.render("/nonexistent/scene.xml"),
@@ -110,7 +129,8 @@ def cases(f):
     ]
 
 
-CASE_IDS = ["sigma", "material", "method", "fresnel", "theta_i", "wavelength", "height map", "scene", "photo",
+CASE_IDS = ["sigma", "material", "method", "fresnel", "theta_i", "wavelength", "inapplicable", "gamma", "length",
+            "orders", "threads", "exposure", "white balance", "unused parameter", "height map", "scene", "photo",
             "camera", "squares", "marker length", "dictionary", "no board", "no marker", "pose size", "ambiguous",
             "linearize", "chart corners", "no chart", "render size"]
 

@@ -27,7 +27,7 @@ def test_render_equals_the_cli_exr(tmp_path):
     assert result["xyz"].dtype == np.float32 and result["xyz"].shape == (36, 48, 3)
     assert result["alpha"].dtype == np.float32 and result["alpha"].shape == (36, 48)
     assert np.isfinite(result["alpha"]).all()
-    assert result["spp"] == 4 and not result["interrupted"] and result["rays"] > 0
+    assert result["spp"] == result["max_spp"] == 4 and not result["interrupted"] and result["rays"] > 0
     # The CLI's EXR holds half floats (hdrfilm's default component_format float16, as Mitsuba's).
     np.testing.assert_array_equal(rgb.astype(np.float16).astype(np.float32), ss.read_photo(exr))
     assert np.isfinite(rgb).all() and rgb.max() > 0
@@ -54,7 +54,7 @@ def test_ctrl_c_stops_the_render_and_keeps_what_it_has():
             result = ss.render(SCENE, spp=3200, params=SMALL, seed=2)  # passes of 200 spp
     finally:
         timer.cancel()
-    assert result["interrupted"] and 0 < result["spp"] < 3200
+    assert result["interrupted"] and result["spp"] <= result["max_spp"] and 0 < result["max_spp"] < 3200
     assert np.isfinite(result["rgb"]).all() and result["rgb"].max() > 0
     # The flag does not outlive the call.
     assert not ss.render(SCENE, spp=1, params=SMALL, seed=2)["interrupted"]
@@ -69,10 +69,13 @@ def test_ctrl_c_stops_the_render_and_keeps_what_it_has():
         (dict(scene=SCENE, params={"sigma": -1}), "sigma"),
         (dict(scene=SCENE, params=["view", 1]), "params must be a dict"),
         (dict(scene=SCENE, params={"view": [1]}), r"params\['view'\] must be a string or a number"),
-        (dict(scene=SCENE, spp=0), "spp must be > 0"),
-        (dict(scene=SCENE, threads=-2), "threads must be >= 0"),
-        (dict(scene=SCENE, params=SMALL, spp=1, exposure=float("nan")), "exposure must be a finite number"),
-        (dict(scene=SCENE, params=SMALL, spp=1, white_balance="purple"), "white_balance 'purple'"),
+        (dict(scene=SCENE, params={"bad name": 1}), r"params\['bad name'\]: a parameter name has letters, digits"),
+        (dict(scene=SCENE, params={**SMALL, "unused": 1}), r"never uses \$unused"),
+        (dict(scene=SCENE, spp=0), "spp must be positive, got 0"),
+        (dict(scene=SCENE, threads=-2), "threads must be"),
+        (dict(scene=SCENE, seed=-1), "seed must be >= 0, got -1"),
+        (dict(scene=SCENE, params=SMALL, spp=1, exposure=float("nan")), "exposure must be between -64 and 64 stops"),
+        (dict(scene=SCENE, params=SMALL, spp=1, white_balance="purple"), "white_balance: .*'purple'"),
         (dict(scene=42), "scene must be a path"),
     ],
 )

@@ -199,9 +199,9 @@ def test_height_map_round_trip_through_gsf_with_invalid_points(tmp_path):
 @pytest.mark.parametrize(
     "make, message",
     [
-        (lambda: ss.KCorrelation(-1, 2, 3), "sigma_h must be"),
-        (lambda: ss.KCorrelation(0.1, 2, 0.5), "gamma must be > 1, got 0.5"),
-        (lambda: ss.KCorrelation(0.1, np.nan, 3), "correlation length"),
+        (lambda: ss.KCorrelation(-1, 2, 3), r"sigma must be between 1e-09 and 1e\+09 um, got -1"),
+        (lambda: ss.KCorrelation(0.1, 2, 0.5), r"gamma must be between 1.01 and 100 \(KC\), got 0.5"),
+        (lambda: ss.KCorrelation(0.1, np.nan, 3), r"corr_length must be between 1e-09 and 1e\+09 um, got nan"),
         (lambda: ss.KCorrelation(0.1, 2, 3).psd(-1.0), "zeta must be >= 0, got -1"),
         (lambda: ss.KCorrelation(0.1, 2, 3).acv([0, np.inf]), r"r_um must be a finite number, got inf at index \(1,\)"),
         (lambda: ss.KCorrelation(0.1, 2, 3).relevant_roughness(90, 550), r"theta_i_deg must be in \[0, 90\) degrees"),

@@ -91,5 +91,5 @@ def test_thread_limit_is_applied_and_restored():
     finally:
         ss.set_max_threads(0)
     assert ss.max_threads() == default
-    with pytest.raises(ss.Error, match="threads must be >= 0"):
+    with pytest.raises(ss.Error, match=r"threads must be between 1 and 256 \(or 0 for all cores\), got -1"):
         ss.set_max_threads(-1)

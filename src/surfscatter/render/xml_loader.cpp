@@ -109,6 +109,8 @@ std::vector<std::string> split_list(const Node& node, const std::string& text, c
 using Object = std::variant<MaterialPtr, TexturePtr>;
 using render::Properties;
 
+bool is_parameter_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
+
 class Loader {
 public:
     explicit Loader(std::map<std::string, std::string> defines)
@@ -153,7 +155,7 @@ private:
                 continue;
             }
             std::size_t j = i + 1;
-            while (j < text.size() && (std::isalnum(static_cast<unsigned char>(text[j])) || text[j] == '_')) ++j;
+            while (j < text.size() && is_parameter_char(text[j])) ++j;
             const std::string name = text.substr(i + 1, j - i - 1);
             if (name.empty()) fail_at(node, "'$' without a parameter name in '{}'", printable(text));
             const auto it = defines_.find(name);
@@ -969,6 +971,10 @@ private:
 };
 
 }  // namespace
+
+bool is_parameter_name(std::string_view name) {
+    return !name.empty() && std::all_of(name.begin(), name.end(), is_parameter_char);
+}
 
 std::unique_ptr<Scene> load_scene(const std::filesystem::path& path, const std::map<std::string, std::string>& defines,
                                   std::set<std::string>* used_parameters) {

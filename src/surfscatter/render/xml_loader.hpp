@@ -14,6 +14,7 @@
 #include <memory>
 #include <set>
 #include <string>
+#include <string_view>
 
 #include "surfscatter/render/scene.hpp"
 
@@ -23,6 +24,9 @@ inline constexpr int kMaxElementDepth = 64;            // nesting of XML element
 inline constexpr int kMaxIncludeDepth = 16;            // <include> inside <include>
 inline constexpr int kMaxIncludes = 1024;              // <include> elements read for one scene
 inline constexpr std::size_t kMaxSceneListItems = 1'000'000;  // numbers in one attribute (a spectrum table)
+
+// Whether `name` can name a scene parameter ($name, -D name=value): letters, digits and '_' only, at least one.
+bool is_parameter_name(std::string_view name);
 
 std::unique_ptr<Scene> load_scene(const std::filesystem::path& path, const std::map<std::string, std::string>& defines = {},
                                   std::set<std::string>* used_parameters = nullptr);

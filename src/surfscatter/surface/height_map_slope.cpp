@@ -1,5 +1,6 @@
 #include "surfscatter/surface/height_map_slope.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <string>
@@ -79,6 +80,13 @@ HeightMap gaussian_smooth(const HeightMap& map, double smoothing_um, Form form) 
         for (std::size_t i = 0; i < smoothed.size(); ++i) smoothed[i] = flat.valid(i) ? smoothed[i] / weight[i] : 0.0;
     }
     return flat.with_heights(std::move(smoothed));
+}
+
+void require_smoothing(double smoothing_um, const HeightMap& map, const char* what) {
+    require_positive(smoothing_um, what);
+    if (smoothing_um > std::max(map.width(), map.height()))
+        fail("{} {} um is wider than the {:g} x {:g} um map (the smoothed map would be flat)", what, smoothing_um,
+             map.width(), map.height());
 }
 
 double rms_slope_smoothed(const HeightMap& map, double smoothing_um, Form form) {

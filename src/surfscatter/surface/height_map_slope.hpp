@@ -22,6 +22,10 @@ double rms_slope(const HeightMap& map, Form form = Form::plane);
 // normalised convolution G*(m h) / G*(m) at the valid points (no fill values; invalid points stay invalid).
 HeightMap gaussian_smooth(const HeightMap& map, double smoothing_um, Form form = Form::plane);
 
+// Throws Error naming `what` unless smoothing_um is positive and no wider than the map (wider, the smoothed map
+// would be flat): the check of a smoothing scale the user gives for `map`.
+void require_smoothing(double smoothing_um, const HeightMap& map, const char* what);
+
 // rms_slope(gaussian_smooth(map, smoothing_um)): the "Gaussian smoothed" slope of THEORY.md 4.2.
 double rms_slope_smoothed(const HeightMap& map, double smoothing_um, Form form = Form::plane);
 

@@ -42,6 +42,10 @@ double objective(const Sampled& s, double gamma, double log_length) {
 
 }  // namespace
 
+void require_refit_orders(long long orders, const char* what) {
+    if (orders < 1 || orders > kMaxRefitOrders) fail("{} must be in [1, {}], got {}", what, kMaxRefitOrders, orders);
+}
+
 RefitResult refit_self_convolutions(const KCorrelation& kc, int max_order) {
     if (max_order < 1) fail("refit needs at least one order, got {}", max_order);
     const auto table = SelfConvolutionTable::get(kc, max_order);

@@ -14,6 +14,12 @@ struct RefitResult {
     std::vector<double> misfit_m;         // int |fit - true| d2zeta (fraction of unit mass), index m-1
 };
 
+// The orders a user may ask for (selfconv --orders, Python's refit and self_convolution): the table of 5000 orders
+// takes minutes to build; more is not a request anyone means.
+inline constexpr int kMaxRefitOrders = 5000;
+// Throws Error "<what> must be in [1, 5000], got <orders>" outside that range.
+void require_refit_orders(long long orders, const char* what);
+
 RefitResult refit_self_convolutions(const KCorrelation&, int max_order);
 
 }  // namespace surfscatter::surface
