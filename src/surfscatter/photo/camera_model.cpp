@@ -1,6 +1,7 @@
 #include "surfscatter/photo/camera_model.hpp"
 
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <string>
 
@@ -148,6 +149,8 @@ CameraModel read_camera(const std::filesystem::path& path) {
         fs.open(name, cv::FileStorage::READ);
     } catch (const cv::Exception& e) {
         fail("camera file '{}' is not valid YAML/XML: {}", name, e.err);
+    } catch (const std::exception& e) {  // OpenCV's parser lets std::length_error through on some damaged files
+        fail("camera file '{}' is not valid YAML/XML: {}", name, e.what());
     }
     if (!fs.isOpened()) fail("camera file '{}' could not be read as YAML/XML", name);
     try {
