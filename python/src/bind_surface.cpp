@@ -107,6 +107,42 @@ py::dict psd2d_dict(const Psd2d& p) {
 }
 
 void bind_statistics(py::module_& m) {
+    // The result types first, so that the signatures of the methods returning them name them in Python.
+    py::class_<SelfConvolutionTable, std::shared_ptr<SelfConvolutionTable>>(
+        m, "SelfConvolution",
+        "Self-convolutions P-hat^{*m} of a unit-mass PSD, m = 1..max_order (RadialStatistics.self_convolution).")
+        .def_property_readonly("max_order", &SelfConvolutionTable::max_order, "highest order m tabulated")
+        .def(
+            "psd_unit",
+            [](const SelfConvolutionTable& t, int order, py::handle zeta) {
+                return map_scalars({{zeta, "zeta", Domain::non_negative}}, [&](double z) { return t.eval(order, z); });
+            },
+            py::arg("m"), py::arg("zeta"), "P-hat^{*m}(zeta) in um^2 at zeta >= 0 (rad/um), m in 1..max_order.")
+        .def(
+            "radial_cdf",
+            [](const SelfConvolutionTable& t, int order, py::handle zeta) {
+                return map_scalars({{zeta, "zeta", Domain::non_negative}}, [&](double z) { return t.radial_cdf(order, z); });
+            },
+            py::arg("m"), py::arg("zeta"), "Mass of P-hat^{*m} inside |zeta'| <= zeta (rad/um).")
+        .def(
+            "inverse_radial_cdf",
+            [](const SelfConvolutionTable& t, int order, py::handle u) {
+                return map_scalars({{u, "u", Domain::random_number}}, [&](double v) { return t.inverse_radial_cdf(order, v); });
+            },
+            py::arg("m"), py::arg("u"), "Radius (rad/um) at which the radial CDF of order m reaches u in [0, 1).");
+
+    py::class_<RefitResult>(m, "Refit", "Result of KCorrelation.refit: L_m = L m^-x (THEORY.md 2.4).")
+        .def_readonly("exponent_x", &RefitResult::exponent_x, "x of L_m = L m^-x")
+        .def_property_readonly(
+            "corr_length_um", [](const RefitResult& r) { return to_array(r.corr_length_m); },
+            "the fitted L_m (um) for m = 1..max_order (index m - 1)")
+        .def_property_readonly(
+            "misfit", [](const RefitResult& r) { return to_array(r.misfit_m); },
+            "integral of |fit - true| over the zeta-plane (fraction of unit mass), index m - 1")
+        .def("__repr__", [](const RefitResult& r) {
+            return fmt::format("surfscatter.Refit(exponent_x={}, orders={})", r.exponent_x, r.corr_length_m.size());
+        });
+
     py::class_<RadialStatistics, std::shared_ptr<RadialStatistics>>(
         m, "RadialStatistics",
         "Isotropic surface statistics (THEORY.md 0, 2): radial PSD P(zeta) in um^4 over the angular spatial "
@@ -261,41 +297,6 @@ void bind_statistics(py::module_& m) {
              py::arg("zeta"), py::arg("psd"),
              "zeta: strictly increasing angular frequencies (rad/um); psd: P at them (um^4, > 0).")
         .def("__repr__", [](const TabulatedPsd& s) { return "surfscatter.TabulatedPsd(" + s.cache_key() + ")"; });
-
-    py::class_<SelfConvolutionTable, std::shared_ptr<SelfConvolutionTable>>(
-        m, "SelfConvolution",
-        "Self-convolutions P-hat^{*m} of a unit-mass PSD, m = 1..max_order (RadialStatistics.self_convolution).")
-        .def_property_readonly("max_order", &SelfConvolutionTable::max_order, "highest order m tabulated")
-        .def(
-            "psd_unit",
-            [](const SelfConvolutionTable& t, int order, py::handle zeta) {
-                return map_scalars({{zeta, "zeta", Domain::non_negative}}, [&](double z) { return t.eval(order, z); });
-            },
-            py::arg("m"), py::arg("zeta"), "P-hat^{*m}(zeta) in um^2 at zeta >= 0 (rad/um), m in 1..max_order.")
-        .def(
-            "radial_cdf",
-            [](const SelfConvolutionTable& t, int order, py::handle zeta) {
-                return map_scalars({{zeta, "zeta", Domain::non_negative}}, [&](double z) { return t.radial_cdf(order, z); });
-            },
-            py::arg("m"), py::arg("zeta"), "Mass of P-hat^{*m} inside |zeta'| <= zeta (rad/um).")
-        .def(
-            "inverse_radial_cdf",
-            [](const SelfConvolutionTable& t, int order, py::handle u) {
-                return map_scalars({{u, "u", Domain::random_number}}, [&](double v) { return t.inverse_radial_cdf(order, v); });
-            },
-            py::arg("m"), py::arg("u"), "Radius (rad/um) at which the radial CDF of order m reaches u in [0, 1).");
-
-    py::class_<RefitResult>(m, "Refit", "Result of KCorrelation.refit: L_m = L m^-x (THEORY.md 2.4).")
-        .def_readonly("exponent_x", &RefitResult::exponent_x, "x of L_m = L m^-x")
-        .def_property_readonly(
-            "corr_length_um", [](const RefitResult& r) { return to_array(r.corr_length_m); },
-            "the fitted L_m (um) for m = 1..max_order (index m - 1)")
-        .def_property_readonly(
-            "misfit", [](const RefitResult& r) { return to_array(r.misfit_m); },
-            "integral of |fit - true| over the zeta-plane (fraction of unit mass), index m - 1")
-        .def("__repr__", [](const RefitResult& r) {
-            return fmt::format("surfscatter.Refit(exponent_x={}, orders={})", r.exponent_x, r.corr_length_m.size());
-        });
 }
 
 void bind_height_maps(py::module_& m) {
