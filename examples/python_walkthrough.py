@@ -79,10 +79,21 @@ def main():
         "two-scale": ss.bsdf("two_scale", surface=surface, material=args.material),
     }
     fig, ax = plt.subplots(figsize=(6.5, 4.2))
+    slices = {}
     for (label, model), style in zip(models.items(), ["-", "--", "-", ":"]):
         total, specular = model.albedo(theta_i, args.wavelength)
-        ax.semilogy(theta_o, model.eval(wi, wo, args.wavelength), style, lw=2 if style == "-" else 1.5,
+        slices[label] = model.eval(wi, wo, args.wavelength)
+        print(f"{label}: albedo {total:.4f}, of which the specular delta {specular:.4f}")
+        ax.semilogy(theta_o, slices[label], style, lw=2 if style == "-" else 1.5,
                     label=f"{label}: albedo {total:.3f} (specular {specular:.3f})")
+    # How the models differ on the slice, against GHS: near the mirror direction and away from it.
+    away = np.abs(theta_o - theta_i)
+    for label, values in slices.items():
+        if label == "GHS":
+            continue
+        ratio = values / slices["GHS"]
+        print(f"  {label} / GHS: up to {ratio[away <= 1].max():.4g} within 1 deg of the mirror direction, "
+              f"{ratio[away > 10].min():.4g} to {ratio[away > 10].max():.4g} beyond 10 deg")
     ax.axvline(theta_i, color="0.8", lw=0.8)
     ax.set_xlabel("theta_o (deg), in the plane of incidence")
     ax.set_ylabel("f_r (1/sr)")
