@@ -27,7 +27,8 @@ sm::FresnelSP heavens(double theta, double n, double k) {
     return {rs, rp};
 }
 
-const C kMetals[] = {{0.2, 3.0}, {1.4, 7.6}, {0.05, 3.9}, {2.5, 3.3}, {1.5, 0.0}, {3.0, 0.1}};
+// Metals, dielectrics, and an index below 1 (total reflection beyond the critical angle, w purely imaginary).
+const C kMetals[] = {{0.2, 3.0}, {1.4, 7.6}, {0.05, 3.9}, {2.5, 3.3}, {1.5, 0.0}, {3.0, 0.1}, {0.8, 0.0}};
 
 }  // namespace
 

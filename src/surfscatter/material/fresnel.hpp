@@ -1,6 +1,7 @@
 #pragma once
 // Exact Fresnel reflectance of a conductor (complex index) for s and p polarisation and unpolarised light, and of
 // a dielectric interface (real index) with the refraction it implies.
+#include <cmath>
 #include <complex>
 
 namespace surfscatter::material {
@@ -13,6 +14,27 @@ struct FresnelSP {
 
 // cos_theta_i in [0, 1] (clamped only against round-off above 1); eta = n + i k relative to the outside medium.
 FresnelSP fresnel_conductor_sp(double cos_theta_i, std::complex<double> eta);
+
+// fresnel_conductor_sp without the argument checks (c in [0, 1], k >= 0, both finite), in real arithmetic: no
+// complex division or library sqrt call, so that loops over wavelengths inline it. The same formula:
+// w = eta cos(theta_t) = sqrt(eta^2 - sin^2) (principal root, taken without cancellation), r_s = (c - w) / (c + w),
+// r_p = (eta^2 c - w) / (eta^2 c + w). A 0/0 (eta = 1 at grazing incidence) or an overflow is total reflection.
+inline FresnelSP fresnel_conductor_sp_unchecked(double c, double n, double k) {
+    const double eta2_re = n * n - k * k, eta2_im = 2.0 * n * k;
+    const double x = eta2_re - (1.0 - c * c);  // eta^2 - sin^2 = x + i eta2_im
+    const double modulus = std::sqrt(x * x + eta2_im * eta2_im);
+    const double large = std::sqrt(0.5 * (modulus + std::abs(x)));  // the larger of |Re w|, |Im w|
+    const double small = large > 0 ? std::abs(eta2_im) / (2.0 * large) : 0.0;
+    // w = a + i b, principal root: a >= 0, b of the sign of eta2_im.
+    const double a = x >= 0 ? large : small, b = std::copysign(x >= 0 ? small : large, eta2_im);
+    const auto ratio = [](double num, double den) {
+        const double r = num / den;
+        return std::isfinite(r) ? r : 1.0;
+    };
+    const double p = eta2_re * c, q = eta2_im * c;  // eta^2 c
+    return {ratio((c - a) * (c - a) + b * b, (c + a) * (c + a) + b * b),
+            ratio((p - a) * (p - a) + (q - b) * (q - b), (p + a) * (p + a) + (q + b) * (q + b))};
+}
 double fresnel_conductor(double cos_theta_i, std::complex<double> eta);
 
 // Dielectric interface of relative index eta = n_inside / n_outside (> 0), seen at incidence cosine cos_theta_i

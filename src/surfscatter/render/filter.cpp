@@ -42,6 +42,9 @@ ReconstructionFilter::ReconstructionFilter(std::string name, double radius, doub
     absolute_integral_ = absolute_total / signed_total;
     for (double& c : cdf_) c /= absolute_total;
     for (double& c : signed_cdf_) c /= signed_total;
+    constant_ = true;
+    for (int i = 0; i < kBins && constant_; ++i)
+        constant_ = profile_(-radius_ + (i + 0.5) * width, params_.data()) == profile_(0.0, params_.data());
     // Guide table: for u in [k, k + 1) / kBins the bin to search from (sampling is on every camera ray).
     guide_.resize(kBins + 1);
     std::size_t bin = 0;
@@ -66,6 +69,12 @@ double ReconstructionFilter::cdf_at(const std::vector<double>& cdf, double x) co
 }
 
 double ReconstructionFilter::sample_1d(double u, double lo, double hi, double& weight) const {
+    if (constant_) {  // f / (pdf times the integral over the window) = 1 wherever the window is not empty
+        lo = std::max(lo, -radius_);
+        hi = std::min(hi, radius_);
+        weight = hi > lo ? 1.0 : 0.0;
+        return hi > lo ? lo + u * (hi - lo) : 0.5 * (lo + hi);
+    }
     double p_lo = 0, mass = 1, integral = 1;  // the whole footprint
     if (lo > -radius_ || hi < radius_) {
         lo = std::max(lo, -radius_);

@@ -59,6 +59,7 @@ private:
     std::vector<double> cdf_;         // of |f| over kBins equal bins of [-radius, radius], normalised to 1
     std::vector<double> signed_cdf_;  // of the normalised f
     std::vector<std::uint32_t> guide_;  // first bin for u in [k, k + 1) / kBins
+    bool constant_ = false;  // the profile is constant on its support (box): uniform offsets of weight 1, exactly
 };
 using FilterPtr = std::shared_ptr<const ReconstructionFilter>;
 

@@ -13,7 +13,7 @@ class Sampler {
 public:
     Sampler() = default;
     Sampler(std::uint64_t seed, std::uint64_t stream) : rng_(seed, stream) {}
-    double next() { return std::ldexp(static_cast<double>(rng_()), -32); }  // [0, 1)
+    double next() { return static_cast<double>(rng_()) * 0x1p-32; }  // [0, 1), exact (no libm call per number)
     Vec2 next2() {
         const double a = next();
         return {a, next()};

@@ -11,16 +11,17 @@ namespace surfscatter::render {
 
 namespace {
 
-class Constant final : public SpectrumSource {
+class Constant final : public SpectrumSourceBase<Constant> {
 public:
     explicit Constant(double v) : value_(v) {}
     double eval(double) const override { return value_; }
+    using SpectrumSourceBase::eval;
 
 private:
     double value_;
 };
 
-class Tabulated final : public SpectrumSource {
+class Tabulated final : public SpectrumSourceBase<Tabulated> {
 public:
     Tabulated(std::vector<double> l, std::vector<double> v) : lambda_(std::move(l)), value_(std::move(v)) {}
     double eval(double lambda) const override {
@@ -31,21 +32,24 @@ public:
         const double t = (lambda - lambda_[i]) / (lambda_[i + 1] - lambda_[i]);
         return value_[i] * (1 - t) + value_[i + 1] * t;
     }
+    using SpectrumSourceBase::eval;
 
 private:
     std::vector<double> lambda_, value_;
 };
 
-class Blackbody final : public SpectrumSource {
+class Blackbody final : public SpectrumSourceBase<Blackbody> {
 public:
-    Blackbody(double t, double s) : temperature_(t), scale_(s) {}
-    double eval(double lambda) const override { return scale_ * spectrum::blackbody_radiance(lambda, temperature_); }
+    Blackbody(double t, double s) : planck_(t), scale_(s) {}
+    double eval(double lambda) const override { return scale_ * planck_(lambda); }
+    using SpectrumSourceBase::eval;
 
 private:
-    double temperature_, scale_;
+    spectrum::Planck planck_;
+    double scale_;
 };
 
-class RgbSpectrum final : public SpectrumSource {
+class RgbSpectrum final : public SpectrumSourceBase<RgbSpectrum> {
 public:
     RgbSpectrum(spectrum::RgbSigmoid s, double scale, double illuminant_normalisation)
         : sigmoid_(s), scale_(scale), illuminant_(illuminant_normalisation) {}
@@ -53,6 +57,7 @@ public:
         const double base = scale_ * sigmoid_(lambda);
         return illuminant_ > 0 ? base * d65_(lambda) * illuminant_ : base;
     }
+    using SpectrumSourceBase::eval;
 
 private:
     spectrum::RgbSigmoid sigmoid_;

@@ -16,11 +16,22 @@ class SpectrumSource {
 public:
     virtual ~SpectrumSource() = default;
     virtual double eval(double lambda_nm) const = 0;
-    SampledSpectrum eval(const SampledWavelengths& w) const {
+    // The four wavelengths of a path in one call (one virtual dispatch, not four).
+    virtual SampledSpectrum eval(const SampledWavelengths& w) const = 0;
+};
+
+// Implements eval(w) as a loop over the four wavelengths of Derived's inline eval(double) (the CRTP keeps that call
+// non-virtual, so the loop inlines it).
+template <typename Derived>
+class SpectrumSourceBase : public SpectrumSource {
+public:
+    SampledSpectrum eval(const SampledWavelengths& w) const final {
         SampledSpectrum s;
-        for (int i = 0; i < spectrum::kSpectrumSamples; ++i) s[i] = eval(w.lambda[static_cast<std::size_t>(i)]);
+        for (int i = 0; i < spectrum::kSpectrumSamples; ++i)
+            s[i] = static_cast<const Derived&>(*this).Derived::eval(w.lambda[static_cast<std::size_t>(i)]);
         return s;
     }
+    using SpectrumSource::eval;
 };
 using SpectrumPtr = std::shared_ptr<const SpectrumSource>;
 

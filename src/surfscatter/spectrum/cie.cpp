@@ -100,16 +100,6 @@ RegularSpectrum::RegularSpectrum(double start_nm, double step_nm, std::vector<do
     if (values_.size() < 2 || !(step_nm > 0)) fail("a regular spectrum needs >= 2 values and a positive step");
 }
 
-double RegularSpectrum::operator()(double lambda_nm) const {
-    const double t = (lambda_nm - start_nm_) * inv_step_;
-    if (!(t >= 0.0)) return 0.0;  // also NaN
-    const std::size_t last = values_.size() - 1;
-    if (t >= static_cast<double>(last)) return t == static_cast<double>(last) ? values_[last] : 0.0;
-    const auto i = static_cast<std::size_t>(t);
-    const double f = t - static_cast<double>(i);
-    return values_[i] + f * (values_[i + 1] - values_[i]);
-}
-
 CieTable::CieTable(RegularSpectrum x, RegularSpectrum y, RegularSpectrum z)
     : x_(std::move(x)), y_(std::move(y)), z_(std::move(z)) {}
 
@@ -120,8 +110,6 @@ CieTable CieTable::load(const std::string& cmf_path) {
                     RegularSpectrum(s.start_nm, s.step_nm, std::move(s.sets[1])),
                     RegularSpectrum(s.start_nm, s.step_nm, std::move(s.sets[2])));
 }
-
-Vec3 CieTable::xyz_bar(double lambda_nm) const { return {x_(lambda_nm), y_(lambda_nm), z_(lambda_nm)}; }
 
 const CieTable& cie1931() {
     static const CieTable table = CieTable::load(kCie1931CmfPath);

@@ -2,6 +2,7 @@
 // CIE colorimetric data read from the Debian package colord-data (CGATS text files): the CIE 1931 2-degree
 // colour-matching functions (5 nm, 360-830 nm) and the CIE standard illuminants (relative SPDs). Both are
 // interpolated linearly in wavelength and are 0 outside their tables. Spectra are integrated to XYZ on a 1 nm grid.
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -26,7 +27,21 @@ CgatsSpectra read_cgats_spectra(const std::string& path);
 class RegularSpectrum {
 public:
     RegularSpectrum(double start_nm, double step_nm, std::vector<double> values);
-    double operator()(double lambda_nm) const;
+    double operator()(double lambda_nm) const {
+        std::size_t i;
+        double f;
+        return locate(lambda_nm, i, f) ? values_[i] + f * (values_[i + 1] - values_[i]) : 0.0;
+    }
+    // The interval [i, i + 1] holding lambda and the position f in [0, 1] within it; false outside the grid (and on
+    // NaN). The last node is the interval before it at f = 1.
+    bool locate(double lambda_nm, std::size_t& i, double& f) const {
+        const double t = (lambda_nm - start_nm_) * inv_step_;
+        const double last = static_cast<double>(values_.size() - 1);
+        if (!(t >= 0.0 && t <= last)) return false;
+        i = std::min(static_cast<std::size_t>(t), values_.size() - 2);
+        f = t - static_cast<double>(i);
+        return true;
+    }
     double min_wavelength_nm() const { return start_nm_; }
     double max_wavelength_nm() const { return start_nm_ + step_nm_ * static_cast<double>(values_.size() - 1); }
     double step_nm() const { return step_nm_; }
@@ -37,11 +52,18 @@ private:
     std::vector<double> values_;
 };
 
-// Colour-matching functions xbar, ybar, zbar. xyz_bar() is O(1) (an index and one lerp): cheap enough per path.
+// Colour-matching functions xbar, ybar, zbar. xyz_bar() is O(1) (one index for the three curves, which share the
+// grid, and three lerps): cheap enough per path.
 class CieTable {
 public:
     static CieTable load(const std::string& cmf_path);
-    Vec3 xyz_bar(double lambda_nm) const;
+    Vec3 xyz_bar(double lambda_nm) const {
+        std::size_t i;
+        double f;
+        if (!x_.locate(lambda_nm, i, f)) return {0, 0, 0};
+        const auto lerp = [&](const RegularSpectrum& s) { return s.values()[i] + f * (s.values()[i + 1] - s.values()[i]); };
+        return {lerp(x_), lerp(y_), lerp(z_)};
+    }
     double min_wavelength_nm() const { return x_.min_wavelength_nm(); }
     double max_wavelength_nm() const { return x_.max_wavelength_nm(); }
 

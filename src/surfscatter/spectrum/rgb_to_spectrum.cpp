@@ -11,10 +11,8 @@ namespace surfscatter::spectrum {
 
 namespace {
 
-constexpr double kLambdaMin = 360.0, kLambdaRange = 470.0;
 constexpr int kSamples = 471;  // 1 nm
 
-double sigmoid(double x) { return 0.5 + x / (2.0 * std::sqrt(1.0 + x * x)); }
 double sigmoid_derivative(double x) {
     const double q = 1.0 + x * x;
     return 0.5 / (q * std::sqrt(q));
@@ -30,8 +28,8 @@ struct ResponseTable {
         const RegularSpectrum& d65 = cie_illuminant("D65");
         std::array<double, 3> total{};
         for (int i = 0; i < kSamples; ++i) {
-            const double lambda = kLambdaMin + i;
-            t[static_cast<std::size_t>(i)] = i / kLambdaRange;
+            const double lambda = kSigmoidLambdaMin + i;
+            t[static_cast<std::size_t>(i)] = i / kSigmoidLambdaRange;
             const auto bar = cie1931().xyz_bar(lambda);
             const double e = d65(lambda);
             const Vec3 rgb = xyz_to_linear_srgb(bar * e);
@@ -55,7 +53,7 @@ std::array<double, 3> response(const std::array<double, 3>& c, std::array<std::a
     for (int i = 0; i < kSamples; ++i) {
         const double t = tab.t[static_cast<std::size_t>(i)];
         const double x = (c[0] * t + c[1]) * t + c[2];
-        const double s = sigmoid(x);
+        const double s = rgb_sigmoid(x);
         const auto& w = tab.weights[static_cast<std::size_t>(i)];
         for (std::size_t ch = 0; ch < 3; ++ch) rgb[ch] += s * w[ch];
         if (jacobian) {
@@ -131,11 +129,6 @@ void gauss_newton(std::array<double, 3>& c, const std::array<double, 3>& target,
 }
 
 }  // namespace
-
-double RgbSigmoid::operator()(double lambda_nm) const {
-    const double t = (lambda_nm - kLambdaMin) / kLambdaRange;
-    return sigmoid((c[0] * t + c[1]) * t + c[2]);
-}
 
 RgbSigmoid fit_rgb_sigmoid(const std::array<double, 3>& rgb) {
     for (double v : rgb)

@@ -8,12 +8,21 @@
 // trip is within 1e-4 (tests/spectrum/test_rgb_to_spectrum.cpp); colours on the faces of the cube (a channel at
 // exactly 0 or 1) are approached as closely as the sigmoid allows and are special-cased when all three are equal.
 #include <array>
+#include <cmath>
 
 namespace surfscatter::spectrum {
 
+inline constexpr double kSigmoidLambdaMin = 360.0, kSigmoidLambdaRange = 470.0;  // t = 0 and 1, nm
+
+// The algebraic sigmoid S(x) above.
+inline double rgb_sigmoid(double x) { return 0.5 + x / (2.0 * std::sqrt(1.0 + x * x)); }
+
 struct RgbSigmoid {
     std::array<double, 3> c{};  // coefficients of the quadratic in t
-    double operator()(double lambda_nm) const;
+    double operator()(double lambda_nm) const {  // inline: evaluated on every texture lookup of a render
+        const double t = (lambda_nm - kSigmoidLambdaMin) / kSigmoidLambdaRange;
+        return rgb_sigmoid((c[0] * t + c[1]) * t + c[2]);
+    }
 };
 
 // Linear sRGB reflectance (each channel in [0, 1]) -> sigmoid coefficients. Throws Error outside [0, 1] or on NaN.

@@ -12,36 +12,36 @@ constexpr double kA = 0.0072;   // 1/nm
 constexpr double kC = 538.0;    // nm
 const double kT0 = std::tanh(kA * (kSampledLambdaMin - kC));
 const double kT1 = std::tanh(kA * (kSampledLambdaMax - kC));
-}  // namespace
 
-double SampledSpectrum::max_value() const { return *std::max_element(v.begin(), v.end()); }
-double SampledSpectrum::average() const {
-    double sum = 0;
-    for (double x : v) sum += x;
-    return sum / kSpectrumSamples;
-}
-bool SampledSpectrum::is_black() const {
-    return std::all_of(v.begin(), v.end(), [](double x) { return x == 0.0; });
-}
+// The visible density at the wavelength whose tanh(a (lambda - c)) is t: sech^2 = 1 - tanh^2 = (1 - t)(1 + t).
+double pdf_at_tanh(double t) { return kA * (1.0 - t) * (1.0 + t) / (kT1 - kT0); }
 
-double visible_wavelength_pdf(double lambda_nm) {
-    if (!(lambda_nm >= kSampledLambdaMin && lambda_nm <= kSampledLambdaMax)) return 0.0;
-    const double c = std::cosh(kA * (lambda_nm - kC));
-    return kA / ((kT1 - kT0) * c * c);
-}
-
-double sample_visible_wavelength(double u) {
-    const double lambda = kC + std::atanh(kT0 + std::clamp(u, 0.0, 1.0) * (kT1 - kT0)) / kA;
+// lambda = c + atanh(t) / a with atanh(t) = ln((1 + t) / (1 - t)) / 2: one logarithm.
+double lambda_at_tanh(double t) {
+    const double lambda = kC + 0.5 / kA * std::log((1.0 + t) / (1.0 - t));
     return std::clamp(lambda, kSampledLambdaMin, kSampledLambdaMax);
 }
 
+double tanh_at(double u) { return kT0 + std::clamp(u, 0.0, 1.0) * (kT1 - kT0); }
+
+}  // namespace
+
+double visible_wavelength_pdf(double lambda_nm) {
+    if (!(lambda_nm >= kSampledLambdaMin && lambda_nm <= kSampledLambdaMax)) return 0.0;
+    return pdf_at_tanh(std::tanh(kA * (lambda_nm - kC)));
+}
+
+double sample_visible_wavelength(double u) { return lambda_at_tanh(tanh_at(u)); }
+
+// On every camera ray: the density comes from the same t as the wavelength (no cosh, no second transcendental).
 SampledWavelengths SampledWavelengths::sample_visible(double u) {
     SampledWavelengths w;
     for (int i = 0; i < kSpectrumSamples; ++i) {
         double ui = u + static_cast<double>(i) / kSpectrumSamples;
         if (ui >= 1.0) ui -= 1.0;
-        w.lambda[static_cast<std::size_t>(i)] = sample_visible_wavelength(ui);
-        w.pdf[static_cast<std::size_t>(i)] = visible_wavelength_pdf(w.lambda[static_cast<std::size_t>(i)]);
+        const double t = tanh_at(ui);
+        w.lambda[static_cast<std::size_t>(i)] = lambda_at_tanh(t);
+        w.pdf[static_cast<std::size_t>(i)] = pdf_at_tanh(t);
     }
     return w;
 }

@@ -4,6 +4,7 @@
 // (p(lambda) proportional to sech^2(0.0072 (lambda - 538)), pbrt-v4's SampleVisibleWavelengths). Each lambda_i on
 // its own is distributed with density p, and the set is the same whichever member is called the hero, which is
 // what the spectral MIS of the path tracer relies on.
+#include <algorithm>
 #include <array>
 
 namespace surfscatter::spectrum {
@@ -28,9 +29,10 @@ struct SampledSpectrum {
     friend SampledSpectrum operator*(SampledSpectrum a, const SampledSpectrum& b) { return a *= b; }
     friend SampledSpectrum operator*(SampledSpectrum a, double s) { return a *= s; }
     friend SampledSpectrum operator*(double s, SampledSpectrum a) { return a *= s; }
-    double max_value() const;
-    double average() const;
-    bool is_black() const;
+    static_assert(kSpectrumSamples == 4, "max_value, average and is_black spell out the four values");
+    double max_value() const { return std::max(std::max(v[0], v[1]), std::max(v[2], v[3])); }
+    double average() const { return (v[0] + v[1] + v[2] + v[3]) / kSpectrumSamples; }
+    bool is_black() const { return v[0] == 0.0 && v[1] == 0.0 && v[2] == 0.0 && v[3] == 0.0; }
 };
 
 // Density of the visible-wavelength sampler in 1/nm (0 outside 360-830 nm); integrates to 1.

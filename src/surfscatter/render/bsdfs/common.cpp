@@ -69,6 +69,17 @@ std::complex<double> ConductorIor::at(double lambda_nm) const {
     return table_[static_cast<std::size_t>(i)] * (1 - t) + table_[static_cast<std::size_t>(i + 1)] * t;
 }
 
+SampledSpectrum ConductorIor::reflectance(double cos_theta, const SampledWavelengths& w) const {
+    if (perfect()) return SampledSpectrum(1.0);
+    const double c = std::clamp(cos_theta, 0.0, 1.0);
+    SampledSpectrum r;
+    for (int i = 0; i < spectrum::kSpectrumSamples; ++i) {
+        const std::complex<double> eta = at(w.lambda[static_cast<std::size_t>(i)]);
+        r[i] = material::fresnel_conductor_sp_unchecked(c, eta.real(), eta.imag()).unpolarized();
+    }
+    return r;
+}
+
 ConductorIor read_conductor_ior(Properties& props) {
     const bool has_eta = props.has("eta"), has_k = props.has("k");
     std::string name = props.get_string("material", "none");

@@ -32,9 +32,9 @@ public:
     explicit ConductorIor(const std::function<std::complex<double>(double)>& index);
     bool perfect() const { return table_.empty(); }
     std::complex<double> at(double lambda_nm) const;
-    double reflectance(double cos_theta, double lambda_nm) const {
-        return perfect() ? 1.0 : material::fresnel_conductor(cos_theta, at(lambda_nm));
-    }
+    // Unpolarised Fresnel reflectance at the four wavelengths of a path (1 for the perfect mirror); cos_theta is
+    // clamped to [0, 1].
+    SampledSpectrum reflectance(double cos_theta, const SampledWavelengths& w) const;
 
 private:
     std::vector<std::complex<double>> table_;

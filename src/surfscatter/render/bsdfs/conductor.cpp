@@ -27,7 +27,7 @@ public:
         s.delta = true;
         s.pdf = SampledSpectrum(1.0);
         s.f = specular_->eval(sp.uv, w);
-        for (int i = 0; i < spectrum::kSpectrumSamples; ++i) s.f[i] *= ior_.reflectance(wo.z, w.lambda[static_cast<std::size_t>(i)]);
+        s.f *= ior_.reflectance(wo.z, w);
         return s;
     }
 

@@ -26,10 +26,7 @@ public:
         const double common = distribution_.D(m) * distribution_.G(wi, wo, m) / (4 * wi.z * wo.z);
         if (pdf) *pdf = SampledSpectrum(density(wo, m));
         if (!(common > 0)) return SampledSpectrum(0.0);
-        SampledSpectrum f = specular_->eval(sp.uv, w);
-        for (int i = 0; i < spectrum::kSpectrumSamples; ++i)
-            f[i] *= common * ior_.reflectance(dot(wo, m), w.lambda[static_cast<std::size_t>(i)]);
-        return f;
+        return specular_->eval(sp.uv, w) * ior_.reflectance(dot(wo, m), w) * common;
     }
 
     std::optional<MaterialSample> sample(const ShadingPoint& sp, const Vec3& wo, const SampledWavelengths& w, double,
