@@ -1,6 +1,10 @@
 # One static library per module of src/surfscatter/<module>/, so that the data flow
 # (math -> spectrum/material -> surface -> bsdf -> render -> photo) is enforced by the link graph.
 set(SURFSCATTER_WARNINGS -Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wno-sign-conversion)
+# Math functions never set errno and floating-point exceptions never trap (nothing here reads errno after them or
+# enables traps): sqrt becomes one instruction, and loops over the four wavelengths of a path with divisions and
+# selects can be vectorised. IEEE results are unchanged (unlike -ffast-math).
+set(SURFSCATTER_CODEGEN -fno-math-errno -fno-trapping-math)
 
 # surfscatter_module(<name> [DEPS <targets>...])
 function(surfscatter_module name)
@@ -12,7 +16,7 @@ function(surfscatter_module name)
     # Position-independent, so that the Python extension (python/) can link the same static libraries.
     set_target_properties(${target} PROPERTIES POSITION_INDEPENDENT_CODE ON)
     target_include_directories(${target} PUBLIC "${PROJECT_SOURCE_DIR}/src")
-    target_compile_options(${target} PRIVATE ${SURFSCATTER_WARNINGS})
+    target_compile_options(${target} PRIVATE ${SURFSCATTER_WARNINGS} ${SURFSCATTER_CODEGEN})
     target_link_libraries(${target} PUBLIC ${ARG_DEPS})
     target_compile_definitions(${target} PRIVATE
       SURFSCATTER_SOURCE_DIR="${SURFSCATTER_SOURCE_DIR}")

@@ -71,13 +71,18 @@ std::complex<double> ConductorIor::at(double lambda_nm) const {
 
 SampledSpectrum ConductorIor::reflectance(double cos_theta, const SampledWavelengths& w) const {
     if (perfect()) return SampledSpectrum(1.0);
-    const double c = std::clamp(cos_theta, 0.0, 1.0);
-    SampledSpectrum r;
-    for (int i = 0; i < spectrum::kSpectrumSamples; ++i) {
+    constexpr int kN = spectrum::kSpectrumSamples;
+    float n[kN], k[kN], r[kN];
+    for (int i = 0; i < kN; ++i) {
         const std::complex<double> eta = at(w.lambda[static_cast<std::size_t>(i)]);
-        r[i] = material::fresnel_conductor_sp_unchecked(c, eta.real(), eta.imag()).unpolarized();
+        n[i] = static_cast<float>(eta.real());
+        k[i] = static_cast<float>(eta.imag());
     }
-    return r;
+    const float c = static_cast<float>(std::clamp(cos_theta, 0.0, 1.0));
+    for (int i = 0; i < kN; ++i) r[i] = material::fresnel_conductor_sp_unchecked(c, n[i], k[i]).unpolarized();
+    SampledSpectrum out;
+    for (int i = 0; i < kN; ++i) out[i] = r[i];
+    return out;
 }
 
 ConductorIor read_conductor_ior(Properties& props) {

@@ -33,7 +33,8 @@ public:
     bool perfect() const { return table_.empty(); }
     std::complex<double> at(double lambda_nm) const;
     // Unpolarised Fresnel reflectance at the four wavelengths of a path (1 for the perfect mirror); cos_theta is
-    // clamped to [0, 1].
+    // clamped to [0, 1]. Computed in single precision, the four wavelengths in one SSE lane set: within 1e-6 of the
+    // double-precision reflectance (tests/render/test_bsdfs.cpp), far below any render's noise.
     SampledSpectrum reflectance(double cos_theta, const SampledWavelengths& w) const;
 
 private:
