@@ -14,13 +14,13 @@ namespace {
 
 // Bytes a rendered pixel holds at once: the film's XYZ sum (24), alpha (8) and sample count (4), the pixel's random
 // stream (16), the developed images (up to 2 x 16) and the 8-bit PNG copy (4), rounded up for the libraries' own
-// buffers.
+// buffers. Counted over whole tiles (TileOrder), as the film and the streams store them.
 constexpr double kBytesPerPixel = 128;
 
 void check_size(int width, int height, const char* what) {
     if (width < 1 || height < 1 || width > kMaxFilmSide || height > kMaxFilmSide)
         fail("{} must be between 1x1 and {}x{} pixels, got {}x{}", what, kMaxFilmSide, kMaxFilmSide, width, height);
-    require_memory(kBytesPerPixel * width * height, fmt::format("a {}x{} {}", width, height, what));
+    require_memory(kBytesPerPixel * double(TileOrder(width, height).size()), fmt::format("a {}x{} {}", width, height, what));
 }
 
 // The largest value an EXR of the film's component format holds; beyond it the file would hold Inf.
@@ -35,18 +35,18 @@ void require_representable(double value, int x, int y, double largest, const Fil
              largest == 65504.0 ? ", or write component_format float32" : "");
 }
 
+int checked_width(int width, int height) {  // before the pixels are allocated
+    check_size(width, height, "film");
+    return width;
+}
+
 spectrum::Mat3 adaptation(const FilmSettings& settings);
 
 }  // namespace
 
-Film::Film(int width, int height) : width_(width), height_(height) {
-    check_size(width, height, "film");
-    sum_.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
-    alpha_.assign(sum_.size(), 0.0);
-    count_.assign(sum_.size(), 0);
-}
+Film::Film(int width, int height) : width_(checked_width(width, height)), height_(height), pixels_(width, height) {}
 
-std::uint32_t Film::samples(int x, int y) const { return count_[index(x, y)]; }
+std::uint32_t Film::samples(int x, int y) const { return pixels_(x, y).count; }
 
 void FilmSettings::check() const {
     check_size(width, height, "film");
@@ -62,13 +62,13 @@ void FilmSettings::check() const {
 }
 
 Vec3 Film::xyz(int x, int y) const {
-    const std::size_t i = index(x, y);
-    return count_[i] ? sum_[i] / count_[i] : Vec3();
+    const Pixel& p = pixels_(x, y);
+    return p.count ? p.sum / p.count : Vec3();
 }
 
 double Film::alpha(int x, int y) const {
-    const std::size_t i = index(x, y);
-    return count_[i] ? alpha_[i] / count_[i] : 0.0;
+    const Pixel& p = pixels_(x, y);
+    return p.count ? p.alpha / p.count : 0.0;
 }
 
 namespace {

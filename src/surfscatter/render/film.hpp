@@ -4,13 +4,56 @@
 // the white balance (Bradford, from a blackbody of the given temperature to D65, or none) and the exposure
 // (2^stops); hdrfilm (films/hdrfilm.cpp) writes it as an OpenEXR in the scene's pixel_format and component_format,
 // plus an 8-bit sRGB PNG.
+#include <algorithm>
+#include <cstdint>
 #include <filesystem>
+#include <iterator>
 #include <vector>
 
 #include "surfscatter/io/image.hpp"
 #include "surfscatter/render/scene.hpp"
 
 namespace surfscatter::render {
+
+// Per-pixel state kept in tile order: the kTileSize x kTileSize pixels of a tile are contiguous, tiles row by row, so
+// that a thread rendering a tile walks a few consecutive KB (not kTileSize rows of the whole image), and, with tiles
+// starting on cache lines, two threads never write the same line.
+inline constexpr int kTileSize = 16;
+class TileOrder {
+public:
+    TileOrder(int width, int height) : tiles_x_((width + kTileSize - 1) / kTileSize), tiles_y_((height + kTileSize - 1) / kTileSize) {}
+    int tiles_x() const { return tiles_x_; }
+    int tiles_y() const { return tiles_y_; }
+    std::size_t size() const { return std::size_t(tiles_x_) * std::size_t(tiles_y_) * kTileSize * kTileSize; }
+    std::size_t index(int x, int y) const {
+        const std::size_t tile = std::size_t(y / kTileSize) * std::size_t(tiles_x_) + std::size_t(x / kTileSize);
+        return tile * kTileSize * kTileSize + std::size_t(y % kTileSize) * kTileSize + std::size_t(x % kTileSize);
+    }
+
+private:
+    int tiles_x_, tiles_y_;
+};
+
+// A vector of T with its elements in tile order and its data on a cache line (tiles of 256 elements of 16 or 40 bytes
+// fill whole lines).
+template <typename T>
+class TiledPixels {
+public:
+    TiledPixels(int width, int height, const T& value = T()) : order_(width, height), cells_(order_.size() / kCell) {
+        for (Cell& c : cells_) std::fill(std::begin(c.values), std::end(c.values), value);
+    }
+    T& operator()(int x, int y) { return at(order_.index(x, y)); }
+    const T& operator()(int x, int y) const { return at(order_.index(x, y)); }
+    const TileOrder& order() const { return order_; }
+
+private:
+    static constexpr std::size_t kCell = kTileSize * kTileSize;
+    struct alignas(64) Cell { T values[kCell]; };
+    T& at(std::size_t i) { return cells_[i / kCell].values[i % kCell]; }
+    const T& at(std::size_t i) const { return cells_[i / kCell].values[i % kCell]; }
+    TileOrder order_;
+    std::vector<Cell> cells_;
+};
 
 class Film {
 public:
@@ -20,10 +63,10 @@ public:
     // One sample: its filter weight w, the XYZ it carries and whether it covers the pixel. Each pixel is owned by
     // one thread at a time (tiles), so no locking.
     void add(int x, int y, const Vec3& xyz, double weight, bool covered) {
-        const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x);
-        sum_[i] += xyz * weight;
-        alpha_[i] += covered ? weight : 0.0;
-        ++count_[i];
+        Pixel& p = pixels_(x, y);
+        p.sum += xyz * weight;
+        p.alpha += covered ? weight : 0.0;
+        ++p.count;
     }
     Vec3 xyz(int x, int y) const;    // sum(w XYZ) / N (0 if no sample)
     double alpha(int x, int y) const;
@@ -35,13 +78,13 @@ public:
     io::Image develop_pixel_format(const FilmSettings& settings, std::vector<std::string>& channels) const;
 
 private:
-    std::size_t index(int x, int y) const {
-        return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x);
-    }
+    struct Pixel {
+        Vec3 sum;             // of w XYZ
+        double alpha = 0;     // sum of w over covering samples
+        std::uint32_t count = 0;
+    };
     int width_, height_;
-    std::vector<Vec3> sum_;
-    std::vector<double> alpha_;
-    std::vector<std::uint32_t> count_;
+    TiledPixels<Pixel> pixels_;
 };
 
 // Writes `exr_path` in the film's pixel_format and component_format and the same path with extension .png (the

@@ -20,7 +20,6 @@ namespace surfscatter::render {
 namespace {
 
 constexpr int kN = spectrum::kSpectrumSamples;
-constexpr int kTileSize = 16;
 
 std::unique_ptr<RadianceEstimator> make_estimator(const Scene& scene) {
     if (scene.integrator.type == "path") return make_path_estimator(scene);
@@ -52,13 +51,12 @@ Film render(const Scene& scene, const RenderOptions& options, RenderStats* stats
         y_integral += cie.xyz_bar(lambda).y;
 
     Film film(width, height);
-    std::vector<Sampler> samplers(static_cast<std::size_t>(width) * height);
+    TiledPixels<Sampler> samplers(width, height);
     // Streams are indexed by full-film pixel, so a crop reproduces the same pixels of the full render.
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x)
-            samplers[static_cast<std::size_t>(y) * width + x] =
-                Sampler(seed, static_cast<std::uint64_t>(y + offset_y) * static_cast<std::uint64_t>(scene.film.width) +
-                                  static_cast<std::uint64_t>(x + offset_x));
+            samplers(x, y) = Sampler(seed, static_cast<std::uint64_t>(y + offset_y) * static_cast<std::uint64_t>(scene.film.width) +
+                                               static_cast<std::uint64_t>(x + offset_x));
     // Without sample_border, sample positions stay inside the crop window (film pixels [offset, offset + size)).
     const double unbounded = 1e30;
     const double window_x0 = scene.film.sample_border ? -unbounded : offset_x;
@@ -66,7 +64,7 @@ Film render(const Scene& scene, const RenderOptions& options, RenderStats* stats
     const double window_x1 = scene.film.sample_border ? unbounded : offset_x + width;
     const double window_y1 = scene.film.sample_border ? unbounded : offset_y + height;
 
-    const int tiles_x = (width + kTileSize - 1) / kTileSize, tiles_y = (height + kTileSize - 1) / kTileSize;
+    const int tiles_x = samplers.order().tiles_x(), tiles_y = samplers.order().tiles_y();
     // Passes of 1, 2, 4, ... samples up to spp/16: an early Ctrl-C still leaves every pixel with samples.
     const int max_pass = std::max(1, spp / 16);
     int per_pass = 1;
@@ -87,7 +85,7 @@ Film render(const Scene& scene, const RenderOptions& options, RenderStats* stats
                     const int x0 = (tile % tiles_x) * kTileSize, y0 = (tile / tiles_x) * kTileSize;
                     for (int y = y0; y < std::min(y0 + kTileSize, height); ++y)
                         for (int x = x0; x < std::min(x0 + kTileSize, width); ++x) {
-                            Sampler& sampler = samplers[static_cast<std::size_t>(y) * width + x];
+                            Sampler& sampler = samplers(x, y);
                             const double cx = x + offset_x + 0.5, cy = y + offset_y + 0.5;
                             for (int s = 0; s < count && !interrupt_requested(); ++s) {
                                 const SampledWavelengths w = SampledWavelengths::sample_visible(sampler.next());

@@ -31,10 +31,6 @@ private:
 
 }  // namespace
 
-Vec2 apply_uv_transform(const Transform& to_uv, Vec2 uv) {
-    const Vec3 p = to_uv.point({uv.x, uv.y, 0.0});
-    return {p.x, p.y};
-}
 
 TexturePtr make_constant_texture(SpectrumPtr spectrum) { return std::make_shared<ConstantTexture>(std::move(spectrum)); }
 

@@ -24,6 +24,9 @@ using TexturePtr = std::shared_ptr<const Texture>;
 
 TexturePtr make_constant_texture(SpectrumPtr spectrum);
 
-Vec2 apply_uv_transform(const Transform& to_uv, Vec2 uv);
+inline Vec2 apply_uv_transform(const Transform& to_uv, Vec2 uv) {
+    const Vec3 p = to_uv.point({uv.x, uv.y, 0.0});
+    return {p.x, p.y};
+}
 
 }  // namespace surfscatter::render

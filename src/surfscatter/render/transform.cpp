@@ -101,19 +101,6 @@ Transform Transform::inverse() const {
     return t;
 }
 
-Vec3 Transform::point(const Vec3& p) const {
-    Vec3 out;
-    for (int r = 0; r < 3; ++r) out[r] = m[r][0] * p.x + m[r][1] * p.y + m[r][2] * p.z + m[r][3];
-    const double w = m[3][0] * p.x + m[3][1] * p.y + m[3][2] * p.z + m[3][3];
-    return w == 1.0 ? out : out / w;
-}
-
-Vec3 Transform::vector(const Vec3& v) const {
-    Vec3 out;
-    for (int r = 0; r < 3; ++r) out[r] = m[r][0] * v.x + m[r][1] * v.y + m[r][2] * v.z;
-    return out;
-}
-
 Vec3 Transform::normal(const Vec3& n) const {
     const Transform inv = inverse();
     Vec3 out;

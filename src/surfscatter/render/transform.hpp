@@ -19,8 +19,17 @@ struct Transform {
 
     Transform operator*(const Transform& o) const;
     Transform inverse() const;  // throws Error if singular
-    Vec3 point(const Vec3& p) const;
-    Vec3 vector(const Vec3& v) const;
+    Vec3 point(const Vec3& p) const {  // inline: camera rays and texture coordinates are transformed per sample
+        Vec3 out;
+        for (int r = 0; r < 3; ++r) out[r] = m[r][0] * p.x + m[r][1] * p.y + m[r][2] * p.z + m[r][3];
+        const double w = m[3][0] * p.x + m[3][1] * p.y + m[3][2] * p.z + m[3][3];
+        return w == 1.0 ? out : out / w;
+    }
+    Vec3 vector(const Vec3& v) const {
+        Vec3 out;
+        for (int r = 0; r < 3; ++r) out[r] = m[r][0] * v.x + m[r][1] * v.y + m[r][2] * v.z;
+        return out;
+    }
     Vec3 normal(const Vec3& n) const;  // transformed by the inverse transpose, normalised
 };
 
