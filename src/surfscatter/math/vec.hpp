@@ -45,7 +45,7 @@ constexpr double dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.
 constexpr Vec3 cross(const Vec3& a, const Vec3& b) {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-inline Vec3 normalize(const Vec3& v) { return v / v.length(); }
+inline Vec3 normalize(const Vec3& v) { return v * (1.0 / v.length()); }  // one division, not three
 constexpr Vec3 hadamard(const Vec3& a, const Vec3& b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
 
 // Direction with polar angle theta from +z and azimuth phi from +x (radians).

@@ -8,7 +8,7 @@
 namespace surfscatter::render {
 
 Camera::Camera(const CameraSettings& settings, int width, int height)
-    : settings_(settings), width_(width), height_(height) {
+    : settings_(settings), width_(width), height_(height), inv_width_(1.0 / width), inv_height_(1.0 / height) {
     if (!(settings.fov_degrees > 0 && settings.fov_degrees < 180)) fail("fov must be in (0, 180) degrees, got {}", settings.fov_degrees);
     if (!(settings.near_clip > 0 && settings.far_clip > settings.near_clip))
         fail("need 0 < near_clip < far_clip, got {} and {}", settings.near_clip, settings.far_clip);
@@ -49,8 +49,8 @@ std::optional<Vec2> Camera::project(const Vec3& p) const {
 
 Ray Camera::generate_ray(double x, double y, Vec2 aperture) const {
     // Mitsuba 3: film position (u, v) is traced as if it were (u + offset_x, v + offset_y) of the centred frustum.
-    const double sx = 2.0 * (x / width_ + settings_.principal_point_offset_x) - 1.0;   // -1 left .. +1 right
-    const double sy = 2.0 * (y / height_ + settings_.principal_point_offset_y) - 1.0;  // -1 top .. +1 bottom
+    const double sx = 2.0 * (x * inv_width_ + settings_.principal_point_offset_x) - 1.0;   // -1 left .. +1 right
+    const double sy = 2.0 * (y * inv_height_ + settings_.principal_point_offset_y) - 1.0;  // -1 top .. +1 bottom
     Vec3 local(-sx * tan_x_, -sy * tan_y_, 1.0);  // on the plane z = 1
     Vec3 lens;                                     // ray origin on the lens (local)
     if (settings_.aperture_radius > 0) {
@@ -64,8 +64,9 @@ Ray Camera::generate_ray(double x, double y, Vec2 aperture) const {
     ray.direction = normalize(settings_.to_world.vector(direction));
     // Clip planes are distances along the optical axis: a ray at cos = direction.z meets them 1 / cos further.
     ray.origin = settings_.aperture_radius > 0 ? settings_.to_world.point(lens) : origin_;
-    ray.t_min = settings_.near_clip / direction.z;
-    ray.t_max = settings_.far_clip / direction.z;
+    const double inv_cos = 1 / direction.z;
+    ray.t_min = settings_.near_clip * inv_cos;
+    ray.t_max = settings_.far_clip * inv_cos;
     return ray;
 }
 

@@ -43,6 +43,7 @@ public:
 private:
     CameraSettings settings_;
     int width_ = 1, height_ = 1;
+    double inv_width_ = 1, inv_height_ = 1;  // multiplications on every camera ray instead of divisions
     double tan_x_ = 1, tan_y_ = 1;
     Vec3 origin_;
     Transform to_local_;

@@ -249,8 +249,9 @@ std::optional<Hit> Scene::intersect(const Ray& ray) const {
         const double det = d1.x * d2.y - d1.y * d2.x;
         if (std::abs(det) > 1e-20) {
             const Vec3 e1 = p1 - p0, e2 = p2 - p0;
-            hit.dpdu = (e1 * d2.y - e2 * d1.y) / det;
-            hit.dpdv = (e2 * d1.x - e1 * d2.x) / det;
+            const double inv_det = 1 / det;
+            hit.dpdu = (e1 * d2.y - e2 * d1.y) * inv_det;
+            hit.dpdv = (e2 * d1.x - e1 * d2.x) * inv_det;
         }
     } else {
         hit.uv = {b1, b2};
