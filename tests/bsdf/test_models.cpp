@@ -1,4 +1,5 @@
-// SSA against GHS, the gamma = 3 GGX identity, energy bounds of every model, factory validation, extreme inputs.
+// SSA against GHS, the gamma = 3 GGX identity, energy bounds of every model, factory validation, extreme inputs, the
+// renderer's packet call against the one-wavelength interface.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -174,5 +175,42 @@ TEST(Models, ExtremeInputsStayFinite) {
                         EXPECT_NEAR(s->wo.length(), 1.0, 1e-9) << bsdf->name();
                     }
             }
+    }
+}
+
+TEST(Models, EvalPacketEqualsPerWavelengthEvalAndPdf) {
+    // The renderer's packet call (four wavelengths, f(wi, wo) and the density of drawing wi from wo) must give what
+    // the one-wavelength interface gives, for every model, a real metal (dispersive Fresnel) and a roughness that
+    // depends on the wavelength.
+    std::vector<ModelOptions> models;
+    for (ModelKind m : {ModelKind::ghs, ModelKind::ghs_ssa, ModelKind::two_scale}) {
+        auto o = test::kc_options(m, 0.15, 4.0, 4.0);
+        o.material = "Al";
+        models.push_back(o);
+    }
+    for (AlphaFrom from : {AlphaFrom::none, AlphaFrom::kc_link}) {
+        auto o = test::kc_options(ModelKind::ggx, 0.15, 4.0, 4.0);
+        o.material = "Au";
+        o.alpha_from = from;
+        o.alpha = 0.2;
+        models.push_back(o);
+    }
+    const WavelengthValues lambdas[] = {{380, 450, 600, 800}, {555.5, 555.5, 700, 361}};
+    const std::vector<Vec3> dirs{{0, 0, 1}, spherical_direction(30 * kDegree, 0.4), spherical_direction(70 * kDegree, 2.5),
+                                 spherical_direction(89.9 * kDegree, -1), {0, 0, -1}};
+    for (const auto& o : models) {
+        const auto bsdf = make_bsdf(o);
+        for (const WavelengthValues& lambda : lambdas)
+            for (const Vec3& wi : dirs)
+                for (const Vec3& wo : dirs) {
+                    WavelengthValues pdf{};
+                    const WavelengthValues f = bsdf->eval_packet(wi, wo, lambda, &pdf);
+                    EXPECT_EQ(bsdf->eval_packet(wi, wo, lambda, nullptr), f) << bsdf->name();
+                    for (std::size_t k = 0; k < f.size(); ++k) {
+                        const double f1 = bsdf->eval(wi, wo, lambda[k]), p1 = bsdf->pdf(wo, wi, lambda[k]);
+                        EXPECT_NEAR(f[k], f1, 1e-12 * std::max(1.0, f1)) << bsdf->name() << " lambda " << lambda[k];
+                        EXPECT_NEAR(pdf[k], p1, 1e-12 * std::max(1.0, p1)) << bsdf->name() << " lambda " << lambda[k];
+                    }
+                }
     }
 }

@@ -5,12 +5,18 @@
 // viewer) both point away from the surface; wavelengths in nm; eval returns f_r in 1/sr without the cosine and
 // without the specular delta. A model may have a delta lobe in the mirror direction (GHS's coherent specular part):
 // its strength is delta_reflectance(), and sample() picks it with probability delta_probability().
+#include <array>
 #include <optional>
 #include <string>
 
 #include "surfscatter/math/vec.hpp"
+#include "surfscatter/spectrum/wavelength_sampling.hpp"
 
 namespace surfscatter::bsdf {
+
+// One value per wavelength of a renderer's path (spectrum::SampledWavelengths: pbrt-v4's SampledWavelengths,
+// Mitsuba's spectral variants): the wavelengths themselves, f, densities.
+using WavelengthValues = std::array<double, spectrum::kSpectrumSamples>;
 
 struct BsdfSample {
     Vec3 wo;             // sampled direction, local frame, unit length, wo.z > 0
@@ -33,6 +39,20 @@ public:
 
     // Solid-angle density of the continuous part of what sample() draws (times 1 - delta_probability).
     virtual double pdf(const Vec3& wi, const Vec3& wo, double lambda_nm) const = 0;
+
+    // What a spectral path tracer needs at a vertex, for all the wavelengths of its path in one call: f(wi, wo) and,
+    // if `pdf` is not null, the density with which sample(wo, lambda) draws wi, pdf(wo, wi, lambda) (next-event
+    // estimation and spectral MIS). The same values as eval and pdf; models override it to share the geometry and
+    // the lookups that only depend on the directions (a fused eval + pdf, no virtual call per wavelength).
+    virtual WavelengthValues eval_packet(const Vec3& wi, const Vec3& wo, const WavelengthValues& lambda_nm,
+                                         WavelengthValues* pdf) const {
+        WavelengthValues f{};
+        for (std::size_t k = 0; k < f.size(); ++k) {
+            f[k] = eval(wi, wo, lambda_nm[k]);
+            if (pdf) (*pdf)[k] = this->pdf(wo, wi, lambda_nm[k]);
+        }
+        return f;
+    }
 
     // Reflectance carried by the delta lobe toward reflect_about_normal(wi) (0 if the model has none).
     virtual double delta_reflectance(const Vec3& /*wi*/, double /*lambda_nm*/) const { return 0.0; }

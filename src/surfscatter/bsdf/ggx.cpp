@@ -10,7 +10,9 @@ GgxBsdf::GgxBsdf(material::Conductor material, std::function<double(double)> alp
     : material_(std::move(material)), alpha_(std::move(alpha)) {}
 
 GgxBsdf::GgxBsdf(material::Conductor material, double alpha)
-    : GgxBsdf(std::move(material), [alpha](double) { return alpha; }) {}
+    : GgxBsdf(std::move(material), [alpha](double) { return alpha; }) {
+    alpha_constant_ = true;
+}
 
 double GgxBsdf::eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
     if (wi.z <= 0 || wo.z <= 0) return 0.0;
@@ -29,6 +31,30 @@ double GgxBsdf::pdf(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
     const Vec3 h = normalize(sum);
     const GgxDistribution ggx(alpha_(lambda_nm));
     return ggx.visible_density(wi, h) * reflection_jacobian(wo, h);
+}
+
+WavelengthValues GgxBsdf::eval_packet(const Vec3& wi, const Vec3& wo, const WavelengthValues& lambda_nm,
+                                      WavelengthValues* pdf) const {
+    WavelengthValues f{};
+    if (pdf) pdf->fill(0.0);
+    if (wi.z <= 0 || wo.z <= 0) return f;
+    const Vec3 sum = wi + wo;
+    if (sum.length_squared() == 0) return f;
+    const Vec3 h = normalize(sum);
+    const double cos_d = std::clamp(dot(wi, h), 0.0, 1.0);
+    double d_g = 0, density = 0;  // D G2 / (4 cos_i cos_o) and pdf(wo, wi) for one alpha
+    const auto geometry = [&](double alpha) {
+        const GgxDistribution ggx(alpha);
+        d_g = ggx.D(h) * ggx.G2(wi, wo) / (4.0 * wi.z * wo.z);
+        if (pdf) density = ggx.visible_density(wo, h) * reflection_jacobian(wi, h);
+    };
+    if (alpha_constant_) geometry(alpha_(lambda_nm[0]));
+    for (std::size_t k = 0; k < f.size(); ++k) {
+        if (!alpha_constant_) geometry(alpha_(lambda_nm[k]));
+        f[k] = d_g * material_.reflectance(cos_d, lambda_nm[k]);
+        if (pdf) (*pdf)[k] = density;
+    }
+    return f;
 }
 
 std::optional<BsdfSample> GgxBsdf::sample(const Vec3& wi, double lambda_nm, double /*u_lobe*/, Vec2 u) const {

@@ -17,6 +17,9 @@ public:
     double eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const override;
     std::optional<BsdfSample> sample(const Vec3& wi, double lambda_nm, double u_lobe, Vec2 u) const override;
     double pdf(const Vec3& wi, const Vec3& wo, double lambda_nm) const override;
+    // The half vector, and D, G2 and the density when alpha does not depend on lambda, once for all wavelengths.
+    WavelengthValues eval_packet(const Vec3& wi, const Vec3& wo, const WavelengthValues& lambda_nm,
+                                 WavelengthValues* pdf) const override;
     std::string name() const override { return "ggx"; }
 
     double alpha(double lambda_nm) const { return alpha_(lambda_nm); }
@@ -24,6 +27,7 @@ public:
 private:
     material::Conductor material_;
     std::function<double(double)> alpha_;
+    bool alpha_constant_ = false;
 };
 
 // GGX roughness of the KC(gamma = 3) first-order lobe at normal incidence (THEORY 4.3 with cos(theta_d) = 1):

@@ -8,7 +8,8 @@
 // `epsilon`, `renormalization`; ghs_ssa: `ssa_form`; ggx_stats: `alpha_from`, `smoothing`,
 // `alpha`; two_scale: `cutoff_wavelengths`, `macro_ndf`. A parameter the model and modes chosen do not use is an
 // error at its line (bsdf::inapplicable_option: e.g. `smoothing` without alpha_from smoothed).
-// The models are evaluated per wavelength (one call per sampled wavelength). One-sided (use twosided).
+// The models are evaluated for the four wavelengths of a path in one call (Bsdf::eval_packet). One-sided (use
+// twosided).
 #include "surfscatter/bsdf/factory.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/render/plugins.hpp"
@@ -28,10 +29,7 @@ public:
     SampledSpectrum eval(const ShadingPoint&, const Vec3& wi, const Vec3& wo, const SampledWavelengths& w,
                          SampledSpectrum* pdf) const override {
         SampledSpectrum f;
-        for (int i = 0; i < kN; ++i) {
-            f[i] = model_->eval(wi, wo, lambda_at(w, i));
-            if (pdf) (*pdf)[i] = model_->pdf(wo, wi, lambda_at(w, i));
-        }
+        f.v = model_->eval_packet(wi, wo, w.lambda, pdf ? &pdf->v : nullptr);
         return f;
     }
 
@@ -44,15 +42,14 @@ public:
         MaterialSample s;
         s.wi = hero->wo;
         s.delta = hero->delta;
-        for (int i = 0; i < kN; ++i) {
-            const double lambda = lambda_at(w, i);
-            if (s.delta) {
-                s.f[i] = model_->delta_reflectance(s.wi, lambda);
-                s.pdf[i] = model_->delta_probability(wo, lambda);
-            } else {
-                s.f[i] = model_->eval(s.wi, wo, lambda);
-                s.pdf[i] = i == 0 ? hero->pdf : model_->pdf(wo, s.wi, lambda);
+        if (s.delta) {
+            for (int i = 0; i < kN; ++i) {
+                s.f[i] = model_->delta_reflectance(s.wi, lambda_at(w, i));
+                s.pdf[i] = model_->delta_probability(wo, lambda_at(w, i));
             }
+        } else {
+            s.f.v = model_->eval_packet(s.wi, wo, w.lambda, &s.pdf.v);
+            s.pdf[0] = hero->pdf;  // the sampler's own density (eval_packet's equals it up to round-off)
         }
         if (!(s.pdf[0] > 0)) return std::nullopt;
         return s;
