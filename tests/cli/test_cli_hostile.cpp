@@ -2,6 +2,7 @@
 // bad value and where it came from (file:line for scenes), or, for a huge but valid value, exits 0 with finite
 // output. Never a crash, a hang, "internal error", NaN or Inf, or an option silently ignored. One table row per
 // case; the files they need are written once by the suite's fixture.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -232,6 +233,27 @@ public:
             write(std::string("truncated") + extension, bytes.substr(0, bytes.size() / 2));
         }
 
+        // Chart references (colorcorrect --reference): a NaN value, an id of control bytes, a patch given twice.
+        const auto chart = [](const std::string& first_row) {
+            std::string text = "IT8.7/2\nBEGIN_DATA_FORMAT\nSAMPLE_ID LAB_L LAB_A LAB_B\nEND_DATA_FORMAT\nBEGIN_DATA\n" +
+                               first_row + "\n";
+            for (int patch = 1; patch < 24; ++patch)
+                text += fmt::format("{}{:02d} {} 1 -1\n", static_cast<char>('A' + patch / 6), patch % 6 + 1, 30 + patch);
+            return text + "END_DATA\n";
+        };
+        write("nan_lab.cie", chart("A01 nan 1 -1"));
+        write("control_id.cie", chart("\x1b[31m 30 1 -1"));
+        write("patch_twice.cie", chart("A01 30 1 -1\nA01 31 1 -1"));
+        // Radiance HDR textures: a header claiming a 60000 x 60000 image, a pixel of 2^128 (beyond float range) after
+        // EXPOSURE=0.25, a resolution line of control bytes.
+        write("huge.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 60000 +X 60000\n" + std::string(64, '\x02'));
+        write("tiny_exposure.hdr", "#?RADIANCE\nEXPOSURE=0.25\n\n-Y 1 +X 1\n\x80\x80\x80\xff");
+        write("control_resolution.hdr", "#?RADIANCE\n\n-Y \x1b[2J +X 1\n\x01\x01\x01\x80");
+        for (const char* image : {"huge.hdr", "tiny_exposure.hdr", "control_resolution.hdr"})
+            write(std::string("bitmap_") + image + ".xml",
+                  scene("", std::string("<bsdf type=\"diffuse\"><texture type=\"bitmap\" name=\"reflectance\">"
+                                        "<string name=\"filename\" value=\"") + image + "\"/></texture></bsdf>"));
+
         // Refractive index files.
         fs::create_directories(dir() / "dir.yml");
         fs::create_directories(dir() / "dir.gsf");
@@ -297,6 +319,11 @@ std::vector<std::string> undistort(const std::string& camera, const std::string&
 
 std::vector<std::string> pose(const std::string& camera) {
     return {"pose", "@D@/truncated.png", "--camera", "@D@/" + camera, "--marker-length", "0.05", "-o", "@D@/u.json"};
+}
+
+std::vector<std::string> colorcorrect(const std::string& reference) {
+    return {"colorcorrect", "@D@/truncated.png", "--reference", "@D@/" + reference, "-o", "@D@/cc.png", "--ccm",
+            "@D@/cc.json"};
 }
 
 std::vector<std::string> calibrate(const std::string& squares) {
@@ -455,6 +482,14 @@ const std::vector<HostileCase> kCases = {
     {"CameraFileIsADirectory", undistort("dir.yml"), 2, "camera file '@D@/dir.yml' is a directory"},
     {"UndistortTruncatedPng", undistort("camera.yml"), 2, "image '@D@/truncated.png' could not be decoded"},
     {"UndistortTruncatedJpeg", undistort("camera.yml", "truncated.jpg"), 2, "image '@D@/truncated.jpg' is truncated"},
+    {"FuzzCameraFileOpenCvLengthError", {"undistort", "@D@/any.png", "--camera",
+                                         "@S@/fuzz/corpus/camera_file/regression-damaged-key-length-error.yml", "-o",
+                                         "@D@/undistorted.png"},
+     2, "regression-damaged-key-length-error.yml' is not valid YAML/XML/JSON (OpenCV's parser failed: basic_string::_M_create)"},
+    {"FuzzCameraFileOpenCvNeverReturns", {"undistort", "@D@/any.png", "--camera",
+                                          "@S@/fuzz/corpus/camera_file/regression-opencv-parser-endless-loop.yml", "-o",
+                                          "@D@/undistorted.png"},
+     2, "is not valid YAML/XML/JSON: OpenCV's parser does not finish on it (stopped after 10 s)"},
     {"CameraMatrixTooLarge", undistort("huge_matrix.yml"), 2,
      "'camera_matrix' is 100000 x 100000, larger than any camera matrix"},
     {"FuzzPlyEmptyElementWithoutProperties", render("mesh_empty_element.ply.xml", {"--spp", "1"}), 0, ""},
@@ -462,6 +497,16 @@ const std::vector<HostileCase> kCases = {
      "vertex_twice.ply:4: element 'vertex' is declared twice"},
     {"FuzzX3pLineBreakInValue", {"surface", "fit", "@D@/line_break.x3p"}, 2,
      "main.xml: Record1/Axes/CX/Increment = '1e\\x0a06' is not a finite number"},
+    {"ChartReferenceNan", colorcorrect("nan_lab.cie"), 2, "nan_lab.cie:6: LAB_L 'nan' is not a finite number"},
+    {"ChartReferenceControlBytes", colorcorrect("control_id.cie"), 2,
+     "control_id.cie:6: sample id '\\x1b[31m' is not one of A01..D06"},
+    {"ChartReferencePatchTwice", colorcorrect("patch_twice.cie"), 2, "patch_twice.cie:7: sample A01 is given twice"},
+    {"HdrHeaderClaimsHugeImage", render("bitmap_huge.hdr.xml"), 2,
+     "huge.hdr: a 60000x60000 HDR image needs at least 14400000000 bytes of pixel data, the file holds 64"},
+    {"HdrTinyExposure", render("bitmap_tiny_exposure.hdr.xml"), 2,
+     "tiny_exposure.hdr: pixel (0, 0) is 3.402823669209385e+38 after dividing by the EXPOSURE 0.25: beyond the float range"},
+    {"HdrControlBytesInResolution", render("bitmap_control_resolution.hdr.xml"), 2,
+     "unsupported HDR resolution line '-Y \\x1b[2J +X 1'"},
     // Huge but valid: a finite, correct answer.
     {"ThreadsAtLimit", render("ok.xml", {"--threads", "256", "--spp", "1"}), 0, ""},
     {"PsdExtremeButValid", {"psd", "--sigma", "1e9", "--corr-length", "1e9", "--gamma", "100", "--zeta", "0,1e-9,1,1e300"}, 0, ""},

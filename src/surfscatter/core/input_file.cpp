@@ -1,6 +1,7 @@
 #include "surfscatter/core/input_file.hpp"
 
 #include <cerrno>
+#include <charconv>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -52,6 +53,13 @@ std::string read_input_file(const fs::path& path, const char* what, std::uint64_
     }
     if (std::ferror(file.get())) fail("read error on {} {}: {}", what, path.string(), std::strerror(errno));
     return bytes;
+}
+
+std::optional<double> to_double(std::string_view text) {
+    double value = 0.0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (text.empty() || ec != std::errc() || end != text.data() + text.size()) return std::nullopt;
+    return value;
 }
 
 }  // namespace surfscatter

@@ -4,7 +4,9 @@
 // standard library, a hang or an exhausted memory.
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
+#include <string_view>
 
 namespace surfscatter {
 
@@ -19,5 +21,9 @@ std::string read_input_file(const std::filesystem::path& path, const char* what,
 
 // Throws Error unless `path` names something that can be read as a file ("<what> <path>: is a directory").
 void require_readable_file(const std::filesystem::path& path, const char* what);
+
+// The whole of `text` (no spaces, no trailing characters) as a number, or nullopt; "nan" and "inf" in any case are
+// numbers: the caller decides whether they are allowed.
+std::optional<double> to_double(std::string_view text);
 
 }  // namespace surfscatter

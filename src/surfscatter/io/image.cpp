@@ -4,10 +4,14 @@
 #include <cctype>
 #include <csetjmp>
 #include <cstdio>
+#include <cmath>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <memory>
+#include <sstream>
 #include <string>
+#include <string_view>
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
@@ -199,60 +203,93 @@ Image read_exr(const std::filesystem::path& path) {
 // Written here (about 80 lines): no Debian library in the dependency set reads it short of OpenCV, which the io
 // module does not link. Format: Greg Ward, "Real Pixels", Graphics Gems II (1991), and the Radiance file format notes.
 
+// Largest .hdr file and side read (docs/RELIABILITY.md): 1 GiB is a 16384 x 16384 image without run-length encoding.
+constexpr std::uint64_t kMaxHdrBytes = std::uint64_t{1} << 30;
+constexpr double kMaxHdrSide = 65536;
+
 Image read_hdr(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) fail("cannot open HDR {}", path.string());
-    std::string line;
-    std::getline(in, line);
+    const std::string name = path.string();
+    const std::string bytes = read_input_file(path, "HDR image", kMaxHdrBytes);
+    std::string_view rest(bytes);
+    const auto next_line = [&] {
+        const std::size_t end = rest.find('\n');
+        if (end == std::string_view::npos) fail("{}: the HDR header ends early", name);
+        const std::string_view line = rest.substr(0, end);
+        rest.remove_prefix(end + 1);
+        return line;
+    };
+    std::string_view line = next_line();
     if (line.rfind("#?RADIANCE", 0) != 0 && line.rfind("#?RGBE", 0) != 0)
-        fail("{}: not a Radiance HDR file (missing #?RADIANCE)", path.string());
+        fail("{}: not a Radiance HDR file (missing #?RADIANCE)", name);
     double exposure = 1;
-    while (std::getline(in, line) && !line.empty()) {
+    while (!(line = next_line()).empty()) {
         if (line.rfind("FORMAT=", 0) == 0 && line != "FORMAT=32-bit_rle_rgbe")
-            fail("{}: unsupported HDR pixel format '{}' (32-bit_rle_rgbe only)", path.string(), line.substr(7));
+            fail("{}: unsupported HDR pixel format '{}' (32-bit_rle_rgbe only)", name, printable(line.substr(7)));
         if (line.rfind("EXPOSURE=", 0) == 0) {
-            const double e = std::atof(line.c_str() + 9);
-            if (!(e > 0)) fail("{}: bad HDR EXPOSURE '{}'", path.string(), line.substr(9));
-            exposure *= e;
+            const auto e = to_double(line.substr(9));
+            if (!e || !(*e > 0) || !std::isfinite(*e))
+                fail("{}: HDR EXPOSURE '{}' is not a positive number", name, printable(line.substr(9)));
+            exposure *= *e;
+            if (!(exposure > 0) || !std::isfinite(exposure))
+                fail("{}: the HDR EXPOSURE lines multiply to {}, outside the double range", name, exposure);
         }
     }
-    std::getline(in, line);
-    char y_axis[3] = {}, x_axis[3] = {};
-    int height = 0, width = 0;
-    if (std::sscanf(line.c_str(), "%2s %d %2s %d", y_axis, &height, x_axis, &width) != 4 ||
-        std::string(y_axis) != "-Y" || std::string(x_axis) != "+X" || width <= 0 || height <= 0)
-        fail("{}: unsupported HDR resolution line '{}' (only the standard '-Y height +X width')", path.string(), line);
+    // The resolution line: "-Y <height> +X <width>", the only orientation read.
+    line = next_line();
+    std::istringstream words{std::string(line)};
+    std::string y_axis, height_text, x_axis, width_text, extra;
+    words >> y_axis >> height_text >> x_axis >> width_text;
+    const auto height_value = to_double(height_text), width_value = to_double(width_text);
+    const auto side = [](std::optional<double> v) { return v && *v >= 1 && *v <= kMaxHdrSide && *v == std::floor(*v); };
+    if (y_axis != "-Y" || x_axis != "+X" || (words >> extra) || !side(height_value) || !side(width_value))
+        fail("{}: unsupported HDR resolution line '{}' (only the standard '-Y height +X width', sides 1 to {})", name,
+             printable(line), kMaxHdrSide);
+    const int width = static_cast<int>(*width_value), height = static_cast<int>(*height_value);
+    // Fewest bytes a scanline can take (run-length encoded: 4 bytes of header, then runs of up to 127 pixels in two
+    // bytes for each of 4 components): no header may make this allocate what the file cannot fill.
+    const bool rle_possible = width >= 8 && width < 32768;
+    const std::uint64_t scanline_bytes =
+        rle_possible ? 4 + 8 * ((static_cast<std::uint64_t>(width) + 126) / 127) : 4 * static_cast<std::uint64_t>(width);
+    if (static_cast<std::uint64_t>(height) * scanline_bytes > rest.size())
+        fail("{}: a {}x{} HDR image needs at least {} bytes of pixel data, the file holds {}", name, width, height,
+             static_cast<std::uint64_t>(height) * scanline_bytes, rest.size());
     Image image(width, height, 3);
     std::vector<std::uint8_t> scanline(static_cast<std::size_t>(width) * 4);
+    std::size_t pos = 0;
     auto read_byte = [&]() {
-        const int c = in.get();
-        if (c == EOF) fail("{}: HDR data ends early", path.string());
-        return static_cast<std::uint8_t>(c);
+        if (pos == rest.size()) fail("{}: HDR data ends early", name);
+        return static_cast<std::uint8_t>(rest[pos++]);
     };
     for (int y = 0; y < height; ++y) {
         const std::uint8_t b0 = read_byte(), b1 = read_byte(), b2 = read_byte(), b3 = read_byte();
-        const bool rle = width >= 8 && width < 32768 && b0 == 2 && b1 == 2 && (b2 & 0x80) == 0;
+        const bool rle = rle_possible && b0 == 2 && b1 == 2 && (b2 & 0x80) == 0;
         if (rle) {
-            if (((b2 << 8) | b3) != width) fail("{}: HDR scanline {} has the wrong length", path.string(), y);
+            if (((b2 << 8) | b3) != width) fail("{}: HDR scanline {} has the wrong length", name, y);
             for (int c = 0; c < 4; ++c)
                 for (int x = 0; x < width;) {
                     int count = read_byte();
                     const bool run = count > 128;
                     if (run) count -= 128;
-                    if (count == 0 || x + count > width) fail("{}: bad HDR run-length data in scanline {}", path.string(), y);
+                    if (count == 0 || x + count > width) fail("{}: bad HDR run-length data in scanline {}", name, y);
                     const std::uint8_t value = run ? read_byte() : 0;
                     for (int k = 0; k < count; ++k, ++x)
                         scanline[static_cast<std::size_t>(x) * 4 + static_cast<std::size_t>(c)] = run ? value : read_byte();
                 }
         } else {
-            if (b0 == 1 && b1 == 1 && b2 == 1) fail("{}: old-style HDR run-length encoding is not supported", path.string());
+            if (b0 == 1 && b1 == 1 && b2 == 1) fail("{}: old-style HDR run-length encoding is not supported", name);
             scanline[0] = b0, scanline[1] = b1, scanline[2] = b2, scanline[3] = b3;
             for (std::size_t i = 4; i < scanline.size(); ++i) scanline[i] = read_byte();
         }
         for (int x = 0; x < width; ++x) {
             const std::uint8_t* p = &scanline[static_cast<std::size_t>(x) * 4];
             const double scale = p[3] == 0 ? 0.0 : std::ldexp(1.0, p[3] - 136) / exposure;
-            for (int c = 0; c < 3; ++c) image.at(x, y, c) = static_cast<float>(p[c] * scale);
+            for (int c = 0; c < 3; ++c) {
+                const double value = p[c] == 0 ? 0.0 : p[c] * scale;
+                if (!(value <= std::numeric_limits<float>::max()))
+                    fail("{}: pixel ({}, {}) is {} after dividing by the EXPOSURE {}: beyond the float range", name, x,
+                         y, value, exposure);
+                image.at(x, y, c) = static_cast<float>(value);
+            }
         }
     }
     return image;

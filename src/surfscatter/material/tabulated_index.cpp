@@ -1,7 +1,6 @@
 #include "surfscatter/material/tabulated_index.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <sstream>
 #include <string_view>
@@ -53,8 +52,9 @@ bool parse_double(std::string_view text, double& value) {
     while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
     while (!text.empty() && (text.back() == ' ' || text.back() == '\t' || text.back() == '\r')) text.remove_suffix(1);
     if (!text.empty() && text.front() == '+') text.remove_prefix(1);
-    const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-    return ec == std::errc() && ptr == text.data() + text.size() && !text.empty();
+    const auto parsed = to_double(text);
+    if (parsed) value = *parsed;
+    return parsed.has_value();
 }
 
 std::vector<std::string_view> split_commas(std::string_view line) {

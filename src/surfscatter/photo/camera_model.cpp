@@ -6,6 +6,7 @@
 #include <string>
 
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/photo/file_storage.hpp"
 
 namespace surfscatter::photo {
 
@@ -142,17 +143,8 @@ CameraModel parse_camera(const cv::FileStorage& fs, const std::string& name) {
 
 CameraModel read_camera(const std::filesystem::path& path) {
     const std::string name = path.string();
-    if (!std::filesystem::exists(path)) fail("camera file '{}' does not exist", name);
-    if (std::filesystem::is_directory(path)) fail("camera file '{}' is a directory, not a .yml or .xml file", name);
     cv::FileStorage fs;
-    try {
-        fs.open(name, cv::FileStorage::READ);
-    } catch (const cv::Exception& e) {
-        fail("camera file '{}' is not valid YAML/XML: {}", name, e.err);
-    } catch (const std::exception& e) {  // OpenCV's parser lets std::length_error through on some damaged files
-        fail("camera file '{}' is not valid YAML/XML: {}", name, e.what());
-    }
-    if (!fs.isOpened()) fail("camera file '{}' could not be read as YAML/XML", name);
+    open_for_reading(fs, name, "camera file");
     try {
         return parse_camera(fs, name);
     } catch (const cv::Exception& e) {

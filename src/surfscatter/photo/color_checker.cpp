@@ -1,6 +1,7 @@
 #include "surfscatter/photo/color_checker.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -12,13 +13,14 @@
 #include <opencv2/mcc.hpp>
 
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/input_file.hpp"
 #include "surfscatter/photo/photo_io.hpp"
 
 namespace surfscatter::photo {
 
 ChartReference read_chart_reference(const std::filesystem::path& path) {
-    std::ifstream in(path);
-    if (!in) fail("chart reference '{}' could not be opened (Debian package argyll-ref)", path.string());
+    const bool argyll = path == kArgyllColorChecker;
+    std::istringstream in(read_input_file(path, argyll ? "chart reference (Debian package argyll-ref)" : "chart reference"));
     ChartReference ref;
     std::array<bool, kChartPatches> seen{};
     std::vector<std::string> fields;
@@ -43,21 +45,31 @@ ChartReference read_chart_reference(const std::filesystem::path& path) {
             Lab lab;
             int found = 0;
             for (std::size_t i = 0; i < fields.size(); ++i) {
-                try {
-                    if (fields[i] == "SAMPLE_ID") id = values[i], ++found;
-                    else if (fields[i] == "LAB_L") lab.L = std::stod(values[i]), ++found;
-                    else if (fields[i] == "LAB_A") lab.a = std::stod(values[i]), ++found;
-                    else if (fields[i] == "LAB_B") lab.b = std::stod(values[i]), ++found;
-                } catch (const std::exception&) {
-                    fail("{}:{}: '{}' is not a number", path.string(), line_number, values[i]);
+                double* const coordinate = fields[i] == "LAB_L" ? &lab.L
+                                           : fields[i] == "LAB_A" ? &lab.a
+                                           : fields[i] == "LAB_B" ? &lab.b
+                                                                  : nullptr;
+                if (fields[i] == "SAMPLE_ID") {
+                    id = values[i];
+                    ++found;
+                } else if (coordinate) {
+                    const auto value = to_double(values[i]);
+                    if (!value || !std::isfinite(*value))
+                        fail("{}:{}: {} '{}' is not a finite number", path.string(), line_number, fields[i],
+                             printable(values[i]));
+                    *coordinate = *value;
+                    ++found;
                 }
             }
             if (found != 4) fail("{}:{}: needs SAMPLE_ID, LAB_L, LAB_A and LAB_B fields", path.string(), line_number);
-            const int row = id.empty() ? -1 : id[0] - 'A';
-            const int col = id.size() == 3 ? std::atoi(id.c_str() + 1) - 1 : -1;
-            if (row < 0 || row >= kChartRows || col < 0 || col >= kChartColumns)
-                fail("{}:{}: sample id '{}' is not one of A01..D06", path.string(), line_number, id);
-            const auto index = static_cast<std::size_t>(row * kChartColumns + col);
+            const bool well_formed = id.size() == 3 && id[0] >= 'A' && id[0] < 'A' + kChartRows &&
+                                     std::isdigit(static_cast<unsigned char>(id[1])) &&
+                                     std::isdigit(static_cast<unsigned char>(id[2]));
+            const int col = well_formed ? (id[1] - '0') * 10 + (id[2] - '0') - 1 : -1;
+            if (col < 0 || col >= kChartColumns)
+                fail("{}:{}: sample id '{}' is not one of A01..D06", path.string(), line_number, printable(id));
+            const auto index = static_cast<std::size_t>((id[0] - 'A') * kChartColumns + col);
+            if (seen[index]) fail("{}:{}: sample {} is given twice", path.string(), line_number, id);
             ref.lab_d50[index] = lab;
             seen[index] = true;
         }

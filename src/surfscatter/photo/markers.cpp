@@ -4,7 +4,6 @@
 #include <array>
 #include <cctype>
 #include <cstdint>
-#include <filesystem>
 #include <limits>
 #include <utility>
 
@@ -12,6 +11,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/photo/file_storage.hpp"
 #include "surfscatter/photo/marker_corners.hpp"
 #include "surfscatter/photo/photo_io.hpp"
 
@@ -52,15 +52,8 @@ cv::Ptr<cv::aruco::Dictionary> predefined_dictionary(const std::string& name) {
 // OpenCV's own Dictionary::readDictionary does not check the bit strings (a longer one writes past its buffer, any
 // character but '0' counts as 1), so the file is read and checked here.
 cv::Ptr<cv::aruco::Dictionary> dictionary_file(const std::string& path) {
-    if (!std::filesystem::exists(path)) fail("dictionary file '{}' does not exist", path);
-    if (std::filesystem::is_directory(path)) fail("dictionary file '{}' is a directory", path);
     cv::FileStorage fs;
-    try {
-        fs.open(path, cv::FileStorage::READ);
-    } catch (const cv::Exception& e) {
-        fail("dictionary file '{}' is not valid YAML/XML/JSON: {}", path, e.err);
-    }
-    if (!fs.isOpened()) fail("dictionary file '{}' could not be read as YAML/XML/JSON", path);
+    open_for_reading(fs, path, "dictionary file");
     const auto integer = [&](const std::string& key, int low, int high) {
         const cv::FileNode node = fs[key];
         if (node.empty()) fail("dictionary file '{}': missing entry '{}'", path, key);

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +11,7 @@
 #include <sstream>
 
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/input_file.hpp"
 
 namespace surfscatter::spectrum {
 
@@ -25,11 +25,9 @@ std::vector<std::string> split_whitespace(const std::string& line) {
 }
 
 double parse_number(const std::string& text, const std::string& where) {
-    double value = 0;
-    const char* end = text.data() + text.size();
-    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-    if (ec != std::errc() || ptr != end || !std::isfinite(value)) fail("{}: '{}' is not a number", where, text);
-    return value;
+    const auto value = to_double(text);
+    if (!value || !std::isfinite(*value)) fail("{}: '{}' is not a number", where, printable(text));
+    return *value;
 }
 
 std::string upper(std::string s) {

@@ -48,7 +48,7 @@ double parse_real(const std::string& path, const std::map<std::string, std::stri
                   double fallback) {
     const auto it = header.find(key);
     if (it == header.end()) return fallback;
-    const auto value = parse::to_double(it->second);
+    const auto value = to_double(it->second);
     if (!value || !std::isfinite(*value)) fail("{}: {} = '{}' is not a finite number", path, key, printable(it->second));
     return *value;
 }
@@ -192,7 +192,7 @@ StatedLength stated_length(const std::string& path, int line, std::string_view k
     const std::size_t space = text.find(' ');
     const std::string_view number = text.substr(0, space);
     const std::string_view unit = space == std::string_view::npos ? "" : parse::trim(text.substr(space + 1));
-    const auto value = parse::to_double(number);
+    const auto value = to_double(number);
     const auto unit_um = parse::length_unit_in_um(unit);
     if (!value || !std::isfinite(*value) || !(*value > 0.0) || !unit_um)
         fail("{}:{}: '# {}: {}' is not a positive length with a unit (m, mm, um, nm or pm)", path, line, key,
@@ -203,7 +203,7 @@ StatedLength stated_length(const std::string& path, int line, std::string_view k
     const std::size_t point = mantissa.find('.');
     int decimals = point == std::string_view::npos ? 0 : static_cast<int>(mantissa.size() - point - 1);
     if (exponent_at != std::string_view::npos)
-        decimals -= static_cast<int>(parse::to_double(number.substr(exponent_at + 1)).value_or(0.0));
+        decimals -= static_cast<int>(to_double(number.substr(exponent_at + 1)).value_or(0.0));
     return {*value * *unit_um, 0.5 * std::pow(10.0, -decimals) * *unit_um};
 }
 
@@ -270,7 +270,7 @@ HeightMap read_text_grid(const std::filesystem::path& file, std::optional<double
             pos = end + 1;
             // Runs of spaces/tabs separate like one; an empty field between commas is an error.
             if (field.empty() && end < line.size() && (line[end] == ' ' || line[end] == '\t')) continue;
-            const auto value = parse::to_double(field);
+            const auto value = to_double(field);
             if (!value)
                 fail("{}:{}: column {}: '{}' is not a number", path, line_number, columns + 1, printable(field));
             if (std::isinf(*value))

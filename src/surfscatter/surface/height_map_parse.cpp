@@ -1,6 +1,5 @@
 #include "surfscatter/surface/height_map_parse.hpp"
 
-#include <charconv>
 
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/input_file.hpp"
@@ -12,13 +11,6 @@ std::string_view trim(std::string_view s) {
     if (first == std::string_view::npos) return {};
     const auto last = s.find_last_not_of(" \t\r");
     return s.substr(first, last - first + 1);
-}
-
-std::optional<double> to_double(std::string_view text) {
-    double value = 0.0;
-    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-    if (ec != std::errc() || end != text.data() + text.size()) return std::nullopt;
-    return value;
 }
 
 std::optional<double> length_unit_in_um(std::string_view unit) {

@@ -9,9 +9,6 @@ namespace surfscatter::surface::parse {
 // s without leading and trailing spaces, tabs and carriage returns.
 std::string_view trim(std::string_view s);
 
-// The whole of `text` as a number (no trailing garbage); "nan" and "inf" in any case are numbers.
-std::optional<double> to_double(std::string_view text);
-
 // Micrometres per unit of a length unit ("m", "mm", "um", "µm", "μm", "nm", "pm"), or nullopt.
 std::optional<double> length_unit_in_um(std::string_view unit);
 

@@ -11,6 +11,7 @@
 #include <zip.h>
 
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/input_file.hpp"
 #include "surfscatter/surface/height_map_parse.hpp"
 
 namespace surfscatter::surface {
@@ -103,7 +104,7 @@ public:
     double number(std::initializer_list<std::string_view> elements, std::optional<double> fallback) const {
         const std::string value = text(elements, !fallback);
         if (value.empty() && fallback) return *fallback;
-        const auto parsed = parse::to_double(value);
+        const auto parsed = to_double(value);
         if (!parsed || !std::isfinite(*parsed))
             fail("{}: {}: {} = '{}' is not a finite number", path_, main_xml_, join(elements), printable(value));
         return *parsed;
@@ -111,7 +112,7 @@ public:
 
     std::uint64_t size(std::string_view axis) const {
         const std::string value = text({"Record3", "MatrixDimension", axis});
-        const auto parsed = parse::to_double(value);
+        const auto parsed = to_double(value);
         if (!parsed || !(*parsed >= 1.0) || *parsed != std::floor(*parsed) || *parsed > static_cast<double>(kMaxSide))
             fail("{}: {}: MatrixDimension/{} = '{}' is not a size between 1 and {}", path_, main_xml_, axis, printable(value),
                  kMaxSide);
@@ -241,7 +242,7 @@ HeightMap read_x3p(const std::filesystem::path& file) {
                 values.push_back(0.0);
                 continue;
             }
-            const auto raw = parse::to_double(parse::trim(z));
+            const auto raw = to_double(parse::trim(z));
             if (!raw) fail("{}: DataList value {} '{}' is not a number", path, values.size() + 1, printable(content));
             values.push_back(z_increment * *raw + z_offset);
         }
