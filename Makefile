@@ -46,7 +46,10 @@ fuzz: fuzz-build
 
 # AddressSanitizer + UndefinedBehaviorSanitizer build in its own folder, running the fast suite (no "slow" label).
 SANITIZE_BUILD_DIR ?= build-sanitize
-SANITIZE_ENV = ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+# Leak reports unwind fully (Gwyddion's modules have no frame pointers), so that scripts/lsan.supp can name them.
+SANITIZE_ENV = ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:fast_unwind_on_malloc=0 \
+  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  LSAN_OPTIONS=suppressions=$(abspath scripts/lsan.supp):print_suppressions=0 \
   SURFSCATTER_CACHE_DIR=$(abspath $(SANITIZE_BUILD_DIR))/test-table-cache
 
 test-sanitize: deps
