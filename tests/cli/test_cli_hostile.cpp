@@ -218,7 +218,7 @@ public:
                        "camera_matrix: \"fx 1010\"\n");
         camera_variant("infinite_fx.yml", "1010.", ".Inf");
         camera_variant("nan_distortion.yml", "-1.6000000000000000e-01", ".NaN");
-        // Truncated photographs: noise, so that half the file ends inside the image data.
+        // Photographs of noise, whole and truncated (half the file ends inside the image data).
         surfscatter::io::Image photo(64, 48, 3);
         std::uint64_t pixel_state = 99;
         for (float& v : photo.pixels) {
@@ -230,6 +230,7 @@ public:
             surfscatter::io::write_image(whole, photo);
             const std::string bytes = surfscatter::test::read_whole_file(whole.string());
             fs::remove(whole);
+            write(std::string("noise") + extension, bytes);
             write(std::string("truncated") + extension, bytes.substr(0, bytes.size() / 2));
         }
 
@@ -322,7 +323,7 @@ std::vector<std::string> pose(const std::string& camera) {
 }
 
 std::vector<std::string> colorcorrect(const std::string& reference) {
-    return {"colorcorrect", "@D@/truncated.png", "--reference", "@D@/" + reference, "-o", "@D@/cc.png", "--ccm",
+    return {"colorcorrect", "@D@/noise.png", "--reference", "@D@/" + reference, "-o", "@D@/cc.png", "--ccm",
             "@D@/cc.json"};
 }
 
