@@ -9,7 +9,7 @@
 #include "surfscatter/bsdf/rayleigh_rice.hpp"
 #include "surfscatter/bsdf/wedge_sampling.hpp"
 #include "surfscatter/core/error.hpp"
-#include "surfscatter/surface/fast_math.hpp"
+#include "surfscatter/math/fast_math.hpp"
 #include "surfscatter/surface/relevant_roughness.hpp"
 
 namespace surfscatter::bsdf {
@@ -100,8 +100,8 @@ double GhsBsdf::core_lobe(const Vec3& wi, const Vec3& wo, double lambda_nm, doub
 // zeta = k |i_xy + o_xy|: computed before the lookup, they do not wait for it.
 GhsBsdf::LobeLogs::LobeLogs(const Vec3& wi, const Vec3& wo, double k) {
     const double x = wi.x + wo.x, y = wi.y + wo.y;
-    log_g_over_sigma2 = 2.0 * surface::fast_log(k * (wi.z + wo.z));
-    log_zeta = 0.5 * surface::fast_log(k * k * (x * x + y * y));
+    log_g_over_sigma2 = 2.0 * math::fast_log(k * (wi.z + wo.z));
+    log_zeta = 0.5 * math::fast_log(k * k * (x * x + y * y));
 }
 
 // The core's density; the exact core is called without virtual dispatch.
@@ -112,7 +112,7 @@ double GhsBsdf::density(const LobeLogs& logs, double log_sigma) const {
 
 double GhsBsdf::specular_exponent(const Incidence& in, double cos_theta_i) {
     const double a = 2.0 * in.k * cos_theta_i;
-    return a * a * surface::fast_exp(2.0 * in.log_sigma);
+    return a * a * math::fast_exp(2.0 * in.log_sigma);
 }
 
 double GhsBsdf::fresnel(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
@@ -140,10 +140,10 @@ double GhsBsdf::eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
     // The exact core of a PSD without a jump hands ln S_g: one exponential of ln N + ln S_g. Other cores (first order,
     // refit, a high-pass PSD) return the density itself, and exp(ln N) multiplies it (taking its logarithm to add ln N
     // made ghs_ssa eval 1.36x and two_scale eval 1.1-1.17x slower).
-    const double f = log_native_ ? scale * surface::fast_exp(in.log_norm + log_native_->log_density_at_logs(
+    const double f = log_native_ ? scale * math::fast_exp(in.log_norm + log_native_->log_density_at_logs(
                                                                                logs.log_g_over_sigma2 + 2.0 * in.log_sigma,
                                                                                logs.log_zeta))
-                                 : scale * surface::fast_exp(in.log_norm) * density(logs, in.log_sigma);
+                                 : scale * math::fast_exp(in.log_norm) * density(logs, in.log_sigma);
     return std::isfinite(f) ? f : 0.0;
 }
 
@@ -164,7 +164,7 @@ double GhsBsdf::pdf(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
     const double s = sin_theta(wi);
     const double q = scatter_radius(wi, wo);
     const double zeta_max = k * (1.0 + s);
-    const double p = surface::one_minus_exp(g0) *
+    const double p = math::one_minus_exp(g0) *
                      wedge_pdf(k, wo.z, core_->sample_density(g0, zeta_max, k * q), wedge_half_angle(q, s));
     return std::isfinite(p) ? p : 0.0;
 }

@@ -5,7 +5,7 @@
 #include <limits>
 
 #include "surfscatter/math/vec.hpp"
-#include "surfscatter/surface/fast_math.hpp"
+#include "surfscatter/math/fast_math.hpp"
 
 namespace surfscatter::bsdf {
 
@@ -79,7 +79,7 @@ std::size_t RadialProposal::segment(double lz) const {
 
 double RadialProposal::cdf(double zeta) const {
     if (!(zeta > 0)) return 0.0;
-    const double lz = surface::fast_log(zeta);
+    const double lz = math::fast_log(zeta);
     if (lz <= log_zeta_.front()) return cdf_.front() * std::exp(2.0 * (lz - log_zeta_.front()));
     if (lz >= log_zeta_.back()) return 1.0 - tail_mass_ * std::exp(-tail_power_ * (lz - log_zeta_.back()));
     const std::size_t j = segment(lz);
@@ -117,7 +117,7 @@ double RadialProposal::inverse(double u) const {
 double RadialProposal::density_2d(double zeta) const {
     if (!(zeta >= 0)) return 0.0;
     if (zeta <= zeta_front_) return cdf_.front() / (kPi * zeta_front_ * zeta_front_);
-    const double lz = surface::fast_log(zeta);
+    const double lz = math::fast_log(zeta);
     if (lz >= log_zeta_.back())
         return tail_power_ * tail_mass_ * std::exp(-tail_power_ * (lz - log_zeta_.back())) / (kTwoPi * zeta * zeta);
     const std::size_t j = segment(lz);

@@ -5,7 +5,7 @@
 #include <numbers>
 
 #include "surfscatter/bsdf/poisson.hpp"
-#include "surfscatter/surface/fast_math.hpp"
+#include "surfscatter/math/fast_math.hpp"
 
 namespace surfscatter::bsdf {
 
@@ -26,7 +26,7 @@ double ExactScatterCore::density(double g, double zeta) const {
 
 const RadialProposal& ExactScatterCore::proposal(double g_star) const {
     const double g_min = surface::ScatterLobeTable::kMinG;
-    const double log_g = surface::fast_log(std::clamp(g_star, g_min, surface::ScatterLobeTable::kMaxG));
+    const double log_g = math::fast_log(std::clamp(g_star, g_min, surface::ScatterLobeTable::kMaxG));
     // Nearest node, rounding by truncation of a positive number (lround is a libm call).
     const int node = int(kProposalsPerDecade / std::numbers::ln10 * log_g - kFirstProposal + 0.5) + kFirstProposal;
     return proposals_.get(std::size_t(node - kFirstProposal), [&] {
@@ -101,7 +101,7 @@ FirstOrderCore::FirstOrderCore(std::shared_ptr<const surface::RadialStatistics> 
     : stats_(std::move(stats)), form_(form) {}
 
 double FirstOrderCore::density(double g, double zeta) const {
-    const double weight = form_ == SsaForm::strict ? g : surface::one_minus_exp(g);
+    const double weight = form_ == SsaForm::strict ? g : math::one_minus_exp(g);
     return weight * stats_->psd_unit(zeta);
 }
 

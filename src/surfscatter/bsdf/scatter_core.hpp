@@ -7,7 +7,7 @@
 #include <memory>
 #include <vector>
 
-#include "surfscatter/surface/fast_math.hpp"
+#include "surfscatter/math/fast_math.hpp"
 
 namespace surfscatter::bsdf {
 
@@ -19,7 +19,7 @@ public:
     // density(e^{log_g}, e^{log_zeta}): the BSDF has g and zeta as logarithms, which the exact core's log-spaced
     // table uses directly.
     virtual double density_at_logs(double log_g, double log_zeta) const {
-        return density(surface::fast_exp(log_g), surface::fast_exp(log_zeta));
+        return density(math::fast_exp(log_g), math::fast_exp(log_zeta));
     }
     // Draws a radius in [0, zeta_max] for the lobe at g_star; u_order (may be unused) and u in [0, 1).
     virtual double sample_radius(double g_star, double zeta_max, double u_order, double u) const = 0;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "surfscatter/math/fast_math.hpp"
+
 namespace surfscatter::spectrum {
 
 namespace {
@@ -16,9 +18,9 @@ const double kT1 = std::tanh(kA * (kSampledLambdaMax - kC));
 // The visible density at the wavelength whose tanh(a (lambda - c)) is t: sech^2 = 1 - tanh^2 = (1 - t)(1 + t).
 double pdf_at_tanh(double t) { return kA * (1.0 - t) * (1.0 + t) / (kT1 - kT0); }
 
-// lambda = c + atanh(t) / a with atanh(t) = ln((1 + t) / (1 - t)) / 2: one logarithm.
+// lambda = c + atanh(t) / a with atanh(t) = ln((1 + t) / (1 - t)) / 2: one (inline) logarithm.
 double lambda_at_tanh(double t) {
-    const double lambda = kC + 0.5 / kA * std::log((1.0 + t) / (1.0 - t));
+    const double lambda = kC + 0.5 / kA * math::fast_log((1.0 + t) / (1.0 - t));
     return std::clamp(lambda, kSampledLambdaMin, kSampledLambdaMax);
 }
 

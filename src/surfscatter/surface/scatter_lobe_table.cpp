@@ -8,7 +8,7 @@
 #include <fmt/format.h>
 
 #include "surfscatter/core/error.hpp"
-#include "surfscatter/surface/fast_math.hpp"
+#include "surfscatter/math/fast_math.hpp"
 #include "surfscatter/surface/radial_table.hpp"
 
 namespace surfscatter::surface {
@@ -216,13 +216,13 @@ double ScatterLobeTable::shape(double g, double zeta) const {
     check_g(g);
     if (!data_->first_order) return rows_shape(g, zeta);
     if (g == 0.0) return data_->first_order->psd_unit(zeta);
-    return eval(g, zeta) / one_minus_exp(g);
+    return eval(g, zeta) / math::one_minus_exp(g);
 }
 
 double ScatterLobeTable::eval(double g, double zeta) const {
     check_g(g);
     if (g == 0.0) return 0.0;
-    if (!data_->first_order) return one_minus_exp(g) * rows_shape(g, zeta);
+    if (!data_->first_order) return math::one_minus_exp(g) * rows_shape(g, zeta);
     if (!(zeta >= 0.0) || std::isinf(zeta)) return 0.0;
     return g * std::exp(-g) * data_->first_order->psd_unit(zeta) + remainder_mass(g) * rows_shape(g, zeta);
 }
@@ -230,15 +230,15 @@ double ScatterLobeTable::eval(double g, double zeta) const {
 double ScatterLobeTable::eval_at_logs(double log_g, double log_zeta) const {
     log_g = std::min(log_g, kLogGMax);
     if (!(log_g >= kLogGMin)) return eval(std::exp(log_g), std::exp(log_zeta));
-    const double rows = fast_exp(lobe_log_value(*data_, log_g, log_zeta, true));
+    const double rows = math::fast_exp(lobe_log_value(*data_, log_g, log_zeta, true));
     if (!data_->first_order) return rows;
-    const double g = fast_exp(log_g);
-    return g * fast_exp(-g) * data_->first_order->psd_unit(fast_exp(log_zeta)) + rows;
+    const double g = math::fast_exp(log_g);
+    return g * math::fast_exp(-g) * data_->first_order->psd_unit(math::fast_exp(log_zeta)) + rows;
 }
 
 double ScatterLobeTable::log_eval_at_logs(double log_g, double log_zeta) const {
     log_g = std::min(log_g, kLogGMax);
-    if (data_->first_order || !(log_g >= kLogGMin)) return fast_log(eval_at_logs(log_g, log_zeta));
+    if (data_->first_order || !(log_g >= kLogGMin)) return math::fast_log(eval_at_logs(log_g, log_zeta));
     return lobe_log_value(*data_, log_g, log_zeta, true);
 }
 
@@ -257,7 +257,7 @@ double ScatterLobeTable::radial_cdf(double g, double zeta) const {
     if (!data_->first_order) return rows;
     const double first = data_->first_order->radial_cdf(zeta);
     if (g == 0.0) return first;
-    return std::clamp((g * std::exp(-g) * first + remainder_mass(g) * rows) / one_minus_exp(g), 0.0, 1.0);
+    return std::clamp((g * std::exp(-g) * first + remainder_mass(g) * rows) / math::one_minus_exp(g), 0.0, 1.0);
 }
 
 double ScatterLobeTable::inverse_radial_cdf(double g, double u) const {

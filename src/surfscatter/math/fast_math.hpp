@@ -1,7 +1,8 @@
 #pragma once
-// Inline exp and log for the BSDF hot path (GhsBsdf::eval -> ScatterLobeTable::eval_at_logs: two logarithms and one
-// exponential per call), table-driven like glibc's but without its call, errno and special-case overhead: about 25
-// instead of 50 instructions each, which is a tenth of an exact-GHS eval. Accuracy (tests/surface/test_fast_math.cpp,
+// Inline exp and log for hot paths (GhsBsdf::eval -> ScatterLobeTable::eval_at_logs: two logarithms and one
+// exponential per call; the renderer's wavelength sampling and blackbody emitters: one each per wavelength of a
+// path), table-driven like glibc's but without its call, errno and special-case overhead: about 25 instead of 50
+// instructions each, which is a tenth of an exact-GHS eval. Accuracy (tests/math/test_fast_math.cpp,
 // against std::exp / std::log over their whole ranges): fast_exp within 2.3e-16 relative, fast_log within 2.3e-16
 // absolute (relative where |ln x| > 1). Arguments the tables do not cover (fast_log: zero, negative, subnormal, inf,
 // NaN; fast_exp: |x| >= 700, NaN) go to std::log / std::exp, so every input gives what the standard functions give up
@@ -12,7 +13,7 @@
 #include <cmath>
 #include <cstdint>
 
-namespace surfscatter::surface {
+namespace surfscatter::math {
 
 namespace fast_math_detail {
 
@@ -107,4 +108,4 @@ inline double fast_log(double x) {
 // twice as fast as expm1); exactly 1 in double precision beyond x = 38.
 inline double one_minus_exp(double x) { return x < 1e-4 ? -std::expm1(-x) : x < 40.0 ? 1.0 - fast_exp(-x) : 1.0; }
 
-}  // namespace surfscatter::surface
+}  // namespace surfscatter::math

@@ -5,9 +5,9 @@
 
 #include <gtest/gtest.h>
 
-#include "surfscatter/surface/fast_math.hpp"
+#include "surfscatter/math/fast_math.hpp"
 
-namespace surfscatter::surface {
+namespace surfscatter::math {
 namespace {
 
 TEST(FastMath, ExpWithinTwoUlpOfStdExp) {
@@ -54,4 +54,4 @@ TEST(FastMath, OneMinusExpKeepsRelativeAccuracy) {
 }
 
 }  // namespace
-}  // namespace surfscatter::surface
+}  // namespace surfscatter::math
