@@ -1,6 +1,6 @@
 #pragma once
 // Inline exp and log for hot paths (GhsBsdf::eval -> ScatterLobeTable::eval_at_logs: two logarithms and one
-// exponential per call; the renderer's wavelength sampling and blackbody emitters: one each per wavelength of a
+// exponential per call; the renderer's blackbody emitters: one per wavelength of a
 // path), table-driven like glibc's but without its call, errno and special-case overhead: about 25 instead of 50
 // instructions each, which is a tenth of an exact-GHS eval. Accuracy (tests/math/test_fast_math.cpp,
 // against std::exp / std::log over their whole ranges): fast_exp within 2.3e-16 relative, fast_log within 2.3e-16

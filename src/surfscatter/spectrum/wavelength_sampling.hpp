@@ -1,9 +1,16 @@
 #pragma once
 // Hero-wavelength sampling (Wilkie et al. 2014, as in pbrt-v4): one uniform number u gives four wavelengths over
-// 360-830 nm, lambda_i = P^{-1}((u + i/4) mod 1), where P is the CDF of a density that follows the eye's sensitivity
-// (p(lambda) proportional to sech^2(0.0072 (lambda - 538)), pbrt-v4's SampleVisibleWavelengths). Each lambda_i on
-// its own is distributed with density p, and the set is the same whichever member is called the hero, which is
-// what the spectral MIS of the path tracer relies on.
+// 360-830 nm, lambda_i = P^{-1}((u + i/4) mod 1), where P is the CDF of a density that follows the eye's sensitivity.
+// Each lambda_i on its own is distributed with that density, and the set is the same whichever member is called the
+// hero, which is what the spectral MIS of the path tracer relies on.
+// The density is pbrt-v4's sech^2(0.0072 (lambda - 538)) (SampleVisibleWavelengths) made piecewise constant over
+// kVisibleCells cells of equal probability: the cell edges are the exact inverse CDF of sech^2 at u = k / cells, and
+// inside a cell lambda is linear in u. Sampling is then a multiply, a table read and a multiply-add per wavelength
+// (no logarithm, no division: it was a tenth of a render's CPU time), and the density returned with each
+// wavelength is exactly the one it was drawn from, so the estimator stays unbiased. The density differs from
+// sech^2 by at most 1.2 % over 360-700 nm, 2.9 % up to 780 nm and 5.9 % in the last cells (8 nm wide at 830 nm,
+// where sech^2 is 6 % of its peak): only the noise of the far red changes, by as little
+// (tests/spectrum/test_wavelength_sampling.cpp).
 #include <algorithm>
 #include <array>
 
@@ -12,6 +19,7 @@ namespace surfscatter::spectrum {
 inline constexpr int kSpectrumSamples = 4;
 inline constexpr double kSampledLambdaMin = 360.0;  // nm
 inline constexpr double kSampledLambdaMax = 830.0;  // nm
+inline constexpr int kVisibleCells = 512;
 
 // Four values, one per sampled wavelength, with element-wise arithmetic.
 struct SampledSpectrum {
@@ -37,6 +45,8 @@ struct SampledSpectrum {
 
 // Density of the visible-wavelength sampler in 1/nm (0 outside 360-830 nm); integrates to 1.
 double visible_wavelength_pdf(double lambda_nm);
+// The smooth density the cells follow, a sech^2(a (lambda - c)) normalised over 360-830 nm (tests compare with it).
+double visible_wavelength_sech2_pdf(double lambda_nm);
 // Inverse CDF of visible_wavelength_pdf: u in [0, 1) -> lambda in [360, 830] nm.
 double sample_visible_wavelength(double u);
 
