@@ -34,6 +34,7 @@ Camera::Camera(const CameraSettings& settings, int width, int height)
         fail("aperture_radius must be non-negative, got {}", settings.aperture_radius);
     if (settings.aperture_radius > 0 && !(settings.focus_distance > 0))
         fail("focus_distance must be positive, got {}", settings.focus_distance);
+    inv_local_z_ = settings.aperture_radius > 0 ? 1 / settings.focus_distance : 1.0;
     origin_ = settings.to_world.point({0, 0, 0});
     to_local_ = settings.to_world.inverse();
 }
@@ -59,12 +60,12 @@ Ray Camera::generate_ray(double x, double y, Vec2 aperture) const {
         lens = {d.x, d.y, 0.0};
         local = local * settings_.focus_distance - lens;
     }
-    const Vec3 direction = normalize(local);
     Ray ray;
-    ray.direction = normalize(settings_.to_world.vector(direction));
-    // Clip planes are distances along the optical axis: a ray at cos = direction.z meets them 1 / cos further.
+    ray.direction = normalize(settings_.to_world.vector(local));  // to_world may scale: normalised after it
+    // Clip planes are distances along the optical axis: a ray at cos = local.z / |local| meets them 1 / cos further
+    // (local.z is 1 for a pinhole and focus_distance through a lens).
     ray.origin = settings_.aperture_radius > 0 ? settings_.to_world.point(lens) : origin_;
-    const double inv_cos = 1 / direction.z;
+    const double inv_cos = local.length() * inv_local_z_;
     ray.t_min = settings_.near_clip * inv_cos;
     ray.t_max = settings_.far_clip * inv_cos;
     return ray;

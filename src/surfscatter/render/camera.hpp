@@ -45,6 +45,7 @@ private:
     int width_ = 1, height_ = 1;
     double inv_width_ = 1, inv_height_ = 1;  // multiplications on every camera ray instead of divisions
     double tan_x_ = 1, tan_y_ = 1;
+    double inv_local_z_ = 1;  // 1 / z of generate_ray's camera-space direction before normalisation
     Vec3 origin_;
     Transform to_local_;
 };

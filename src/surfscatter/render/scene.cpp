@@ -10,8 +10,16 @@
 
 namespace surfscatter::render {
 
+// What every hit on a triangle needs and only its vertices decide, computed once when the shape is added (32 bytes a
+// triangle) instead of a cross product, a square root and two divisions on every hit.
+struct TriangleConstants {
+    Vec3 ng;              // unit geometric normal
+    double inv_uv_det;    // 1 / det(uv1 - uv0, uv2 - uv0), 0 without uvs or when degenerate
+};
+
 struct Scene::Shape {
     TriangleMesh mesh;             // world space (meshes)
+    std::vector<TriangleConstants> triangle_constants;  // meshes, one per triangle
     AnalyticShapePtr analytic;     // or an analytic shape
     std::vector<double> area_cdf;  // triangle areas, cumulative (mesh emitters only)
     double area = 0;
@@ -30,9 +38,9 @@ struct Scene::Embree {
 
 Frame Hit::shading_frame() const {
     const Vec3 s = dpdu - ns * dot(ns, dpdu);
-    const double length = s.length();
-    if (!(length > 1e-12 * (dpdu.length() + 1e-300))) return Frame(ns);
-    const Vec3 sn = s / length;
+    const double length2 = s.length_squared();
+    if (!(length2 > 1e-24 * dpdu.length_squared())) return Frame(ns);  // |s| <= 1e-12 |dp/du|: no tangent
+    const Vec3 sn = s * (1 / std::sqrt(length2));
     return Frame(sn, cross(ns, sn), ns);
 }
 
@@ -144,6 +152,17 @@ void Scene::add_shape(ShapeGeometry geometry, MaterialPtr material, SpectrumPtr 
                                                                         3 * sizeof(unsigned), m.triangles.size()));
         for (std::size_t i = 0; i < m.triangles.size(); ++i)
             for (std::size_t c = 0; c < 3; ++c) indices[3 * i + c] = m.triangles[i][c];
+        shape.triangle_constants.reserve(m.triangles.size());
+        for (const auto& t : m.triangles) {
+            const Vec3& p0 = m.positions[t[0]];
+            TriangleConstants c{normalize(cross(m.positions[t[1]] - p0, m.positions[t[2]] - p0)), 0.0};
+            if (!m.uvs.empty()) {
+                const Vec2 d1 = m.uvs[t[1]] - m.uvs[t[0]], d2 = m.uvs[t[2]] - m.uvs[t[0]];
+                const double det = d1.x * d2.y - d1.y * d2.x;
+                if (std::abs(det) > 1e-20) c.inv_uv_det = 1 / det;
+            }
+            shape.triangle_constants.push_back(c);
+        }
         if (radiance) {
             double sum = 0;
             for (std::size_t i = 0; i < m.triangles.size(); ++i) {
@@ -230,11 +249,13 @@ std::optional<Hit> Scene::intersect(const Ray& ray) const {
     const Vec3& p0 = m.positions[tri[0]];
     const Vec3& p1 = m.positions[tri[1]];
     const Vec3& p2 = m.positions[tri[2]];
+    const TriangleConstants& constants = shape.triangle_constants[rh.hit.primID];
     hit.p = p0 * b0 + p1 * b1 + p2 * b2;
-    hit.ng = normalize(cross(p1 - p0, p2 - p0));
+    hit.ng = constants.ng;
     if (!m.normals.empty()) {
         const Vec3 n = m.normals[tri[0]] * b0 + m.normals[tri[1]] * b1 + m.normals[tri[2]] * b2;
-        hit.ns = n.length() > 0 ? normalize(n) : hit.ng;
+        const double n2 = n.length_squared();
+        hit.ns = n2 > 0 ? n * (1 / std::sqrt(n2)) : hit.ng;
         if (dot(hit.ns, hit.ng) < 0) hit.ns = -hit.ns;
     } else {
         hit.ns = hit.ng;
@@ -245,13 +266,11 @@ std::optional<Hit> Scene::intersect(const Ray& ray) const {
     if (!m.uvs.empty()) {
         const Vec2 t0 = m.uvs[tri[0]], t1 = m.uvs[tri[1]], t2 = m.uvs[tri[2]];
         hit.uv = t0 * b0 + t1 * b1 + t2 * b2;
-        const Vec2 d1 = t1 - t0, d2 = t2 - t0;
-        const double det = d1.x * d2.y - d1.y * d2.x;
-        if (std::abs(det) > 1e-20) {
+        if (constants.inv_uv_det != 0) {
+            const Vec2 d1 = t1 - t0, d2 = t2 - t0;
             const Vec3 e1 = p1 - p0, e2 = p2 - p0;
-            const double inv_det = 1 / det;
-            hit.dpdu = (e1 * d2.y - e2 * d1.y) * inv_det;
-            hit.dpdv = (e2 * d1.x - e1 * d2.x) * inv_det;
+            hit.dpdu = (e1 * d2.y - e2 * d1.y) * constants.inv_uv_det;
+            hit.dpdv = (e2 * d1.x - e1 * d2.x) * constants.inv_uv_det;
         }
     } else {
         hit.uv = {b1, b2};

@@ -31,7 +31,6 @@ std::string lower(std::string s) {
     return s;
 }
 
-constexpr int kTableSize = static_cast<int>(spectrum::kSampledLambdaMax - spectrum::kSampledLambdaMin) + 1;
 
 }  // namespace
 
@@ -60,13 +59,6 @@ double read_relative_ior(Properties& props, const std::string& int_default, cons
 
 ConductorIor::ConductorIor(const std::function<std::complex<double>(double)>& index) {
     for (int i = 0; i < kTableSize; ++i) table_.push_back(index(spectrum::kSampledLambdaMin + i));
-}
-
-std::complex<double> ConductorIor::at(double lambda_nm) const {
-    const double x = std::clamp(lambda_nm - spectrum::kSampledLambdaMin, 0.0, static_cast<double>(kTableSize - 1));
-    const int i = std::min(static_cast<int>(x), kTableSize - 2);
-    const double t = x - i;
-    return table_[static_cast<std::size_t>(i)] * (1 - t) + table_[static_cast<std::size_t>(i + 1)] * t;
 }
 
 SampledSpectrum ConductorIor::reflectance(double cos_theta, const SampledWavelengths& w) const {

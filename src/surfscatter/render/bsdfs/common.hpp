@@ -2,6 +2,7 @@
 // What several BSDF plugins share: indices of refraction by value or by Mitsuba's names, a conductor's complex
 // index tabulated over the sampled wavelengths, the microfacet distributions of the rough plugins and the two delta
 // lobes of the smooth dielectrics.
+#include <algorithm>
 #include <complex>
 #include <functional>
 #include <memory>
@@ -11,6 +12,7 @@
 #include "surfscatter/bsdf/microfacet.hpp"
 #include "surfscatter/material/fresnel.hpp"
 #include "surfscatter/render/properties.hpp"
+#include "surfscatter/spectrum/wavelength_sampling.hpp"
 
 namespace surfscatter::render {
 
@@ -31,13 +33,21 @@ public:
     ConductorIor() = default;  // perfect mirror
     explicit ConductorIor(const std::function<std::complex<double>(double)>& index);
     bool perfect() const { return table_.empty(); }
-    std::complex<double> at(double lambda_nm) const;
+    // Inline: reflectance reads it four times per call, on every conductor vertex of every path.
+    std::complex<double> at(double lambda_nm) const {
+        const double x = std::clamp(lambda_nm - spectrum::kSampledLambdaMin, 0.0, static_cast<double>(kTableSize - 1));
+        const int i = std::min(static_cast<int>(x), kTableSize - 2);
+        const double t = x - i;
+        return table_[static_cast<std::size_t>(i)] * (1 - t) + table_[static_cast<std::size_t>(i + 1)] * t;
+    }
     // Unpolarised Fresnel reflectance at the four wavelengths of a path (1 for the perfect mirror); cos_theta is
     // clamped to [0, 1]. Computed in single precision, the four wavelengths in one SSE lane set: within 1e-6 of the
     // double-precision reflectance (tests/render/test_bsdfs.cpp), far below any render's noise.
     SampledSpectrum reflectance(double cos_theta, const SampledWavelengths& w) const;
 
 private:
+    static constexpr int kTableSize =
+        static_cast<int>(spectrum::kSampledLambdaMax - spectrum::kSampledLambdaMin) + 1;
     std::vector<std::complex<double>> table_;
 };
 // conductor / roughconductor: `material` (Mitsuba's name for a built-in metal, `none` = perfect mirror, or a
