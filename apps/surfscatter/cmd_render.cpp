@@ -1,4 +1,5 @@
-// surfscatter render: a Mitsuba-style XML scene -> linear sRGB OpenEXR + sRGB PNG.
+// surfscatter render: a Mitsuba-style XML scene -> linear sRGB OpenEXR + sRGB PNG; over every rank when started
+// by mpirun or srun (distributed/render.hpp), written by rank 0.
 #include <cmath>
 
 #include <fmt/format.h>
@@ -8,6 +9,7 @@
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/progress.hpp"
 #include "surfscatter/core/resources.hpp"
+#include "surfscatter/distributed/render.hpp"
 #include "surfscatter/render/integrator.hpp"
 #include "surfscatter/render/xml_loader.hpp"
 
@@ -28,44 +30,60 @@ struct RenderArgs {
 };
 
 void run(const RenderArgs& args) {
-    if (args.spp && *args.spp <= 0) fail("--spp must be positive, got {}", *args.spp);
-    require_thread_count(args.threads, "--threads");
-    if (args.seed && *args.seed < 0) fail("--seed must be >= 0, got {}", *args.seed);
+    distributed::Session session;
     const std::filesystem::path output(args.output);
-    if (output.extension() != ".exr")
-        fail("-o must name an .exr file (the .png is written beside it), got {}", printable(args.output));
-    auto scene = render::load_scene(args.scene, parse_defines(args.defines));
-    for (const std::string& note : scene->notes) std::fprintf(stderr, "surfscatter: render: %s\n", note.c_str());
-    // The scene's film was checked when it was loaded: what can fail now is the command line's.
-    if (args.exposure) {
-        scene->film.exposure = *args.exposure;
-        if (!(std::abs(*args.exposure) <= render::kMaxExposureStops))
-            fail("--exposure must be between -{} and {} stops, got {}", render::kMaxExposureStops,
-                 render::kMaxExposureStops, *args.exposure);
-    }
-    if (args.white_balance) {
-        scene->film.white_balance = *args.white_balance;
-        try {
-            scene->film.check();
-        } catch (const Error& e) {
-            fail("--white-balance: {}", e.what());
-        }
-    }
+    std::unique_ptr<render::Scene> scene;
     render::RenderOptions options;
-    options.spp = args.spp.value_or(0);
-    options.threads = args.threads;
-    if (args.seed) options.seed = static_cast<std::uint64_t>(*args.seed);
-    options.progress = !args.quiet;
+    session.collectively([&] {
+        if (args.spp && *args.spp <= 0) fail("--spp must be positive, got {}", *args.spp);
+        require_thread_count(args.threads, "--threads");
+        if (args.seed && *args.seed < 0) fail("--seed must be >= 0, got {}", *args.seed);
+        if (output.extension() != ".exr")
+            fail("-o must name an .exr file (the .png is written beside it), got {}", printable(args.output));
+        scene = render::load_scene(args.scene, parse_defines(args.defines));
+        // The scene's film was checked when it was loaded: what can fail now is the command line's.
+        if (args.exposure) {
+            scene->film.exposure = *args.exposure;
+            if (!(std::abs(*args.exposure) <= render::kMaxExposureStops))
+                fail("--exposure must be between -{} and {} stops, got {}", render::kMaxExposureStops,
+                     render::kMaxExposureStops, *args.exposure);
+        }
+        if (args.white_balance) {
+            scene->film.white_balance = *args.white_balance;
+            try {
+                scene->film.check();
+            } catch (const Error& e) {
+                fail("--white-balance: {}", e.what());
+            }
+        }
+        options.spp = args.spp.value_or(0);
+        options.threads = args.threads;
+        if (args.seed) options.seed = static_cast<std::uint64_t>(*args.seed);
+        options.progress = !args.quiet;
+        if (session.root() && !output.parent_path().empty()) std::filesystem::create_directories(output.parent_path());
+    });
+    if (session.root())
+        for (const std::string& note : scene->notes) std::fprintf(stderr, "surfscatter: render: %s\n", note.c_str());
+    // Every rank must render the same image for the sum to be the render (mpirun -np 1 a : -np 1 b, or files that
+    // differ between hosts, would not).
+    session.require_same(fmt::format("{} {}x{} crop {},{} {}x{}, {} spp, seed {}", args.scene, scene->film.width,
+                                     scene->film.height, scene->film.crop_offset_x, scene->film.crop_offset_y,
+                                     scene->film.output_width(), scene->film.output_height(),
+                                     render::samples_per_pixel(*scene, options), options.seed.value_or(scene->sampler.seed)),
+                         "the render (scene, film, spp, seed)");
     install_interrupt_handler();
     render::RenderStats stats;
-    const render::Film film = render::render(*scene, options, &stats);
-    if (!output.parent_path().empty()) std::filesystem::create_directories(output.parent_path());
-    render::write_film(film, scene->film, output);
+    const render::Film film = distributed::render(session, *scene, options, &stats);
+    session.collectively([&] {
+        if (session.root()) render::write_film(film, scene->film, output);
+    });
+    if (!session.root()) return;
     const std::string samples = stats.max_samples_per_pixel > stats.samples_per_pixel
                                     ? fmt::format("{}-{} spp", stats.samples_per_pixel, stats.max_samples_per_pixel)
                                     : fmt::format("{} spp", stats.samples_per_pixel);
-    std::fprintf(stderr, "%s: %dx%d, %s%s, %.2f s, %.3g Mrays/s -> %s (+ .png)\n", args.scene.c_str(), film.width(),
+    std::fprintf(stderr, "%s: %dx%d, %s%s, %.2f s%s, %.3g Mrays/s -> %s (+ .png)\n", args.scene.c_str(), film.width(),
                  film.height(), samples.c_str(), stats.interrupted ? " (interrupted)" : "", stats.seconds,
+                 session.size() > 1 ? fmt::format(" on {} ranks", session.size()).c_str() : "",
                  static_cast<double>(stats.rays) / std::max(stats.seconds, 1e-9) * 1e-6, args.output.c_str());
 }
 

@@ -10,6 +10,7 @@
 #include "command.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/progress.hpp"
+#include "surfscatter/distributed/session.hpp"
 
 namespace surfscatter::cli {
 
@@ -83,6 +84,8 @@ int main(int argc, char** argv) {
     } catch (const CLI::ParseError& e) {
         std::fprintf(stderr, "surfscatter: error: %s\n", surfscatter::printable(e.what(), 400).c_str());
         return 2;
+    } catch (const surfscatter::distributed::QuietExit& e) {
+        return e.status();  // another MPI rank reported the error
     } catch (const surfscatter::Error& e) {
         std::fprintf(stderr, "surfscatter: error: %s\n", e.what());
         return 2;

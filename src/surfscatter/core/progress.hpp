@@ -19,6 +19,7 @@ public:
     void advance(std::uint64_t units = 1);  // thread-safe; redraws at most ~10 times a second
     void finish();                           // prints the final line (idempotent)
     double fraction() const;
+    std::uint64_t done() const { return done_.load(); }  // units advanced so far
 
 private:
     void draw(bool final_line);

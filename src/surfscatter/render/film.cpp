@@ -61,6 +61,44 @@ void FilmSettings::check() const {
     adaptation(*this);  // validates the white balance
 }
 
+// The state is in row order (not the tile order of the storage), so that it means the same for any film layout.
+std::vector<double> Film::state() const {
+    std::vector<double> out(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_) * kStateValues);
+    double* p = out.data();
+    for (int y = 0; y < height_; ++y)
+        for (int x = 0; x < width_; ++x, p += kStateValues) {
+            const Pixel& pixel = pixels_(x, y);
+            p[0] = pixel.sum.x;
+            p[1] = pixel.sum.y;
+            p[2] = pixel.sum.z;
+            p[3] = pixel.alpha;
+            p[4] = pixel.count;
+        }
+    return out;
+}
+
+void Film::set_state(std::span<const double> state) {
+    if (state.size() != static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_) * kStateValues)
+        fail("film state of {} values does not fit a {}x{} film", state.size(), width_, height_);
+    const double* p = state.data();
+    for (int y = 0; y < height_; ++y)
+        for (int x = 0; x < width_; ++x, p += kStateValues)
+            pixels_(x, y) = Pixel{Vec3(p[0], p[1], p[2]), p[3], static_cast<std::uint32_t>(p[4])};
+}
+
+void Film::accumulate(const Film& other) {
+    if (other.width_ != width_ || other.height_ != height_)
+        fail("cannot add a {}x{} film to a {}x{} one", other.width_, other.height_, width_, height_);
+    for (int y = 0; y < height_; ++y)
+        for (int x = 0; x < width_; ++x) {
+            Pixel& pixel = pixels_(x, y);
+            const Pixel& added = other.pixels_(x, y);
+            pixel.sum += added.sum;
+            pixel.alpha += added.alpha;
+            pixel.count += added.count;
+        }
+}
+
 Vec3 Film::xyz(int x, int y) const {
     const Pixel& p = pixels_(x, y);
     return p.count ? p.sum / p.count : Vec3();

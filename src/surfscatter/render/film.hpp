@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <iterator>
+#include <span>
 #include <vector>
 
 #include "surfscatter/io/image.hpp"
@@ -68,6 +69,13 @@ public:
         p.alpha += covered ? weight : 0.0;
         ++p.count;
     }
+    // The accumulated state as one array, five numbers per pixel (the sums of w X, w Y, w Z, w covered, and the
+    // sample count N), for summing films over processes (distributed/render.hpp). Films that hold disjoint pixels
+    // sum exactly to the film of their union (x + 0 = x), in any order.
+    std::vector<double> state() const;
+    void set_state(std::span<const double> state);  // a state() of a film of the same size
+    void accumulate(const Film& other);               // pixel-wise sum of the states (same size)
+
     Vec3 xyz(int x, int y) const;    // sum(w XYZ) / N (0 if no sample)
     double alpha(int x, int y) const;
     std::uint32_t samples(int x, int y) const;  // samples taken at the pixel (an interrupted render has fewer)
@@ -83,6 +91,7 @@ private:
         double alpha = 0;     // sum of w over covering samples
         std::uint32_t count = 0;
     };
+    static constexpr std::size_t kStateValues = 5;
     int width_, height_;
     TiledPixels<Pixel> pixels_;
 };

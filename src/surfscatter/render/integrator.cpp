@@ -29,6 +29,12 @@ std::unique_ptr<RadianceEstimator> make_estimator(const Scene& scene) {
 
 }  // namespace
 
+int samples_per_pixel(const Scene& scene, const RenderOptions& options) {
+    const int spp = options.spp > 0 ? options.spp : scene.sampler.sample_count;
+    if (spp <= 0) fail("sample count must be positive, got {}", spp);
+    return spp;
+}
+
 Film render(const Scene& scene, const RenderOptions& options, RenderStats* stats) {
     scene.film.check();
     require_thread_count(options.threads, "threads");
@@ -36,8 +42,9 @@ Film render(const Scene& scene, const RenderOptions& options, RenderStats* stats
     const FilterPtr filter = scene.film.filter ? scene.film.filter : make_gaussian_filter();
     const int width = scene.film.output_width(), height = scene.film.output_height();
     const int offset_x = scene.film.crop_offset_x, offset_y = scene.film.crop_offset_y;
-    const int spp = options.spp > 0 ? options.spp : scene.sampler.sample_count;
-    if (spp <= 0) fail("sample count must be positive, got {}", spp);
+    const int spp = samples_per_pixel(scene, options);
+    if (options.parts < 1 || options.part < 0 || options.part >= options.parts)
+        fail("render part {} of {} does not exist", options.part, options.parts);
     const std::uint64_t seed = options.seed.value_or(scene.sampler.seed);
     const IntegratorSettings& integrator = scene.integrator;
     if (integrator.strategy != "mis" && integrator.strategy != "bsdf" && integrator.strategy != "emitter")
@@ -65,10 +72,22 @@ Film render(const Scene& scene, const RenderOptions& options, RenderStats* stats
     const double window_y1 = scene.film.sample_border ? unbounded : offset_y + height;
 
     const int tiles_x = samplers.order().tiles_x(), tiles_y = samplers.order().tiles_y();
+    const auto tile_pixels = [&](int tile) {
+        const int x0 = (tile % tiles_x) * kTileSize, y0 = (tile / tiles_x) * kTileSize;
+        return static_cast<std::uint64_t>(std::min(kTileSize, width - x0)) * std::min(kTileSize, height - y0);
+    };
+    std::vector<int> tiles;
+    std::uint64_t part_pixels = 0;
+    for (int tile = options.part; tile < tiles_x * tiles_y; tile += options.parts) {
+        tiles.push_back(tile);
+        part_pixels += tile_pixels(tile);
+    }
     // Passes of 1, 2, 4, ... samples up to spp/16: an early Ctrl-C still leaves every pixel with samples.
     const int max_pass = std::max(1, spp / 16);
     int per_pass = 1;
-    Progress progress("render", static_cast<std::uint64_t>(spp) * tiles_x * tiles_y, options.progress);
+    Progress own_progress("render", part_pixels * static_cast<std::uint64_t>(spp),
+                          options.progress && !options.shared_progress);
+    Progress& progress = options.shared_progress ? *options.shared_progress : own_progress;
     std::atomic<std::uint64_t> rays{0};
     const auto start = std::chrono::steady_clock::now();
     int done = 0;
@@ -79,9 +98,10 @@ Film render(const Scene& scene, const RenderOptions& options, RenderStats* stats
     while (done < spp && !interrupt_requested()) {
         const int count = std::min(per_pass, spp - done);
         arena.execute([&] {
-            tbb::parallel_for(tbb::blocked_range<int>(0, tiles_x * tiles_y), [&](const tbb::blocked_range<int>& range) {
+            tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tiles.size()), [&](const tbb::blocked_range<std::size_t>& range) {
                 const std::unique_ptr<RadianceEstimator> estimator = make_estimator(scene);
-                for (int tile = range.begin(); tile != range.end(); ++tile) {
+                for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                    const int tile = tiles[i];
                     const int x0 = (tile % tiles_x) * kTileSize, y0 = (tile / tiles_x) * kTileSize;
                     for (int y = y0; y < std::min(y0 + kTileSize, height); ++y)
                         for (int x = x0; x < std::min(x0 + kTileSize, width); ++x) {
@@ -105,7 +125,7 @@ Film render(const Scene& scene, const RenderOptions& options, RenderStats* stats
                                 film.add(x, y, xyz, fs.weight, covered);
                             }
                         }
-                    progress.advance(static_cast<std::uint64_t>(count));
+                    progress.advance(tile_pixels(tile) * static_cast<std::uint64_t>(count));
                 }
                 rays += estimator->rays;
             });
@@ -113,14 +133,19 @@ Film render(const Scene& scene, const RenderOptions& options, RenderStats* stats
         done += count;
         per_pass = std::min(2 * per_pass, max_pass);
     }
-    progress.finish();
+    own_progress.finish();
     if (stats) {
+        // Over this part's pixels only: the other parts' pixels are empty by design.
         std::uint32_t fewest = UINT32_MAX, most = 0;
-        for (int y = 0; y < height; ++y)
-            for (int x = 0; x < width; ++x) {
-                fewest = std::min(fewest, film.samples(x, y));
-                most = std::max(most, film.samples(x, y));
-            }
+        for (const int tile : tiles) {
+            const int x0 = (tile % tiles_x) * kTileSize, y0 = (tile / tiles_x) * kTileSize;
+            for (int y = y0; y < std::min(y0 + kTileSize, height); ++y)
+                for (int x = x0; x < std::min(x0 + kTileSize, width); ++x) {
+                    fewest = std::min(fewest, film.samples(x, y));
+                    most = std::max(most, film.samples(x, y));
+                }
+        }
+        if (tiles.empty()) fewest = static_cast<std::uint32_t>(spp);  // a part with no tiles (more parts than tiles)
         stats->samples_per_pixel = static_cast<int>(fewest);
         stats->max_samples_per_pixel = static_cast<int>(most);
         stats->interrupted = static_cast<int>(fewest) < spp;

@@ -7,6 +7,10 @@
 
 #include "surfscatter/render/film.hpp"
 
+namespace surfscatter {
+class Progress;
+}
+
 namespace surfscatter::render {
 
 struct RenderOptions {
@@ -14,7 +18,18 @@ struct RenderOptions {
     int threads = 0;                      // 0: all hardware threads
     std::optional<std::uint64_t> seed;    // default: the scene's sampler seed
     bool progress = true;                 // percentage and ETA on stderr
+    // Render only the 16x16 tiles t (row-major over the output image) with t % parts == part; the film keeps its
+    // full size and the other pixels stay empty. No pixel depends on the split, so the films of parts
+    // 0 .. parts-1 summed (Film::accumulate) are the whole render, bit for bit.
+    int part = 0;
+    int parts = 1;
+    // When set, the render advances this bar (in pixel samples: the whole render, all parts, is output width x
+    // height x spp of them) instead of drawing one of its own.
+    Progress* shared_progress = nullptr;
 };
+
+// Samples per pixel the options ask of the scene (its sampler's sample_count unless options.spp is set).
+int samples_per_pixel(const Scene& scene, const RenderOptions& options);
 
 struct RenderStats {
     int samples_per_pixel = 0;      // taken at every pixel (fewer than asked if interrupted)
@@ -25,9 +40,10 @@ struct RenderStats {
 };
 
 // Renders the scene. Deterministic: every pixel owns a PCG32 stream seeded by (seed, pixel index), and samples are
-// taken in passes, so the image is identical for any thread count. On Ctrl-C or SIGTERM (core/progress.hpp) every
-// thread stops before its next sample and the film holds what was taken; its per-pixel counts make every pixel the
-// mean of its own samples. Throws Error for bad film settings or thread counts (scene.hpp, core/resources.hpp).
+// taken in passes, so the image is identical for any thread count and any split into parts. On Ctrl-C or SIGTERM
+// (core/progress.hpp) every thread stops before its next sample and the film holds what was taken; its per-pixel
+// counts make every pixel the mean of its own samples. Throws Error for bad film settings or thread counts
+// (scene.hpp, core/resources.hpp).
 Film render(const Scene& scene, const RenderOptions& options, RenderStats* stats = nullptr);
 
 }  // namespace surfscatter::render
