@@ -15,6 +15,7 @@
 #include "list_options.hpp"
 #include "surfscatter/bsdf/albedo.hpp"
 #include "surfscatter/bsdf/factory.hpp"
+#include "surfscatter/bsdf/slice.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/paths.hpp"
 
@@ -230,19 +231,8 @@ void slice(const BrdfArgs& a) {
     if (csv.empty()) csv = std::filesystem::path(a.plot).replace_extension(".csv").string();
     std::ofstream out(csv);
     if (!out) fail("--csv: cannot open '{}' for writing", csv);
-    // Signed in-plane angle: positive on the specular side (phi_o = phi_i + 180).
-    out << "model,theta_i,theta_o_signed,brdf,specular\n";
     for (std::size_t m = 0; m < models.size(); ++m)
-        for (double ti : a.theta_i) {
-            const Vec3 wi = incident(ti, a.phi_i);
-            const double spec = models[m]->delta_reflectance(wi, a.wavelength);
-            for (int j = -1790; j <= 1790; j += 5) {
-                const double t = 0.05 * j;
-                const Vec3 wo = incident(std::abs(t), a.phi_i + (t >= 0 ? 180.0 : 0.0));
-                out << names[m] << ',' << format_number(ti) << ',' << format_number(t) << ','
-                    << format_number(models[m]->eval(wi, wo, a.wavelength)) << ',' << format_number(spec) << '\n';
-            }
-        }
+        bsdf::write_slice_csv(out, names[m], *models[m], a.theta_i, a.phi_i, a.wavelength, m == 0);
     out.close();
     if (!a.plot.empty())
         run_plot_script("brdf_slice.py", {csv, a.plot, fmt::format("{} nm", format_number(a.wavelength))});

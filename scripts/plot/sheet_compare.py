@@ -2,8 +2,10 @@
 """Lays rendered PNGs out as one labelled comparison sheet (the layout of the supplemental's Figures 3-8).
 
 usage: sheet_compare.py OUTPUT.png TITLE COLUMNS LABEL=IMAGE.png [LABEL=IMAGE.png ...]
-Panels fill rows of COLUMNS from the top left; a label "-" leaves a panel empty. Panels keep their own aspect.
+Panels fill rows of COLUMNS from the top left; a label "-" leaves a panel empty, an image that does not exist (its
+render failed) leaves it empty with its label marked "(missing)". Panels keep their own aspect.
 """
+import os
 import sys
 
 import matplotlib
@@ -22,7 +24,10 @@ def main(argv):
         label, _, path = item.partition("=")
         panels.append((label, path))
     rows = (len(panels) + columns - 1) // columns
-    first = mpimg.imread(next(p for label, p in panels if label != "-"))
+    present = [p for label, p in panels if label != "-" and os.path.exists(p)]
+    if not present:
+        sys.exit("sheet_compare.py: none of the panel images exists")
+    first = mpimg.imread(present[0])
     aspect = first.shape[0] / first.shape[1]
     width = 3.2 * columns
     fig, axes = plt.subplots(rows, columns, figsize=(width, 3.2 * aspect * rows + 0.7), squeeze=False)
@@ -30,6 +35,9 @@ def main(argv):
         ax.axis("off")
     for ax, (label, path) in zip(axes.flat, panels):
         if label == "-":
+            continue
+        if not os.path.exists(path):
+            ax.set_title(label + " (missing)", fontsize=10, color="0.5")
             continue
         ax.imshow(mpimg.imread(path))
         ax.set_title(label, fontsize=10)

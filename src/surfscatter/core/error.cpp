@@ -32,4 +32,16 @@ std::string printable(std::string_view text, std::size_t max_chars) {
     return out;
 }
 
+std::string describe(const std::exception_ptr& error) {
+    try {
+        std::rethrow_exception(error);
+    } catch (const Error& e) {
+        return e.what();
+    } catch (const std::exception& e) {
+        return std::string("internal error: ") + e.what();
+    } catch (...) {
+        return "internal error: unknown exception";
+    }
+}
+
 }  // namespace surfscatter

@@ -1,6 +1,7 @@
 #pragma once
 // The one exception type of the library. Its message is a single line that names the bad value and where it
 // came from (parameter name, file:line); the CLI prints it as it is and exits with status 2.
+#include <exception>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -19,6 +20,10 @@ template <typename... Args>
 [[noreturn]] void fail(fmt::format_string<Args...> format, Args&&... args) {
     throw Error(fmt::format(format, std::forward<Args>(args)...));
 }
+
+// The one-line message of an exception for reports: an Error's message as it is, anything else prefixed with
+// "internal error: ".
+std::string describe(const std::exception_ptr& error);
 
 // Checks a user-supplied value; `what` names it as the user wrote it ("--sigma", "scene.xml:12 alpha").
 void require_finite(double value, const char* what);

@@ -1,6 +1,9 @@
 #include "surfscatter/core/paths.hpp"
 
+#include <unistd.h>
+
 #include <cstdlib>
+#include <fstream>
 
 #include "surfscatter/core/error.hpp"
 
@@ -32,6 +35,34 @@ std::filesystem::path cache_directory() {
     std::filesystem::create_directories(dir, ec);
     if (ec) fail("cannot create cache directory {}: {}", dir.string(), ec.message());
     return dir;
+}
+
+std::string host_name() {
+    char name[256] = {};
+    if (gethostname(name, sizeof name - 1) != 0 || name[0] == '\0') return "unknown-host";
+    return name;
+}
+
+std::filesystem::path temporary_beside(const std::filesystem::path& file) {
+    static const std::string host = host_name();
+    return file.parent_path() / fmt::format(".{}.tmp-{}-{}{}", file.stem().string(), host, static_cast<long>(getpid()),
+                                            file.extension().string());
+}
+
+void write_file_atomically(const std::filesystem::path& file, const std::string& text) {
+    const std::filesystem::path tmp = temporary_beside(file);
+    {
+        std::ofstream out(tmp, std::ios::binary);
+        out << text;
+        out.close();
+        if (!out) fail("cannot write {}", tmp.string());
+    }
+    std::error_code ec;
+    std::filesystem::rename(tmp, file, ec);
+    if (ec) {
+        std::filesystem::remove(tmp, ec);
+        fail("cannot move {} into place: {}", file.string(), ec.message());
+    }
 }
 
 std::filesystem::path plot_script_directory() {

@@ -1,7 +1,5 @@
 #include "surfscatter/distributed/session.hpp"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -13,6 +11,7 @@
 #include <mpi.h>
 
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/paths.hpp"
 
 namespace surfscatter::distributed {
 
@@ -40,30 +39,12 @@ void wait_quietly(MPI_Request& request) {
     }
 }
 
-std::string host_name() {
-    char name[256] = {};
-    if (gethostname(name, sizeof name - 1) != 0) return "unknown-host";
-    return name;
-}
-
 }  // namespace
 
 bool launched_by_mpi() {
     for (const char* variable : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK"})
         if (std::getenv(variable)) return true;
     return false;
-}
-
-std::string describe(const std::exception_ptr& error) {
-    try {
-        std::rethrow_exception(error);
-    } catch (const Error& e) {
-        return e.what();
-    } catch (const std::exception& e) {
-        return std::string("internal error: ") + e.what();
-    } catch (...) {
-        return "internal error: unknown exception";
-    }
 }
 
 Session::Session() : host_(host_name()), exceptions_at_start_(std::uncaught_exceptions()) {
@@ -152,6 +133,15 @@ void Session::collectively(const std::function<void()>& step) const {
         text += ": " + message;
     }
     throw Error(text);
+}
+
+void Session::finish_with(int status) const {
+    std::string text = std::to_string(status);
+    broadcast(text);
+    const int agreed = std::stoi(text);
+    if (agreed == 0) return;
+    failed_collectively_ = true;
+    throw QuietExit(agreed);
 }
 
 void Session::require_same(const std::string& text, const std::string& what) const {

@@ -67,6 +67,9 @@ public:
     // Ends every rank now: prints "surfscatter: error: rank R of N (host): message" and aborts the MPI job with
     // `status` (or exits with it when there is no MPI).
     [[noreturn]] void abort(const std::string& message, int status = 2) const;
+    // Collective: every rank ends with rank 0's `status`. Returns if it is 0; else throws QuietExit(status) on every
+    // rank (rank 0 has said why).
+    void finish_with(int status) const;
     // Collective: a barrier that sleeps while it waits.
     void wait_for_all() const;
     // Collective: element-wise sum of every rank's `values` (same length everywhere) into rank 0's.
@@ -87,9 +90,5 @@ private:
     int exceptions_at_start_ = 0;
     mutable bool failed_collectively_ = false;
 };
-
-// "file:line: message" of an exception, for reports: surfscatter::Error's message as it is, others prefixed with
-// "internal error: ".
-std::string describe(const std::exception_ptr& error);
 
 }  // namespace surfscatter::distributed

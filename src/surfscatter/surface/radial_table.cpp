@@ -9,7 +9,6 @@
 #include <mutex>
 
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include "surfscatter/core/paths.hpp"
 #include "surfscatter/math/vec.hpp"
@@ -308,9 +307,13 @@ void save_family(const std::string& key, const RadialFamily& family, const std::
         payload.insert(payload.end(), r.log_value.begin(), r.log_value.end());
         payload.insert(payload.end(), r.cdf.begin(), r.cdf.end());
     }
+    // Several processes (MPI ranks, on one host or on many sharing the cache folder) may build the same table at
+    // once: each writes its own temporary file and renames it into place, so a reader sees a whole file or none,
+    // and the last rename wins with identical contents.
+    std::filesystem::path tmp;
     try {
         const auto path = cache_file(key);
-        const auto tmp = path.string() + fmt::format(".tmp{}", static_cast<long>(getpid()));  // per-process name
+        tmp = temporary_beside(path);
         {
             std::ofstream out(tmp, std::ios::binary);
             const std::uint64_t key_size = key.size(), count = payload.size();
@@ -322,11 +325,14 @@ void save_family(const std::string& key, const RadialFamily& family, const std::
             out.write(reinterpret_cast<const char*>(&count), sizeof count);
             out.write(reinterpret_cast<const char*>(payload.data()), static_cast<std::streamsize>(count * sizeof(double)));
             out.write(reinterpret_cast<const char*>(&checksum), sizeof checksum);
-            if (!out) return;
+            out.close();
+            if (!out) throw std::runtime_error("write failed");
         }
-        std::filesystem::rename(tmp, path);  // atomic: readers never see a half-written file
+        std::filesystem::rename(tmp, path);
     } catch (const std::exception&) {
         // The cache is an optimisation: an unwritable cache directory only costs rebuilding next time.
+        std::error_code ec;
+        if (!tmp.empty()) std::filesystem::remove(tmp, ec);
     }
 }
 

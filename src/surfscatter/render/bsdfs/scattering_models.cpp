@@ -12,6 +12,7 @@
 // twosided).
 #include "surfscatter/bsdf/factory.hpp"
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/render/model_parameters.hpp"
 #include "surfscatter/render/plugins.hpp"
 #include "surfscatter/surface/height_map_form.hpp"
 
@@ -103,7 +104,7 @@ MaterialPtr make_model_material(std::shared_ptr<const bsdf::Bsdf> model) {
     return std::make_shared<ModelMaterial>(std::move(model));
 }
 
-MaterialPtr plugins::scattering_model(Properties& props, const std::string& type) {
+bsdf::ModelOptions scattering_model_options(Properties& props, const std::string& type) {
     bsdf::ModelOptions o;
     try {
         if (type == "ggx_stats") {
@@ -137,6 +138,15 @@ MaterialPtr plugins::scattering_model(Properties& props, const std::string& type
         check_applicable(props, o, type);
         bsdf::validate(o);
         props.share_height_map(o.surface);
+        return o;
+    } catch (const Error& e) {
+        props.fail("bsdf '{}': {}", type, e.what());
+    }
+}
+
+MaterialPtr plugins::scattering_model(Properties& props, const std::string& type) {
+    const bsdf::ModelOptions o = scattering_model_options(props, type);
+    try {
         std::vector<std::string> notes;
         auto model = bsdf::make_bsdf(o, &notes);
         for (const std::string& note : notes) props.add_note(note);

@@ -1,0 +1,41 @@
+#include "surfscatter/bsdf/slice.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "surfscatter/bsdf/albedo.hpp"
+
+namespace surfscatter::bsdf {
+
+namespace {
+std::string number(double v) { return fmt::format("{:.10g}", v); }
+Vec3 direction(double theta_deg, double phi_deg) { return spherical_direction(theta_deg * kDegree, phi_deg * kDegree); }
+}  // namespace
+
+void write_slice_csv(std::ostream& out, const std::string& name, const Bsdf& model, const std::vector<double>& theta_i_deg,
+                     double phi_i_deg, double lambda_nm, bool header) {
+    if (header) out << "model,theta_i,theta_o_signed,brdf,specular\n";
+    for (const double ti : theta_i_deg) {
+        const Vec3 wi = direction(ti, phi_i_deg);
+        const double specular = model.delta_reflectance(wi, lambda_nm);
+        for (int j = -1790; j <= 1790; j += 5) {
+            const double t = 0.05 * j;
+            const Vec3 wo = direction(std::abs(t), phi_i_deg + (t >= 0 ? 180.0 : 0.0));
+            out << name << ',' << number(ti) << ',' << number(t) << ',' << number(model.eval(wi, wo, lambda_nm)) << ','
+                << number(specular) << '\n';
+        }
+    }
+}
+
+void write_albedo_csv(std::ostream& out, const std::string& name, const Bsdf& model, const std::vector<double>& theta_i_deg,
+                      double lambda_nm, bool header) {
+    if (header) out << "model,theta_i,albedo,scatter,specular\n";
+    for (const double ti : theta_i_deg) {
+        const DirectionalAlbedo a = directional_albedo(model, ti * kDegree, lambda_nm);
+        out << name << ',' << number(ti) << ',' << number(a.total()) << ',' << number(a.scatter) << ','
+            << number(a.specular) << '\n';
+    }
+}
+
+}  // namespace surfscatter::bsdf

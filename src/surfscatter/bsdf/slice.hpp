@@ -1,0 +1,21 @@
+#pragma once
+// Tables of a model for plots, as `surfscatter brdf slice` and a study's BRDF jobs write them (CSV, full precision).
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "surfscatter/bsdf/bsdf.hpp"
+
+namespace surfscatter::bsdf {
+
+// In-plane slices: rows model,theta_i,theta_o_signed,brdf,specular for each incidence angle (degrees), theta_o from
+// -89.5 to 89.5 degrees in 0.25 degree steps, positive on the specular side (phi_o = phi_i + 180); `specular` is
+// the delta lobe's reflectance. `header` writes the header line first.
+void write_slice_csv(std::ostream& out, const std::string& name, const Bsdf& model, const std::vector<double>& theta_i_deg,
+                     double phi_i_deg, double lambda_nm, bool header);
+
+// Directional albedo: rows model,theta_i,albedo,scatter,specular (bsdf/albedo.hpp) for each incidence angle.
+void write_albedo_csv(std::ostream& out, const std::string& name, const Bsdf& model, const std::vector<double>& theta_i_deg,
+                      double lambda_nm, bool header);
+
+}  // namespace surfscatter::bsdf

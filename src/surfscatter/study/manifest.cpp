@@ -1,0 +1,109 @@
+#include "surfscatter/study/manifest.hpp"
+
+#include <chrono>
+#include <ctime>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "surfscatter/core/error.hpp"
+#include "surfscatter/core/paths.hpp"
+
+namespace surfscatter::study {
+
+namespace {
+
+using nlohmann::json;
+
+constexpr const char* kFormat = "surfscatter study manifest 1";
+
+std::string utc_now() {
+    const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+    std::tm tm{};
+    gmtime_r(&t, &tm);
+    char text[32];
+    std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &tm);
+    return text;
+}
+
+}  // namespace
+
+std::optional<Fingerprint> fingerprint(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) return std::nullopt;
+    std::uint64_t h = 1469598103934665603ULL;
+    std::uintmax_t bytes = 0;
+    char buffer[1 << 16];
+    while (in) {
+        in.read(buffer, sizeof buffer);
+        const std::streamsize n = in.gcount();
+        for (std::streamsize i = 0; i < n; ++i) {
+            h ^= static_cast<unsigned char>(buffer[i]);
+            h *= 1099511628211ULL;
+        }
+        bytes += static_cast<std::uintmax_t>(n);
+    }
+    return Fingerprint{bytes, fmt::format("{:016x}", h)};
+}
+
+Manifest::Manifest(std::filesystem::path file, const std::vector<Job>& jobs, const std::filesystem::path& folder)
+    : file_(std::move(file)), folder_(folder), jobs_(jobs) {
+    std::ifstream in(file_, std::ios::binary);
+    if (!in) return;
+    std::ostringstream text;
+    text << in.rdbuf();
+    json document;
+    try {
+        document = json::parse(text.str());
+    } catch (const json::parse_error& e) {
+        fail("{}: not valid JSON ({}); move it away to start the study afresh", file_.string(), e.what());
+    }
+    if (!document.is_object() || document.value("format", "") != kFormat || !document["jobs"].is_array())
+        fail("{}: not a surfscatter study manifest; move it away to start the study afresh", file_.string());
+    std::map<std::string, json> recorded;
+    for (const json& entry : document["jobs"])
+        if (entry.is_object() && entry.contains("id") && entry["id"].is_string()) recorded[entry["id"]] = entry;
+    for (const Job& job : jobs_)
+        if (auto it = recorded.find(job.id); it != recorded.end()) entries_[job.id] = it->second;
+}
+
+bool Manifest::up_to_date(const Job& job) const {
+    const auto it = entries_.find(job.id);
+    if (it == entries_.end()) return false;
+    const json& e = it->second;
+    if (e.value("status", "") != "done" || e.value("parameters", json()) != job.parameters) return false;
+    const auto matches = [&](const char* list, bool check_size) {
+        if (!e.contains(list)) return true;
+        if (!e[list].is_array()) return false;
+        for (const json& f : e[list]) {
+            if (!f.is_object() || !f.contains("path") || !f["path"].is_string()) return false;
+            const auto now = fingerprint(folder_ / f["path"].get<std::string>());
+            if (!now || now->fnv1a != f.value("fnv1a", "")) return false;
+            if (check_size && now->bytes != f.value("bytes", std::uintmax_t{0})) return false;
+        }
+        return true;
+    };
+    // Every output the job makes must be on record (a study that now wants more of a job reruns it).
+    if (!e.contains("outputs") || e["outputs"].size() != job.outputs.size()) return false;
+    return matches("outputs", true) && matches("inputs", false);
+}
+
+void Manifest::record(const Job& job, json report, int rank) {
+    json entry = {{"id", job.id}, {"kind", to_string(job.kind)}, {"parameters", job.parameters}};
+    for (auto& [key, value] : report.items()) entry[key] = std::move(value);
+    entry["rank"] = rank;
+    entry["finished"] = utc_now();
+    entries_[job.id] = std::move(entry);
+    save();
+}
+
+void Manifest::save() const {
+    json list = json::array();
+    for (const Job& job : jobs_)
+        if (auto it = entries_.find(job.id); it != entries_.end()) list.push_back(it->second);
+    const json document = {{"format", kFormat}, {"updated", utc_now()}, {"jobs", list}};
+    write_file_atomically(file_, document.dump(1) + "\n");
+}
+
+}  // namespace surfscatter::study
