@@ -50,6 +50,7 @@ function(surfscatter_test name)
     SURFSCATTER_CLI="$<TARGET_FILE:surfscatter>")
   if(name STREQUAL "cli")
     add_dependencies(${target} surfscatter)
+    target_compile_definitions(${target} PRIVATE SURFSCATTER_MPIEXEC="${MPIEXEC_EXECUTABLE}")
   endif()
   gtest_discover_tests(${target}
     PROPERTIES LABELS "${name};${ARG_LABELS}"

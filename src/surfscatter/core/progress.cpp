@@ -21,6 +21,9 @@ extern "C" void on_interrupt(int signal_number) {
 void install_interrupt_handler() {
     std::signal(SIGINT, on_interrupt);
     std::signal(SIGTERM, on_interrupt);
+    // mpirun forwards SIGUSR1 to every rank at once (SIGINT reaches the ranks only as a SIGTERM after
+    // odls_base_sigkill_timeout); Slurm sends it before a time limit with --signal=USR1@seconds.
+    std::signal(SIGUSR1, on_interrupt);
 }
 bool interrupt_requested() { return g_interrupted != 0; }
 int interrupt_signal() { return g_interrupted; }

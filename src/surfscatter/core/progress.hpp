@@ -38,11 +38,11 @@ private:
 std::string format_duration(double seconds);
 
 // Ctrl-C handling for jobs that must keep what they computed: after install_interrupt_handler(), the first
-// SIGINT/SIGTERM sets a flag that long loops poll with interrupt_requested(); they stop early and write out. A second
-// signal ends the process (default action).
+// SIGINT/SIGTERM/SIGUSR1 sets a flag that long loops poll with interrupt_requested(); they stop early and write out.
+// A second signal of the same kind ends the process (default action).
 void install_interrupt_handler();
 bool interrupt_requested();
-int interrupt_signal();  // the signal that interrupted (SIGINT, SIGTERM), 0 if none
+int interrupt_signal();  // the signal that interrupted (SIGINT, SIGTERM, SIGUSR1), 0 if none
 void clear_interrupt();  // for tests
 void request_interrupt();  // for tests: behave as if Ctrl-C had been pressed
 

@@ -32,7 +32,7 @@ std::string utc_now() {
 std::optional<Fingerprint> fingerprint(const std::filesystem::path& file) {
     std::ifstream in(file, std::ios::binary);
     if (!in) return std::nullopt;
-    std::uint64_t h = 1469598103934665603ULL;
+    std::uint64_t h = 14695981039346656037ULL;
     std::uintmax_t bytes = 0;
     char buffer[1 << 16];
     while (in) {

@@ -1,0 +1,284 @@
+// Study files, their expansion into jobs, the manifest's resume rule, and BRDF jobs run in process. Renders, sheets
+// and the MPI runs are exercised end to end in tests/cli/test_cli_distributed.cpp.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "surfscatter/core/error.hpp"
+#include "surfscatter/study/jobs.hpp"
+#include "surfscatter/study/manifest.hpp"
+#include "surfscatter/study/run_job.hpp"
+#include "surfscatter/study/study.hpp"
+
+namespace surfscatter::study {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path scratch(const std::string& name) {
+    const fs::path dir = fs::temp_directory_path() / "surfscatter_test_study" / name;
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+}
+
+const std::string kScene = std::string(SURFSCATTER_SOURCE_DIR) + "/scenes/photo-setup/scene.xml";
+
+// 2 views x 3 models, one named surface, two lamps, BRDF slices and albedo at two wavelengths.
+std::string study_text() {
+    return R"({
+  "scene": ")" + kScene + R"(",
+  "views": [1, 2],
+  "parameters": {"material": "Au"},
+  "models": [
+    {"name": "ggx", "label": "GGX", "model": "ggx_stats", "alpha_from": "measured"},
+    {"name": "ghs", "model": "ghs"},
+    {"name": "ssa", "label": "SSA GHS", "model": "ghs_ssa"}
+  ],
+  "surfaces": [{"name": "kc", "sigma": 0.15, "corr_length": 4, "gamma": 3.5}],
+  "lamps": [{"name": "warm", "lamp_temperature": 2700}, {"name": "cold", "lamp_temperature": 6500, "lamp_power": 1e-4}],
+  "wavelengths": [450, 650.5],
+  "render": {"spp": 4, "width": 64, "height": 48, "crop": {"focus": [0.09, 0, 0.001], "radius": 0.06}, "columns": 2},
+  "brdf_slices": {"theta_i": [0, 45]},
+  "albedo": {"theta_i": [0, 30, 60]}
+})";
+}
+
+std::string error_of(const std::string& text) {
+    try {
+        parse_study(text, ".", "s.json");
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "no error";
+}
+
+TEST(StudyFile, ReadsEverySection) {
+    const Study s = parse_study(study_text(), "/base", "s.json");
+    EXPECT_EQ(s.views, (std::vector<std::string>{"1", "2"}));
+    ASSERT_EQ(s.models.size(), 3u);
+    EXPECT_EQ(s.models[0].label, "GGX");
+    EXPECT_EQ(s.models[1].label, "ghs");  // the name when no label is given
+    EXPECT_EQ(s.models[1].parameters.at("model"), "ghs");
+    EXPECT_EQ(s.surfaces[0].parameters.at("gamma"), "3.5");
+    EXPECT_EQ(s.lamps[1].parameters.at("lamp_power"), "0.0001");
+    EXPECT_EQ(s.lamps[1].parameters.at("lamp_temperature"), "6500");
+    EXPECT_EQ(s.wavelengths, (std::vector<double>{450, 650.5}));
+    ASSERT_TRUE(s.render && s.render->crop);
+    EXPECT_TRUE(s.render->overview);  // a crop comes with its overview unless told otherwise
+    EXPECT_EQ(s.render->columns, 2);
+    EXPECT_EQ(s.albedo->theta_i.size(), 3u);
+    EXPECT_EQ(s.folder, fs::path("/base"));
+}
+
+TEST(StudyFile, ErrorsNameTheFileAndTheEntry) {
+    const std::string good = study_text();
+    const auto with = [&](const std::string& from, const std::string& to) {
+        std::string t = good;
+        return t.replace(t.find(from), from.size(), to);
+    };
+    EXPECT_EQ(error_of(with("\"views\"", "\"veiws\"")).rfind("s.json: : unknown key 'veiws'", 0), 0u)
+        << error_of(with("\"views\"", "\"veiws\""));
+    EXPECT_NE(error_of(with("\"name\": \"ssa\"", "\"name\": \"ghs\"")).find("s.json: models[2].name: 'ghs' is used twice"),
+              std::string::npos);
+    EXPECT_NE(error_of(with("\"name\": \"kc\"", "\"name\": \"k c\"")).find("surfaces[0].name: name 'k c' may only hold"),
+              std::string::npos);
+    EXPECT_NE(error_of(with("\"spp\": 4", "\"spp\": 0")).find("render.spp: must be a positive integer"), std::string::npos);
+    EXPECT_NE(error_of(with("[0, 45]", "[0, 90]")).find("brdf_slices.theta_i[1]: must be in [0, 90)"), std::string::npos);
+    EXPECT_NE(error_of(with("[450, 650.5]", "[450, -1]")).find("wavelengths[1]: must be > 0 nm"), std::string::npos);
+    EXPECT_NE(error_of(with("\"radius\": 0.06", "\"radius\": \"big\"")).find("render.crop.radius: must be a number"),
+              std::string::npos);
+    EXPECT_NE(error_of(with("\"gamma\": 3.5", "\"gamma\": [3]")).find("surfaces[0].gamma: must be a string, number or boolean"),
+              std::string::npos);
+    EXPECT_NE(error_of(R"({"models": [{"name": "a", "model": "ghs"}]})").find("nothing to do"), std::string::npos);
+    EXPECT_NE(error_of(R"({"models": [{"name": "a"}], "render": {}})").find("\"render\" needs \"scene\""), std::string::npos);
+    EXPECT_NE(error_of(R"({"models": [{"name": "a"}], "albedo": {"theta_i": [0]}})").find("need \"wavelengths\""),
+              std::string::npos);
+    EXPECT_NE(error_of("{\"models\": [").find("s.json: not valid JSON"), std::string::npos);
+}
+
+TEST(StudyFile, WritesWhatItReads) {
+    const Study s = parse_study(study_text(), "/base", "s.json");
+    const Study again = parse_study(to_json(s), "/elsewhere", "copy.json");
+    const std::vector<Job> a = expand(s), b = expand(again);
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        EXPECT_EQ(a[i].id, b[i].id);
+        EXPECT_EQ(a[i].outputs, b[i].outputs);
+        // The same scene and parameters (the copy names the scene by its absolute path).
+        nlohmann::json pa = a[i].parameters, pb = b[i].parameters;
+        pa.erase("scene");
+        pb.erase("scene");
+        EXPECT_EQ(pa, pb) << a[i].id;
+    }
+}
+
+TEST(StudyJobs, ExpandsViewsModelsSurfacesLampsAndWavelengths) {
+    const Study s = parse_study(study_text(), "/base", "s.json");
+    const std::vector<Job> jobs = expand(s);
+    std::map<std::string, std::size_t> index;
+    for (std::size_t i = 0; i < jobs.size(); ++i) {
+        EXPECT_TRUE(index.emplace(jobs[i].id, i).second) << "duplicate " << jobs[i].id;
+        for (const int d : jobs[i].dependencies) EXPECT_LT(static_cast<std::size_t>(d), i) << jobs[i].id;
+    }
+    std::map<JobKind, int> count;
+    for (const Job& j : jobs) ++count[j.kind];
+    // 3 tables (one per model: each has renders and BRDF jobs), 2 lamps x 2 views x 3 models renders, 4 overviews,
+    // 4 sheets, 2 wavelengths x 3 models slices and albedo, 2 + 2 plots.
+    EXPECT_EQ(count[JobKind::tables], 3);
+    EXPECT_EQ(count[JobKind::render], 12);
+    EXPECT_EQ(count[JobKind::overview], 4);
+    EXPECT_EQ(count[JobKind::sheet], 4);
+    EXPECT_EQ(count[JobKind::slice], 6);
+    EXPECT_EQ(count[JobKind::albedo], 6);
+    EXPECT_EQ(count[JobKind::slice_plot], 2);
+    EXPECT_EQ(count[JobKind::albedo_plot], 2);
+
+    const Job& render = jobs.at(index.at("render/kc/cold/view2/ssa"));
+    EXPECT_EQ(render.outputs, (std::vector<std::string>{"renders/kc/cold/view2/ssa.exr", "renders/kc/cold/view2/ssa.png"}));
+    using Text = std::map<std::string, std::string>;
+    const auto defines = render.parameters["defines"].get<Text>();
+    const std::map<std::string, std::string> expected = {
+        {"view", "2"},     {"width", "64"},   {"height", "48"},  {"material", "Au"},           {"model", "ghs_ssa"},
+        {"sigma", "0.15"}, {"corr_length", "4"}, {"gamma", "3.5"}, {"lamp_temperature", "6500"}, {"lamp_power", "0.0001"}};
+    EXPECT_EQ(defines, expected);
+    EXPECT_EQ(render.parameters["spp"], 4);
+    EXPECT_EQ(jobs.at(static_cast<std::size_t>(render.dependencies.at(0))).id, "tables/kc/ssa");
+
+    // The BRDF jobs see the model parameters only (no lamp, no view).
+    const Job& slice = jobs.at(index.at("slice/kc/650.5nm/ggx"));
+    const std::map<std::string, std::string> model_options = {{"material", "Au"}, {"model", "ggx_stats"},
+                                                              {"alpha_from", "measured"}, {"sigma", "0.15"},
+                                                              {"corr_length", "4"}, {"gamma", "3.5"}};
+    EXPECT_EQ(slice.parameters["model_options"].get<Text>(), model_options);
+    EXPECT_EQ(slice.outputs, (std::vector<std::string>{"brdf/kc/slice_650.5nm_ggx.csv"}));
+
+    // The sheet: models in order, the overview opening the second row (2 columns), after everything it shows.
+    const Job& sheet = jobs.at(index.at("sheet/kc/warm/view1"));
+    EXPECT_EQ(sheet.outputs, (std::vector<std::string>{"sheets/kc_warm_view1.png"}));
+    EXPECT_EQ(sheet.inputs, (std::vector<std::string>{"renders/kc/warm/view1/ggx.png", "renders/kc/warm/view1/ghs.png",
+                                                       "renders/kc/warm/view1/overview.png", "renders/kc/warm/view1/ssa.png"}));
+    EXPECT_EQ(sheet.parameters["panels"][2][0], "whole view");
+    EXPECT_EQ(sheet.parameters["title"], "photo-setup view 1, kc, warm, 4 spp");
+    std::set<std::string> shown;
+    for (const int d : sheet.dependencies) shown.insert(jobs.at(static_cast<std::size_t>(d)).id);
+    EXPECT_EQ(shown, (std::set<std::string>{"render/kc/warm/view1/ggx", "render/kc/warm/view1/ghs",
+                                            "render/kc/warm/view1/ssa", "overview/kc/warm/view1"}));
+}
+
+TEST(StudyJobs, TablesOnlyWhereSeveralJobsShareThem) {
+    // One view, no BRDF jobs, no overview: every model has one job, which builds its own tables.
+    std::string text = study_text();
+    for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{
+             {"[1, 2]", "[1]"}, {"\"lamps\"", "\"unused_lamps\""}}) text.replace(text.find(from), from.size(), to);
+    nlohmann::json doc = nlohmann::json::parse(text);
+    doc.erase("unused_lamps");
+    doc.erase("brdf_slices");
+    doc.erase("albedo");
+    doc.erase("wavelengths");
+    doc["render"].erase("crop");
+    const std::vector<Job> jobs = expand(parse_study(doc.dump(), "/base", "s.json"));
+    std::vector<std::string> ids;
+    for (const Job& j : jobs) ids.push_back(j.id);
+    EXPECT_EQ(ids, (std::vector<std::string>{"render/kc/view1/ggx", "render/kc/view1/ghs", "render/kc/view1/ssa",
+                                             "sheet/kc/view1"}));
+    EXPECT_THROW(expand(parse_study(R"({"scene": "absent.xml", "views": [1], "models": [{"name": "a"}], "render": {}})",
+                                    "/nowhere", "s.json")),
+                 Error);
+}
+
+// BRDF jobs run in process: the outputs, the report, the manifest's resume rule.
+TEST(StudyRun, BrdfJobsWriteTablesAndTheManifestKnowsWhenTheyAreUpToDate) {
+    const fs::path dir = scratch("brdf");
+    nlohmann::json doc = nlohmann::json::parse(study_text());
+    for (const char* key : {"scene", "views", "render", "lamps"}) doc.erase(key);
+    doc["wavelengths"] = {550};
+    Study s = parse_study(doc.dump(), dir, "s.json");
+    const std::vector<Job> jobs = expand(s);
+    const JobContext context{1, false, "testhost"};
+    Manifest manifest(dir / "manifest.json", jobs, dir);
+    for (const Job& job : jobs) {
+        if (job.kind == JobKind::slice_plot || job.kind == JobKind::albedo_plot) continue;  // matplotlib: CLI tests
+        const nlohmann::json report = run_job(s, job, context);
+        ASSERT_EQ(report["status"], "done") << job.id << ": " << report.dump();
+        EXPECT_EQ(report["host"], "testhost");
+        EXPECT_GE(report["wall_seconds"].get<double>(), 0.0);
+        EXPECT_EQ(report["outputs"].size(), job.outputs.size());
+        manifest.record(job, report, 3);
+        EXPECT_TRUE(manifest.up_to_date(job)) << job.id;
+    }
+    // The albedo table: one row per incidence angle, albedo in (0, 1] for gold at 550 nm.
+    std::ifstream albedo(dir / "brdf/kc/albedo_550nm_ghs.csv");
+    std::string line;
+    std::getline(albedo, line);
+    EXPECT_EQ(line, "model,theta_i,albedo,scatter,specular");
+    int rows = 0;
+    while (std::getline(albedo, line)) {
+        ++rows;
+        const double value = std::stod(line.substr(line.find(',', 4) + 1));
+        EXPECT_GT(value, 0.5) << line;
+        EXPECT_LE(value, 1.0) << line;
+    }
+    EXPECT_EQ(rows, 3);
+
+    // Read back from disk: still up to date; a changed parameter, a touched or a missing output is not.
+    const Manifest reread(dir / "manifest.json", jobs, dir);
+    const Job* slice = nullptr;
+    for (const Job& j : jobs)
+        if (j.id == "slice/kc/550nm/ghs") slice = &j;
+    ASSERT_NE(slice, nullptr);
+    EXPECT_TRUE(reread.up_to_date(*slice));
+    Job changed = *slice;
+    changed.parameters["theta_i"] = {0, 46};
+    EXPECT_FALSE(reread.up_to_date(changed));
+    const fs::path csv = dir / slice->outputs[0];
+    { std::ofstream(csv, std::ios::app) << "extra\n"; }
+    EXPECT_FALSE(reread.up_to_date(*slice));
+    fs::remove(csv);
+    EXPECT_FALSE(reread.up_to_date(*slice));
+    const nlohmann::json entry = nlohmann::json::parse(std::ifstream(dir / "manifest.json"))["jobs"][0];
+    EXPECT_EQ(entry["rank"], 3);
+    EXPECT_TRUE(entry.contains("finished"));
+    EXPECT_TRUE(entry.contains("cpu_seconds"));
+
+    // A bad parameter fails the job with a message naming it, and leaves no output behind.
+    Job bad = *slice;
+    bad.parameters["model_options"]["gamma"] = "0.5";
+    { std::ofstream(csv) << "stale\n"; }
+    const nlohmann::json report = run_job(s, bad, context);
+    EXPECT_EQ(report["status"], "failed");
+    EXPECT_NE(report["error"].get<std::string>().find("gamma must be > 1, got 0.5"), std::string::npos) << report.dump();
+    EXPECT_FALSE(fs::exists(csv));
+    Job unknown = *slice;
+    unknown.parameters["model_options"]["lamp_power"] = "1";
+    EXPECT_NE(run_job(s, unknown, context)["error"].get<std::string>().find("'lamp_power' is not a parameter of bsdf 'ghs'"),
+              std::string::npos);
+}
+
+TEST(StudyRun, AnUnreadableManifestIsAnErrorNamingIt) {
+    const fs::path dir = scratch("manifest");
+    { std::ofstream(dir / "manifest.json") << "{\"jobs\": ["; }
+    const std::vector<Job> jobs;
+    try {
+        Manifest m(dir / "manifest.json", jobs, dir);
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("manifest.json: not valid JSON"), std::string::npos) << e.what();
+    }
+}
+
+TEST(StudyRun, FingerprintsAreFnv1aOfTheBytes) {
+    const fs::path file = scratch("fingerprint") / "a.txt";
+    { std::ofstream(file, std::ios::binary) << "a"; }
+    const auto f = fingerprint(file);
+    ASSERT_TRUE(f);
+    EXPECT_EQ(f->bytes, 1u);
+    EXPECT_EQ(f->fnv1a, "af63dc4c8601ec8c");  // FNV-1a 64 of "a" (the published test vector)
+    EXPECT_FALSE(fingerprint(file.parent_path() / "absent"));
+}
+
+}  // namespace
+}  // namespace surfscatter::study
