@@ -356,7 +356,7 @@ TEST_F(Distributed, AJobWithABadParameterFailsNamingItWhileTheOthersComplete) {
     const std::string listed = r.err.substr(r.err.find("jobs failed:"));
     for (const char* id : {"render/view1/bad", "render/view2/bad"})
         EXPECT_NE(listed.find(std::string(id) + ": "), std::string::npos) << id << " not listed: " << r.err;
-    EXPECT_NE(listed.find("gamma must be > 1, got 0.5"), std::string::npos) << r.err;
+    EXPECT_NE(listed.find("gamma must be between 1.01 and 100 (KC), got 0.5"), std::string::npos) << r.err;
     EXPECT_EQ(listed.find("ggx_measured"), std::string::npos) << r.err;
     const auto jobs = entries(manifest_of(dir));
     EXPECT_EQ(jobs.at("render/view1/bad")["status"], "failed");

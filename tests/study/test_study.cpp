@@ -250,7 +250,7 @@ TEST(StudyRun, BrdfJobsWriteTablesAndTheManifestKnowsWhenTheyAreUpToDate) {
     { std::ofstream(csv) << "stale\n"; }
     const nlohmann::json report = run_job(s, bad, context);
     EXPECT_EQ(report["status"], "failed");
-    EXPECT_NE(report["error"].get<std::string>().find("gamma must be > 1, got 0.5"), std::string::npos) << report.dump();
+    EXPECT_NE(report["error"].get<std::string>().find("gamma must be between 1.01 and 100 (KC), got 0.5"), std::string::npos) << report.dump();
     EXPECT_FALSE(fs::exists(csv));
     Job unknown = *slice;
     unknown.parameters["model_options"]["lamp_power"] = "1";
