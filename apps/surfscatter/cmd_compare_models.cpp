@@ -105,13 +105,11 @@ const Command command("compare-models", [](CLI::App& app) {
     sub->add_option("--spp", args->spp, "Samples per pixel");
     sub->add_option("--width", args->width, "Image width");
     sub->add_option("--height", args->height, "Image height");
-    sub->add_option("--threads", args->run.threads, "Worker threads per rank, 1..256 (default 0: all the rank's cores)");
     sub->add_option("--smoothing", args->smoothing, "Gaussian smoothing std for the smoothed GGX, um");
     add_number_list(sub, "--focus", args->focus, "World point (x,y,z, metres) the sheet's panels are cropped around");
     sub->add_option("--focus-radius", args->focus_radius, "Half-size of the cropped square, metres (0: whole images)");
     sub->add_option("-o,--output-dir", args->output_dir, "Folder for the renders, sheets/, manifest.json, study.json");
-    sub->add_flag("--quiet", args->run.quiet, "No render progress bars");
-    sub->add_flag("--list", args->run.list, "List the jobs and which are up to date; run nothing");
+    add_study_run_options(sub, args->run);
     sub->callback([args, sub] {
         args->focus_given = sub->count("--focus") > 0;
         run_study(

@@ -20,9 +20,7 @@ const Command command("study", [](CLI::App& app) {
                  "wavelength, comparison sheets; over MPI ranks under mpirun/srun; resumes where it stopped");
     sub->add_option("study", args->file, "Study file (.json)")->required();
     sub->add_option("-o,--output-dir", args->output_dir, "Folder for outputs and manifest.json (default: the study file's)");
-    sub->add_option("--threads", args->run.threads, "Worker threads per rank, 1..256 (default 0: all the rank's cores)");
-    sub->add_flag("--quiet", args->run.quiet, "No render progress bars");
-    sub->add_flag("--list", args->run.list, "List the jobs and which are up to date; run nothing");
+    add_study_run_options(sub, args->run);
     sub->callback([args] {
         run_study(
             [&] {

@@ -47,6 +47,12 @@ std::vector<bool> up_to_date(const std::vector<study::Job>& jobs, const study::M
 
 }  // namespace
 
+void add_study_run_options(CLI::App* command, StudyRunOptions& options) {
+    command->add_option("--threads", options.threads, "Worker threads per rank, 1..256 (default 0: all the rank's cores)");
+    command->add_flag("--quiet", options.quiet, "No render progress bars");
+    command->add_flag("--list", options.list, "List the jobs and which are up to date; run nothing");
+}
+
 void run_study(const std::function<study::Study()>& make, const StudyRunOptions& options) {
     distributed::Session session;
     study::Study s;

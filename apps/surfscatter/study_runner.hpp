@@ -4,6 +4,8 @@
 // this process; jobs that are up to date in the manifest are skipped.
 #include <functional>
 
+#include <CLI/CLI.hpp>
+
 #include "surfscatter/study/study.hpp"
 
 namespace surfscatter::cli {
@@ -13,6 +15,9 @@ struct StudyRunOptions {
     bool quiet = false;  // no render progress bars (one line per job is always printed)
     bool list = false;   // list the jobs and whether each is up to date; run nothing
 };
+
+// --threads, --quiet and --list.
+void add_study_run_options(CLI::App* command, StudyRunOptions& options);
 
 // `make` builds the study on every rank (its errors are reported once). Exit: 0; 2 (QuietExit or Error) if a job
 // failed, after listing the failures; 130 if interrupted (rerun to resume).

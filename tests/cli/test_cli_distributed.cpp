@@ -25,8 +25,9 @@ namespace {
 
 constexpr double kDeadline = 240;  // seconds: far beyond any of these runs, even on a loaded 2-core machine
 
+// One folder per test process: ctest runs the cases in parallel, and other worktrees' suites share /tmp.
 fs::path temp_dir() {
-    const fs::path dir = fs::temp_directory_path() / "surfscatter_test_cli_distributed";
+    const fs::path dir = fs::temp_directory_path() / ("surfscatter_test_cli_distributed_" + std::to_string(::getpid()));
     fs::create_directories(dir);
     return dir;
 }
@@ -37,6 +38,10 @@ protected:
         // CI runs as root; Open MPI refuses that unless told.
         setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
         setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
+    }
+    // The renders and studies are kept for a look when a test failed.
+    static void TearDownTestSuite() {
+        if (::testing::UnitTest::GetInstance()->Passed()) fs::remove_all(temp_dir());
     }
 
     // mpirun -np N on this host: more ranks than cores allowed; shared memory without the single-copy mechanism
@@ -215,8 +220,9 @@ void interrupt_render(const std::vector<std::string>& launcher, int sig, const s
 }
 
 TEST_F(Distributed, CtrlCWritesTheImageOfEveryRankSoFar) {
-    // SIGINT to mpirun reaches the ranks as SIGTERM after odls_base_sigkill_timeout seconds, and SIGKILL follows
-    // as long again: 5 s here (default 1) so that a pass (800 spp) can end on a loaded machine (docs/DISTRIBUTED.md).
+    // SIGINT to mpirun reaches the ranks as SIGTERM, and SIGKILL follows odls_base_sigkill_timeout seconds later:
+    // the ranks stop within a sample, but summing and writing the image must fit in that time; 5 s here (default
+    // 1) for a heavily loaded machine (docs/DISTRIBUTED.md).
     interrupt_render(mpirun(2, {"--mca", "odls_base_sigkill_timeout", "5"}), SIGINT, "ctrl_c");
 }
 

@@ -7,6 +7,8 @@
 #include <set>
 #include <sstream>
 
+#include <unistd.h>
+
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/study/jobs.hpp"
 #include "surfscatter/study/manifest.hpp"
@@ -18,8 +20,20 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// One folder per test process (ctest runs the cases in parallel, other worktrees' suites share /tmp), removed at
+// exit unless a test failed.
+fs::path scratch_root() { return fs::temp_directory_path() / ("surfscatter_test_study_" + std::to_string(::getpid())); }
+
+class ScratchCleanup : public ::testing::Environment {
+public:
+    void TearDown() override {
+        if (::testing::UnitTest::GetInstance()->Passed()) fs::remove_all(scratch_root());
+    }
+};
+const ::testing::Environment* const scratch_cleanup = ::testing::AddGlobalTestEnvironment(new ScratchCleanup);
+
 fs::path scratch(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / "surfscatter_test_study" / name;
+    const fs::path dir = scratch_root() / name;
     fs::remove_all(dir);
     fs::create_directories(dir);
     return dir;
@@ -243,6 +257,11 @@ TEST(StudyRun, BrdfJobsWriteTablesAndTheManifestKnowsWhenTheyAreUpToDate) {
     EXPECT_EQ(entry["rank"], 3);
     EXPECT_TRUE(entry.contains("finished"));
     EXPECT_TRUE(entry.contains("cpu_seconds"));
+    // What each job waited for (scripts/study-scaling-estimate replays the schedule from it).
+    for (const nlohmann::json& e : nlohmann::json::parse(std::ifstream(dir / "manifest.json"))["jobs"])
+        if (e["id"] == slice->id) {
+            EXPECT_EQ(e["needs"], nlohmann::json::array({"tables/kc/ghs"}));
+        }
 
     // A bad parameter fails the job with a message naming it, and leaves no output behind.
     Job bad = *slice;

@@ -7,7 +7,7 @@
 // with one rank) the same jobs run in the same order in this process.
 //
 // Ctrl-C (SIGINT, or the SIGTERM mpirun sends every rank): no job is handed out any more; running jobs end as their
-// own code decides (renders stop after the current pass) and their reports still reach rank 0.
+// own code decides (renders stop within a sample) and their reports still reach rank 0.
 #include <functional>
 #include <string>
 #include <vector>

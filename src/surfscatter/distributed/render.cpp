@@ -10,6 +10,7 @@
 
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/progress.hpp"
+#include "surfscatter/core/resources.hpp"
 
 namespace surfscatter::distributed {
 
@@ -57,8 +58,14 @@ render::Film render(const Session& session, const render::Scene& scene, const re
     if (session.size() == 1) return render::render(scene, options, stats);
     const auto start = std::chrono::steady_clock::now();
     const int spp = render::samples_per_pixel(scene, options);
-    const std::uint64_t total = static_cast<std::uint64_t>(scene.film.output_width()) *
-                                static_cast<std::uint64_t>(scene.film.output_height()) * static_cast<std::uint64_t>(spp);
+    const std::uint64_t pixels =
+        static_cast<std::uint64_t>(scene.film.output_width()) * static_cast<std::uint64_t>(scene.film.output_height());
+    // Beyond the film itself (render::Film checks its own size): its state, copied once to be summed.
+    session.collectively([&] {
+        require_memory(double(pixels) * render::Film::kStateValues * sizeof(double),
+                       fmt::format("summing a {}x{} film over ranks", scene.film.output_width(), scene.film.output_height()));
+    });
+    const std::uint64_t total = pixels * static_cast<std::uint64_t>(spp);
     Progress progress("render", total, session.root() && options.progress);
     render::RenderOptions part = options;
     part.part = session.rank();

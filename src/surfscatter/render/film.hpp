@@ -72,6 +72,7 @@ public:
     // The accumulated state as one array, five numbers per pixel (the sums of w X, w Y, w Z, w covered, and the
     // sample count N), for summing films over processes (distributed/render.hpp). Films that hold disjoint pixels
     // sum exactly to the film of their union (x + 0 = x), in any order.
+    static constexpr std::size_t kStateValues = 5;  // per pixel
     std::vector<double> state() const;
     void set_state(std::span<const double> state);  // a state() of a film of the same size
     void accumulate(const Film& other);               // pixel-wise sum of the states (same size)
@@ -91,7 +92,6 @@ private:
         double alpha = 0;     // sum of w over covering samples
         std::uint32_t count = 0;
     };
-    static constexpr std::size_t kStateValues = 5;
     int width_, height_;
     TiledPixels<Pixel> pixels_;
 };

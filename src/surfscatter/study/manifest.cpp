@@ -3,11 +3,11 @@
 #include <chrono>
 #include <ctime>
 #include <fstream>
-#include <sstream>
 
 #include <fmt/format.h>
 
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/input_file.hpp"
 #include "surfscatter/core/paths.hpp"
 
 namespace surfscatter::study {
@@ -49,13 +49,11 @@ std::optional<Fingerprint> fingerprint(const std::filesystem::path& file) {
 
 Manifest::Manifest(std::filesystem::path file, const std::vector<Job>& jobs, const std::filesystem::path& folder)
     : file_(std::move(file)), folder_(folder), jobs_(jobs) {
-    std::ifstream in(file_, std::ios::binary);
-    if (!in) return;
-    std::ostringstream text;
-    text << in.rdbuf();
+    if (!std::filesystem::exists(file_)) return;
+    const std::string text = read_input_file(file_, "study manifest");
     json document;
     try {
-        document = json::parse(text.str());
+        document = json::parse(text);
     } catch (const json::parse_error& e) {
         fail("{}: not valid JSON ({}); move it away to start the study afresh", file_.string(), e.what());
     }
@@ -91,6 +89,9 @@ bool Manifest::up_to_date(const Job& job) const {
 
 void Manifest::record(const Job& job, json report, int rank) {
     json entry = {{"id", job.id}, {"kind", to_string(job.kind)}, {"parameters", job.parameters}};
+    json needs = json::array();
+    for (const int d : job.dependencies) needs.push_back(jobs_.at(static_cast<std::size_t>(d)).id);
+    entry["needs"] = needs;
     for (auto& [key, value] : report.items()) entry[key] = std::move(value);
     entry["rank"] = rank;
     entry["finished"] = utc_now();

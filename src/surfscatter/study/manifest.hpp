@@ -1,8 +1,8 @@
 #pragma once
 // manifest.json in the study folder: one entry per job of the study, in job order -
-//   {"id", "kind", "parameters", "status": "done" | "failed" | "interrupted", "error",
-//    "outputs": [{"path", "bytes", "fnv1a"}], "inputs": [{"path", "fnv1a"}], "wall_seconds", "cpu_seconds",
-//    "rank", "host", "finished"}
+//   {"id", "kind", "parameters", "needs": [ids of the jobs it waited for],
+//    "status": "done" | "failed" | "interrupted", "error", "outputs": [{"path", "bytes", "fnv1a"}],
+//    "inputs": [{"path", "fnv1a"}], "wall_seconds", "cpu_seconds", "rank", "host", "finished"}
 // rewritten (temporary file + rename) after every job, so a killed study keeps the record of every job it finished.
 // A job is up to date - skipped when the study runs again - if its entry is "done" with the same parameters and
 // every output (and every input it read) still has the recorded size and FNV-1a 64 hash.

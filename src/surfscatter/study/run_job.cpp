@@ -29,11 +29,16 @@ namespace {
 using nlohmann::json;
 namespace fs = std::filesystem;
 
+// This process's CPU time and that of the children it waited for (the plotting scripts of sheets and plots).
 double cpu_seconds() {
-    rusage usage{};
-    getrusage(RUSAGE_SELF, &usage);
     const auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
-    return seconds(usage.ru_utime) + seconds(usage.ru_stime);
+    double total = 0;
+    for (const int who : {RUSAGE_SELF, RUSAGE_CHILDREN}) {
+        rusage usage{};
+        getrusage(who, &usage);
+        total += seconds(usage.ru_utime) + seconds(usage.ru_stime);
+    }
+    return total;
 }
 
 struct Box {

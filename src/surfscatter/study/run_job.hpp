@@ -19,7 +19,7 @@ struct JobContext {
 // parameters and rank) says what happened:
 //   {"status": "done" | "failed" | "interrupted", "error": "...", "outputs": [{"path", "bytes", "fnv1a"}],
 //    "inputs": [{"path", "fnv1a"}], "notes": [...], "wall_seconds", "cpu_seconds", "host"}
-// A render that Ctrl-C interrupts still writes the image of its completed passes, reported "interrupted" (so the
+// A render that Ctrl-C interrupts still writes the image of the samples taken, reported "interrupted" (so the
 // study renders it again when resumed).
 nlohmann::json run_job(const Study& study, const Job& job, const JobContext& context);
 
