@@ -293,6 +293,19 @@ public:
               "<SizeX>2</SizeX><SizeY>2</SizeY><SizeZ>1</SizeZ></MatrixDimension><DataList><Datum>0</Datum>"
               "<Datum>1e-9</Datum><Datum>2e-9</Datum><Datum>0</Datum></DataList></Record3></p:ISO5436_2>\n"}});
         fs::rename(x3p_partial, dir() / "line_break.x3p");
+
+        // Study files (docs/DISTRIBUTED.md).
+        const std::string albedo_only = R"("wavelengths": [500], "albedo": {"theta_i": [0]})";
+        write("study_truncated.json", R"({"models": [{"name": "a", "model": "ghs"})");
+        write("study_unknown_key.json", R"({"models": [{"name": "a", "model": "ghs"}], )" + albedo_only + R"(, "colour": 1})");
+        write("study_name_path.json", R"({"models": [{"name": "../a", "model": "ghs"}], )" + albedo_only + "}");
+        write("study_name_twice.json",
+              R"({"models": [{"name": "a", "model": "ghs"}, {"name": "a", "model": "ggx_stats"}], )" + albedo_only + "}");
+        write("study_theta_90.json", R"({"models": [{"name": "a", "model": "ghs"}], "wavelengths": [500], "albedo": {"theta_i": [90]}})");
+        write("study_focus_huge.json",
+              R"({"models": [{"name": "a", "model": "ghs"}], "scene": "ok.xml", "views": [1],
+                  "render": {"crop": {"focus": [1e300, 0, 0], "radius": 1}}})");
+        write("study_nested.json", R"({"models": )" + nested("[", "]", "", 100000) + "}");
     }
 };
 
@@ -335,6 +348,17 @@ std::vector<std::string> calibrate(const std::string& squares) {
 const std::vector<HostileCase> kCases = {
     // Crashes.
     {"ThreadsHundredThousand", render("ok.xml", {"--threads", "100000"}), 2, "--threads must be between 1 and 256"},
+    {"StudyDevZero", {"study", "/dev/zero"}, 2, "study file /dev/zero is not a regular file"},
+    {"StudyDirectory", {"study", "@D@/dir.yml"}, 2, "study file @D@/dir.yml is a directory"},
+    {"StudyTruncated", {"study", "@D@/study_truncated.json"}, 2, "@D@/study_truncated.json: not valid JSON"},
+    {"StudyUnknownKey", {"study", "@D@/study_unknown_key.json"}, 2, "@D@/study_unknown_key.json: unknown key 'colour'"},
+    {"StudyNameIsAPath", {"study", "@D@/study_name_path.json"}, 2,
+     "models[0].name: name '../a' may only hold letters, digits, '_', '-' and '.'"},
+    {"StudyNameTwice", {"study", "@D@/study_name_twice.json"}, 2, "models[1].name: 'a' is used twice"},
+    {"StudyTheta90", {"study", "@D@/study_theta_90.json"}, 2, "albedo.theta_i[0]: must be in [0, 90) degrees, got 90"},
+    {"StudyFocusHuge", {"study", "@D@/study_focus_huge.json"}, 2, "render.crop.focus[0]: must be within +-1e+15"},
+    {"StudyNested", {"study", "@D@/study_nested.json"}, 2, "@D@/study_nested.json: arrays and objects nested more than 64 deep"},
+    {"StudyThreads", {"study", "@D@/study_theta_90.json", "--threads", "100000"}, 2, "--threads must be between 1 and 256"},
     {"TwosidedNested30000Deep", render("twosided_30000.xml"), 2, "twosided_30000.xml:10: elements nested more than 64 deep"},
     {"CheckerboardNested30000Deep", render("checker_30000.xml"), 2, "checker_30000.xml:10: elements nested more than 64 deep"},
     // Hangs.

@@ -94,7 +94,7 @@ TEST(StudyFile, ErrorsNameTheFileAndTheEntry) {
         std::string t = good;
         return t.replace(t.find(from), from.size(), to);
     };
-    EXPECT_EQ(error_of(with("\"views\"", "\"veiws\"")).rfind("s.json: : unknown key 'veiws'", 0), 0u)
+    EXPECT_EQ(error_of(with("\"views\"", "\"veiws\"")).rfind("s.json: unknown key 'veiws'", 0), 0u)
         << error_of(with("\"views\"", "\"veiws\""));
     EXPECT_NE(error_of(with("\"name\": \"ssa\"", "\"name\": \"ghs\"")).find("s.json: models[2].name: 'ghs' is used twice"),
               std::string::npos);
@@ -275,6 +275,22 @@ TEST(StudyRun, BrdfJobsWriteTablesAndTheManifestKnowsWhenTheyAreUpToDate) {
     unknown.parameters["model_options"]["lamp_power"] = "1";
     EXPECT_NE(run_job(s, unknown, context)["error"].get<std::string>().find("'lamp_power' is not a parameter of bsdf 'ghs'"),
               std::string::npos);
+}
+
+TEST(StudyRun, ASheetWithoutAnyOfItsImagesFailsSayingWhy) {
+    const fs::path dir = scratch("sheet");
+    Study s;
+    s.folder = dir;
+    Job sheet;
+    sheet.id = "sheet/view1";
+    sheet.kind = JobKind::sheet;
+    sheet.parameters = {{"title", "t"}, {"columns", 2}, {"panels", nlohmann::json::array({nlohmann::json::array({"GHS", "renders/view1/ghs.png"})})}};
+    sheet.outputs = {"sheets/view1.png"};
+    sheet.inputs = {"renders/view1/ghs.png"};
+    const nlohmann::json report = run_job(s, sheet, JobContext{1, false, "testhost"});
+    EXPECT_EQ(report["status"], "failed");
+    EXPECT_EQ(report["error"], "none of the sheet's images exists (their jobs failed)");
+    EXPECT_FALSE(fs::exists(dir / "sheets/view1.png"));
 }
 
 TEST(StudyRun, AnUnreadableManifestIsAnErrorNamingIt) {

@@ -9,6 +9,7 @@
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/input_file.hpp"
 #include "surfscatter/core/paths.hpp"
+#include "surfscatter/study/json_input.hpp"
 
 namespace surfscatter::study {
 
@@ -53,11 +54,12 @@ Manifest::Manifest(std::filesystem::path file, const std::vector<Job>& jobs, con
     const std::string text = read_input_file(file_, "study manifest");
     json document;
     try {
-        document = json::parse(text);
-    } catch (const json::parse_error& e) {
-        fail("{}: not valid JSON ({}); move it away to start the study afresh", file_.string(), e.what());
+        document = parse_json_input(text, file_.string());
+    } catch (const Error& e) {
+        fail("{}; move it away to start the study afresh", e.what());
     }
-    if (!document.is_object() || document.value("format", "") != kFormat || !document["jobs"].is_array())
+    if (!document.is_object() || !document.contains("format") || document["format"] != kFormat ||
+        !document.contains("jobs") || !document["jobs"].is_array())
         fail("{}: not a surfscatter study manifest; move it away to start the study afresh", file_.string());
     std::map<std::string, json> recorded;
     for (const json& entry : document["jobs"])
@@ -70,15 +72,17 @@ bool Manifest::up_to_date(const Job& job) const {
     const auto it = entries_.find(job.id);
     if (it == entries_.end()) return false;
     const json& e = it->second;
-    if (e.value("status", "") != "done" || e.value("parameters", json()) != job.parameters) return false;
+    // Compared as JSON values: a hand-edited entry of the wrong type is out of date, not an exception.
+    if (!e.contains("status") || e["status"] != "done" || !e.contains("parameters") || e["parameters"] != job.parameters)
+        return false;
     const auto matches = [&](const char* list, bool check_size) {
         if (!e.contains(list)) return true;
         if (!e[list].is_array()) return false;
         for (const json& f : e[list]) {
             if (!f.is_object() || !f.contains("path") || !f["path"].is_string()) return false;
             const auto now = fingerprint(folder_ / f["path"].get<std::string>());
-            if (!now || now->fnv1a != f.value("fnv1a", "")) return false;
-            if (check_size && now->bytes != f.value("bytes", std::uintmax_t{0})) return false;
+            if (!now || !f.contains("fnv1a") || f["fnv1a"] != now->fnv1a) return false;
+            if (check_size && (!f.contains("bytes") || f["bytes"] != now->bytes)) return false;
         }
         return true;
     };

@@ -232,11 +232,16 @@ private:
     void sheet() {
         const auto& p = job_.parameters;
         std::vector<std::string> panels;
+        std::size_t missing = 0;
         for (const json& panel : p["panels"]) {
             const fs::path path = s_.folder / panel[1].get<std::string>();
-            if (!fs::exists(path)) notes_.push_back(fmt::format("{} is missing from the sheet", panel[1].get<std::string>()));
+            if (!fs::exists(path)) {
+                notes_.push_back(fmt::format("{} is missing from the sheet", panel[1].get<std::string>()));
+                ++missing;
+            }
             panels.push_back(panel[0].get<std::string>() + "=" + path.string());
         }
+        if (missing == panels.size()) fail("none of the sheet's images exists (their jobs failed)");
         write_atomically(output(0), [&](const fs::path& tmp) {
             std::vector<std::string> args = {tmp.string(), p["title"].get<std::string>(), std::to_string(p["columns"].get<int>())};
             args.insert(args.end(), panels.begin(), panels.end());

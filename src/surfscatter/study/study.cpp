@@ -9,6 +9,7 @@
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/input_file.hpp"
 #include "surfscatter/render/scene.hpp"
+#include "surfscatter/study/json_input.hpp"
 
 namespace surfscatter::study {
 
@@ -22,16 +23,19 @@ struct Node {
     std::string path;
     const std::string& origin;
 
-    Node operator[](const std::string& key) const { return {value.at(key), path.empty() ? key : path + "." + key, origin}; }
+    Node operator[](const std::string& key) const {
+        return {value.at(key), (path.empty() ? "" : path + ".") + printable(key), origin};
+    }
     Node operator[](std::size_t i) const { return {value.at(i), fmt::format("{}[{}]", path, i), origin}; }
 
     template <typename... Args>
     [[noreturn]] void error(fmt::format_string<Args...> format, Args&&... args) const {
-        throw Error(fmt::format("{}: {}: {}", origin, path, fmt::format(format, std::forward<Args>(args)...)));
+        const std::string message = fmt::format(format, std::forward<Args>(args)...);
+        throw Error(path.empty() ? fmt::format("{}: {}", origin, message) : fmt::format("{}: {}: {}", origin, path, message));
     }
 
     void require(json::value_t type, const char* name) const {
-        if (value.type() != type) error("must be {}, got {}", name, value.dump());
+        if (value.type() != type) error("must be {}, got {}", name, quoted_json(value));
     }
 
     // The object's keys must be among `known`.
@@ -43,7 +47,7 @@ struct Node {
             if (!ok) {
                 std::string list;
                 for (const char* k : known) list += (list.empty() ? "" : ", ") + std::string(k);
-                error("unknown key '{}' (known: {})", key, list);
+                error("unknown key '{}' (known: {})", printable(key), list);
             }
         }
     }
@@ -51,7 +55,7 @@ struct Node {
     bool has(const std::string& key) const { return value.contains(key); }
 
     double number() const {
-        if (!value.is_number()) error("must be a number, got {}", value.dump());
+        if (!value.is_number()) error("must be a number, got {}", quoted_json(value));
         const double v = value.get<double>();
         if (!std::isfinite(v)) error("must be finite");
         return v;
@@ -59,12 +63,12 @@ struct Node {
 
     int positive_int() const {
         if (!value.is_number_integer() || value.get<long long>() <= 0 || value.get<long long>() > (1LL << 30))
-            error("must be a positive integer, got {}", value.dump());
+            error("must be a positive integer, got {}", quoted_json(value));
         return static_cast<int>(value.get<long long>());
     }
 
     std::string string() const {
-        if (!value.is_string()) error("must be a string, got {}", value.dump());
+        if (!value.is_string()) error("must be a string, got {}", quoted_json(value));
         return value.get<std::string>();
     }
 
@@ -74,7 +78,7 @@ struct Node {
         if (value.is_boolean()) return value.get<bool>() ? "true" : "false";
         if (value.is_number_integer()) return std::to_string(value.get<long long>());
         if (value.is_number()) return fmt::format("{}", number());
-        error("must be a string, number or boolean, got {}", value.dump());
+        error("must be a string, number or boolean, got {}", quoted_json(value));
     }
 
     std::vector<double> numbers() const {
@@ -90,7 +94,7 @@ void check_name(const Node& node, const std::string& name) {
     if (name.empty()) node.error("needs a non-empty name");
     for (const char c : name)
         if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.'))
-            node.error("name '{}' may only hold letters, digits, '_', '-' and '.' (it names files)", name);
+            node.error("name '{}' may only hold letters, digits, '_', '-' and '.' (it names files)", printable(name));
     if (name == "." || name == "..") node.error("name '{}' would name a folder", name);
 }
 
@@ -143,7 +147,7 @@ RenderSettings render_settings(const Node& node) {
     if (node.has("height")) r.height = node["height"].positive_int();
     if (node.has("seed")) {
         const Node seed = node["seed"];
-        if (!seed.value.is_number_unsigned()) seed.error("must be a non-negative integer, got {}", seed.value.dump());
+        if (!seed.value.is_number_unsigned()) seed.error("must be a non-negative integer, got {}", quoted_json(seed.value));
         r.seed = seed.value.get<std::uint64_t>();
     }
     if (node.has("parameters")) r.parameters = parameters_of(node["parameters"]);
@@ -188,12 +192,7 @@ Parameters Study::with_absolute_files(Parameters values) const {
 }
 
 Study parse_study(const std::string& text, const std::filesystem::path& base, const std::string& origin) {
-    json document;
-    try {
-        document = json::parse(text);
-    } catch (const json::parse_error& e) {
-        fail("{}: not valid JSON: {}", origin, e.what());
-    }
+    const json document = parse_json_input(text, origin);
     const Node root{document, "", origin};
     if (!document.is_object()) throw Error(fmt::format("{}: the study must be a JSON object", origin));
     root.only({"scene", "views", "parameters", "models", "surfaces", "lamps", "wavelengths", "render", "brdf_slices",
