@@ -122,11 +122,13 @@ TEST(ModelParameters, TextErrorsNameTheOriginAndTheParameter) {
         m[k] = v;
         return m;
     };
-    EXPECT_NE(message("ghs", with("alpha_from", "measured")).find("'alpha_from' is not a parameter of bsdf 'ghs'"),
+    EXPECT_EQ(message("ghs", with("alpha_from", "measured")),
+              "models[1]: alpha_from: parameter 'alpha_from' does not apply to bsdf 'ghs': used by model ggx only");
+    EXPECT_NE(message("ghs", with("alpha_form", "measured")).find("'alpha_form' is not a parameter of bsdf 'ghs'"),
               std::string::npos);
     EXPECT_NE(message("ghs", with("sigma", "0.1x")).find("models[1]: sigma: '0.1x' is not a finite number"),
               std::string::npos);
-    EXPECT_NE(message("ghs", with("gamma", "0.5")).find("gamma must be > 1"), std::string::npos);
+    EXPECT_EQ(message("ghs", with("gamma", "0.5")), "models[1]: bsdf 'ghs': gamma must be between 1.01 and 100 (KC), got 0.5");
     EXPECT_NE(message("ghs", with("renormalization", "yes")).find("true or false"), std::string::npos);
     EXPECT_NE(message("roughconductor", kc).find("unknown scattering model 'roughconductor'"), std::string::npos);
 }

@@ -139,6 +139,8 @@ bsdf::ModelOptions scattering_model_options(Properties& props, const std::string
         bsdf::validate(o);
         props.share_height_map(o.surface);
         return o;
+    } catch (const SceneError&) {
+        throw;
     } catch (const Error& e) {
         props.fail("bsdf '{}': {}", type, e.what());
     }
