@@ -32,7 +32,7 @@ std::string printable(std::string_view text, std::size_t max_chars) {
     return out;
 }
 
-std::string describe(const std::exception_ptr& error) {
+std::string error_message(const std::exception_ptr& error) {
     try {
         std::rethrow_exception(error);
     } catch (const Error& e) {

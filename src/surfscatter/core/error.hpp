@@ -23,7 +23,7 @@ template <typename... Args>
 
 // The one-line message of an exception for reports: an Error's message as it is, anything else prefixed with
 // "internal error: ".
-std::string describe(const std::exception_ptr& error);
+std::string error_message(const std::exception_ptr& error);
 
 // Checks a user-supplied value; `what` names it as the user wrote it ("--sigma", "scene.xml:12 alpha").
 void require_finite(double value, const char* what);

@@ -82,7 +82,7 @@ std::string run_guarded(const Session& session, const JobCallbacks& callbacks, i
     try {
         return callbacks.run(job);
     } catch (...) {
-        session.abort(fmt::format("job {}: {}", job, describe(std::current_exception())));
+        session.abort(fmt::format("job {}: {}", job, error_message(std::current_exception())));
     }
 }
 
@@ -189,7 +189,7 @@ void run_jobs(const Session& session, const std::vector<std::vector<int>>& depen
             local.asking = true;
         }
         handing_out.join();
-        if (error) session.abort(describe(error));
+        if (error) session.abort(error_message(error));
     } else {
         int finished = -1;
         std::string report;

@@ -118,11 +118,11 @@ render::Film render(const Session& session, const render::Scene& scene, const re
     try {
         film.emplace(render::render(scene, part, &local));
     } catch (...) {
-        session.abort(describe(std::current_exception()));
+        session.abort(error_message(std::current_exception()));
     }
     finished.store(true, std::memory_order_release);
     relay.join();
-    if (relay_error) session.abort(describe(relay_error));
+    if (relay_error) session.abort(error_message(relay_error));
     progress.finish();
 
     std::vector<double> state = film->state();

@@ -97,7 +97,7 @@ void Session::collectively(const std::function<void()>& step) const {
     try {
         step();
     } catch (...) {
-        error = describe(std::current_exception());
+        error = error_message(std::current_exception());
         if (!mpi_) throw;
     }
     if (!mpi_) return;

@@ -90,7 +90,7 @@ public:
             if (interrupted_) report["status"] = "interrupted";
         } catch (...) {
             report["status"] = "failed";
-            report["error"] = describe(std::current_exception());
+            report["error"] = error_message(std::current_exception());
             // Outputs of earlier runs (with other parameters) must not pass for this job's on sheets and plots.
             std::error_code ec;
             for (const std::string& path : job_.outputs) {
