@@ -3,8 +3,10 @@
 set(SURFSCATTER_WARNINGS -Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wno-sign-conversion)
 # Math functions never set errno and floating-point exceptions never trap (nothing here reads errno after them or
 # enables traps): sqrt becomes one instruction, and loops over the four wavelengths of a path with divisions and
-# selects can be vectorised. IEEE results are unchanged (unlike -ffast-math).
-set(SURFSCATTER_CODEGEN -fno-math-errno -fno-trapping-math)
+# selects can be vectorised. IEEE results are unchanged (unlike -ffast-math). The modules are position-independent
+# (below) but never interposed (static libraries, linked into executables and one Python extension): without
+# -fno-semantic-interposition GCC would not inline a module's own non-inline functions into each other.
+set(SURFSCATTER_CODEGEN -fno-math-errno -fno-trapping-math -fno-semantic-interposition)
 
 # surfscatter_module(<name> [DEPS <targets>...])
 function(surfscatter_module name)

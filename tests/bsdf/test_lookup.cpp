@@ -1,13 +1,18 @@
 // The GHS per-(theta_i, lambda) lookup: NodeAxis, the accuracy of the tabulated sigma and N against their direct
-// computation, and the lock-free lazily built tables under concurrent first use.
+// computation, the lock-free lazily built tables under concurrent first use, and their disk cache.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
 #include <random>
 #include <thread>
 #include <vector>
 
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include "model_fixtures.hpp"
 #include "surfscatter/bsdf/ghs.hpp"
@@ -101,6 +106,53 @@ TEST(Ghs, TablesBuiltConcurrentlyGiveTheSameValues) {
         for (std::size_t t = 0; t < got.size(); ++t)
             EXPECT_EQ(got[t][(i + lambdas.size() - t) % lambdas.size()], expected);
     }
+}
+
+// The per-wavelength tables are kept on disk: a second BSDF gets the same numbers bit for bit without rewriting the
+// files, and a corrupt file is rebuilt (the same file again).
+TEST(Ghs, TablesCachedOnDiskGiveTheSameValues) {
+    const auto dir = std::filesystem::temp_directory_path() / fmt::format("surfscatter-ghs-cache-{}", getpid());
+    std::filesystem::remove_all(dir);
+    const char* previous = std::getenv("SURFSCATTER_CACHE_DIR");
+    const std::string restore = previous ? previous : "";
+    setenv("SURFSCATTER_CACHE_DIR", dir.c_str(), 1);
+    const auto values = [] {
+        const auto bsdf = make_bsdf(test::kc_options(ModelKind::ghs, 0.1, 1.0, 3.0));
+        const auto& ghs = dynamic_cast<const GhsBsdf&>(*bsdf);
+        std::vector<double> v;
+        for (double lambda : {401.0, 587.0})
+            for (double c : {0.05, 0.5, 0.99}) {
+                v.push_back(ghs.sigma(c, lambda));
+                v.push_back(ghs.normalization(c, lambda));
+            }
+        return v;
+    };
+    const auto files = [&] {
+        std::map<std::string, std::string> contents;
+        for (const auto& entry : std::filesystem::directory_iterator(dir))
+            if (entry.path().filename().string().starts_with("ghs-incidence")) {
+                std::ifstream in(entry.path(), std::ios::binary);
+                contents[entry.path().string()] = std::string(std::istreambuf_iterator<char>(in), {});
+            }
+        return contents;
+    };
+    const std::vector<double> built = values();
+    const auto written = files();
+    EXPECT_EQ(written.size(), 4u);  // two wavelength nodes around each wavelength
+    std::map<std::string, std::filesystem::file_time_type> times;
+    for (const auto& [path, bytes] : written) times[path] = std::filesystem::last_write_time(path);
+    EXPECT_EQ(values(), built);
+    for (const auto& [path, time] : times) EXPECT_EQ(std::filesystem::last_write_time(path), time) << path;
+    for (const auto& [path, bytes] : written) {
+        std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
+        f.seekp(static_cast<std::streamoff>(bytes.size() / 2));
+        f.write("garbage!", 8);
+    }
+    EXPECT_EQ(values(), built);
+    EXPECT_EQ(files(), written);
+    if (restore.empty()) unsetenv("SURFSCATTER_CACHE_DIR");
+    else setenv("SURFSCATTER_CACHE_DIR", restore.c_str(), 1);
+    std::filesystem::remove_all(dir);
 }
 
 TEST(Ghs, WavelengthOutsideTheTablesIsAnError) {

@@ -3,12 +3,17 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <limits>
+#include <type_traits>
+
+#include <fmt/format.h>
 
 #include "surfscatter/bsdf/node_axis.hpp"
 #include "surfscatter/bsdf/rayleigh_rice.hpp"
 #include "surfscatter/bsdf/wedge_sampling.hpp"
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/table_cache.hpp"
 #include "surfscatter/math/fast_math.hpp"
 #include "surfscatter/surface/relevant_roughness.hpp"
 
@@ -79,7 +84,7 @@ GhsBsdf::Incidence GhsBsdf::lookup(double cos_theta_i, double lambda_nm) const {
     const NodeAxis::Position l = kWavelengthAxis.position(lambda_nm);
     const NodeAxis::Position c = kIncidenceAxis.position(std::clamp(cos_theta_i, kIncidenceAxis.node(0), 1.0));
     auto table = [&](int slot) -> const Table& {
-        return tables_.get(std::size_t(slot), [&] { return build_table(kWavelengthAxis.node(slot)); });
+        return tables_.get(std::size_t(slot), [&] { return cached_table(kWavelengthAxis.node(slot)); });
     };
     const double d = std::clamp(cos_theta_i, kIncidenceAxis.node(0), 1.0) - kIncidenceAxis.node(c.interval);
     const Interval& a = table(l.interval)[c.interval];
@@ -131,7 +136,8 @@ double GhsBsdf::fresnel(const Vec3& wi, const Vec3& wo, double lambda_nm) const 
     return 0.0;
 }
 
-double GhsBsdf::eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
+// Flattened: the lookup, the logarithms and the Fresnel factor inline, no call but the lobe table's.
+[[gnu::flatten]] double GhsBsdf::eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
     if (wi.z <= 0 || wo.z <= 0) return 0.0;
     const double k = wavenumber(lambda_nm);
     const LobeLogs logs(wi, wo, k);
@@ -196,6 +202,28 @@ std::optional<BsdfSample> GhsBsdf::sample(const Vec3& wi, double lambda_nm, doub
     return out;
 }
 
+// A table takes 64 visible-disc integrals to build (~30 ms; a render touches ~45 wavelength nodes), so it is kept on
+// disk beside the lobe tables, under a key naming everything direct() depends on.
+GhsBsdf::Table GhsBsdf::cached_table(double lambda_nm) const {
+    constexpr std::uint32_t kVersion = 1;  // of build_table's construction
+    static_assert(std::is_trivially_copyable_v<Table> && sizeof(Table) % sizeof(double) == 0);
+    const std::string key =
+        fmt::format("ghs-incidence:{}:sigma_h={:.17g}:{}:normalization={}:relevant={}:lambda={:.17g}:nodes={}",
+                    stats_->cache_key(), stats_->sigma_h(), core_->cache_key(), int(settings_.normalization),
+                    settings_.relevant_roughness, lambda_nm, kThetaNodes);
+    const auto file = table_cache_file("ghs-incidence", kVersion, key);
+    Table t;
+    if (const auto saved = load_cached_table(file, kVersion, key); saved && saved->size() * sizeof(double) == sizeof t) {
+        std::memcpy(&t, saved->data(), sizeof t);
+        return t;
+    }
+    t = build_table(lambda_nm);
+    std::vector<double> payload(sizeof t / sizeof(double));
+    std::memcpy(payload.data(), &t, sizeof t);
+    save_cached_table(file, kVersion, key, payload);
+    return t;
+}
+
 GhsBsdf::Table GhsBsdf::build_table(double lambda_nm) const {
     std::array<double, kThetaNodes> x{}, log_sigma{}, log_norm{};
     for (int j = 0; j < kThetaNodes; ++j) {
@@ -236,11 +264,11 @@ double GhsBsdf::scatter_mass(double theta_i, double lambda_nm, double sigma_um) 
     const double k = wavenumber(lambda_nm);
     const double s = std::sin(theta_i), ci = std::cos(theta_i);
     const double q_lo = 1e-5 / (k * stats_->correlation_length());
+    // |o_xy|^2 = |q (cos phi, sin phi) - i_xy|^2 needs no sine; the density from ln g and ln zeta as in eval (the
+    // exact core's table is log-spaced): a third of the cost of density(g, zeta), which dominated the build.
     return k * k * integrate_visible_disc(s, q_lo, [&](double q, double phi) {
-               const double ox = q * std::cos(phi) - s, oy = q * std::sin(phi);
-               const double co = std::sqrt(std::max(0.0, 1.0 - ox * ox - oy * oy));
-               const double a = k * sigma_um * (ci + co);
-               return core_->density(a * a, k * q);
+               const double co = std::sqrt(std::max(0.0, 1.0 - q * q - s * s + 2.0 * q * s * std::cos(phi)));
+               return core_->density_at_logs(2.0 * math::fast_log(k * sigma_um * (ci + co)), math::fast_log(k * q));
            }, stats_->psd_jump_radius() / k);
 }
 

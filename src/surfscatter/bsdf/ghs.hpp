@@ -8,7 +8,8 @@
 // ln sigma and ln(N / cos^p theta_i) (p = 2 for the albedo normalisation K, which vanishes like cos^2 theta_i at
 // grazing while K / cos^2 stays finite; p = 0 otherwise) are tabulated per wavelength node (2 % apart over
 // [kMinWavelength, kMaxWavelength]; other wavelengths are an Error) over cos theta_i at 64 nodes from 1e-6 (theta_i
-// 89.99994 deg) to 1, theta_j = 90 deg (1 - (1 - j/63)^3), built lazily and read without a lock once built. Between
+// 89.99994 deg) to 1, theta_j = 90 deg (1 - (1 - j/63)^3), built lazily (64 visible-disc integrals, ~30 ms; kept in
+// the disk cache under a key naming the statistics, sigma_h, the core and the settings) and read without a lock. Between
 // incidence nodes both are cubic in cos theta_i (the 4-point Lagrange cubic of each interval, stored as polynomial
 // coefficients), between wavelength nodes linear in lambda; below cos theta_i = 1e-6 the end values hold (K itself
 // still scales with cos^2). Nodes are found by NodeAxis (no log, no acos). eval hands ln g and ln zeta to the core (the
@@ -90,6 +91,7 @@ private:
         double log_g_over_sigma2, log_zeta;
     };
     double density(const LobeLogs& logs, double log_sigma) const;
+    Table cached_table(double lambda_nm) const;  // from the disk cache, else built and saved there
     Table build_table(double lambda_nm) const;
     double scatter_mass(double theta_i, double lambda_nm, double sigma_um) const;  // integral of density over disc
     double fresnel(const Vec3& wi, const Vec3& wo, double lambda_nm) const;

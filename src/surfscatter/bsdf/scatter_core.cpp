@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include <fmt/format.h>
+
 #include "surfscatter/bsdf/poisson.hpp"
 #include "surfscatter/math/fast_math.hpp"
 
@@ -63,6 +65,11 @@ surface::KCorrelation RefitScatterCore::order_statistics(int m) const {
     return m <= kOrders ? orders_[m - 1] : surface::KCorrelation(1.0, order_length(m), gamma_);
 }
 
+std::string RefitScatterCore::cache_key() const {
+    return fmt::format("refit(L={:.17g},gamma={:.17g},x={:.17g},{},epsilon={:.17g})", length_, gamma_, exponent_x_,
+                       to_string(truncation_), epsilon_);
+}
+
 double RefitScatterCore::order_length(int m) const { return length_ * std::pow(double(m), -exponent_x_); }
 
 PoissonWindow RefitScatterCore::window(double g) const {
@@ -99,6 +106,10 @@ double RefitScatterCore::sample_density(double g_star, double zeta_max, double z
 
 FirstOrderCore::FirstOrderCore(std::shared_ptr<const surface::RadialStatistics> stats, SsaForm form)
     : stats_(std::move(stats)), form_(form) {}
+
+std::string FirstOrderCore::cache_key() const {
+    return fmt::format("first-order({},{})", stats_->cache_key(), to_string(form_));
+}
 
 double FirstOrderCore::density(double g, double zeta) const {
     const double weight = form_ == SsaForm::strict ? g : math::one_minus_exp(g);

@@ -5,6 +5,7 @@
 // (rad/um)^2; the BRDF is k^2 times a density (THEORY 0). Each core also draws |zeta| <= zeta_max from the lobe at a
 // fixed g* and reports the exact 2-D density of what it draws, for the wedge sampler (wedge_sampling.hpp).
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "surfscatter/math/fast_math.hpp"
@@ -26,6 +27,8 @@ public:
     // 2-D density (per (rad/um)^2, unit mass over |zeta| <= zeta_max) of sample_radius followed by a uniform
     // azimuth over the full circle.
     virtual double sample_density(double g_star, double zeta_max, double zeta) const = 0;
+    // Everything density() depends on, as text: a key for tables derived from the core (GhsBsdf's, cached on disk).
+    virtual std::string cache_key() const = 0;
 };
 
 }  // namespace surfscatter::bsdf
@@ -57,6 +60,7 @@ public:
     double log_density_at_logs(double log_g, double log_zeta) const { return table_->log_eval_at_logs(log_g, log_zeta); }
     double sample_radius(double g_star, double zeta_max, double u_order, double u) const override;
     double sample_density(double g_star, double zeta_max, double zeta) const override;
+    std::string cache_key() const override { return "exact(" + table_->key() + ")"; }
 
 private:
     const RadialProposal& proposal(double g_star) const;
@@ -73,6 +77,7 @@ public:
     double density(double g, double zeta) const override;
     double sample_radius(double g_star, double zeta_max, double u_order, double u) const override;
     double sample_density(double g_star, double zeta_max, double zeta) const override;
+    std::string cache_key() const override;
     double order_length(int m) const;  // L m^-x, um
 
 private:
@@ -92,6 +97,7 @@ public:
     double density(double g, double zeta) const override;
     double sample_radius(double g_star, double zeta_max, double u_order, double u) const override;
     double sample_density(double g_star, double zeta_max, double zeta) const override;
+    std::string cache_key() const override;
 
 private:
     std::shared_ptr<const surface::RadialStatistics> stats_;

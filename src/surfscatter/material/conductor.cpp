@@ -18,10 +18,6 @@ std::complex<double> Conductor::ior(double lambda_nm) const {
     return ior_->at(lambda_nm);
 }
 
-double Conductor::reflectance(double cos_theta, double lambda_nm) const {
-    return reflectance_sp(cos_theta, lambda_nm).unpolarized();
-}
-
 FresnelSP Conductor::reflectance_sp(double cos_theta, double lambda_nm) const {
     if (is_perfect()) return {1.0, 1.0};
     return fresnel_conductor_sp(cos_theta, ior_->at(lambda_nm));

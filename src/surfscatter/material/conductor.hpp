@@ -21,7 +21,9 @@ public:
     // N = n + i k; throws Error for the perfect conductor (it has no finite index).
     std::complex<double> ior(double lambda_nm) const;
     // Unpolarised Fresnel reflectance at incidence cosine cos_theta; 1 for the perfect conductor.
-    double reflectance(double cos_theta, double lambda_nm) const;
+    double reflectance(double cos_theta, double lambda_nm) const {  // inline: BSDF evals of the perfect conductor
+        return is_perfect() ? 1.0 : reflectance_sp(cos_theta, lambda_nm).unpolarized();
+    }
     FresnelSP reflectance_sp(double cos_theta, double lambda_nm) const;
     std::string name() const;
 

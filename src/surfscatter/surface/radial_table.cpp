@@ -3,14 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <mutex>
 
-#include <fmt/format.h>
 
-#include "surfscatter/core/paths.hpp"
+#include "surfscatter/core/table_cache.hpp"
 #include "surfscatter/math/vec.hpp"
 
 namespace surfscatter::surface::detail {
@@ -20,14 +18,6 @@ constexpr int kPointsPerDecade = 256;   // FFTLog resolution
 constexpr int kStride = 2;              // stored every kStride-th output
 constexpr int kEdgeDecades = 2;         // outputs this close to the array ends ring and are discarded
 constexpr double kFloor = 1e-11;        // below kFloor * peak the direct transform is replaced (see make_row)
-constexpr std::uint64_t kMagic = 0x5353524144544231ULL;  // "SSRADTB1"
-constexpr std::uint32_t kFormatVersion = 5;
-
-std::uint64_t fnv1a(const void* data, std::size_t bytes, std::uint64_t h = 1469598103934665603ULL) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < bytes; ++i) h = (h ^ p[i]) * 1099511628211ULL;
-    return h;
-}
 
 }  // namespace
 
@@ -235,8 +225,12 @@ double RadialFamily::cdf(int row, double zeta) const {
 
 void RadialFamily::bracket(int row, double u, double& lo, double& hi) const {
     const RadialRow& r = rows[row];
-    if (u <= r.cdf.front() || u >= r.cdf.back()) {
+    if (u <= r.cdf.front()) {
         lo = hi = std::log(std::max(inverse_cdf(row, u), 1e-300));
+        return;
+    }
+    if (u >= r.cdf.back()) {
+        lo = hi = grid.log_x0 + (r.lo + static_cast<int>(r.cdf.size()) - 1) * grid.step;
         return;
     }
     const int k = static_cast<int>(std::upper_bound(r.cdf.begin(), r.cdf.end(), u) - r.cdf.begin()) - 1;
@@ -287,10 +281,7 @@ std::shared_ptr<const RadialFamily> cached_family(const std::string& key, std::s
     return family;
 }
 
-std::filesystem::path cache_file(const std::string& key) {
-    const std::uint64_t h = fnv1a(key.data(), key.size());
-    return cache_directory() / fmt::format("radial-table-v{}-{:016x}.bin", kFormatVersion, h);
-}
+std::filesystem::path cache_file(const std::string& key) { return table_cache_file("radial-table", kFamilyFormatVersion, key); }
 
 void save_family(const std::string& key, const RadialFamily& family, const std::vector<double>& extra) {
     std::vector<double> payload = {family.grid.log_x0, family.grid.step, static_cast<double>(family.grid.n),
@@ -307,55 +298,14 @@ void save_family(const std::string& key, const RadialFamily& family, const std::
         payload.insert(payload.end(), r.log_value.begin(), r.log_value.end());
         payload.insert(payload.end(), r.cdf.begin(), r.cdf.end());
     }
-    // Several processes (MPI ranks, on one host or on many sharing the cache folder) may build the same table at
-    // once: each writes its own temporary file and renames it into place, so a reader sees a whole file or none,
-    // and the last rename wins with identical contents.
-    std::filesystem::path tmp;
-    try {
-        const auto path = cache_file(key);
-        tmp = temporary_beside(path);
-        {
-            std::ofstream out(tmp, std::ios::binary);
-            const std::uint64_t key_size = key.size(), count = payload.size();
-            const std::uint64_t checksum = fnv1a(payload.data(), payload.size() * sizeof(double));
-            out.write(reinterpret_cast<const char*>(&kMagic), sizeof kMagic);
-            out.write(reinterpret_cast<const char*>(&kFormatVersion), sizeof kFormatVersion);
-            out.write(reinterpret_cast<const char*>(&key_size), sizeof key_size);
-            out.write(key.data(), static_cast<std::streamsize>(key.size()));
-            out.write(reinterpret_cast<const char*>(&count), sizeof count);
-            out.write(reinterpret_cast<const char*>(payload.data()), static_cast<std::streamsize>(count * sizeof(double)));
-            out.write(reinterpret_cast<const char*>(&checksum), sizeof checksum);
-            out.close();
-            if (!out) throw std::runtime_error("write failed");
-        }
-        std::filesystem::rename(tmp, path);
-    } catch (const std::exception&) {
-        // The cache is an optimisation: an unwritable cache directory only costs rebuilding next time.
-        std::error_code ec;
-        if (!tmp.empty()) std::filesystem::remove(tmp, ec);
-    }
+    save_cached_table(cache_file(key), kFamilyFormatVersion, key, payload);
 }
 
 bool load_family(const std::string& key, RadialFamily& family, std::vector<double>& extra) {
     try {
-        std::ifstream in(cache_file(key), std::ios::binary);
-        if (!in) return false;
-        std::uint64_t magic = 0, key_size = 0, count = 0, checksum = 0;
-        std::uint32_t version = 0;
-        in.read(reinterpret_cast<char*>(&magic), sizeof magic);
-        in.read(reinterpret_cast<char*>(&version), sizeof version);
-        in.read(reinterpret_cast<char*>(&key_size), sizeof key_size);
-        if (!in || magic != kMagic || version != kFormatVersion || key_size != key.size()) return false;
-        std::string stored_key(key_size, '\0');
-        in.read(stored_key.data(), static_cast<std::streamsize>(key_size));
-        in.read(reinterpret_cast<char*>(&count), sizeof count);
-        if (!in || stored_key != key || count < 5 || count > (1ULL << 28)) return false;
-        std::vector<double> payload(count);
-        in.read(reinterpret_cast<char*>(payload.data()), static_cast<std::streamsize>(count * sizeof(double)));
-        in.read(reinterpret_cast<char*>(&checksum), sizeof checksum);
-        if (!in || checksum != fnv1a(payload.data(), payload.size() * sizeof(double))) return false;
-        for (double v : payload)
-            if (!std::isfinite(v)) return false;
+        const std::optional<std::vector<double>> loaded = load_cached_table(cache_file(key), kFamilyFormatVersion, key);
+        if (!loaded || loaded->size() < 5) return false;
+        const std::vector<double>& payload = *loaded;
         std::size_t pos = 0;
         auto next = [&]() { return pos < payload.size() ? payload[pos++] : std::numeric_limits<double>::quiet_NaN(); };
         RadialFamily f;

@@ -39,7 +39,8 @@ struct RadialFamily {
     double value(int row, double zeta) const;
     double cdf(int row, double zeta) const;
     double inverse_cdf(int row, double u) const;
-    // ln zeta bracket [lo, hi] of the row's CDF = u from its nodes (cheap; exact inverse only in the extensions).
+    // ln zeta bracket [lo, hi] of the row's CDF = u from its nodes (cheap): below the first node the exact inverse
+    // (closed form), beyond the last node that node (lo = hi; the caller extends the bracket through the tail).
     void bracket(int row, double u, double& lo, double& hi) const;
 };
 
@@ -68,6 +69,9 @@ std::shared_ptr<const RadialFamily> cached_family(const std::string& key, std::s
                                                   const std::function<RadialFamily()>& build);
 
 // Disk cache: a binary file per key under cache_directory(); returns false (and never throws) if absent/corrupt.
+// The format version changes whenever the files' layout or the rows' construction does (tables derived from the
+// families put it in their own keys).
+inline constexpr std::uint32_t kFamilyFormatVersion = 5;
 bool load_family(const std::string& key, RadialFamily& family, std::vector<double>& extra);
 void save_family(const std::string& key, const RadialFamily& family, const std::vector<double>& extra);
 std::filesystem::path cache_file(const std::string& key);

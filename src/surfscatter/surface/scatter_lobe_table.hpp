@@ -20,6 +20,7 @@
 // (tests/bsdf/test_two_scale.cpp) and every row's CDF at 1 within 1e-5 (tests/surface/test_tables.cpp).
 // Building: ~0.1-0.3 s per statistics (docs/SURFACE.md), then cached on disk.
 #include <memory>
+#include <string>
 
 #include "surfscatter/surface/radial_statistics.hpp"
 
@@ -41,7 +42,10 @@ public:
     double log_eval_at_logs(double log_g, double log_zeta) const;  // ln eval_at_logs, without its exponential
     double shape(double g, double zeta) const;            // S_g / (1 - e^{-g}), unit mass
     double radial_cdf(double g, double zeta) const;       // int_{|zeta'|<=zeta} S_g / (1 - e^{-g})
-    double inverse_radial_cdf(double g, double u) const;  // radius for u in [0, 1)
+    // Radius for u in [0, 1): the interpolated radial_cdf inverted to 1e-13 in ln zeta (safeguarded Newton).
+    double inverse_radial_cdf(double g, double u) const;
+    // What the table's values depend on (statistics, grid, construction version): a key for tables derived from it.
+    const std::string& key() const;
 
     struct Data;
     explicit ScatterLobeTable(std::shared_ptr<const Data> data);
