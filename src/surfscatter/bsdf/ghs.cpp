@@ -136,11 +136,13 @@ double GhsBsdf::fresnel(const Vec3& wi, const Vec3& wo, double lambda_nm) const 
     return 0.0;
 }
 
-// Flattened: the lookup, the logarithms and the Fresnel factor inline, no call but the lobe table's.
-[[gnu::flatten]] double GhsBsdf::eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
+double GhsBsdf::eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
     if (wi.z <= 0 || wo.z <= 0) return 0.0;
     const double k = wavenumber(lambda_nm);
-    const LobeLogs logs(wi, wo, k);
+    return eval(wi, wo, lambda_nm, k, LobeLogs(wi, wo, k));
+}
+
+double GhsBsdf::eval(const Vec3& wi, const Vec3& wo, double lambda_nm, double k, const LobeLogs& logs) const {
     const Incidence in = lookup(wi.z, lambda_nm);
     const double scale = fresnel(wi, wo, lambda_nm) * norm_power(wi.z) * k * k;
     // The exact core of a PSD without a jump hands ln S_g: one exponential of ln N + ln S_g. Other cores (first order,
@@ -153,6 +155,22 @@ double GhsBsdf::fresnel(const Vec3& wi, const Vec3& wo, double lambda_nm) const 
     return std::isfinite(f) ? f : 0.0;
 }
 
+WavelengthValues GhsBsdf::eval_packet(const Vec3& wi, const Vec3& wo, const WavelengthValues& lambda_nm,
+                                      WavelengthValues* pdf) const {
+    WavelengthValues f{};
+    if (pdf) pdf->fill(0.0);
+    if (wi.z <= 0 || wo.z <= 0) return f;
+    const double x = wi.x + wo.x, y = wi.y + wo.y;
+    const double log_cosine_sum = math::fast_log(wi.z + wo.z), log_radius2 = math::fast_log(x * x + y * y);
+    const Wedge reverse(wo, wi);  // pdf(wo, wi): incidence wo
+    for (std::size_t j = 0; j < f.size(); ++j) {
+        const double k = wavenumber(lambda_nm[j]);
+        f[j] = eval(wi, wo, lambda_nm[j], k, LobeLogs(math::fast_log(k), log_cosine_sum, log_radius2));
+        if (pdf) (*pdf)[j] = this->pdf(wo, wi, lambda_nm[j], reverse);
+    }
+    return f;
+}
+
 double GhsBsdf::delta_probability(const Vec3& wi, double lambda_nm) const {
     if (wi.z <= 0) return 0.0;
     return std::exp(-specular_exponent(lookup(wi.z, lambda_nm), wi.z));
@@ -163,15 +181,20 @@ double GhsBsdf::delta_reflectance(const Vec3& wi, double lambda_nm) const {
     return material_.reflectance(std::min(1.0, wi.z), lambda_nm) * delta_probability(wi, lambda_nm);
 }
 
+GhsBsdf::Wedge::Wedge(const Vec3& wi, const Vec3& wo)
+    : s(sin_theta(wi)), q(scatter_radius(wi, wo)), phi_max(wedge_half_angle(q, s)) {}
+
 double GhsBsdf::pdf(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
     if (wi.z <= 0 || wo.z <= 0) return 0.0;
+    return pdf(wi, wo, lambda_nm, Wedge(wi, wo));
+}
+
+double GhsBsdf::pdf(const Vec3& wi, const Vec3& wo, double lambda_nm, const Wedge& wedge) const {
     const Incidence in = lookup(wi.z, lambda_nm);
     const double k = in.k, g0 = specular_exponent(in, wi.z);
-    const double s = sin_theta(wi);
-    const double q = scatter_radius(wi, wo);
-    const double zeta_max = k * (1.0 + s);
+    const double zeta_max = k * (1.0 + wedge.s);
     const double p = math::one_minus_exp(g0) *
-                     wedge_pdf(k, wo.z, core_->sample_density(g0, zeta_max, k * q), wedge_half_angle(q, s));
+                     wedge_pdf(k, wo.z, core_->sample_density(g0, zeta_max, k * wedge.q), wedge.phi_max);
     return std::isfinite(p) ? p : 0.0;
 }
 

@@ -56,6 +56,10 @@ public:
     double eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const override;
     std::optional<BsdfSample> sample(const Vec3& wi, double lambda_nm, double u_lobe, Vec2 u) const override;
     double pdf(const Vec3& wi, const Vec3& wo, double lambda_nm) const override;
+    // The four wavelengths of a path: the logarithms of the direction-only factors of g and zeta, and the reverse
+    // density's wedge geometry (an arccosine), computed once; the lookups and the lobe per wavelength.
+    WavelengthValues eval_packet(const Vec3& wi, const Vec3& wo, const WavelengthValues& lambda_nm,
+                                 WavelengthValues* pdf) const override;
     double delta_reflectance(const Vec3& wi, double lambda_nm) const override;
     double delta_probability(const Vec3& wi, double lambda_nm) const override;
     std::string name() const override { return settings_.name; }
@@ -88,8 +92,16 @@ private:
     static double specular_exponent(const Incidence& in, double cos_theta_i);  // g0 = (2 k sigma cos theta_i)^2
     struct LobeLogs {  // ln g - 2 ln sigma and ln zeta of a direction pair
         LobeLogs(const Vec3& wi, const Vec3& wo, double k);
+        LobeLogs(double log_k, double log_cosine_sum, double log_radius2)  // ln k, ln(cos i + cos o), ln |i_xy + o_xy|^2
+            : log_g_over_sigma2(2.0 * (log_k + log_cosine_sum)), log_zeta(log_k + 0.5 * log_radius2) {}
         double log_g_over_sigma2, log_zeta;
     };
+    double eval(const Vec3& wi, const Vec3& wo, double lambda_nm, double k, const LobeLogs& logs) const;
+    struct Wedge {  // the pdf's geometry: sin theta_i, q = |i_xy + o_xy| and the wedge half-angle
+        Wedge(const Vec3& wi, const Vec3& wo);
+        double s, q, phi_max;
+    };
+    double pdf(const Vec3& wi, const Vec3& wo, double lambda_nm, const Wedge& wedge) const;
     double density(const LobeLogs& logs, double log_sigma) const;
     Table cached_table(double lambda_nm) const;  // from the disk cache, else built and saved there
     Table build_table(double lambda_nm) const;
