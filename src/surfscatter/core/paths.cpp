@@ -51,13 +51,18 @@ std::filesystem::path temporary_beside(const std::filesystem::path& file) {
 
 void write_file_atomically(const std::filesystem::path& file, const std::string& text) {
     const std::filesystem::path tmp = temporary_beside(file);
+    bool out_ok = false;
     {
         std::ofstream out(tmp, std::ios::binary);
         out << text;
         out.close();
-        if (!out) fail("cannot write {}", tmp.string());
+        out_ok = bool(out);
     }
     std::error_code ec;
+    if (!out_ok) {
+        std::filesystem::remove(tmp, ec);
+        fail("cannot write {}", tmp.string());
+    }
     std::filesystem::rename(tmp, file, ec);
     if (ec) {
         std::filesystem::remove(tmp, ec);

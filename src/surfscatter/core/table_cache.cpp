@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <fstream>
-#include <stdexcept>
 
 #include <fmt/format.h>
 
@@ -28,31 +27,23 @@ std::filesystem::path table_cache_file(const std::string& kind, std::uint32_t ve
 
 void save_cached_table(const std::filesystem::path& file, std::uint32_t version, const std::string& key,
                        const std::vector<double>& payload) {
+    std::string bytes;
+    auto append = [&bytes](const void* data, std::size_t size) { bytes.append(static_cast<const char*>(data), size); };
+    const std::uint64_t key_size = key.size(), count = payload.size();
+    const std::uint64_t checksum = fnv1a(payload.data(), payload.size() * sizeof(double));
+    append(&kMagic, sizeof kMagic);
+    append(&version, sizeof version);
+    append(&key_size, sizeof key_size);
+    append(key.data(), key.size());
+    append(&count, sizeof count);
+    append(payload.data(), count * sizeof(double));
+    append(&checksum, sizeof checksum);
     // Several processes (MPI ranks, on one host or on many sharing the cache folder) may build the same table at
-    // once: each writes its own temporary file (temporary_beside: host and process in the name) and renames it into
-    // place, so a reader sees a whole file or none, and the last rename wins with identical contents.
-    std::filesystem::path tmp;
+    // once: the atomic write lets a reader see a whole file or none, and the last rename wins with identical contents.
     try {
-        tmp = temporary_beside(file);
-        {
-            std::ofstream out(tmp, std::ios::binary);
-            const std::uint64_t key_size = key.size(), count = payload.size();
-            const std::uint64_t checksum = fnv1a(payload.data(), payload.size() * sizeof(double));
-            out.write(reinterpret_cast<const char*>(&kMagic), sizeof kMagic);
-            out.write(reinterpret_cast<const char*>(&version), sizeof version);
-            out.write(reinterpret_cast<const char*>(&key_size), sizeof key_size);
-            out.write(key.data(), static_cast<std::streamsize>(key.size()));
-            out.write(reinterpret_cast<const char*>(&count), sizeof count);
-            out.write(reinterpret_cast<const char*>(payload.data()), static_cast<std::streamsize>(count * sizeof(double)));
-            out.write(reinterpret_cast<const char*>(&checksum), sizeof checksum);
-            out.close();
-            if (!out) throw std::runtime_error("write failed");
-        }
-        std::filesystem::rename(tmp, file);
+        write_file_atomically(file, bytes);
     } catch (const std::exception&) {
         // An unwritable cache directory only costs rebuilding next time.
-        std::error_code ec;
-        if (!tmp.empty()) std::filesystem::remove(tmp, ec);
     }
 }
 
