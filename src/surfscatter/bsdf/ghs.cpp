@@ -15,6 +15,7 @@
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/table_cache.hpp"
 #include "surfscatter/math/fast_math.hpp"
+#include "surfscatter/math/simd_pair.hpp"
 #include "surfscatter/surface/relevant_roughness.hpp"
 
 namespace surfscatter::bsdf {
@@ -57,12 +58,20 @@ std::array<double, 4> interval_cubic(const double* x, const double* y, double a,
 }
 // Estrin's form in d: two independent multiply-adds, then one. Horner in t (three dependent ones after the multiply
 // that makes t) made exact-GHS eval 5 % slower than the bilinear lookup before the cubic; this is as fast.
-double estrin(const double* c, double d) { return (c[0] + c[1] * d) + (c[2] + c[3] * d) * (d * d); }
+template <class Interval>
+math::Pair estrin(const Interval& in, math::Pair d) {
+    using math::load_pair;
+    return (load_pair(in.c[0]) + load_pair(in.c[1]) * d) + (load_pair(in.c[2]) + load_pair(in.c[3]) * d) * (d * d);
+}
 NodeAxis wavelength_axis() {
     std::vector<double> lambdas{GhsBsdf::kMinWavelength};
     while (lambdas.back() < GhsBsdf::kMaxWavelength) lambdas.push_back(lambdas.back() * std::exp(0.02));
     return NodeAxis(lambdas);
 }
+[[noreturn, gnu::cold, gnu::noinline]] void wavelength_out_of_range(double lambda_nm) {
+    fail("wavelength {} nm outside [{}, {}] nm", lambda_nm, GhsBsdf::kMinWavelength, GhsBsdf::kMaxWavelength);
+}
+
 const NodeAxis kIncidenceAxis = incidence_axis();
 const NodeAxis kWavelengthAxis = wavelength_axis();
 
@@ -72,27 +81,31 @@ GhsBsdf::GhsBsdf(std::shared_ptr<const surface::RadialStatistics> stats, std::sh
                  material::Conductor material, GhsSettings settings)
     : stats_(std::move(stats)), core_(std::move(core)), material_(std::move(material)),
       settings_(std::move(settings)), exact_(dynamic_cast<const ExactScatterCore*>(core_.get())),
-      log_native_(exact_ && stats_->psd_jump_radius() == 0.0 ? exact_ : nullptr),
+      log_native_(exact_ && stats_->psd_jump_radius() == 0.0 ? &exact_->table() : nullptr),
       tables_(std::size_t(kWavelengthAxis.size())) {
     if (kIncidenceAxis.size() != kThetaNodes)
         fail("internal: {} incidence nodes, expected {}", kIncidenceAxis.size(), kThetaNodes);
 }
 
-GhsBsdf::Incidence GhsBsdf::lookup(double cos_theta_i, double lambda_nm) const {
-    if (!(lambda_nm >= kMinWavelength && lambda_nm <= kMaxWavelength))
-        fail("wavelength {} nm outside [{}, {}] nm", lambda_nm, kMinWavelength, kMaxWavelength);
+[[gnu::always_inline]] inline GhsBsdf::Incidence GhsBsdf::lookup(double cos_theta_i, double lambda_nm,
+                                                                  double k) const {
+    if (!(lambda_nm >= kMinWavelength && lambda_nm <= kMaxWavelength)) wavelength_out_of_range(lambda_nm);
     const NodeAxis::Position l = kWavelengthAxis.position(lambda_nm);
-    const NodeAxis::Position c = kIncidenceAxis.position(std::clamp(cos_theta_i, kIncidenceAxis.node(0), 1.0));
+    const double cosine = std::clamp(cos_theta_i, kIncidenceAxis.node(0), 1.0);
+    const int c = kIncidenceAxis.position(cosine).interval;
     auto table = [&](int slot) -> const Table& {
         return tables_.get(std::size_t(slot), [&] { return cached_table(kWavelengthAxis.node(slot)); });
     };
-    const double d = std::clamp(cos_theta_i, kIncidenceAxis.node(0), 1.0) - kIncidenceAxis.node(c.interval);
-    const Interval& a = table(l.interval)[c.interval];
-    const Interval& b = table(l.interval + 1)[c.interval];
-    // Cubic in cos theta_i within each wavelength node's table, then linear in lambda.
-    return {wavenumber(lambda_nm),
-            (1.0 - l.t) * estrin(a.log_sigma, d) + l.t * estrin(b.log_sigma, d),
-            (1.0 - l.t) * estrin(a.log_norm, d) + l.t * estrin(b.log_norm, d)};
+    const math::Pair d = math::Pair{1.0, 1.0} * (cosine - kIncidenceAxis.node(c));
+    const Interval& a = table(l.interval)[c];
+    const Interval& b = table(l.interval + 1)[c];
+    // Cubic in cos theta_i within each wavelength node's table (lanes: ln sigma, ln N), then linear in lambda.
+    const math::Pair at_a = estrin(a, d), v = at_a + l.t * (estrin(b, d) - at_a);
+    return {k, v[0], v[1]};
+}
+
+GhsBsdf::Incidence GhsBsdf::lookup(double cos_theta_i, double lambda_nm) const {
+    return lookup(cos_theta_i, lambda_nm, wavenumber(lambda_nm));
 }
 
 double GhsBsdf::core_lobe(const Vec3& wi, const Vec3& wo, double lambda_nm, double sigma_um) const {
@@ -120,9 +133,14 @@ double GhsBsdf::specular_exponent(const Incidence& in, double cos_theta_i) {
     return a * a * math::fast_exp(2.0 * in.log_sigma);
 }
 
-double GhsBsdf::fresnel(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
+inline double GhsBsdf::fresnel(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
+    return settings_.fresnel == FresnelMode::incident ? material_.reflectance(std::min(1.0, wi.z), lambda_nm)
+                                                      : outgoing_fresnel(wi, wo, lambda_nm);
+}
+
+double GhsBsdf::outgoing_fresnel(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
     switch (settings_.fresnel) {
-        case FresnelMode::incident: return material_.reflectance(std::min(1.0, wi.z), lambda_nm);
+        case FresnelMode::incident: break;
         case FresnelMode::half: {
             const Vec3 h = normalize(wi + wo);
             return material_.reflectance(std::clamp(dot(wi, h), 0.0, 1.0), lambda_nm);
@@ -142,13 +160,16 @@ double GhsBsdf::eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
     return eval(wi, wo, lambda_nm, k, LobeLogs(wi, wo, k));
 }
 
-double GhsBsdf::eval(const Vec3& wi, const Vec3& wo, double lambda_nm, double k, const LobeLogs& logs) const {
-    const Incidence in = lookup(wi.z, lambda_nm);
+// Inlined into its three callers: a call here, and to lookup, cost 20 % of an exact-GHS eval (register saves and
+// the Incidence passed through memory).
+[[gnu::always_inline]] inline double GhsBsdf::eval(const Vec3& wi, const Vec3& wo, double lambda_nm, double k,
+                                                   const LobeLogs& logs) const {
+    const Incidence in = lookup(wi.z, lambda_nm, k);
     const double scale = fresnel(wi, wo, lambda_nm) * norm_power(wi.z) * k * k;
     // The exact core of a PSD without a jump hands ln S_g: one exponential of ln N + ln S_g. Other cores (first order,
     // refit, a high-pass PSD) return the density itself, and exp(ln N) multiplies it (taking its logarithm to add ln N
     // made ghs_ssa eval 1.36x and two_scale eval 1.1-1.17x slower).
-    const double f = log_native_ ? scale * math::fast_exp(in.log_norm + log_native_->log_density_at_logs(
+    const double f = log_native_ ? scale * math::fast_exp(in.log_norm + log_native_->log_eval_at_logs(
                                                                                logs.log_g_over_sigma2 + 2.0 * in.log_sigma,
                                                                                logs.log_zeta))
                                  : scale * math::fast_exp(in.log_norm) * density(logs, in.log_sigma);
@@ -228,7 +249,7 @@ std::optional<BsdfSample> GhsBsdf::sample(const Vec3& wi, double lambda_nm, doub
 // A table takes 64 visible-disc integrals to build (~30 ms; a render touches ~45 wavelength nodes), so it is kept on
 // disk beside the lobe tables, under a key naming everything direct() depends on.
 GhsBsdf::Table GhsBsdf::cached_table(double lambda_nm) const {
-    constexpr std::uint32_t kVersion = 1;  // of build_table's construction
+    constexpr std::uint32_t kVersion = 2;  // of build_table's construction and Interval's layout
     static_assert(std::is_trivially_copyable_v<Table> && sizeof(Table) % sizeof(double) == 0);
     const std::string key =
         fmt::format("ghs-incidence:{}:sigma_h={:.17g}:{}:normalization={}:relevant={}:lambda={:.17g}:nodes={}",
@@ -261,8 +282,7 @@ GhsBsdf::Table GhsBsdf::build_table(double lambda_nm) const {
         const int first = std::clamp(j - 1, 0, kThetaNodes - 4);  // the 4 nodes around the interval (one-sided at ends)
         const auto s = interval_cubic(&x[first], &log_sigma[first], x[j], x[j + 1]);
         const auto n = interval_cubic(&x[first], &log_norm[first], x[j], x[j + 1]);
-        std::copy(s.begin(), s.end(), t[j].log_sigma);
-        std::copy(n.begin(), n.end(), t[j].log_norm);
+        for (int p = 0; p < 4; ++p) t[j].c[p][0] = s[p], t[j].c[p][1] = n[p];
     }
     return t;
 }

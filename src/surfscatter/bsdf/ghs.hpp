@@ -81,11 +81,13 @@ public:
     double core_lobe(const Vec3& wi, const Vec3& wo, double lambda_nm, double sigma_um) const;
 
 private:
-    // Cubic coefficients (in d = cos theta_i - the interval's first node) of ln sigma and ln(N/cos^p).
-    struct Interval { double log_sigma[4], log_norm[4]; };
+    // Cubic coefficients (in d = cos theta_i - the interval's first node) of ln sigma and ln(N/cos^p), the two
+    // side by side for one SSE2 pair per power of d.
+    struct Interval { double c[4][2]; };
     using Table = std::array<Interval, kThetaNodes - 1>;  // over cos theta_i
     struct Incidence { double k, log_sigma, log_norm; };  // k in rad/um; log_norm = ln(N / cos^p theta_i)
     Incidence lookup(double cos_theta_i, double lambda_nm) const;
+    Incidence lookup(double cos_theta_i, double lambda_nm, double k) const;  // k = wavenumber(lambda_nm), given
     double norm_power(double cos_theta_i) const {  // cos^p theta_i
         return settings_.normalization == LobeNormalization::albedo ? cos_theta_i * cos_theta_i : 1.0;
     }
@@ -107,13 +109,14 @@ private:
     Table build_table(double lambda_nm) const;
     double scatter_mass(double theta_i, double lambda_nm, double sigma_um) const;  // integral of density over disc
     double fresnel(const Vec3& wi, const Vec3& wo, double lambda_nm) const;
+    double outgoing_fresnel(const Vec3& wi, const Vec3& wo, double lambda_nm) const;  // the half and rr modes
 
     std::shared_ptr<const surface::RadialStatistics> stats_;
     std::shared_ptr<const ScatterCore> core_;
     material::Conductor material_;
     GhsSettings settings_;
     const ExactScatterCore* exact_;       // core_ if it is the exact one (called directly), else null
-    const ExactScatterCore* log_native_;  // exact_ if its table is log-valued (a PSD without a jump), else null
+    const surface::ScatterLobeTable* log_native_;  // exact_'s table if log-valued (a PSD without a jump), else null
     LazySlots<Table> tables_;             // one per wavelength node
 };
 

@@ -54,10 +54,9 @@ public:
     double density_at_logs(double log_g, double log_zeta) const override {
         return table_->eval_at_logs(log_g, log_zeta);
     }
-    // ln density_at_logs (-inf where the density is 0) without its exponential, for a PSD without a jump (whose table
-    // is log-valued; with a jump it would take a logarithm of the density): the BSDF adds ln N and takes one
-    // exponential.
-    double log_density_at_logs(double log_g, double log_zeta) const { return table_->log_eval_at_logs(log_g, log_zeta); }
+    // The lobe table itself: for a PSD without a jump (whose table is log-valued) the GHS BSDF reads ln S_g from it
+    // inline, adds ln N and takes one exponential.
+    const surface::ScatterLobeTable& table() const { return *table_; }
     double sample_radius(double g_star, double zeta_max, double u_order, double u) const override;
     double sample_density(double g_star, double zeta_max, double zeta) const override;
     std::string cache_key() const override { return "exact(" + table_->key() + ")"; }

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstring>
 #include <numbers>
 
 #include <fmt/format.h>
@@ -70,12 +69,7 @@ struct ScatterLobeTable::Data {
     // orders m >= 2, whose mass is remainder_mass(g) (row 0 = P-hat^{*2}), and g e^{-g} P-hat is added exactly.
     std::shared_ptr<const detail::RadialFamily> family;
     std::shared_ptr<const RadialStatistics> first_order;
-    // For the stencil starting at row r: the fractional zeta position below which all four rows r .. r+3 are
-    // interpolated from their own interior nodes (same zeta weights for all four), min over the rows of n - 2.
-    std::vector<double> shared_interior_end;
-    std::vector<double> log_mass;  // ln of each row's mass, 1 - e^{-g} or remainder_mass(g) (row 0: unused)
-    double inv_step;               // 1 / family->grid.step
-    std::string key;               // the family's cache key and format version
+    std::string key;  // the family's cache key and format version
 };
 
 namespace {
@@ -111,101 +105,76 @@ void check_g(double g) {
     if (!(g >= 0.0 && g <= ScatterLobeTable::kMaxG)) fail("lobe parameter g = {} outside [0, {}]", g, ScatterLobeTable::kMaxG);
 }
 
-// Two doubles in one SSE2 register (GNU vector extension): the lookup interpolates in g and zeta at once.
-using Pair = double __attribute__((vector_size(16)));
-Pair load_pair(const double* p) {
-    Pair v;
-    std::memcpy(&v, p, sizeof v);
-    return v;
-}
-
-// Cubic Lagrange weights for nodes -1, 0, 1, 2 at two fractional positions u (lane by lane, as cubic_interpolate).
-std::array<Pair, 4> cubic_weights(Pair u) {
-    const Pair um = u - 1.0, up = u + 1.0, u2 = u - 2.0, a = u * um;
-    return {a * u2 * (-1.0 / 6.0), up * um * u2 * 0.5, up * u * u2 * -0.5, a * up * (1.0 / 6.0)};
-}
-
 // Stencil over rows first .. first+3 (nodes first-1 .. first+2; row 0 is the g -> 0 limit) at fractional position u,
 // for ln g in [ln kMinG, ln kMaxG] (position >= 0 up to rounding, so truncation is floor).
-struct GPosition {
-    int first;
-    double u;
-};
-GPosition g_position(double log_g) {
-    const double t = (log_g - kLogGMin) * kInvGStep;
-    const int first = std::clamp(static_cast<int>(t), 1, kGNodes - 3);
-    return {first, t - first};
-}
 struct Stencil {
     int first;
     std::array<double, 4> w;
 };
 Stencil stencil(double log_g) {
-    const GPosition p = g_position(log_g);
-    const std::array<Pair, 4> w = cubic_weights(Pair{p.u, p.u});
-    return {p.first, {w[0][0], w[1][0], w[2][0], w[3][0]}};
-}
-
-// Row by row with the rows' own extensions: zeta outside the nodes some row of the stencil shares.
-[[gnu::noinline]] double lobe_log_value_by_rows(const ScatterLobeTable::Data& d, double log_g, double log_zeta,
-                                                bool with_mass) {
-    const Stencil s = stencil(log_g);
-    const double* m = d.log_mass.data() + s.first;
-    double value = 0.0;
-    for (int i = 0; i < 4; ++i) value += s.w[i] * (d.family->log_value(s.first + i, log_zeta) + (with_mass ? m[i] : 0.0));
-    return value;
-}
-
-// Bicubic ln s_g(zeta), plus the cubic interpolation of ln(1 - e^{-g}) when with_mass (ln S_g). Every row starts at
-// stored index 0 (make_row), so where zeta lies inside all four rows' nodes one set of zeta weights serves the 4 x 4
-// stencil, g and zeta weights and pairs of taps computed in SSE2 lanes; elsewhere row by row with the extensions (out
-// of line, so that this hot path saves no registers).
-inline double lobe_log_value(const ScatterLobeTable::Data& d, double log_g, double log_zeta, bool with_mass) {
-    const detail::RadialFamily& f = *d.family;
-    const GPosition p = g_position(log_g);
-    const double tz = (log_zeta - f.grid.log_x0) * d.inv_step;
-    if (!(tz > 0.0 && tz < d.shared_interior_end[p.first])) return lobe_log_value_by_rows(d, log_g, log_zeta, with_mass);
-    const double* m = d.log_mass.data() + p.first;
-    const int j = std::max(static_cast<int>(tz), 1) - 1;  // tz < 1: the first four nodes, as cubic_interpolate
-    const std::array<Pair, 4> w = cubic_weights(Pair{p.u, tz - (j + 1)});  // lane 0: g, lane 1: zeta
-    const Pair wz01 = {w[0][1], w[1][1]}, wz23 = {w[2][1], w[3][1]};
-    std::array<Pair, 4> row;
-    for (int i = 0; i < 4; ++i) {
-        const double* y = f.rows[p.first + i].log_value.data() + j;
-        row[i] = w[i][0] * (load_pair(y) * wz01 + load_pair(y + 2) * wz23);
-    }
-    Pair sum = (row[0] + row[1]) + (row[2] + row[3]);  // a tree: this sum is on the critical path
-    if (with_mass) sum += load_pair(m) * Pair{w[0][0], w[1][0]} + load_pair(m + 2) * Pair{w[2][0], w[3][0]};
-    return sum[0] + sum[1];
+    const double t = (log_g - kLogGMin) * kInvGStep;
+    const int first = std::clamp(static_cast<int>(t), 1, kGNodes - 3);
+    const double u = t - first;
+    const std::array<math::Pair, 4> w = detail::cubic_weights(math::Pair{u, u});
+    return {first, {w[0][0], w[1][0], w[2][0], w[3][0]}};
 }
 
 }  // namespace
 
-ScatterLobeTable::ScatterLobeTable(std::shared_ptr<const Data> data) : data_(std::move(data)) {}
+ScatterLobeTable::ScatterLobeTable(std::shared_ptr<const Data> data)
+    : data_(std::move(data)), data_has_first_order_(data_->first_order != nullptr) {
+    const detail::RadialFamily& family = *data_->family;
+    const std::size_t rows = family.rows.size();
+    grid_.log_g_min = kLogGMin;
+    grid_.inv_g_step = kInvGStep;
+    grid_.g_position_max = (kLogGMax - kLogGMin) * kInvGStep;
+    grid_.last_first = kGNodes - 3;
+    grid_.log_zeta0 = family.grid.log_x0;
+    grid_.inv_zeta_step = 1.0 / family.grid.step;
+    grid_.shared_interior_end.assign(rows, 0.0);
+    grid_.log_mass.assign(rows, 0.0);
+    for (const auto& row : family.rows) grid_.rows.push_back(row.log_value.data());
+    for (std::size_t r = 0; r + 3 < rows; ++r) {
+        std::size_t n = family.rows[r].log_value.size();
+        bool at_zero = true;
+        for (std::size_t i = 0; i < 4; ++i) {
+            n = std::min(n, family.rows[r + i].log_value.size());
+            at_zero = at_zero && family.rows[r + i].lo == 0;
+        }
+        grid_.shared_interior_end[r] = at_zero ? static_cast<double>(n) - 2.0 : 0.0;
+    }
+    for (std::size_t r = 1; r < rows; ++r) {
+        const double g = node_g(static_cast<int>(r) - 1);
+        grid_.log_mass[r] = std::log(data_has_first_order_ ? remainder_mass(g) : -std::expm1(-g));
+    }
+}
 
 std::shared_ptr<const ScatterLobeTable> ScatterLobeTable::get(std::shared_ptr<const RadialStatistics> stats) {
     const bool first_order_apart = stats->psd_jump_radius() > 0.0;
     const std::string key = fmt::format("{}:{}:g={}..{}x{}", first_order_apart ? "lobe-m2" : "lobe", stats->cache_key(),
                                         kMinG, kMaxG, kNodesPerDecade);
     auto family = detail::cached_family(key, kGNodes + 1, [&] { return build(*stats, first_order_apart); });
-    const std::size_t rows = family->rows.size();
-    std::vector<double> interior_end(rows, 0.0), log_mass(rows, 0.0);
-    for (std::size_t r = 0; r + 3 < rows; ++r) {
-        std::size_t n = family->rows[r].log_value.size();
-        bool at_zero = true;
-        for (std::size_t i = 0; i < 4; ++i) {
-            n = std::min(n, family->rows[r + i].log_value.size());
-            at_zero = at_zero && family->rows[r + i].lo == 0;
-        }
-        interior_end[r] = at_zero ? static_cast<double>(n) - 2.0 : 0.0;
-    }
-    for (std::size_t r = 1; r < rows; ++r) {
-        const double g = node_g(static_cast<int>(r) - 1);
-        log_mass[r] = std::log(first_order_apart ? remainder_mass(g) : -std::expm1(-g));
-    }
     return std::make_shared<const ScatterLobeTable>(std::make_shared<const Data>(
-        Data{family, first_order_apart ? std::move(stats) : nullptr, std::move(interior_end), std::move(log_mass),
-             1.0 / family->grid.step, fmt::format("{}:v{}", key, detail::kFamilyFormatVersion)}));
+        Data{family, first_order_apart ? std::move(stats) : nullptr,
+             fmt::format("{}:v{}", key, detail::kFamilyFormatVersion)}));
+}
+
+// Row by row with the rows' own extensions: zeta outside the nodes some row of the stencil shares.
+[[gnu::noinline]] double ScatterLobeTable::lobe_log_value_by_rows(double log_g, double log_zeta, bool with_mass) const {
+    const Stencil s = stencil(log_g);
+    double value = 0.0;
+    for (int i = 0; i < 4; ++i) {
+        const double mass = with_mass ? grid_.log_mass[s.first + i] : 0.0;
+        value += s.w[i] * (data_->family->log_value(s.first + i, log_zeta) + mass);
+    }
+    return value;
+}
+
+// ln s_g (ln S_g with_mass) for ln g in [ln kMinG, ln kMaxG]: the inline bicubic, else row by row.
+double ScatterLobeTable::lobe_log_value(double log_g, double log_zeta, bool with_mass) const {
+    double value;
+    return interior_log_value(log_g, log_zeta, with_mass, value) ? value
+                                                                 : lobe_log_value_by_rows(log_g, log_zeta, with_mass);
 }
 
 const std::string& ScatterLobeTable::key() const { return data_->key; }
@@ -220,7 +189,7 @@ double ScatterLobeTable::rows_shape(double g, double zeta) const {
         const double s1 = zeta > 0.0 ? std::exp(f.log_value(1, log_zeta)) : f.value(1, 0.0);
         return s0 + (g / kMinG) * (s1 - s0);
     }
-    return std::exp(lobe_log_value(*data_, std::log(g), log_zeta, false));
+    return std::exp(lobe_log_value(std::log(g), log_zeta, false));
 }
 
 double ScatterLobeTable::shape(double g, double zeta) const {
@@ -241,16 +210,16 @@ double ScatterLobeTable::eval(double g, double zeta) const {
 double ScatterLobeTable::eval_at_logs(double log_g, double log_zeta) const {
     log_g = std::min(log_g, kLogGMax);
     if (!(log_g >= kLogGMin)) return eval(std::exp(log_g), std::exp(log_zeta));
-    const double rows = math::fast_exp(lobe_log_value(*data_, log_g, log_zeta, true));
+    const double rows = math::fast_exp(lobe_log_value(log_g, log_zeta, true));
     if (!data_->first_order) return rows;
     const double g = math::fast_exp(log_g);
     return g * math::fast_exp(-g) * data_->first_order->psd_unit(math::fast_exp(log_zeta)) + rows;
 }
 
-double ScatterLobeTable::log_eval_at_logs(double log_g, double log_zeta) const {
+double ScatterLobeTable::log_eval_outside(double log_g, double log_zeta) const {
     log_g = std::min(log_g, kLogGMax);
     if (data_->first_order || !(log_g >= kLogGMin)) return math::fast_log(eval_at_logs(log_g, log_zeta));
-    return lobe_log_value(*data_, log_g, log_zeta, true);
+    return lobe_log_value(log_g, log_zeta, true);
 }
 
 double ScatterLobeTable::radial_cdf(double g, double zeta) const {

@@ -19,9 +19,13 @@
 // Gaussian ACV; high-pass parts of KC (N = 20 .. 150) within 1e-4 of an independent Hankel quadrature of the ACV
 // (tests/bsdf/test_two_scale.cpp) and every row's CDF at 1 within 1e-5 (tests/surface/test_tables.cpp).
 // Building: ~0.1-0.3 s per statistics (docs/SURFACE.md), then cached on disk.
+#include <algorithm>
+#include <array>
 #include <memory>
 #include <string>
+#include <vector>
 
+#include "surfscatter/math/simd_pair.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
 
 namespace surfscatter::surface {
@@ -39,7 +43,14 @@ public:
     // is evaluated at kMaxG. For g in [kMinG, kMaxG] the factor 1 - e^{-g} is interpolated with the rows (cubic in
     // ln g; relative error < 1e-7, the rest as eval); below, eval(e^{log_g}, e^{log_zeta}).
     double eval_at_logs(double log_g, double log_zeta) const;
-    double log_eval_at_logs(double log_g, double log_zeta) const;  // ln eval_at_logs, without its exponential
+    // ln eval_at_logs without its exponential. Inline: the exact GHS eval's bicubic, for g in [kMinG, kMaxG] and zeta
+    // inside the stencil rows' nodes of a PSD without a jump; elsewhere out of line.
+    double log_eval_at_logs(double log_g, double log_zeta) const {
+        double value;
+        return !data_has_first_order_ && interior_log_value(log_g, log_zeta, true, value)
+                   ? value
+                   : log_eval_outside(log_g, log_zeta);
+    }
     double shape(double g, double zeta) const;            // S_g / (1 - e^{-g}), unit mass
     double radial_cdf(double g, double zeta) const;       // int_{|zeta'|<=zeta} S_g / (1 - e^{-g})
     // Radius for u in [0, 1): the interpolated radial_cdf inverted to 1e-13 in ln zeta (safeguarded Newton).
@@ -52,7 +63,61 @@ public:
 
 private:
     double rows_shape(double g, double zeta) const;  // the tabulated rows' unit-mass shape, interpolated in g
+    double lobe_log_value(double log_g, double log_zeta, bool with_mass) const;
+    double lobe_log_value_by_rows(double log_g, double log_zeta, bool with_mass) const;
+    double log_eval_outside(double log_g, double log_zeta) const;
+    bool interior_log_value(double log_g, double log_zeta, bool with_mass, double& value) const;
+
+    // What the inline bicubic reads, flat in the object (no pointer chase through data_).
+    struct Grid {
+        double log_g_min, inv_g_step, g_position_max;  // row stencils: position (ln g - log_g_min) * inv_g_step
+        int last_first;                                // the last stencil's first row
+        double log_zeta0, inv_zeta_step;               // the rows' stored zeta grid
+        std::vector<const double*> rows;               // row r's ln values from stored index 0
+        // For the stencil starting at row r: the fractional zeta position below which all four rows r .. r+3 are
+        // interpolated from their own interior nodes (same zeta weights for all four), min over the rows of n - 2.
+        std::vector<double> shared_interior_end;
+        std::vector<double> log_mass;  // ln of each row's mass, 1 - e^{-g} or remainder_mass(g) (row 0: unused)
+    };
     std::shared_ptr<const Data> data_;
+    bool data_has_first_order_;
+    Grid grid_;
 };
+
+namespace detail {
+// Cubic Lagrange weights for nodes -1, 0, 1, 2 at two fractional positions u (lane by lane, as cubic_interpolate).
+inline std::array<math::Pair, 4> cubic_weights(math::Pair u) {
+    const math::Pair um = u - 1.0, up = u + 1.0, u2 = u - 2.0, a = u * um;
+    return {a * u2 * (-1.0 / 6.0), up * um * u2 * 0.5, up * u * u2 * -0.5, a * up * (1.0 / 6.0)};
+}
+}  // namespace detail
+
+// Bicubic ln s_g(zeta), plus the cubic interpolation of ln(1 - e^{-g}) when with_mass (ln S_g), over rows first ..
+// first+3 (nodes first-1 .. first+2; row 0 is the g -> 0 limit). Every row starts at stored index 0 (make_row), so
+// where zeta lies inside all four rows' nodes one set of zeta weights serves the 4 x 4 stencil, g and zeta weights and
+// pairs of taps computed in SSE2 lanes. False (value untouched) outside [kMinG, kMaxG] or those nodes.
+inline bool ScatterLobeTable::interior_log_value(double log_g, double log_zeta, bool with_mass, double& value) const {
+    using math::Pair;
+    const double t = (log_g - grid_.log_g_min) * grid_.inv_g_step;
+    if (!(t >= 0.0 && t <= grid_.g_position_max)) return false;
+    const int first = std::clamp(static_cast<int>(t), 1, grid_.last_first);
+    const double tz = (log_zeta - grid_.log_zeta0) * grid_.inv_zeta_step;
+    if (!(tz > 0.0 && tz < grid_.shared_interior_end[first])) return false;
+    const int j = std::max(static_cast<int>(tz), 1) - 1;  // tz < 1: the first four nodes, as cubic_interpolate
+    const std::array<Pair, 4> w = detail::cubic_weights(Pair{t - first, tz - (j + 1)});  // lane 0: g, lane 1: zeta
+    const Pair wz01 = {w[0][1], w[1][1]}, wz23 = {w[2][1], w[3][1]};
+    std::array<Pair, 4> row;
+    for (int i = 0; i < 4; ++i) {
+        const double* y = grid_.rows[first + i] + j;
+        row[i] = w[i][0] * (math::load_pair(y) * wz01 + math::load_pair(y + 2) * wz23);
+    }
+    Pair sum = (row[0] + row[1]) + (row[2] + row[3]);  // a tree: this sum is on the critical path
+    if (with_mass) {
+        const double* m = grid_.log_mass.data() + first;
+        sum += math::load_pair(m) * Pair{w[0][0], w[1][0]} + math::load_pair(m + 2) * Pair{w[2][0], w[3][0]};
+    }
+    value = sum[0] + sum[1];
+    return true;
+}
 
 }  // namespace surfscatter::surface
