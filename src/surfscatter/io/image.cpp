@@ -2,13 +2,9 @@
 
 #include <algorithm>
 #include <cctype>
-#include <csetjmp>
-#include <cstdio>
 #include <cmath>
-#include <cstring>
 #include <fstream>
 #include <limits>
-#include <memory>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -19,25 +15,12 @@
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <Imath/half.h>
-#include <jpeglib.h>
-#include <png.h>
 
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/input_file.hpp"
-#include "surfscatter/core/resources.hpp"
+#include "surfscatter/io/raster.hpp"
 
 namespace surfscatter::io {
-
-namespace {
-
-// An image of a size read from a file header may not fit in memory: one clear error instead of std::bad_alloc.
-void require_image_memory(double width, double height, double bytes_per_pixel, const std::string& what) {
-    constexpr double kCheckAbove = 64.0 * 1024 * 1024;  // smaller images are not worth a look at /proc/meminfo
-    const double bytes = width * height * bytes_per_pixel;
-    if (bytes > kCheckAbove) require_memory(bytes, fmt::format("{} ({}x{})", what, width, height));
-}
-
-}  // namespace
 
 Image::Image(int width_, int height_, int channels_, float fill) : width(width_), height(height_), channels(channels_) {
     if (width_ <= 0 || height_ <= 0) fail("image size must be positive, got {}x{}", width_, height_);
@@ -71,92 +54,25 @@ std::uint8_t to_byte(float v) {
     return static_cast<std::uint8_t>(v * 255.0f + 0.5f);
 }
 
-struct FileCloser {
-    void operator()(std::FILE* f) const { std::fclose(f); }
-};
-using File = std::unique_ptr<std::FILE, FileCloser>;
-
-File open_file(const std::filesystem::path& path, const char* mode) {
-    File f(std::fopen(path.c_str(), mode));
-    if (!f) fail("cannot open {}: {}", path.string(), std::strerror(errno));
-    return f;
-}
-
-// ---- PNG (simplified API) ----
-
-Image read_png(const std::filesystem::path& path) {
-    png_image png;
-    std::memset(&png, 0, sizeof png);
-    png.version = PNG_IMAGE_VERSION;
-    if (!png_image_begin_read_from_file(&png, path.c_str())) fail("cannot read PNG {}: {}", path.string(), png.message);
-    const bool alpha = (png.format & PNG_FORMAT_FLAG_ALPHA) != 0;
-    png.format = alpha ? PNG_FORMAT_RGBA : PNG_FORMAT_RGB;
-    try {
-        // The decoded bytes and the float image together.
-        require_image_memory(png.width, png.height, 5.0 * PNG_IMAGE_PIXEL_CHANNELS(png.format), "PNG " + path.string());
-    } catch (const Error&) {
-        png_image_free(&png);
-        throw;
-    }
-    std::vector<std::uint8_t> bytes(PNG_IMAGE_SIZE(png));
-    if (!png_image_finish_read(&png, nullptr, bytes.data(), 0, nullptr)) {
-        png_image_free(&png);
-        fail("cannot decode PNG {}: {}", path.string(), png.message);
-    }
-    Image image(static_cast<int>(png.width), static_cast<int>(png.height), alpha ? 4 : 3);
-    for (std::size_t i = 0; i < bytes.size(); ++i) image.pixels[i] = static_cast<float>(bytes[i]) / 255.0f;
+// PNG and JPEG through io/raster.hpp: the stored 8- or 16-bit samples scaled to [0, 1], grey expanded to RGB.
+Image read_raster_image(const std::filesystem::path& path) {
+    const Raster raster = read_raster(path);
+    print_warnings(path, raster);
+    const int channels = raster.channels == 4 ? 4 : 3;
+    Image image(raster.width, raster.height, channels);
+    const float scale = raster.bit_depth == 16 ? 65535.0f : 255.0f;
+    const std::size_t pixels = static_cast<std::size_t>(raster.width) * static_cast<std::size_t>(raster.height);
+    for (std::size_t p = 0; p < pixels; ++p)
+        for (int c = 0; c < channels; ++c)
+            image.pixels[p * channels + c] =
+                static_cast<float>(raster.samples[p * raster.channels + std::min(c, raster.channels - 1)]) / scale;
     return image;
 }
 
-// ---- JPEG (libjpeg; its fatal errors longjmp back here) ----
-
-struct JpegError {
-    jpeg_error_mgr manager;
-    std::jmp_buf jump;
-    char message[JMSG_LENGTH_MAX];
-};
-
-void jpeg_error_exit(j_common_ptr info) {
-    auto* error = reinterpret_cast<JpegError*>(info->err);
-    (*info->err->format_message)(info, error->message);
-    std::longjmp(error->jump, 1);
-}
-
-Image read_jpeg(const std::filesystem::path& path) {
-    File file = open_file(path, "rb");
-    jpeg_decompress_struct info;
-    JpegError error;
-    info.err = jpeg_std_error(&error.manager);
-    error.manager.error_exit = jpeg_error_exit;
-    std::vector<std::uint8_t> bytes;
-    int width = 0, height = 0;
-    if (setjmp(error.jump)) {
-        jpeg_destroy_decompress(&info);
-        fail("cannot decode JPEG {}: {}", path.string(), error.message);
-    }
-    jpeg_create_decompress(&info);
-    jpeg_stdio_src(&info, file.get());
-    jpeg_read_header(&info, TRUE);
-    info.out_color_space = JCS_RGB;
-    jpeg_start_decompress(&info);
-    width = static_cast<int>(info.output_width);
-    height = static_cast<int>(info.output_height);
-    try {
-        require_image_memory(width, height, 15.0, "JPEG " + path.string());  // 3 bytes and 3 floats per pixel
-    } catch (const Error&) {
-        jpeg_destroy_decompress(&info);
-        throw;
-    }
-    bytes.resize(static_cast<std::size_t>(width) * height * 3);
-    while (info.output_scanline < info.output_height) {
-        JSAMPROW row = bytes.data() + static_cast<std::size_t>(info.output_scanline) * width * 3;
-        jpeg_read_scanlines(&info, &row, 1);
-    }
-    jpeg_finish_decompress(&info);
-    jpeg_destroy_decompress(&info);
-    Image image(width, height, 3);
-    for (std::size_t i = 0; i < bytes.size(); ++i) image.pixels[i] = static_cast<float>(bytes[i]) / 255.0f;
-    return image;
+Raster to_raster8(const Image& image) {
+    Raster raster(image.width, image.height, image.channels, 8);
+    std::transform(image.pixels.begin(), image.pixels.end(), raster.samples.begin(), to_byte);
+    return raster;
 }
 
 // ---- OpenEXR ----
@@ -300,8 +216,7 @@ Image read_hdr(const std::filesystem::path& path) {
 Image read_image(const std::filesystem::path& path) {
     require_readable_file(path, "image file");
     const std::string ext = lower_extension(path);
-    if (ext == ".png") return read_png(path);
-    if (ext == ".jpg" || ext == ".jpeg") return read_jpeg(path);
+    if (ext == ".png" || ext == ".jpg" || ext == ".jpeg") return read_raster_image(path);
     if (ext == ".exr") return read_exr(path);
     if (ext == ".hdr") return read_hdr(path);
     fail("unsupported image format '{}' for {} (expected .png, .jpg, .jpeg, .exr or .hdr)", ext, path.string());
@@ -309,49 +224,12 @@ Image read_image(const std::filesystem::path& path) {
 
 void write_png(const std::filesystem::path& path, const Image& image) {
     check_writable(path, image);
-    png_image png;
-    std::memset(&png, 0, sizeof png);
-    png.version = PNG_IMAGE_VERSION;
-    png.width = static_cast<png_uint_32>(image.width);
-    png.height = static_cast<png_uint_32>(image.height);
-    const png_uint_32 formats[4] = {PNG_FORMAT_GRAY, PNG_FORMAT_GA, PNG_FORMAT_RGB, PNG_FORMAT_RGBA};
-    png.format = formats[image.channels - 1];
-    png.flags = PNG_IMAGE_FLAG_FAST;  // a quarter of the default's deflate time; files within a few % of its size
-    std::vector<std::uint8_t> bytes(image.pixels.size());
-    std::transform(image.pixels.begin(), image.pixels.end(), bytes.begin(), to_byte);
-    if (!png_image_write_to_file(&png, path.c_str(), 0, bytes.data(), 0, nullptr))
-        fail("cannot write PNG {}: {}", path.string(), png.message);
+    write_raster(path, to_raster8(image), RasterFormat::png);
 }
 
 void write_jpeg(const std::filesystem::path& path, const Image& image, int quality) {
     check_writable(path, image);
-    if (image.channels == 2 || image.channels == 4) fail("cannot write {}: JPEG has no alpha channel", path.string());
-    File file = open_file(path, "wb");
-    jpeg_compress_struct info;
-    JpegError error;
-    info.err = jpeg_std_error(&error.manager);
-    error.manager.error_exit = jpeg_error_exit;
-    std::vector<std::uint8_t> bytes(image.pixels.size());
-    std::transform(image.pixels.begin(), image.pixels.end(), bytes.begin(), to_byte);
-    if (setjmp(error.jump)) {
-        jpeg_destroy_compress(&info);
-        fail("cannot write JPEG {}: {}", path.string(), error.message);
-    }
-    jpeg_create_compress(&info);
-    jpeg_stdio_dest(&info, file.get());
-    info.image_width = static_cast<JDIMENSION>(image.width);
-    info.image_height = static_cast<JDIMENSION>(image.height);
-    info.input_components = image.channels;
-    info.in_color_space = image.channels == 1 ? JCS_GRAYSCALE : JCS_RGB;
-    jpeg_set_defaults(&info);
-    jpeg_set_quality(&info, std::clamp(quality, 1, 100), TRUE);
-    jpeg_start_compress(&info, TRUE);
-    while (info.next_scanline < info.image_height) {
-        JSAMPROW row = bytes.data() + static_cast<std::size_t>(info.next_scanline) * image.width * image.channels;
-        jpeg_write_scanlines(&info, &row, 1);
-    }
-    jpeg_finish_compress(&info);
-    jpeg_destroy_compress(&info);
+    write_raster(path, to_raster8(image), RasterFormat::jpeg, std::clamp(quality, 1, 100));
 }
 
 void write_exr(const std::filesystem::path& path, const Image& image) {

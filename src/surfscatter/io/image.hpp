@@ -1,5 +1,5 @@
 #pragma once
-// Image files: PNG (libpng simplified API), JPEG (libjpeg) and OpenEXR 3 (float channels).
+// Image files: PNG and JPEG (through raster.hpp: libpng, libjpeg) and OpenEXR 3 (float channels).
 //
 // An Image holds float samples, row-major with the top row first and channels interleaved (1 = grey, 2 = grey +
 // alpha, 3 = RGB, 4 = RGBA). No transfer function is applied by this module: PNG/JPEG samples come back as the stored 8-bit code
@@ -34,7 +34,9 @@ private:
 };
 
 // Reads .png, .jpg/.jpeg, .exr or .hdr (chosen by extension, case-insensitive). PNG: 3 channels (grey is expanded to
-// RGB), 4 if the file has alpha; 16-bit PNGs are reduced to 8 bits by libpng. JPEG: 3. EXR: R, G, B (a Y-only file is
+// RGB), 4 if the file has alpha (or a transparent colour in RGB or palette files); 16-bit samples are kept (divided
+// by 65535, no gamma chunk applied). JPEG: 3; a truncated JPEG is an error. Decoder warnings are printed as one
+// "surfscatter: warning:" line. EXR: R, G, B (a Y-only file is
 // expanded to RGB) plus A if present. HDR: Radiance RGBE (flat or run-length encoded scanlines, -Y H +X W
 // orientation), linear RGB divided by the header's EXPOSURE as the Radiance format specifies.
 // Throws Error naming the file on a missing file, an unknown extension or a decoder failure.
