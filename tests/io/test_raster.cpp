@@ -9,6 +9,8 @@
 #include <random>
 #include <string>
 
+#include <zlib.h>
+
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/io/image.hpp"
 #include "surfscatter/io/raster.hpp"
@@ -182,6 +184,33 @@ TEST(Raster, CorruptAndForeignFilesAreOneClearError) {
     expect_raster_error(text);
     EXPECT_THROW(io::read_raster(temp_path("missing.png")), Error);
     EXPECT_THROW(io::read_raster(fs::temp_directory_path()), Error);
+}
+
+void put_big_endian(std::string& bytes, std::size_t at, std::uint32_t value, int count) {
+    for (int i = 0; i < count; ++i) bytes[at + i] = static_cast<char>(value >> (8 * (count - 1 - i)));
+}
+
+TEST(Raster, AHeaderClaimingMorePixelsThanTheFileCanHoldFailsBeforeAllocating) {
+    // 60000 x 60000 RGB: 10.8 GB of samples, from a file of a few hundred bytes.
+    const fs::path png = temp_path("huge.png");
+    io::write_raster(png, noise(16, 16, 3, 8, 1), RasterFormat::png);
+    std::string bytes = file_bytes(png);
+    put_big_endian(bytes, 16, 60000, 4);  // IHDR width, height
+    put_big_endian(bytes, 20, 60000, 4);
+    const auto crc = crc32(0, reinterpret_cast<const Bytef*>(bytes.data() + 12), 17);  // chunk type and data
+    put_big_endian(bytes, 29, static_cast<std::uint32_t>(crc), 4);
+    write_bytes(png, bytes);
+    EXPECT_NE(expect_raster_error(png).reason.find("60000x60000 PNG image needs"), std::string::npos);
+
+    const fs::path jpeg = temp_path("huge.jpg");
+    io::write_raster(jpeg, smooth(16, 16, 3), RasterFormat::jpeg);
+    bytes = file_bytes(jpeg);
+    const std::size_t sof = bytes.find("\xff\xc0");
+    ASSERT_NE(sof, std::string::npos);
+    put_big_endian(bytes, sof + 5, 60000, 2);  // height, width
+    put_big_endian(bytes, sof + 7, 60000, 2);
+    write_bytes(jpeg, bytes);
+    EXPECT_NE(expect_raster_error(jpeg).reason.find("60000x60000 JPEG image is more than"), std::string::npos);
 }
 
 TEST(Raster, ContentDecidesTheDecoderNotTheExtension) {

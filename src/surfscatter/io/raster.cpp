@@ -52,6 +52,18 @@ std::string lower_extension(const std::filesystem::path& path) {
     return ext;
 }
 
+// Plausibility of a header's image size against the file's size, checked before allocating (docs/RELIABILITY.md):
+// deflate's largest expansion, and for JPEG and TIFF a bound on pixels per byte of file far above any photograph
+// (JPEG needs at least a bit per 8x8 block of most layouts, 512 pixels a byte; a blank fax page in CCITT G4 is
+// about 12000 pixels a byte).
+constexpr double kMaxDeflateRatio = 1032;
+constexpr double kMaxPixelsPerFileByte = 16384;
+
+std::string too_many_pixels(const char* format, double width, double height, std::size_t file_bytes) {
+    return fmt::format("a {}x{} {} image is more than its {} bytes can hold (at most {} pixels a byte)", width, height,
+                       format, file_bytes, kMaxPixelsPerFileByte);
+}
+
 // ---- PNG (libpng; its errors longjmp back to the function that called setjmp) ----
 // Everything that changes between setjmp and a longjmp lives in these structures, owned by the caller, so that no
 // local of the function with setjmp is left indeterminate.
@@ -116,6 +128,16 @@ bool decode_png(PngState& state, Raster& raster) {
         channels = 4;
     const int width = static_cast<int>(png_get_image_width(png, info));
     const int height = static_cast<int>(png_get_image_height(png, info));
+    // Deflate expands at most 1032-fold: a header claiming more rows than the file can hold is found before the
+    // image is allocated.
+    const double filtered_bytes = static_cast<double>(height) * (static_cast<double>(png_get_rowbytes(png, info)) + 1);
+    if (filtered_bytes > kMaxDeflateRatio * static_cast<double>(state.file->size())) {
+        std::snprintf(state.error, sizeof state.error,
+                      "a %dx%d PNG image needs %.0f bytes of image data, more than its %zu bytes can hold", width,
+                      height, filtered_bytes, state.file->size());
+        png_destroy_read_struct(&png, &info, nullptr);
+        return false;
+    }
     try {  // no libpng frame is below this one: an exception may leave it
         raster = Raster(width, height, channels, depth == 16 ? 16 : 8);
     } catch (...) {
@@ -267,6 +289,12 @@ bool decode_jpeg(JpegState& state, jpeg_decompress_struct& info, const std::stri
     jpeg_create_decompress(&info);
     jpeg_mem_src(&info, reinterpret_cast<const unsigned char*>(file.data()), static_cast<unsigned long>(file.size()));
     jpeg_read_header(&info, TRUE);
+    if (double(info.image_width) * double(info.image_height) > kMaxPixelsPerFileByte * double(file.size())) {
+        std::snprintf(state.error, sizeof state.error, "%s",
+                      too_many_pixels("JPEG", info.image_width, info.image_height, file.size()).c_str());
+        jpeg_destroy_decompress(&info);
+        return false;
+    }
     pixels.cmyk = info.num_components == 4;
     info.out_color_space = pixels.cmyk ? JCS_CMYK : info.num_components == 1 ? JCS_GRAYSCALE : JCS_RGB;
     jpeg_start_decompress(&info);
@@ -459,6 +487,8 @@ Raster read_tiff(const std::filesystem::path& path, const std::string& file) {
     if (format == SAMPLEFORMAT_IEEEFP || format == SAMPLEFORMAT_COMPLEXIEEEFP || bits > 16)
         throw RasterError(path, fmt::format("{}-bit {} samples (expected 8- or 16-bit integers)", bits,
                                             format == SAMPLEFORMAT_IEEEFP ? "floating-point" : "integer"), false);
+    if (double(width) * double(height) > kMaxPixelsPerFileByte * double(file.size()))
+        throw RasterError(path, too_many_pixels("TIFF", width, height, file.size()), false);
     if (width > 1000000 || height > 1000000)
         throw RasterError(path, fmt::format("a {}x{} TIFF image is beyond the 1000000-pixel side read", width, height),
                           false);
