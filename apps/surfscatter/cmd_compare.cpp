@@ -6,7 +6,6 @@
 #include <vector>
 
 #include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
 
 #include "command.hpp"
 #include "list_options.hpp"
@@ -44,7 +43,7 @@ void run(const Options& o) {
         }
     }
     const cv::Mat sheet = photo::comparison_sheet(photo_rgb, renders, mask, metrics);
-    if (!cv::imwrite(o.output, sheet)) fail("output '{}' could not be written", o.output);
+    photo::write_display_image(o.output, sheet);
 
     const std::filesystem::path stem = std::filesystem::path(o.output).replace_extension();
     const std::string csv_path = stem.string() + ".csv", json_path = stem.string() + ".json";

@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include <fmt/format.h>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/quality/qualityssim.hpp>
 
@@ -12,6 +11,7 @@
 #include "surfscatter/photo/ciede2000.hpp"
 #include "surfscatter/photo/color_checker.hpp"
 #include "surfscatter/photo/colour_space.hpp"
+#include "surfscatter/photo/photo_io.hpp"
 
 namespace surfscatter::photo {
 
@@ -166,9 +166,7 @@ cv::Mat comparison_sheet(const cv::Mat& photo, const std::vector<cv::Mat>& rende
 }
 
 cv::Mat read_mask(const std::filesystem::path& path, cv::Size photo_size) {
-    if (!std::filesystem::exists(path)) fail("mask '{}' does not exist", path.string());
-    cv::Mat mask = cv::imread(path.string(), cv::IMREAD_GRAYSCALE);
-    if (mask.empty()) fail("mask '{}' could not be decoded", path.string());
+    const cv::Mat mask = read_grey8(path, "mask");
     if (mask.size() != photo_size)
         fail("mask '{}' is {}x{} pixels but the photo is {}x{}", path.string(), mask.cols, mask.rows, photo_size.width,
              photo_size.height);

@@ -5,20 +5,18 @@
 #include <cctype>
 #include <cmath>
 #include <cstdarg>
-#include <cstdio>
 #include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include <libexif/exif-data.h>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <tiffio.h>
-#include <unistd.h>
 
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/io/image.hpp"
+#include "surfscatter/io/raster.hpp"
 #include "surfscatter/photo/camera_raw.hpp"
 #include "surfscatter/photo/colour_space.hpp"
 
@@ -33,9 +31,6 @@ std::string lower_extension(const std::filesystem::path& path) {
 }
 
 bool is_exr(const std::string& ext) { return ext == ".exr"; }
-bool is_opencv_format(const std::string& ext) {
-    return ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".tif" || ext == ".tiff";
-}
 // Extensions of the camera RAW formats LibRaw reads (it recognises a file by its content; this only routes).
 bool is_camera_raw(const std::string& ext) {
     static constexpr std::array<std::string_view, 25> kExtensions{
@@ -97,34 +92,36 @@ std::optional<double> tiff_focal_length(const std::filesystem::path& path) {
     return TIFFGetField(tiff.get(), EXIFTAG_FOCALLENGTH, &focal) ? positive(focal) : std::nullopt;
 }
 
-// Runs `decode` with the process's stderr (fd 2) sent to a temporary file and returns what was written there: the
-// image libraries OpenCV uses print their errors and warnings themselves.
-template <typename F>
-std::string captured_stderr(F decode) {
-    std::fflush(stderr);
-    const std::unique_ptr<FILE, int (*)(FILE*)> sink(std::tmpfile(), &std::fclose);
-    const int saved = sink ? ::dup(STDERR_FILENO) : -1;
-    if (saved < 0) {
-        decode();
-        return {};
-    }
-    ::dup2(::fileno(sink.get()), STDERR_FILENO);
+// Decodes a PNG/JPEG/TIFF; a file the decoders cannot read is Error naming it as `role` ("image", "mask").
+io::Raster read_raster_as(const std::filesystem::path& path, const char* role) {
     try {
-        decode();
-    } catch (...) {
-        std::fflush(stderr);
-        ::dup2(saved, STDERR_FILENO);
-        ::close(saved);
+        io::Raster raster = io::read_raster(path);
+        io::print_warnings(path, raster);
+        return raster;
+    } catch (const io::RasterError& e) {
+        if (e.truncated) fail("{} '{}' is truncated ({})", role, path.string(), e.reason);
         throw;
     }
-    std::fflush(stderr);
-    ::dup2(saved, STDERR_FILENO);
-    ::close(saved);
-    std::string text;
-    std::rewind(sink.get());
-    for (int c; (c = std::fgetc(sink.get())) != EOF;) text += static_cast<char>(c == '\n' ? ' ' : c);
-    while (!text.empty() && text.back() == ' ') text.pop_back();
-    return text;
+}
+
+// An 8- or 16-bit cv::Mat of 1 or 3 channels in R, G, B order, written by extension.
+void write_mat(const std::filesystem::path& path, const cv::Mat& samples) {
+    io::RasterFormat format;
+    if (!io::raster_format_by_extension(path, format))
+        fail("output '{}': unsupported type '{}' (expected .png, .jpg, .jpeg, .tif, .tiff or .exr)", path.string(),
+             path.extension().string());
+    const bool sixteen = samples.depth() == CV_16U;
+    io::Raster raster(samples.cols, samples.rows, samples.channels(), sixteen ? 16 : 8);
+    const cv::Mat flat = samples.reshape(1, samples.rows);
+    for (int y = 0; y < samples.rows; ++y)
+        for (int i = 0; i < samples.cols * samples.channels(); ++i)
+            raster.samples[static_cast<std::size_t>(y) * flat.cols + i] =
+                sixteen ? flat.at<std::uint16_t>(y, i) : flat.at<std::uint8_t>(y, i);
+    try {
+        io::write_raster(path, raster, format);
+    } catch (const Error& e) {
+        fail("output '{}' could not be written: {}", path.string(), e.what());
+    }
 }
 
 }  // namespace
@@ -152,38 +149,29 @@ Photo read_photo(const std::filesystem::path& path, Encoding encoding) {
         fail("camera RAW '{}' could not be opened by LibRaw (a format it does not know, or a damaged header)",
              path.string());
     }
-    if (!is_opencv_format(ext))
+    io::RasterFormat format;
+    if (!io::raster_format_by_extension(path, format))
         fail("image '{}': unsupported type '{}' (expected .png, .jpg, .jpeg, .tif, .tiff, .exr or camera RAW such as "
              ".dng, .cr2, .nef, .arw)", path.string(), ext);
 
-    cv::Mat raw;
-    const std::string decoder = captured_stderr(
-        [&] { raw = cv::imread(path.string(), cv::IMREAD_UNCHANGED | cv::IMREAD_IGNORE_ORIENTATION); });
-    if (raw.empty()) {
+    io::Raster raster;
+    try {
+        raster = read_raster_as(path, "image");
+    } catch (const io::RasterError& e) {
         // A camera RAW file under an image extension is still read.
         if (auto photo = read_camera_raw(path)) return *std::move(photo);
-        fail("image '{}' could not be decoded{}", path.string(), decoder.empty() ? "" : " (" + decoder + ")");
+        fail("image '{}' could not be decoded ({})", path.string(), e.reason);
     }
-    if (decoder.find("Premature end") != std::string::npos)
-        fail("image '{}' is truncated ({})", path.string(), decoder);
-    if (!decoder.empty()) std::fprintf(stderr, "surfscatter: warning: image '%s': %s\n", path.c_str(), decoder.c_str());
-    double scale = 0.0;
     Photo photo;
-    switch (raw.depth()) {
-        case CV_8U: scale = 1.0 / 255.0; photo.bit_depth = 8; break;
-        case CV_16U: scale = 1.0 / 65535.0; photo.bit_depth = 16; break;
-        default: fail("image '{}': unsupported sample type (expected 8- or 16-bit integers)", path.string());
-    }
-    cv::Mat bgr;
-    switch (raw.channels()) {
-        case 1: cv::cvtColor(raw, bgr, cv::COLOR_GRAY2BGR); break;
-        case 3: bgr = raw; break;
-        case 4: cv::cvtColor(raw, bgr, cv::COLOR_BGRA2BGR); break;
-        default: fail("image '{}' has {} channels (expected 1, 3 or 4)", path.string(), raw.channels());
-    }
-    cv::Mat rgb;
-    cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
-    rgb.convertTo(rgb, CV_32F, scale);
+    photo.bit_depth = raster.bit_depth;
+    // As OpenCV's convertTo(CV_32F, scale): the product in float.
+    const float scale = static_cast<float>(raster.bit_depth == 16 ? 1.0 / 65535.0 : 1.0 / 255.0);
+    cv::Mat rgb(raster.height, raster.width, CV_32FC3);
+    for (int y = 0; y < raster.height; ++y)
+        for (int x = 0; x < raster.width; ++x) {
+            cv::Vec3f& px = rgb.at<cv::Vec3f>(y, x);
+            for (int c = 0; c < 3; ++c) px[c] = static_cast<float>(raster.at(x, y, raster.channels < 3 ? 0 : c)) * scale;
+        }
     photo.rgb = encoding == Encoding::Srgb ? srgb_decode_image(rgb) : rgb;
     photo.encoded = true;
     photo.focal_length_mm = read_exif_focal_length(path);
@@ -201,23 +189,39 @@ void write_photo(const std::filesystem::path& path, const cv::Mat& linear_rgb, E
         io::write_exr(path, image);
         return;
     }
-    if (!is_opencv_format(ext))
-        fail("output '{}': unsupported type '{}' (expected .png, .jpg, .jpeg, .tif, .tiff or .exr)", path.string(), ext);
     const cv::Mat encoded = encoding == Encoding::Srgb ? srgb_encode_image(linear_rgb) : linear_rgb;
-    cv::Mat bgr;
-    cv::cvtColor(encoded, bgr, cv::COLOR_RGB2BGR);
-    const bool eight_bit = ext == ".jpg" || ext == ".jpeg";
+    io::RasterFormat format;
+    const bool eight_bit = io::raster_format_by_extension(path, format) && format == io::RasterFormat::jpeg;
     cv::Mat out;
-    bgr.convertTo(out, eight_bit ? CV_8U : CV_16U, eight_bit ? 255.0 : 65535.0);  // saturating
-    std::vector<int> params;
-    if (eight_bit) params = {cv::IMWRITE_JPEG_QUALITY, 95};
-    bool ok = false;
+    encoded.convertTo(out, eight_bit ? CV_8U : CV_16U, eight_bit ? 255.0 : 65535.0);  // saturating, rounded
+    write_mat(path, out);
+}
+
+void write_display_image(const std::filesystem::path& path, const cv::Mat& bgr8) {
+    CV_Assert(bgr8.type() == CV_8UC3);
+    cv::Mat rgb;
+    cv::cvtColor(bgr8, rgb, cv::COLOR_BGR2RGB);
+    write_mat(path, rgb);
+}
+
+cv::Mat read_grey8(const std::filesystem::path& path, const char* role) {
+    if (!std::filesystem::exists(path)) fail("{} '{}' does not exist", role, path.string());
+    io::Raster raster;
     try {
-        ok = cv::imwrite(path.string(), out, params);
-    } catch (const cv::Exception& e) {
-        fail("output '{}' could not be written: {}", path.string(), e.what());
+        raster = read_raster_as(path, role);
+    } catch (const io::RasterError& e) {
+        fail("{} '{}' could not be decoded ({})", role, path.string(), e.reason);
     }
-    if (!ok) fail("output '{}' could not be written", path.string());
+    const int shift = raster.bit_depth == 16 ? 8 : 0;  // the high byte, as OpenCV's IMREAD_GRAYSCALE
+    cv::Mat samples(raster.height, raster.width, CV_8UC(raster.channels));
+    for (int y = 0; y < raster.height; ++y)
+        for (int i = 0; i < raster.width * raster.channels; ++i)
+            samples.ptr<std::uint8_t>(y)[i] = static_cast<std::uint8_t>(
+                raster.samples[static_cast<std::size_t>(y) * raster.width * raster.channels + i] >> shift);
+    if (raster.channels == 1) return samples;
+    cv::Mat grey;
+    cv::cvtColor(samples, grey, raster.channels == 4 ? cv::COLOR_RGBA2GRAY : cv::COLOR_RGB2GRAY);
+    return grey;
 }
 
 cv::Mat to_display_bgr8(const cv::Mat& linear_rgb) {

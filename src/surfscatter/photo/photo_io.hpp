@@ -2,7 +2,7 @@
 // Reading and writing photographs for the pipeline. In memory a photograph is a CV_32FC3 cv::Mat with channels in
 // R, G, B order (not OpenCV's usual B, G, R) holding LINEAR values, 1 = the file's full scale.
 //
-// Files: JPEG and 8/16-bit PNG/TIFF through OpenCV (sRGB-encoded unless told otherwise), OpenEXR through
+// Files: JPEG and 8/16-bit PNG/TIFF through surfscatter::io's raster.hpp (libjpeg, libpng, libtiff; sRGB-encoded unless told otherwise), OpenEXR through
 // surfscatter::io (linear), camera RAW (.dng, .cr2, .nef, .arw, .raf, ...) through LibRaw as linear sRGB
 // (camera_raw.hpp states the processing). docs/PHOTO.md, "Images".
 #include <filesystem>
@@ -26,15 +26,21 @@ struct Photo {
 };
 
 // Throws Error naming the file when it is missing, a directory, unreadable, truncated, of an unknown type or not
-// 1/3/4 channels. A file with an image extension that OpenCV cannot decode is offered to LibRaw before giving up.
-// OpenCV's decoders let libpng and libjpeg print on stderr (and decode a truncated JPEG, greying the rest): their
-// messages are captured and become the error (or, for a JPEG that decodes with a warning other than truncation, one
-// "surfscatter: warning:" line naming the file).
+// 1/3/4 channels. A file with an image extension that the decoders cannot read is offered to LibRaw before giving
+// up. The decoders' messages become the error (a truncated file is "truncated"), or, for a file that decodes with
+// warnings, one "surfscatter: warning:" line naming the file. Grey is expanded to RGB, alpha dropped.
 Photo read_photo(const std::filesystem::path& path, Encoding encoding = Encoding::Srgb);
 
 // Writes by extension: .png (16-bit), .tif/.tiff (16-bit), .jpg/.jpeg (8-bit), all sRGB-encoded unless
 // `encoding` is Linear; .exr as linear 32-bit float. Values outside [0, 1] are clipped for integer formats.
 void write_photo(const std::filesystem::path& path, const cv::Mat& linear_rgb, Encoding encoding = Encoding::Srgb);
+
+// Writes an 8-bit B, G, R image (a comparison sheet) as PNG, JPEG (quality 95) or TIFF by extension.
+void write_display_image(const std::filesystem::path& path, const cv::Mat& bgr8);
+
+// An image file (PNG, JPEG, TIFF) as 8-bit grey, as OpenCV's imread(IMREAD_GRAYSCALE) would give for grey files;
+// 16-bit samples keep their high byte, colour is converted with cv::COLOR_RGB2GRAY. `role` names the file in errors.
+cv::Mat read_grey8(const std::filesystem::path& path, const char* role);
 
 // 8-bit B, G, R sRGB-encoded view of a linear image (for detectors and for sheets), clipped to [0, 1].
 cv::Mat to_display_bgr8(const cv::Mat& linear_rgb);
