@@ -1,7 +1,6 @@
 #include "surfscatter/io/image.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -31,12 +30,6 @@ Image::Image(int width_, int height_, int channels_, float fill) : width(width_)
 }
 
 namespace {
-
-std::string lower_extension(const std::filesystem::path& path) {
-    std::string ext = path.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    return ext;
-}
 
 void check_writable(const std::filesystem::path& path, const Image& image) {
     if (image.empty() || image.width <= 0 || image.height <= 0)

@@ -46,12 +46,6 @@ void append(std::string& list, const std::string& message) {
     list += message;
 }
 
-std::string lower_extension(const std::filesystem::path& path) {
-    std::string ext = path.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    return ext;
-}
-
 // Plausibility of a header's image size against the file's size, checked before allocating (docs/RELIABILITY.md):
 // deflate's largest expansion, and for JPEG and TIFF a bound on pixels per byte of file far above any photograph
 // (JPEG needs at least a bit per 8x8 block of most layouts, 512 pixels a byte; a blank fax page in CCITT G4 is
@@ -561,6 +555,12 @@ void write_tiff(const std::filesystem::path& path, const Raster& raster) {
 }
 
 }  // namespace
+
+std::string lower_extension(const std::filesystem::path& path) {
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext;
+}
 
 Raster read_raster(const std::filesystem::path& path) {
     const std::string file = read_input_file(path, "image file", kMaxRasterFileBytes);

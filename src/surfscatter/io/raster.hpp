@@ -65,6 +65,9 @@ void print_warnings(const std::filesystem::path& path, const Raster& raster);
 // instead of std::bad_alloc. Images under 64 MiB are not checked.
 void require_image_memory(double width, double height, double bytes_per_pixel, const std::string& what);
 
+// A path's extension in lower case (".tif" for "A.TIF"): formats are named by it.
+std::string lower_extension(const std::filesystem::path& path);
+
 enum class RasterFormat { png, jpeg, tiff };
 // .png, .jpg/.jpeg, .tif/.tiff (case-insensitive); false otherwise.
 bool raster_format_by_extension(const std::filesystem::path& path, RasterFormat& format);

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cctype>
 #include <cmath>
 #include <cstdarg>
 #include <memory>
@@ -22,13 +21,9 @@
 
 namespace surfscatter::photo {
 
-namespace {
+using io::lower_extension;
 
-std::string lower_extension(const std::filesystem::path& path) {
-    std::string ext = path.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    return ext;
-}
+namespace {
 
 bool is_exr(const std::string& ext) { return ext == ".exr"; }
 // Extensions of the camera RAW formats LibRaw reads (it recognises a file by its content; this only routes).
