@@ -52,6 +52,8 @@ void append(std::string& list, const std::string& message) {
 // about 12000 pixels a byte).
 constexpr double kMaxDeflateRatio = 1032;
 constexpr double kMaxPixelsPerFileByte = 16384;
+// TIFF's decoded samples: LZW expands at most about 2730-fold (12-bit codes of runs up to 4096 bytes), deflate 1032.
+constexpr double kMaxTiffExpansion = 4096;
 
 std::string too_many_pixels(const char* format, double width, double height, std::size_t file_bytes) {
     return fmt::format("a {}x{} {} image is more than its {} bytes can hold (at most {} pixels a byte)", width, height,
@@ -463,6 +465,10 @@ Raster read_tiff(const std::filesystem::path& path, const std::string& file) {
     TiffState state;
     state.file = &file;
     TIFFOpenOptions* options = tiff_options(state);
+    // No buffer libtiff needs for a valid file is larger than the decoded image (bounded below): a damaged strip or
+    // tile size cannot make it allocate more.
+    TIFFOpenOptionsSetMaxSingleMemAlloc(
+        options, static_cast<tmsize_t>(2 * kMaxTiffExpansion * static_cast<double>(file.size()) + (16 << 20)));
     const Tiff tiff(TIFFClientOpenExt(path.c_str(), "rm", &state, tiff_read, tiff_no_write, tiff_seek, tiff_close,
                                       tiff_size, tiff_no_map, tiff_no_unmap, options),
                     &TIFFClose);
@@ -483,6 +489,11 @@ Raster read_tiff(const std::filesystem::path& path, const std::string& file) {
                                             format == SAMPLEFORMAT_IEEEFP ? "floating-point" : "integer"), false);
     if (double(width) * double(height) > kMaxPixelsPerFileByte * double(file.size()))
         throw RasterError(path, too_many_pixels("TIFF", width, height, file.size()), false);
+    const double decoded_bytes = double(width) * double(height) * samples * bits / 8;
+    if (decoded_bytes > kMaxTiffExpansion * double(file.size()))
+        throw RasterError(path, fmt::format("a {}x{} TIFF image of {} {}-bit samples a pixel ({} bytes) is more than its {} "
+                                            "bytes can hold (at most {} times)", width, height, samples, bits,
+                                            decoded_bytes, file.size(), kMaxTiffExpansion), false);
     if (width > 1000000 || height > 1000000)
         throw RasterError(path, fmt::format("a {}x{} TIFF image is beyond the 1000000-pixel side read", width, height),
                           false);
