@@ -104,6 +104,16 @@ TEST(Raster, LosslessRoundTripsKeepEverySample) {
             }
 }
 
+TEST(Raster, EightBitPngsCarryAnSrgbChunkSixteenBitOnesNone) {
+    // As libpng's simplified writer made the film's PNGs before (the render's PNG is byte for byte the same,
+    // docs/PERFORMANCE.md); 16-bit photographs carry no colour chunk, as OpenCV wrote them.
+    const fs::path path = temp_path("srgb.png");
+    io::write_raster(path, noise(8, 4, 3, 8, 2), RasterFormat::png);
+    EXPECT_NE(file_bytes(path).find("sRGB"), std::string::npos);
+    io::write_raster(path, noise(8, 4, 3, 16, 2), RasterFormat::png);
+    EXPECT_EQ(file_bytes(path).find("sRGB"), std::string::npos);
+}
+
 TEST(Raster, GreyWithAlphaComesBackAsRgba) {
     // As OpenCV's imread(IMREAD_UNCHANGED): a grey + alpha PNG is 4 channels, the grey copied to R, G and B.
     const Raster in = noise(17, 11, 2, 16, 7);

@@ -207,8 +207,11 @@ bool encode_png(PngState& state, std::FILE* file, const Raster& raster) {
     png_set_IHDR(png, info, static_cast<png_uint_32>(raster.width), static_cast<png_uint_32>(raster.height),
                  raster.bit_depth, kColorTypes[raster.channels - 1], PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
                  PNG_FILTER_TYPE_DEFAULT);
+    // 8-bit files are sRGB-encoded images (film, sheets) and say so, as libpng's simplified API wrote them; 16-bit
+    // ones are photographs in the encoding the user chose, written without a colour chunk as OpenCV did.
+    if (raster.bit_depth == 8) png_set_sRGB(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
     // libpng's own "fast" choice (PNG_IMAGE_FLAG_FAST): a quarter of the default's deflate time.
-    png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_NO_FILTERS);
+    png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_NONE);
     png_set_compression_level(png, 3);
     png_write_info(png, info);
     png_write_image(png, state.rows.data());

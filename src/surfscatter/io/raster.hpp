@@ -2,9 +2,9 @@
 // Integer-sample images in PNG, JPEG and TIFF files: the one binding of libpng, libjpeg and libtiff. The float images
 // of image.hpp and the photographs of photo/ are both read and written through it.
 //
-// Why not OpenCV's imgcodecs: it loads 139 of the CLI's 213 shared objects (GDAL, GDCM, libheif, ...), whose
-// relocations and static constructors cost every command about 0.1 CPU s at start-up (docs/PERFORMANCE.md, "Where
-// the time goes"). The samples decoded here are those OpenCV 4.6's imread(IMREAD_UNCHANGED |
+// Why not OpenCV's imgcodecs: 94 of the CLI's 213 shared objects were there only for it (GDAL, GDCM, libheif, ...),
+// and their relocations and static constructors cost every command 0.07 CPU s at start-up (docs/PERFORMANCE.md,
+// "Where the time goes"). The samples decoded here are those OpenCV 4.6's imread(IMREAD_UNCHANGED |
 // IMREAD_IGNORE_ORIENTATION) returns (tests/photo/test_raster_vs_opencv.cpp checks it), in R, G, B order.
 #include <cstdint>
 #include <filesystem>
@@ -72,9 +72,10 @@ enum class RasterFormat { png, jpeg, tiff };
 // .png, .jpg/.jpeg, .tif/.tiff (case-insensitive); false otherwise.
 bool raster_format_by_extension(const std::filesystem::path& path, RasterFormat& format);
 
-// Writes 1 to 4 channels: PNG 8- or 16-bit (no filters, deflate level 3: fast, files a few % larger), TIFF 8- or
-// 16-bit (LZW with horizontal differencing), JPEG 8-bit grey or RGB at `jpeg_quality` (4:2:0 chroma). Throws Error
-// naming the file when it cannot be written or the format cannot hold the image.
+// Writes 1 to 4 channels: PNG 8- or 16-bit (no filters, deflate level 3: fast, files a few % larger; 8-bit ones
+// with an sRGB chunk), TIFF 8- or 16-bit (LZW with horizontal differencing), JPEG 8-bit grey or RGB at
+// `jpeg_quality` (4:2:0 chroma). Throws Error naming the file when it cannot be written or the format cannot hold
+// the image.
 void write_raster(const std::filesystem::path& path, const Raster& raster, RasterFormat format,
                   int jpeg_quality = 95);
 
