@@ -200,3 +200,23 @@ TEST(RasterVsOpenCv, JpegGreyColourProgressiveAndCmyk) {
     write_cmyk_jpeg(path);
     expect_same_as_opencv(path);
 }
+
+TEST(RasterVsOpenCv, WrittenFilesDecodeToWhatOpenCvsWriterGave) {
+    // write_photo used cv::imwrite: 16-bit PNG/TIFF, JPEG at quality 95 (libjpeg's defaults otherwise, 4:2:0). The
+    // same samples written both ways decode to the same samples (JPEG included: the same encoder and settings).
+    const cv::Mat bgr16 = noise(27, 35, CV_16UC3, 31);
+    const cv::Mat bgr8 = smooth_bgr(27, 35);
+    for (const auto& [ext, format] : {std::pair{".png", io::RasterFormat::png}, std::pair{".tif", io::RasterFormat::tiff},
+                                      std::pair{".jpg", io::RasterFormat::jpeg}}) {
+        const cv::Mat& bgr = format == io::RasterFormat::jpeg ? bgr8 : bgr16;
+        io::Raster raster(bgr.cols, bgr.rows, 3, bgr.depth() == CV_16U ? 16 : 8);
+        for (int y = 0; y < bgr.rows; ++y)
+            for (int x = 0; x < bgr.cols; ++x)
+                for (int c = 0; c < 3; ++c)
+                    raster.at(x, y, c) = bgr.depth() == CV_16U ? bgr.at<cv::Vec3w>(y, x)[2 - c] : bgr.at<cv::Vec3b>(y, x)[2 - c];
+        const fs::path ours = temp_path(std::string("ours") + ext), theirs = temp_path(std::string("theirs") + ext);
+        io::write_raster(ours, raster, format, 95);
+        ASSERT_TRUE(cv::imwrite(theirs.string(), bgr, {cv::IMWRITE_JPEG_QUALITY, 95}));
+        EXPECT_EQ(io::read_raster(ours).samples, io::read_raster(theirs).samples) << ext;
+    }
+}
