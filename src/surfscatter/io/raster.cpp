@@ -442,7 +442,10 @@ void read_tiff_samples(TIFF* tiff, const std::filesystem::path& path, TiffState&
         if (tile_width == 0 || tile_height == 0 || tile_width > 65536 || tile_height > 65536 ||
             TIFFTileSize64(tiff) != std::uint64_t{tile_width} * tile_height * raster.channels * 2)
             fail_here("bad tile size");
-        require_image_memory(tile_width, tile_height, 2.0 * raster.channels, "TIFF tile");
+        // A tile's samples come from the file like the image's (tiles may overhang the image, so bound them apart).
+        if (double(TIFFTileSize64(tiff)) > kMaxTiffExpansion * double(state.file->size()))
+            throw RasterError(path, fmt::format("a {}x{} TIFF tile is more than the file's {} bytes can hold", tile_width,
+                                                tile_height, state.file->size()), false);
         std::vector<std::uint16_t> tile(static_cast<std::size_t>(tile_width) * tile_height * raster.channels);
         for (std::uint32_t y0 = 0; y0 < static_cast<std::uint32_t>(raster.height); y0 += tile_height)
             for (std::uint32_t x0 = 0; x0 < static_cast<std::uint32_t>(raster.width); x0 += tile_width) {
