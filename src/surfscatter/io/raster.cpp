@@ -36,8 +36,11 @@ Raster::Raster(int width_, int height_, int channels_, int bit_depth_)
                    0);
 }
 
+// The libraries' messages may quote the file's own bytes (libtiff quotes tag values): printable, one line.
 RasterError::RasterError(const std::filesystem::path& path, const std::string& reason_, bool truncated_)
-    : Error(fmt::format("cannot decode image {}: {}", path.string(), reason_)), reason(reason_), truncated(truncated_) {}
+    : Error(fmt::format("cannot decode image {}: {}", path.string(), printable(reason_, 300))),
+      reason(printable(reason_, 300)),
+      truncated(truncated_) {}
 
 namespace {
 
