@@ -105,20 +105,6 @@ void check_g(double g) {
     if (!(g >= 0.0 && g <= ScatterLobeTable::kMaxG)) fail("lobe parameter g = {} outside [0, {}]", g, ScatterLobeTable::kMaxG);
 }
 
-// Stencil over rows first .. first+3 (nodes first-1 .. first+2; row 0 is the g -> 0 limit) at fractional position u,
-// for ln g in [ln kMinG, ln kMaxG] (position >= 0 up to rounding, so truncation is floor).
-struct Stencil {
-    int first;
-    std::array<double, 4> w;
-};
-Stencil stencil(double log_g) {
-    const double t = (log_g - kLogGMin) * kInvGStep;
-    const int first = std::clamp(static_cast<int>(t), 1, kGNodes - 3);
-    const double u = t - first;
-    const std::array<math::Pair, 4> w = detail::cubic_weights(math::Pair{u, u});
-    return {first, {w[0][0], w[1][0], w[2][0], w[3][0]}};
-}
-
 }  // namespace
 
 ScatterLobeTable::ScatterLobeTable(std::shared_ptr<const Data> data)
@@ -157,6 +143,14 @@ std::shared_ptr<const ScatterLobeTable> ScatterLobeTable::get(std::shared_ptr<co
     return std::make_shared<const ScatterLobeTable>(std::make_shared<const Data>(
         Data{family, first_order_apart ? std::move(stats) : nullptr,
              fmt::format("{}:v{}", key, detail::kFamilyFormatVersion)}));
+}
+
+ScatterLobeTable::Stencil ScatterLobeTable::stencil(double log_g) const {
+    const double t = g_position(log_g);
+    const int first = stencil_first(t);
+    const double u = t - first;
+    const std::array<math::Pair, 4> w = detail::cubic_weights(math::Pair{u, u});
+    return {first, {w[0][0], w[1][0], w[2][0], w[3][0]}};
 }
 
 // Row by row with the rows' own extensions: zeta outside the nodes some row of the stencil shares.

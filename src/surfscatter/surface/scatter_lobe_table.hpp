@@ -67,6 +67,16 @@ private:
     double lobe_log_value_by_rows(double log_g, double log_zeta, bool with_mass) const;
     double log_eval_outside(double log_g, double log_zeta) const;
     bool interior_log_value(double log_g, double log_zeta, bool with_mass, double& value) const;
+    // Position of ln g among the g rows' nodes, (ln g - ln kMinG) / step: >= 0 up to rounding for g >= kMinG.
+    double g_position(double log_g) const { return (log_g - grid_.log_g_min) * grid_.inv_g_step; }
+    // The first of the stencil's rows first .. first+3 (nodes first-1 .. first+2; row 0 is the g -> 0 limit) at
+    // position t in [0, g_position_max] (truncation is floor there); t - first is the stencil's fractional position.
+    int stencil_first(double t) const { return std::clamp(static_cast<int>(t), 1, grid_.last_first); }
+    struct Stencil {
+        int first;
+        std::array<double, 4> w;
+    };
+    Stencil stencil(double log_g) const;  // rows and cubic weights for ln g in [ln kMinG, ln kMaxG]
 
     // What the inline bicubic reads, flat in the object (no pointer chase through data_).
     struct Grid {
@@ -80,7 +90,7 @@ private:
         std::vector<double> log_mass;  // ln of each row's mass, 1 - e^{-g} or remainder_mass(g) (row 0: unused)
     };
     std::shared_ptr<const Data> data_;
-    bool data_has_first_order_;
+    bool data_has_first_order_;  // data_->first_order set, read by the inline path without the pointer chase
     Grid grid_;
 };
 
@@ -98,9 +108,9 @@ inline std::array<math::Pair, 4> cubic_weights(math::Pair u) {
 // pairs of taps computed in SSE2 lanes. False (value untouched) outside [kMinG, kMaxG] or those nodes.
 inline bool ScatterLobeTable::interior_log_value(double log_g, double log_zeta, bool with_mass, double& value) const {
     using math::Pair;
-    const double t = (log_g - grid_.log_g_min) * grid_.inv_g_step;
+    const double t = g_position(log_g);
     if (!(t >= 0.0 && t <= grid_.g_position_max)) return false;
-    const int first = std::clamp(static_cast<int>(t), 1, grid_.last_first);
+    const int first = stencil_first(t);
     const double tz = (log_zeta - grid_.log_zeta0) * grid_.inv_zeta_step;
     if (!(tz > 0.0 && tz < grid_.shared_interior_end[first])) return false;
     const int j = std::max(static_cast<int>(tz), 1) - 1;  // tz < 1: the first four nodes, as cubic_interpolate
