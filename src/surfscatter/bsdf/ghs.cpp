@@ -157,14 +157,14 @@ double GhsBsdf::outgoing_fresnel(const Vec3& wi, const Vec3& wo, double lambda_n
 double GhsBsdf::eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
     if (wi.z <= 0 || wo.z <= 0) return 0.0;
     const double k = wavenumber(lambda_nm);
-    return eval(wi, wo, lambda_nm, k, LobeLogs(wi, wo, k));
+    return eval(wi, wo, lambda_nm, lookup(wi.z, lambda_nm, k), LobeLogs(wi, wo, k));
 }
 
 // Inlined into its three callers: a call here, and to lookup, cost 20 % of an exact-GHS eval (register saves and
 // the Incidence passed through memory).
-[[gnu::always_inline]] inline double GhsBsdf::eval(const Vec3& wi, const Vec3& wo, double lambda_nm, double k,
-                                                   const LobeLogs& logs) const {
-    const Incidence in = lookup(wi.z, lambda_nm, k);
+[[gnu::always_inline]] inline double GhsBsdf::eval(const Vec3& wi, const Vec3& wo, double lambda_nm,
+                                                   const Incidence& in, const LobeLogs& logs) const {
+    const double k = in.k;
     const double scale = fresnel(wi, wo, lambda_nm) * norm_power(wi.z) * k * k;
     // The exact core of a PSD without a jump hands ln S_g: one exponential of ln N + ln S_g. Other cores (first order,
     // refit, a high-pass PSD) return the density itself, and exp(ln N) multiplies it (taking its logarithm to add ln N
@@ -186,8 +186,9 @@ WavelengthValues GhsBsdf::eval_packet(const Vec3& wi, const Vec3& wo, const Wave
     const Wedge reverse(wo, wi);  // pdf(wo, wi): incidence wo
     for (std::size_t j = 0; j < f.size(); ++j) {
         const double k = wavenumber(lambda_nm[j]);
-        f[j] = eval(wi, wo, lambda_nm[j], k, LobeLogs(math::fast_log(k), log_cosine_sum, log_radius2));
-        if (pdf) (*pdf)[j] = this->pdf(wo, wi, lambda_nm[j], reverse);
+        f[j] = eval(wi, wo, lambda_nm[j], lookup(wi.z, lambda_nm[j], k),
+                    LobeLogs(math::fast_log(k), log_cosine_sum, log_radius2));
+        if (pdf) (*pdf)[j] = this->pdf(wo, wi, lookup(wo.z, lambda_nm[j], k), reverse);
     }
     return f;
 }
@@ -207,11 +208,10 @@ GhsBsdf::Wedge::Wedge(const Vec3& wi, const Vec3& wo)
 
 double GhsBsdf::pdf(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
     if (wi.z <= 0 || wo.z <= 0) return 0.0;
-    return pdf(wi, wo, lambda_nm, Wedge(wi, wo));
+    return pdf(wi, wo, lookup(wi.z, lambda_nm), Wedge(wi, wo));
 }
 
-double GhsBsdf::pdf(const Vec3& wi, const Vec3& wo, double lambda_nm, const Wedge& wedge) const {
-    const Incidence in = lookup(wi.z, lambda_nm);
+double GhsBsdf::pdf(const Vec3& wi, const Vec3& wo, const Incidence& in, const Wedge& wedge) const {
     const double k = in.k, g0 = specular_exponent(in, wi.z);
     const double zeta_max = k * (1.0 + wedge.s);
     const double p = math::one_minus_exp(g0) *
@@ -239,9 +239,9 @@ std::optional<BsdfSample> GhsBsdf::sample(const Vec3& wi, double lambda_nm, doub
     const auto wo = wedge_direction(wi, zeta / k, u.y);
     if (!wo) return std::nullopt;
     out.wo = *wo;
-    out.pdf = pdf(wi, *wo, lambda_nm);
+    out.pdf = pdf(wi, *wo, in, Wedge(wi, *wo));  // the incidence looked up once for the draw, its pdf and its value
     if (!(out.pdf > 0) || !std::isfinite(out.pdf)) return std::nullopt;
-    out.weight = eval(wi, *wo, lambda_nm) * wo->z / out.pdf;
+    out.weight = eval(wi, *wo, lambda_nm, in, LobeLogs(wi, *wo, k)) * wo->z / out.pdf;
     if (!std::isfinite(out.weight)) return std::nullopt;
     return out;
 }

@@ -98,12 +98,13 @@ private:
             : log_g_over_sigma2(2.0 * (log_k + log_cosine_sum)), log_zeta(log_k + 0.5 * log_radius2) {}
         double log_g_over_sigma2, log_zeta;
     };
-    double eval(const Vec3& wi, const Vec3& wo, double lambda_nm, double k, const LobeLogs& logs) const;
+    // The lobe with the incidence already looked up (in: at wi.z and lambda_nm).
+    double eval(const Vec3& wi, const Vec3& wo, double lambda_nm, const Incidence& in, const LobeLogs& logs) const;
     struct Wedge {  // the pdf's geometry: sin theta_i, q = |i_xy + o_xy| and the wedge half-angle
         Wedge(const Vec3& wi, const Vec3& wo);
         double s, q, phi_max;
     };
-    double pdf(const Vec3& wi, const Vec3& wo, double lambda_nm, const Wedge& wedge) const;
+    double pdf(const Vec3& wi, const Vec3& wo, const Incidence& in, const Wedge& wedge) const;  // in: at wi.z
     double density(const LobeLogs& logs, double log_sigma) const;
     Table cached_table(double lambda_nm) const;  // from the disk cache, else built and saved there
     Table build_table(double lambda_nm) const;
