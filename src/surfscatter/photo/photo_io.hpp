@@ -2,9 +2,9 @@
 // Reading and writing photographs for the pipeline. In memory a photograph is a CV_32FC3 cv::Mat with channels in
 // R, G, B order (not OpenCV's usual B, G, R) holding LINEAR values, 1 = the file's full scale.
 //
-// Files: JPEG and 8/16-bit PNG/TIFF through surfscatter::io's raster.hpp (libjpeg, libpng, libtiff; sRGB-encoded unless told otherwise), OpenEXR through
-// surfscatter::io (linear), camera RAW (.dng, .cr2, .nef, .arw, .raf, ...) through LibRaw as linear sRGB
-// (camera_raw.hpp states the processing). docs/PHOTO.md, "Images".
+// Files: JPEG and 8/16-bit PNG/TIFF through surfscatter::io's raster.hpp (libjpeg, libpng, libtiff; sRGB-encoded
+// unless told otherwise), OpenEXR through surfscatter::io (linear), camera RAW (.dng, .cr2, .nef, .arw, .raf, ...)
+// through LibRaw as linear sRGB (camera_raw.hpp states the processing). docs/PHOTO.md, "Images".
 #include <filesystem>
 #include <optional>
 #include <string>

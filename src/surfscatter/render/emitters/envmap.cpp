@@ -21,6 +21,7 @@
 
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/io/image.hpp"
+#include "surfscatter/io/raster.hpp"
 #include "surfscatter/render/plugins.hpp"
 #include "surfscatter/spectrum/color.hpp"
 
@@ -241,8 +242,7 @@ EmitterPtr plugins::envmap(Properties& props) {
     if (!(scale >= 0 && scale <= kMaxSpectrumValue))
         props.fail_param("scale", "envmap scale must be between 0 and {:g}, got {}", kMaxSpectrumValue, scale);
     const Transform to_world = props.get_transform("to_world");
-    std::string ext = file.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    const std::string ext = io::lower_extension(file);
     const bool encoded = ext == ".png" || ext == ".jpg" || ext == ".jpeg";
     try {
         return std::make_shared<EnvironmentMap>(io::read_image(file), encoded, scale, to_world);

@@ -16,6 +16,7 @@
 
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/io/image.hpp"
+#include "surfscatter/io/raster.hpp"
 #include "surfscatter/render/plugins.hpp"
 #include "surfscatter/spectrum/color.hpp"
 
@@ -152,8 +153,7 @@ TexturePtr plugins::bitmap(Properties& props) {
     else if (wrap_name == "clamp") wrap = Wrap::clamp;
     else if (wrap_name != "repeat") props.fail_param("wrap_mode", "wrap_mode must be repeat, mirror or clamp, got '{}'", wrap_name);
     const Transform to_uv = props.get_transform("to_uv");
-    std::string ext = file.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    const std::string ext = io::lower_extension(file);
     const bool encoded = !raw && (ext == ".png" || ext == ".jpg" || ext == ".jpeg");
     try {
         return std::make_shared<BitmapTexture>(io::read_image(file), encoded, filter == "bilinear", wrap, to_uv);
