@@ -16,6 +16,7 @@
 #include "surfscatter/surface/height_map_io.hpp"
 #include "surfscatter/surface/height_map_slope.hpp"
 #include "surfscatter/surface/kc_fit.hpp"
+#include "surfscatter/surface/map_statistics.hpp"
 #include "surfscatter/surface/psd_estimate_table.hpp"
 #include "surfscatter/surface/psd_split.hpp"
 #include "surfscatter/surface/refit.hpp"
@@ -79,14 +80,8 @@ public:
                 statistics_ = std::make_shared<surface::GaussianAcv>(options_.sigma, options_.corr_length);
                 break;
             case PsdKind::measured: {
-                // Rings are merged only up to 4 effective samples (the KC fit's 100 flatten a PSD that falls within
-                // the first decade of the data into one low bin: sigma came out 12 % low for a surface with two
-                // correlation lengths); the lobe averages the larger scatter of the lowest bins.
-                surface::PsdTableOptions table;
-                table.min_effective_samples = 4.0;
-                table.form = options_.form;
-                auto measured = std::make_shared<surface::TabulatedPsd>(surface::tabulated_psd(*map(), table));
-                if (notes) notes->push_back(extrapolation_note(*measured));
+                auto measured = std::make_shared<surface::MapStatistics>(*map(), options_.form);
+                if (notes) notes->push_back(measured_note(*measured));
                 statistics_ = std::move(measured);
                 break;
             }
@@ -96,18 +91,24 @@ public:
     }
 
 private:
-    // What of the measured PSD is data and what is extrapolated (TabulatedPsd: flat below the first sample, the last
-    // decade's power law beyond the last), and from which wavelength on a lobe reaches the extrapolated part: the
-    // visible disc spans |zeta| <= k (1 + sin theta_i) <= 2 k, so wavelengths below 4 pi / zeta_last do at grazing
-    // incidence, below 2 pi / zeta_last already at normal incidence.
-    std::string extrapolation_note(const surface::TabulatedPsd& psd) const {
-        const double lo = psd.first_zeta(), hi = psd.last_zeta();
+    // What a measured PSD rests on (map_statistics.hpp): the band, the variance the model carries against the map's
+    // own, the estimate's uncertainty at the lowest rings, and where lobes start to draw on periods longer than a
+    // third of the map: |zeta| < 3 dzeta, i.e. within asin(3 dzeta / k) of the specular direction at normal incidence.
+    std::string measured_note(const surface::MapStatistics& s) const {
+        const double dz = s.ring_width();
         return fmt::format(
-            "measured PSD of {}: data cover zeta {:.3g} .. {:.3g} rad/um (lateral periods {:.3g} .. {:.3g} um); "
-            "extrapolated flat below ({:.2g} % of sigma^2) and as zeta^{:.2f} above ({:.2g} % of sigma^2); lobes "
-            "reach the extrapolated range at wavelengths below {:.0f} nm (below {:.0f} nm at normal incidence)",
-            options_.surface_file, lo, hi, kTwoPi / hi, kTwoPi / lo, 100.0 * psd.radial_cdf(lo), psd.tail_slope(),
-            100.0 * (1.0 - psd.radial_cdf(hi)), 2e3 * kTwoPi / hi, 1e3 * kTwoPi / hi);
+            "measured PSD of {} ({}{}): band zeta {:.3g} .. {:.3g} rad/um (lateral periods {:.3g} .. {:.3g} um), "
+            "nothing beyond; model sigma {:.6g} um against the map's rms {:.6g} um ({:.2g} % of sigma^2 below the "
+            "first ring, continued linearly from the DC value; standard error of sigma {:.2g} %); rings 1-3 rest on {:.3g}, {:.3g}, {:.3g} independent samples; lobes "
+            "draw on periods longer than a third of the map (> {:.3g} um) where |zeta| < {:.3g} rad/um, within about "
+            "{:.2g} deg of the specular direction at 550 nm; lobes reach beyond the band, where it is cut, at wavelengths "
+            "below {:.0f} nm (below {:.0f} nm at normal incidence)",
+            options_.surface_file, s.periodic() ? "periodic map, rectangular window" : "Hann window",
+            s.skipped_rings() ? fmt::format(", {} non-positive rings skipped", s.skipped_rings()) : "", s.first_ring(),
+            s.nyquist(), kTwoPi / s.nyquist(), kTwoPi / s.first_ring(), s.sigma_h(), s.map_rms(),
+            100.0 * s.below_band_fraction(), 100.0 * s.sigma_relative_error(), s.ring_samples(dz), s.ring_samples(2 * dz), s.ring_samples(3 * dz),
+            kTwoPi / (3 * dz), 3 * dz, std::asin(std::min(1.0, 3 * dz / (kTwoPi / 0.55))) * 180.0 / kPi,
+            2e3 * kTwoPi / s.nyquist(), 1e3 * kTwoPi / s.nyquist());
     }
 
     SurfaceOptions options_;

@@ -1,0 +1,90 @@
+#pragma once
+// A measured height map's own statistics for the scattering models (`--psd measured`): the map's 2-D spectrum
+// averaged over rings, within the band the map resolves, with no model fitted and no power law extrapolated.
+//
+// Construction (docs/HEIGHTMAPS.md, "Measured statistics for the models"):
+// 1. The form is removed (height_map_form.hpp) and the 2-D periodogram taken (psd_estimate.hpp). A map that wraps
+//    around seamlessly (its jumps across opposite edges are no larger than its steps between neighbours, as for
+//    synthesised periodic maps: wrap_jump_ratio()) gets the rectangular window, under which its periodogram is
+//    exact and neighbouring bins do not mix; any other map (instrument data) the Hann window, which keeps the
+//    jump between unrelated edges from leaking into the tail (and smears +-2 bins); maps with invalid points the
+//    masked correlogram.
+// 2. Every ring of width dzeta (= 2 pi / shorter side) from the first to the Nyquist ring pi / coarser spacing is
+//    its own sample (no merging): its mean P at its mean |zeta|. Between rings ln P is linear in zeta (exact for a
+//    Gaussian PSD's exponential fall, second order elsewhere). Rings whose mean is not positive (masked estimates
+//    far below their scatter) are skipped and counted.
+// 3. The band: P is cut sharply at Nyquist (sharp_cut.hpp: the tables carry the jump analytically and the ACV
+//    comes from the finite Hankel integral over the disc), so nothing beyond what the map holds is used, whatever
+//    the tail does (an instrument's noise floor flatter than zeta^-2 included). Below the first ring (periods
+//    longer than the map) P runs linearly from the periodogram's own DC value to the first ring, as a bilinear
+//    reading of the lattice does: 0 with the rectangular window (the mean is removed), with the Hann window the
+//    power its main lobe moved there from the first rings; nothing is held flat or extrapolated. Its share of
+//    the variance is reported (below_band_fraction()).
+// 4. sigma_h^2 is the integral of that P, the continuous counterpart of the periodogram's sum over the disc of the
+//    band (Parseval); the map's own rms (all of its variance, corners of the lattice beyond the
+//    Nyquist disc included) is reported beside it (map_rms()). The self-convolutions are exact transforms of the
+//    resulting rho^m (eq. 2).
+// Uncertainty: a ring mean over nu independent periodogram values (ring_samples(): effective_samples() of its
+// lattice points) has relative standard error 1/sqrt(nu), large for the first rings of any map: lobes that draw on
+// periods longer than a third of the map (zeta < 3 dzeta) rest on few samples, and the models say so.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "surfscatter/surface/height_map.hpp"
+#include "surfscatter/surface/height_map_form.hpp"
+#include "surfscatter/surface/psd_estimate.hpp"
+#include "surfscatter/surface/radial_statistics.hpp"
+
+namespace surfscatter::surface {
+
+// Wrap-around test: a map is periodic when the mean square jump across each pair of opposite edges is at most this
+// many times the mean square step between neighbours along the same axis (a periodic random field gives 1 within
+// its scatter; an instrument's map, whose opposite edges are unrelated, gives about 2 sigma^2 / step^2 >> 1).
+inline constexpr double kPeriodicJumpRatio = 3.0;
+
+class MapStatistics final : public RadialStatistics {
+public:
+    // Error if fewer than kMinFitValidFraction of the points are valid or the form leaves no roughness.
+    MapStatistics(const HeightMap& map, Form form);
+
+    double sigma_h() const override { return band_->sigma_h(); }
+    double psd_unit(double zeta) const override { return band_->psd_unit(zeta); }
+    double acv_normalized(double r) const override { return band_->acv_normalized(r); }
+    double radial_cdf(double zeta) const override { return band_->radial_cdf(zeta); }
+    double correlation_length() const override { return band_->correlation_length(); }
+    std::string cache_key() const override { return band_->cache_key(); }
+    double psd_jump_radius() const override { return band_->psd_jump_radius(); }
+
+    // What the estimate rests on, for reports.
+    bool periodic() const { return periodic_; }               // rectangular window (see above)
+    double map_rms() const { return map_rms_; }               // rms of the form-removed map over its valid points, um
+    double first_ring() const { return radial_.zeta.front(); }  // rad/um: the lowest frequency the map resolves
+    double ring_width() const { return radial_.dzeta; }       // dzeta, rad/um
+    double nyquist() const { return band_->psd_jump_radius(); }  // top of the band, rad/um
+    double below_band_fraction() const { return radial_cdf(0.5 * ring_width()); }  // of sigma_h^2, continued
+    std::size_t skipped_rings() const { return skipped_rings_; }
+    const Psd2d& spectrum() const { return spectrum_; }       // the 2-D periodogram
+    const RadialPsd& rings() const { return radial_; }        // its ring means
+    // Independent periodogram samples of the ring holding zeta (relative standard error 1/sqrt of it).
+    double ring_samples(double zeta) const;
+    // Relative standard error of sigma_h for a random surface of this spectrum: half that of sigma_h^2,
+    // sqrt(sum_k M_k^2 / nu_k) / sum_k M_k over the rings' variances M_k and independent samples nu_k.
+    double sigma_relative_error() const;
+
+private:
+    bool periodic_ = false;
+    double map_rms_ = 0;
+    std::size_t skipped_rings_ = 0;
+    Psd2d spectrum_;
+    RadialPsd radial_;
+    std::shared_ptr<const RadialStatistics> band_;  // the ring PSD cut at Nyquist
+};
+
+// Mean square jump across opposite edges over mean square neighbour step, the larger of the two axes (see
+// kPeriodicJumpRatio), of a map without invalid points. Taken with only the mean removed: a plane fitted to a
+// periodic map raises it (measured 0.84 -> 2.3, poly2 4.0 on a 1024^2 Gaussian-ACV map 55 l wide); the real
+// instrument files give 50 to 10^4.
+double wrap_jump_ratio(const HeightMap& flat);
+
+}  // namespace surfscatter::surface
