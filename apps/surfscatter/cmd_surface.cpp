@@ -179,6 +179,9 @@ void write_psd_image(const surface::Psd2d& psd, std::size_t block, const std::st
 // zeta at the outer edge of the image's first column (or row): write_psd_image puts signed index -n/2 there.
 double psd_image_edge(std::size_t n, double dzeta) { return -(static_cast<double>(n / 2) + 0.5) * dzeta; }
 
+void write_fit_plot(const FitArgs& args, const surface::HeightMap& map, const surface::SurfaceFit& result,
+                    const std::string& csv);
+
 void fit(const FitArgs& args) {
     if (args.smoothing) require_positive(*args.smoothing, "--smoothing");  // before reading the map
     surface::KcFitOptions options;
@@ -187,10 +190,13 @@ void fit(const FitArgs& args) {
     options.min_ring = args.min_ring;
     options.max_nyquist_fraction = args.max_zeta_fraction;
     const surface::SurfaceFit result = surface::fit_surface(map, options);
+    const bool resolved = result.kc.failure.empty();
 
-    std::printf("sigma_h = %s\n", format_number(result.kc.sigma_h_um).c_str());
-    std::printf("corr_length = %s\n", format_number(result.kc.corr_length_um).c_str());
-    std::printf("gamma = %s\n", format_number(result.kc.gamma).c_str());
+    if (resolved) {
+        std::printf("sigma_h = %s\n", format_number(result.kc.sigma_h_um).c_str());
+        std::printf("corr_length = %s\n", format_number(result.kc.corr_length_um).c_str());
+        std::printf("gamma = %s\n", format_number(result.kc.gamma).c_str());
+    }
     std::printf("rms_slope = %s\n", format_number(result.rms_slope).c_str());
     if (args.smoothing)
         std::printf("rms_slope_smoothed = %s\n",
@@ -200,12 +206,30 @@ void fit(const FitArgs& args) {
     std::printf("zeta_min = %s\n", format_number(result.kc.zeta_min).c_str());
     std::printf("zeta_max = %s\n", format_number(result.kc.zeta_max).c_str());
     std::printf("log_residual_rms = %s\n", format_number(result.kc.log_residual_rms).c_str());
+    std::printf("statistical_floor = %s\n", format_number(result.kc.statistical_floor).c_str());
+    std::printf("texture_aspect_ratio = %s\n", format_number(result.acv.texture_aspect_ratio).c_str());
+    std::printf("lay_direction_deg = %s\n", format_number(result.acv.slowest_direction_deg).c_str());
     print_value("valid_fraction", map.valid_fraction());
+    if (resolved && result.kc.log_residual_rms > surface::kPoorFitFactor * result.kc.statistical_floor)
+        std::printf("warning = the KC model fits this PSD poorly (log_residual_rms %.3g, %.1f times its statistical "
+                    "floor): use --psd measured for the map's own spectrum\n",
+                    result.kc.log_residual_rms, result.kc.log_residual_rms / result.kc.statistical_floor);
+    if (result.acv.texture_aspect_ratio < 0.5)
+        std::printf("warning = texture aspect ratio Str %.3g%s (lay along %.0f deg): the isotropic KC model "
+                    "misrepresents a directional surface\n",
+                    result.acv.texture_aspect_ratio, result.acv.str_is_bound ? " (an upper bound)" : "",
+                    result.acv.slowest_direction_deg);
 
     std::string csv = args.csv;
     if (csv.empty() && !args.plot.empty()) csv = std::filesystem::path(args.plot).replace_extension(".csv").string();
     if (!csv.empty()) write_psd_csv(result, csv);
-    if (args.plot.empty()) return;
+    // The plot is written whether or not the fit is resolved: a user must see the PSD that did not fit.
+    if (!args.plot.empty()) write_fit_plot(args, map, result, csv);
+    surface::require_resolved(result.kc);
+}
+
+void write_fit_plot(const FitArgs& args, const surface::HeightMap& map, const surface::SurfaceFit& result,
+                    const std::string& csv) {
     // The 2-D PSD beside the radial fit: a directional texture shows as a streak through the origin.
     std::filesystem::path image = args.plot;
     image.replace_extension();
@@ -214,9 +238,11 @@ void fit(const FitArgs& args) {
     write_psd_image(result.psd, block, image.string());
     run_plot_script("psd_fit.py",
                     {csv, args.plot,
-                     fmt::format("{}: KC fit sigma_h = {:.4g} um, L_c = {:.4g} um, gamma = {:.4g}",
-                                 std::filesystem::path(args.input).filename().string(), result.kc.sigma_h_um,
-                                 result.kc.corr_length_um, result.kc.gamma),
+                     fmt::format("{}: {} sigma_h = {:.4g} um, L_c = {:.4g} um, gamma = {:.4g}; band {:.3g}-{:.3g} "
+                                 "rad/um",
+                                 std::filesystem::path(args.input).filename().string(),
+                                 result.kc.failure.empty() ? "KC fit" : "NO KC FIT, best attempt", result.kc.sigma_h_um,
+                                 result.kc.corr_length_um, result.kc.gamma, result.kc.zeta_min, result.kc.zeta_max),
                      image.string(), format_number(psd_image_edge(result.psd.nx, result.psd.dzeta_x)),
                      format_number(psd_image_edge(result.psd.nx, result.psd.dzeta_x) +
                                    result.psd.dzeta_x * static_cast<double>(block * (result.psd.nx / block))),

@@ -463,7 +463,9 @@ void bind_height_maps(py::module_& m) {
             options.min_ring = min_ring;
             options.max_nyquist_fraction = max_zeta_fraction;
             py::gil_scoped_release release;
-            return fit_surface(map, options);
+            SurfaceFit fit = fit_surface(map, options);
+            require_resolved(fit.kc);
+            return fit;
         },
         py::arg("height_map"), py::arg("form") = "plane", py::arg("min_ring") = KcFitOptions{}.min_ring,
         py::arg("max_zeta_fraction") = KcFitOptions{}.max_nyquist_fraction,

@@ -160,13 +160,13 @@ TEST(HeightFit, UnresolvableDataGiveErrors) {
     std::vector<double> noise(256 * 256);
     for (double& h : noise) h = normal(engine);
     const ss::HeightMap white(256, 256, 1.0, 1.0, std::move(noise));
-    EXPECT_THROW(ss::fit_surface(white), surfscatter::Error);
+    EXPECT_THROW(ss::require_resolved(ss::fit_surface(white).kc), surfscatter::Error);
     // A 16 x 16 map has too few rings in the band.
     const ss::KCorrelation kc(0.05, 2.0, 3.0);
     EXPECT_THROW(ss::fit_surface(ss::synthesize_surface(kc, {16, 16, 0.5}, 1)), surfscatter::Error);
     ss::KcFitOptions bad;
     bad.max_nyquist_fraction = 1.5;
-    EXPECT_THROW(ss::fit_surface(ss::synthesize_surface(kc, {64, 64, 0.5}, 1), bad), surfscatter::Error);
+    EXPECT_THROW(ss::require_resolved(ss::fit_surface(ss::synthesize_surface(kc, {64, 64, 0.5}, 1), bad).kc), surfscatter::Error);
 }
 
 // Units sweep: the same surface in pm-sized and m-sized units gives the same fit relative to its scale (to

@@ -67,6 +67,7 @@ public:
             surface::KcFitOptions fit_options;
             fit_options.form = options_.form;
             const auto fit = surface::fit_surface(*map(), fit_options).kc;
+            surface::require_resolved(fit);
             return surface::KCorrelation(fit.sigma_h_um, fit.corr_length_um, fit.gamma);
         }
         fail("this option needs a K-correlation surface (psd kc, or file for the KC fitted to a height map), got psd {}",

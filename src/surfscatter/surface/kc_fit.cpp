@@ -5,6 +5,8 @@
 #include <limits>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include <Eigen/Core>
 #include <unsupported/Eigen/NonLinearOptimization>
 #include <unsupported/Eigen/NumericalDiff>
@@ -117,31 +119,50 @@ KcFit fit_kc(const RadialPsd& radial, double nyquist, const KcFitOptions& option
     solver.parameters.xtol = 1e-12;
     solver.parameters.ftol = 1e-14;
     solver.parameters.maxfev = 2000;
+    // The polish stays inside the searched box: a valley running out of it (no knee in the band) would otherwise
+    // carry L_c to any size.
+    const Eigen::VectorXd grid_best = best;
     solver.minimize(best);
+    if (!(best.allFinite() && best[0] >= log_l_min && best[0] <= log_l_max && best[1] >= log_g_min &&
+          best[1] <= log_g_max))
+        best = grid_best;
 
     const double log_variance = profiled_residuals(data, best[0], best[1], residuals);
-    auto on_bound = [](double v, double lo, double hi) {
-        return v < lo + 0.02 * (hi - lo) || v > hi - 0.02 * (hi - lo);
-    };
     const double l = std::exp(best[0]), gamma = 1.0 + std::exp(best[1]);
-    if (!std::isfinite(log_variance) || !std::isfinite(l) || !std::isfinite(gamma) ||
-        on_bound(best[0], log_l_min, log_l_max))
-        fail("KC fit: no KC correlation length fits the PSD between {:.4g} and {:.4g} rad/um (the fit ran to the "
-             "search bound L_c = {:.4g} um): the map must span many correlation lengths, each a few pixels long, "
-             "and its PSD must have a KC-like plateau, knee and power-law tail",
-             fit.zeta_min, fit.zeta_max, l);
-    if (on_bound(best[1], log_g_min, log_g_max))
-        fail("KC fit: gamma is not resolved by the PSD between {:.4g} and {:.4g} rad/um (the fit ran to the search "
-             "bound gamma = {:.4g}; a PSD falling faster than any power law, e.g. Gaussian, has no KC gamma)",
-             fit.zeta_min, fit.zeta_max, gamma);
-
     double sum_w = 0.0;
     for (double w : data.weight) sum_w += w;
     fit.sigma_h_um = std::exp(0.5 * log_variance);
     fit.corr_length_um = l;
     fit.gamma = gamma;
     fit.log_residual_rms = std::sqrt(residuals.squaredNorm() / sum_w);
+    fit.statistical_floor = std::sqrt(static_cast<double>(fit.rings) / sum_w);
+
+    auto end_of = [](double v, double lo, double hi) -> const char* {
+        if (v < lo + 0.02 * (hi - lo)) return "lower";
+        if (v > hi - 0.02 * (hi - lo)) return "upper";
+        return nullptr;
+    };
+    const std::string band = fmt::format("the PSD between {:.4g} and {:.4g} rad/um ({} rings)", fit.zeta_min,
+                                         fit.zeta_max, fit.rings);
+    const std::string misfit = fmt::format("misfit log_residual_rms {:.3g} against a statistical floor of {:.3g}",
+                                           fit.log_residual_rms, fit.statistical_floor);
+    if (const char* end = end_of(best[0], log_l_min, log_l_max))
+        fit.failure = fmt::format(
+            "KC fit: no KC correlation length fits {}: L_c was searched from {:.4g} to {:.4g} um (1/(4 zeta_max) to "
+            "4/zeta_min) and the best attempt lies at the {} end (L_c = {:.4g} um, gamma = {:.4g}, {}): the PSD has "
+            "no KC knee inside the band; use --psd measured for the map's own spectrum",
+            band, std::exp(log_l_min), std::exp(log_l_max), end, l, gamma, misfit);
+    else if (const char* end = end_of(best[1], log_g_min, log_g_max))
+        fit.failure = fmt::format(
+            "KC fit: gamma is not resolved by {}: gamma was searched from {:.4g} to {:.4g} and the best attempt lies "
+            "at the {} end (gamma = {:.4g}, L_c = {:.4g} um, {}; a PSD falling faster than any power law, e.g. "
+            "Gaussian, has no KC gamma); use --psd measured for the map's own spectrum",
+            band, 1.0 + kGammaMinusOneMin, 1.0 + kGammaMinusOneMax, end, gamma, l, misfit);
     return fit;
+}
+
+void require_resolved(const KcFit& fit) {
+    if (!fit.failure.empty()) fail("{}", fit.failure);
 }
 
 SurfaceFit fit_surface(const HeightMap& map, const KcFitOptions& options) {
@@ -152,6 +173,7 @@ SurfaceFit fit_surface(const HeightMap& map, const KcFitOptions& options) {
     const Psd2d& psd = result.psd;
     result.radial = radial_average(psd);
     result.kc = fit_kc(result.radial, nyquist_zeta(map), options);
+    result.acv = acv_measures(flat);
     result.rms_height_um = height_moments(flat).rms;
     result.rms_slope = rms_slope(flat, Form::none);
     result.rms_slope_from_psd = rms_slope_from_psd(psd);

@@ -23,6 +23,7 @@
 #include <cstddef>
 
 #include "surfscatter/surface/height_map.hpp"
+#include "surfscatter/surface/height_map_acv.hpp"
 #include "surfscatter/surface/height_map_form.hpp"
 #include "surfscatter/surface/psd_estimate.hpp"
 
@@ -41,11 +42,19 @@ struct KcFit {
     double zeta_min = 0.0, zeta_max = 0.0;  // band used, rad/um
     std::size_t rings = 0;                  // rings in the band
     double log_residual_rms = 0.0;          // weighted rms of ln(data / model) (statistical floor ~ 1/sqrt(nu))
+    double statistical_floor = 0.0;         // what log_residual_rms is for a KC surface: sqrt(rings / sum nu)
+    // Empty when the fit is resolved; otherwise why not (the band searched and where the best attempt ended),
+    // and the parameters above are that best attempt, inside the searched box.
+    std::string failure;
 };
 
-// Fits KC to the rings of `radial` (see above). Throws Error if the band holds fewer than 8 rings or if the
-// correlation length or gamma is not resolved.
+// A fit is poor when its misfit exceeds this many times its statistical floor.
+inline constexpr double kPoorFitFactor = 2.0;
+
+// Fits KC to the rings of `radial` (see above). Throws Error if the band holds fewer than 8 rings; a correlation
+// length or gamma that the band does not resolve sets `failure` (require_resolved() throws it).
 KcFit fit_kc(const RadialPsd& radial, double nyquist_zeta, const KcFitOptions& options = {});
+void require_resolved(const KcFit& fit);
 
 // Everything `surfscatter surface fit` reports about a height map.
 struct SurfaceFit {
@@ -55,6 +64,7 @@ struct SurfaceFit {
     double rms_slope_from_psd = 0.0;   // sqrt(sum zeta^2 P dzeta^2) of the windowed periodogram
     Psd2d psd;                         // the 2-D PSD of the form-removed map
     RadialPsd radial;                  // its rings: the data that were fitted
+    AcvMeasures acv;                   // Str and the lay direction (height_map_acv.hpp): anisotropy the fit ignores
 };
 
 // Removes options.form once, then PSD, fit, rms and slopes over the valid points. Error if fewer than
