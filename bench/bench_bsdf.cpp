@@ -1,5 +1,7 @@
 // eval / sample / pdf of every scattering model at g0 = 0.1, 10, 1000 (theta_i = 30 deg, 550 nm, KC gamma = 3,
-// L = 1 um, perfect conductor), and eval with varying incidence and wavelength. The per-wavelength tables (sigma_rel,
+// L = 1 um, perfect conductor), and eval with varying incidence and wavelength; ghs_measured is exact GHS on the
+// measured route (`--psd measured`, map_statistics.hpp) of a 1024^2 map of that KC surface at 0.05 um, and
+// BM_measured_tables builds its tables from nothing (the disk cache pointed at an empty folder). The per-wavelength tables (sigma_rel,
 // K) are built before timing. BM_eval_packet: the renderer's four-wavelength call (f and the reverse pdf).
 // Run: build/bench/bench_bsdf --benchmark_min_time=0.2
 #include <benchmark/benchmark.h>
@@ -12,6 +14,12 @@
 #include <vector>
 
 #include "surfscatter/bsdf/factory.hpp"
+#include "surfscatter/surface/radial_statistics.hpp"
+#include "surfscatter/surface/synthesis.hpp"
+
+#include <cstdlib>
+#include <filesystem>
+#include <string>
 
 using namespace surfscatter;
 using namespace surfscatter::bsdf;
@@ -32,7 +40,15 @@ ModelOptions options_for(int model, double g) {
         case 1: o.model = ModelKind::ghs; o.method = GhsMethod::refit; break;
         case 2: o.model = ModelKind::ghs_ssa; break;
         case 3: o.model = ModelKind::ggx; o.alpha_from = AlphaFrom::smoothed; o.smoothing = 0.1; break;
-        default: o.model = ModelKind::two_scale; o.cutoff_wavelengths = 50; break;
+        case 4: o.model = ModelKind::two_scale; o.cutoff_wavelengths = 50; break;
+        default: {
+            o.model = ModelKind::ghs;
+            o.surface.psd = PsdKind::measured;
+            o.surface.surface_file = "kc-1024.gsf";  // named for reports; the map is given
+            o.surface.height_map = std::make_shared<const surface::HeightMap>(surface::synthesize_surface(
+                surface::KCorrelation(o.surface.sigma, 1.0, 3.0), {1024, 1024, 0.05}, 1));
+            break;
+        }
     }
     return o;
 }
@@ -60,7 +76,7 @@ std::vector<Vec3> directions(const Bsdf& b, const Vec3& wi) {
     return out;
 }
 
-const char* kNames[] = {"ghs_exact", "ghs_refit", "ghs_ssa", "ggx", "two_scale"};
+const char* kNames[] = {"ghs_exact", "ghs_refit", "ghs_ssa", "ggx", "two_scale", "ghs_measured"};
 
 void BM_eval(benchmark::State& state) {
     const Bsdf& b = model(int(state.range(0)), std::pow(10.0, double(state.range(1)) - 1));
@@ -145,8 +161,29 @@ void BM_eval_packet(benchmark::State& state) {
 
 // Arguments: model index, log10(g) + 1 (0 -> g = 0.1, 2 -> 10, 4 -> 1000).
 void models_and_g(benchmark::internal::Benchmark* b) {
-    for (int m = 0; m < 5; ++m)
+    for (int m = 0; m < 6; ++m)
         for (int lg : {0, 2, 4}) b->Args({m, lg});
+}
+
+// The measured route's tables of a 1024^2 map from nothing: statistics, lobe tables, the per-wavelength sigma_rel
+// and K (one incidence and wavelength), as the first eval of a process with an empty disk cache builds them.
+void BM_measured_tables(benchmark::State& state) {
+    ModelOptions o = options_for(5, 10.0);
+    const std::filesystem::path root = std::filesystem::temp_directory_path() / "surfscatter-bench-measured";
+    int run = 0;
+    for (auto _ : state) {
+        state.PauseTiming();
+        const std::filesystem::path dir = root / std::to_string(run++);
+        std::filesystem::remove_all(dir);
+        setenv("SURFSCATTER_CACHE_DIR", dir.c_str(), 1);
+        // A new map each run: the tables are also shared in memory by their statistics.
+        o.surface.height_map = std::make_shared<const surface::HeightMap>(surface::synthesize_surface(
+            surface::KCorrelation(o.surface.sigma, 1.0, 3.0), {1024, 1024, 0.05}, 100 + run));
+        state.ResumeTiming();
+        const auto b = make_bsdf(o);
+        benchmark::DoNotOptimize(b->eval(spherical_direction(kThetaI, 0), Vec3(0, 0, 1), kLambda));
+    }
+    std::filesystem::remove_all(root);
 }
 
 }  // namespace
@@ -154,6 +191,7 @@ void models_and_g(benchmark::internal::Benchmark* b) {
 BENCHMARK(BM_eval)->Apply(models_and_g);
 BENCHMARK(BM_pdf)->Apply(models_and_g);
 BENCHMARK(BM_sample)->Apply(models_and_g);
+BENCHMARK(BM_measured_tables)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime()->Iterations(3);
 BENCHMARK(BM_eval_varying)->Args({0, 2})->Args({3, 2});
 void packet_models(benchmark::internal::Benchmark* b) {
     for (int m : {0, 3})

@@ -64,7 +64,7 @@ TEST(Measured, KcMapBothRoutesFollowTheTruth) {
     // What the estimate rests on is reported: the band, sigma against the map's rms, the samples of the lowest rings
     // and the wavelengths whose lobes reach beyond the band.
     ASSERT_EQ(notes.size(), 1u);
-    for (const char* part : {"band zeta", "nothing beyond", "against the map's rms", "independent samples",
+    for (const char* part : {"band zeta", "rolled off", "against the map's rms", "independent samples",
                              "longer than a third of the map", "beyond the band"})
         EXPECT_NE(notes[0].find(part), std::string::npos) << part << ": " << notes[0];
 }

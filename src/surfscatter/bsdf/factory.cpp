@@ -99,14 +99,15 @@ private:
         const double dz = s.ring_width();
         return fmt::format(
             "measured PSD of {} ({}{}): band zeta {:.3g} .. {:.3g} rad/um (lateral periods {:.3g} .. {:.3g} um), "
-            "nothing beyond; model sigma {:.6g} um against the map's rms {:.6g} um ({:.2g} % of sigma^2 below the "
+            "rolled off as zeta^-200 beyond ({:.2g} % of sigma^2 there); model sigma {:.6g} um against the map's rms {:.6g} um ({:.2g} % of sigma^2 below the "
             "first ring, continued linearly from the DC value; standard error of sigma {:.2g} %); rings 1-3 rest on {:.3g}, {:.3g}, {:.3g} independent samples; lobes "
             "draw on periods longer than a third of the map (> {:.3g} um) where |zeta| < {:.3g} rad/um, within about "
-            "{:.2g} deg of the specular direction at 550 nm; lobes reach beyond the band, where it is cut, at wavelengths "
+            "{:.2g} deg of the specular direction at 550 nm; lobes reach beyond the band at wavelengths "
             "below {:.0f} nm (below {:.0f} nm at normal incidence)",
             options_.surface_file, s.periodic() ? "periodic map, rectangular window" : "Hann window",
             s.skipped_rings() ? fmt::format(", {} non-positive rings skipped", s.skipped_rings()) : "", s.first_ring(),
-            s.nyquist(), kTwoPi / s.nyquist(), kTwoPi / s.first_ring(), s.sigma_h(), s.map_rms(),
+            s.nyquist(), kTwoPi / s.nyquist(), kTwoPi / s.first_ring(), 100.0 * s.above_band_fraction(), s.sigma_h(),
+            s.map_rms(),
             100.0 * s.below_band_fraction(), 100.0 * s.sigma_relative_error(), s.ring_samples(dz), s.ring_samples(2 * dz), s.ring_samples(3 * dz),
             kTwoPi / (3 * dz), 3 * dz, std::asin(std::min(1.0, 3 * dz / (kTwoPi / 0.55))) * 180.0 / kPi,
             2e3 * kTwoPi / s.nyquist(), 1e3 * kTwoPi / s.nyquist());

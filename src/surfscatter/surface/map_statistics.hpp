@@ -13,9 +13,10 @@
 //    its own sample (no merging): its mean P at its mean |zeta|. Between rings ln P is linear in zeta (exact for a
 //    Gaussian PSD's exponential fall, second order elsewhere). Rings whose mean is not positive (masked estimates
 //    far below their scatter) are skipped and counted.
-// 3. The band: P is cut sharply at Nyquist (sharp_cut.hpp: the tables carry the jump analytically and the ACV
-//    comes from the finite Hankel integral over the disc), so nothing beyond what the map holds is used, whatever
-//    the tail does (an instrument's noise floor flatter than zeta^-2 included). Below the first ring (periods
+// 3. The band: beyond Nyquist P falls as zeta^-200 from its value there (continuous, so that the lobe tables keep
+//    their fast path; 0.02x at 1.02 zeta_N), so next to nothing beyond what the map holds is used, whatever the
+//    tail does (an instrument's noise floor flatter than zeta^-2 included); that share is reported
+//    (above_band_fraction()). Below the first ring (periods
 //    longer than the map) P runs linearly from the periodogram's own DC value to the first ring, as a bilinear
 //    reading of the lattice does: 0 with the rectangular window (the mean is removed), with the Hann window the
 //    power its main lobe moved there from the first rings; nothing is held flat or extrapolated. Its share of
@@ -43,26 +44,28 @@ namespace surfscatter::surface {
 // its scatter; an instrument's map, whose opposite edges are unrelated, gives about 2 sigma^2 / step^2 >> 1).
 inline constexpr double kPeriodicJumpRatio = 3.0;
 
+class MapRingPsd;
+
 class MapStatistics final : public RadialStatistics {
 public:
     // Error if fewer than kMinFitValidFraction of the points are valid or the form leaves no roughness.
     MapStatistics(const HeightMap& map, Form form);
 
     double sigma_h() const override { return band_->sigma_h(); }
-    double psd_unit(double zeta) const override { return band_->psd_unit(zeta); }
+    double psd_unit(double zeta) const override;
     double acv_normalized(double r) const override { return band_->acv_normalized(r); }
     double radial_cdf(double zeta) const override { return band_->radial_cdf(zeta); }
     double correlation_length() const override { return band_->correlation_length(); }
     std::string cache_key() const override { return band_->cache_key(); }
-    double psd_jump_radius() const override { return band_->psd_jump_radius(); }
 
     // What the estimate rests on, for reports.
     bool periodic() const { return periodic_; }               // rectangular window (see above)
     double map_rms() const { return map_rms_; }               // rms of the form-removed map over its valid points, um
     double first_ring() const { return radial_.zeta.front(); }  // rad/um: the lowest frequency the map resolves
     double ring_width() const { return radial_.dzeta; }       // dzeta, rad/um
-    double nyquist() const { return band_->psd_jump_radius(); }  // top of the band, rad/um
+    double nyquist() const { return nyquist_; }               // top of the band, rad/um
     double below_band_fraction() const { return radial_cdf(0.5 * ring_width()); }  // of sigma_h^2, continued
+    double above_band_fraction() const { return 1.0 - radial_cdf(nyquist()); }      // of sigma_h^2, rolled off
     std::size_t skipped_rings() const { return skipped_rings_; }
     const Psd2d& spectrum() const { return spectrum_; }       // the 2-D periodogram
     const RadialPsd& rings() const { return radial_; }        // its ring means
@@ -78,7 +81,9 @@ private:
     std::size_t skipped_rings_ = 0;
     Psd2d spectrum_;
     RadialPsd radial_;
-    std::shared_ptr<const RadialStatistics> band_;  // the ring PSD cut at Nyquist
+    std::shared_ptr<const MapRingPsd> rings_psd_;   // the ring means as a PSD
+    std::shared_ptr<const RadialStatistics> band_;  // the same, as the statistics the models use
+    double inverse_variance_ = 0, nyquist_ = 0;
 };
 
 // Mean square jump across opposite edges over mean square neighbour step, the larger of the two axes (see

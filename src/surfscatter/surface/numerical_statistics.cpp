@@ -44,13 +44,16 @@ void NumericalRadialStatistics::initialise(std::string key) {
     }
     double cumulative = kPi * std::exp(2.0 * y0) * psd_raw(std::exp(y0)) / sigma2;
     for (int j = 0; j < n; ++j) {
-        cdf_[j] = std::min(cumulative, 1.0);
+        cdf_[j] = cumulative;
         if (j + 1 < n) {
             const double a = density[std::max(j - 1, 0)], b = density[j], c = density[j + 1],
                          d = density[std::min(j + 2, n - 1)];
             cumulative += step * (-a + 13.0 * b + 13.0 * c - d) / 24.0;
         }
     }
+    // The rule's own total is 1 to ~1e-9 for smooth PSDs, less where it steps across a kink (a measured PSD's
+    // roll-off at Nyquist: 1e-5): normalise by it so that the CDF ends at 1.
+    for (double& c : cdf_) c = std::min(c / cdf_.back(), 1.0);
     // Length scale: inverse of the median radius of P-hat.
     const auto median = std::lower_bound(cdf_.begin(), cdf_.end(), 0.5) - cdf_.begin();
     length_ = 1.0 / std::exp(log_zeta_[std::min<std::ptrdiff_t>(median, n - 1)]);
