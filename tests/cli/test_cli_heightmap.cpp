@@ -264,3 +264,40 @@ TEST(CliHeightmap, BrdfReadsAnyHeightMapAndReportsItsValidFraction) {
         << result.err;
     EXPECT_NE(result.out.find("albedo = "), std::string::npos);
 }
+
+// Issue 23's acceptance on the real instrument files: each ends in a KC fit or a truthful message (the band and the
+// range searched, the advice to use the measured PSD), with its plot written either way, and the measured route
+// gives a finite BRDF with its note.
+TEST(CliHeightmap, RealFilesFitOrSayWhyWithAPlotAndGiveAFiniteMeasuredBrdf) {
+    const fs::path dir = temp_dir();
+    for (const char* name : {"metropro-1.dat", "opd-1.opd", "di-1.di"}) {
+        const std::string file = (fs::path(SURFSCATTER_SHARED_DATA) / "realdata" / "heightmaps" / name).string();
+        const fs::path plot = dir / (std::string(name) + "-fit.png");
+        fs::remove(plot);
+        const auto fit = run_cli({"surface", "fit", file, "--form", "poly2", "--plot", plot.string()});
+        EXPECT_TRUE(fs::exists(plot)) << name << ": " << fit.err;
+        if (fit.exit_code == 0) {
+            const auto values = parse_values(fit);
+            EXPECT_GT(values.at("corr_length"), 0.0) << name;
+            EXPECT_GT(values.at("statistical_floor"), 0.0) << name;
+        } else {
+            EXPECT_EQ(fit.exit_code, 2) << name;
+            EXPECT_NE(fit.err.find("was searched from"), std::string::npos) << fit.err;
+            EXPECT_NE(fit.err.find("use --psd measured"), std::string::npos) << fit.err;
+            EXPECT_EQ(fit.err.find("e+"), std::string::npos) << "no runaway bound: " << fit.err;
+        }
+        const auto brdf = run_cli({"brdf", "eval", "--model", "ghs", "--psd", "measured", "--surface", file, "--form",
+                                   "poly2", "--material", "Au", "--wavelength", "550", "--theta-i", "30", "--theta-o",
+                                   "0,29,30.5,45", "--phi-o", "180"});
+        ASSERT_EQ(brdf.exit_code, 0) << name << ": " << brdf.err;
+        EXPECT_NE(brdf.err.find("note: measured PSD of"), std::string::npos) << brdf.err;
+        double largest = 0.0;
+        for (const std::string& line : brdf.out_lines()) {
+            if (line.empty() || !std::isdigit(static_cast<unsigned char>(line[0]))) continue;
+            const double f = std::stod(line.substr(line.rfind(',') + 1));
+            EXPECT_TRUE(std::isfinite(f) && f >= 0.0) << name << ": " << line;
+            largest = std::max(largest, f);
+        }
+        EXPECT_GT(largest, 0.0) << name << ": " << brdf.out;
+    }
+}
