@@ -49,6 +49,10 @@ void validate_surface(const SurfaceOptions& s) {
     }
 }
 
+// Standard errors of a measured PSD's sigma above which the models refuse it or warn.
+constexpr double kMaxMeasuredSigmaError = 0.25;
+constexpr double kWarnMeasuredSigmaError = 0.10;
+
 // The surface of a model's options: its height map (psd file or measured; read by load_height_map unless the caller
 // shares one already read) and the statistics, built once however many derived quantities (KC fit, PSD, slope) the
 // model needs.
@@ -82,6 +86,7 @@ public:
                 break;
             case PsdKind::measured: {
                 auto measured = std::make_shared<surface::MapStatistics>(*map(), options_.form);
+                check_measured_uncertainty(*measured, notes);
                 if (notes) notes->push_back(measured_note(*measured));
                 statistics_ = std::move(measured);
                 break;
@@ -92,6 +97,22 @@ public:
     }
 
 private:
+    // A map whose variance sits in its few longest periods gives a sigma (and so g) no better than those few samples:
+    // refused above kMaxMeasuredSigmaError, a warning above kWarnMeasuredSigmaError (surface::MapStatistics::
+    // sigma_relative_error()).
+    void check_measured_uncertainty(const surface::MapStatistics& s, std::vector<std::string>* notes) const {
+        const double error = s.sigma_relative_error();
+        const std::string what = fmt::format(
+            "the measured PSD of {} rests on a few long periods: the standard error of its sigma is {:.2g} % (rings "
+            "1-3, {:.3g} .. {:.3g} um periods, hold {:.2g} % of the variance)",
+            options_.surface_file, 100.0 * error, kTwoPi / (3 * s.ring_width()), kTwoPi / s.first_ring(),
+            100.0 * s.radial_cdf(3.5 * s.ring_width()));
+        if (error > kMaxMeasuredSigmaError)
+            fail("{}, more than the {:.0f} % the models accept: remove more form (--form poly2 .. poly4) or measure a "
+                 "larger area", what, 100.0 * kMaxMeasuredSigmaError);
+        if (error > kWarnMeasuredSigmaError && notes) notes->push_back("warning: " + what);
+    }
+
     // What a measured PSD rests on (map_statistics.hpp): the band, the variance the model carries against the map's
     // own, the estimate's uncertainty at the lowest rings, and where lobes start to draw on periods longer than a
     // third of the map: |zeta| < 3 dzeta, i.e. within asin(3 dzeta / k) of the specular direction at normal incidence.
