@@ -20,6 +20,7 @@
 #include "surfscatter/surface/height_map_io.hpp"
 #include "surfscatter/surface/height_map_slope.hpp"
 #include "surfscatter/surface/kc_fit.hpp"
+#include "surfscatter/surface/map_statistics.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
 #include "surfscatter/surface/synthesis.hpp"
 
@@ -41,6 +42,10 @@ struct MapArgs {
     std::string input;
     std::optional<double> spacing, height_unit;
     std::string form = "plane";
+};
+
+struct InfoArgs : MapArgs {
+    std::string plot;
 };
 
 struct FitArgs : MapArgs {
@@ -88,7 +93,9 @@ surface::HeightMap read_map(const MapArgs& args, surface::Form& form) {
 
 void print_value(const char* name, double value) { std::printf("%s = %s\n", name, format_number(value).c_str()); }
 
-void info(const MapArgs& args) {
+void write_measured_plot(const InfoArgs& args, const surface::HeightMap& map, surface::Form form);
+
+void info(const InfoArgs& args) {
     surface::Form form = surface::Form::plane;
     const surface::HeightMap map = read_map(args, form);
     const surface::HeightMap flat = surface::remove_form(map, form);
@@ -123,17 +130,47 @@ void info(const MapArgs& args) {
         std::printf("warning = texture_aspect_ratio %.3g < 0.5: a directional texture (lay along %.1f deg); the "
                     "isotropic scattering models misrepresent this surface\n",
                     acv.texture_aspect_ratio, acv.slowest_direction_deg);
+    if (!args.plot.empty()) write_measured_plot(args, map, form);
+}
+
+// What `--psd measured` uses (map_statistics.hpp), as name = value lines, a CSV of its rings and the PSD plot.
+void write_measured_plot(const InfoArgs& args, const surface::HeightMap& map, surface::Form form) {
+    const surface::MapStatistics stats(map, form);
+    print_value("measured_sigma_um", stats.sigma_h());
+    print_value("measured_sigma_standard_error", stats.sigma_relative_error());
+    print_value("measured_band_min_zeta", stats.first_ring());
+    print_value("measured_band_max_zeta", stats.nyquist());
+    std::printf("measured_window = %s\n", stats.periodic() ? "rectangular (periodic map)" : "hann");
+    const std::string csv = std::filesystem::path(args.plot).replace_extension(".csv").string();
+    {
+        std::ofstream out(csv);
+        if (!out) fail("--plot: cannot open '{}' for writing", csv);
+        out << "zeta,psd,count,independent_samples,model_psd,in_band\n";
+        const auto& r = stats.rings();
+        for (std::size_t i = 0; i < r.zeta.size(); ++i)
+            out << format_number(r.zeta[i]) << ',' << format_number(r.psd[i]) << ',' << format_number(r.count[i])
+                << ',' << format_number(surface::effective_samples(r.window, r.count[i], r.valid_weight)) << ','
+                << format_number(stats.psd(r.zeta[i])) << ",1\n";
+        if (!out) fail("--plot: write error on '{}'", csv);
+    }
+    run_plot_script("psd_fit.py",
+                    {csv, args.plot,
+                     fmt::format("{}: PSD that --psd measured uses, band {:.3g}-{:.3g} rad/um, sigma {:.4g} um (+-{:.2g} %)",
+                                 std::filesystem::path(args.input).filename().string(), stats.first_ring(),
+                                 stats.nyquist(), stats.sigma_h(), 100.0 * stats.sigma_relative_error())});
+    std::printf("plot = %s\ncsv = %s\n", args.plot.c_str(), csv.c_str());
 }
 
 void write_psd_csv(const surface::SurfaceFit& fit, const std::string& path) {
     const surface::KCorrelation model(fit.kc.sigma_h_um, fit.kc.corr_length_um, fit.kc.gamma);
     std::ofstream out(path);
     if (!out) fail("--csv: cannot open '{}' for writing", path);
-    out << "zeta,psd,count,kc_fit,in_band\n";
+    out << "zeta,psd,count,independent_samples,kc_fit,in_band\n";
     const auto& r = fit.radial;
     for (std::size_t i = 0; i < r.zeta.size(); ++i) {
         const bool in_band = r.zeta[i] >= fit.kc.zeta_min && r.zeta[i] <= fit.kc.zeta_max;
         out << format_number(r.zeta[i]) << ',' << format_number(r.psd[i]) << ',' << format_number(r.count[i]) << ','
+            << format_number(surface::effective_samples(r.window, r.count[i], r.valid_weight)) << ','
             << format_number(model.psd(r.zeta[i])) << ',' << (in_band ? 1 : 0) << '\n';
     }
     if (!out) fail("--csv: write error on '{}'", path);
@@ -266,11 +303,14 @@ const Command command("surface", [](CLI::App& app) {
     synth_cmd->add_option("--title", s->title, "Title stored in the .gsf header");
     synth_cmd->callback([s] { synth(*s); });
 
-    auto i = std::make_shared<MapArgs>();
+    auto i = std::make_shared<InfoArgs>();
     CLI::App* info_cmd = surface_cmd->add_subcommand(
         "info", "Format, grid, valid fraction, rms, slope, skewness, kurtosis, correlation length and texture "
                 "aspect ratio (ISO 25178 Str) of a height map; name = value lines");
     add_map_options(info_cmd, *i);
+    info_cmd->add_option("--plot", i->plot,
+                         "also write the PSD that --psd measured uses (its ring means, band and standard errors) as "
+                         "PNG, with its CSV beside it, and print that route's sigma and band");
     info_cmd->callback([i] { info(*i); });
 
     auto f = std::make_shared<FitArgs>();

@@ -1,7 +1,10 @@
-"""Radial PSD of a height map with its KC fit, and the 2-D PSD beside it (written by `surfscatter surface fit --plot`).
+"""Radial PSD of a height map with its KC fit (`surfscatter surface fit --plot`) or with the PSD the measured route
+uses (`surfscatter surface info --plot`), and the 2-D PSD beside it.
 
 usage: psd_fit.py <psd.csv> <out.png> [title [<psd2d.npy> <zeta_x_left> <zeta_x_right> <zeta_y_bottom> <zeta_y_top>]]
-The CSV has columns zeta (rad/um), psd (um^4), count, kc_fit (um^4), in_band (1 if the ring was fitted).
+The CSV has columns zeta (rad/um), psd (um^4), count, independent_samples (of each ring: its mean's relative
+standard error is 1/sqrt of it, drawn as a band), kc_fit or model_psd (um^4), in_band (1 if the ring was used).
+Rings whose periods exceed a third of the map (zeta < 3 dzeta) are shaded: few samples hold them.
 The .npy holds the 2-D PSD (um^4) over the zeta-plane, centred, rows = zeta_y; the four numbers are its outer
 edges (rad/um). A directional texture shows as a streak through the origin, perpendicular to the lay.
 """
@@ -15,12 +18,24 @@ import numpy as np
 
 
 def radial_panels(fig, spec, data, title):
-    zeta, psd, fit, band = data["zeta"], data["psd"], data["kc_fit"], data["in_band"] > 0.5
+    names = data.dtype.names
+    measured = "model_psd" in names
+    zeta, psd, band = data["zeta"], data["psd"], data["in_band"] > 0.5
+    fit = data["model_psd" if measured else "kc_fit"]
     ax = fig.add_subplot(spec[0, 0])
     ax_res = fig.add_subplot(spec[1, 0], sharex=ax)
+    ring_width = np.median(np.diff(zeta))
+    for a in (ax, ax_res):
+        a.axvspan(zeta[0] * 0.8, 3.0 * ring_width, color="0.92", zorder=0)
+    if "independent_samples" in names:
+        error = 1.0 / np.sqrt(np.maximum(data["independent_samples"], 1e-12))
+        ax.fill_between(zeta, psd * np.exp(-error), psd * np.exp(error), color="C0", alpha=0.15, lw=0,
+                        label="+-1 standard error")
     ax.loglog(zeta[~band], psd[~band], ".", color="0.6", ms=3, label="radial PSD (not fitted)")
-    ax.loglog(zeta[band], psd[band], ".", color="C0", ms=3, label="radial PSD (fitted band)")
-    ax.loglog(zeta, fit, "-", color="C3", lw=1.5, label="KC fit")
+    ax.loglog(zeta[band], psd[band], ".", color="C0", ms=3,
+              label="radial PSD (band used: first ring to Nyquist)" if measured else "radial PSD (fitted band)")
+    ax.loglog(zeta, fit, "-", color="C3", lw=1.5, label="--psd measured" if measured else "KC fit")
+    ax.text(3.0 * ring_width, ax.get_ylim()[0], " periods > map / 3", fontsize=7, color="0.4", va="bottom")
     ax.set_ylabel(r"$P(\zeta)$ [$\mu$m$^4$]")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(loc="lower left")
@@ -32,7 +47,7 @@ def radial_panels(fig, spec, data, title):
     ax_res.axhline(1.0, color="C3", lw=1)
     ax_res.set_ylim(0, 2.5)
     ax_res.set_xlabel(r"$\zeta$ [rad/$\mu$m]")
-    ax_res.set_ylabel("data / fit")
+    ax_res.set_ylabel("data / model" if measured else "data / fit")
     ax_res.grid(True, which="both", alpha=0.3)
 
 

@@ -276,6 +276,11 @@ TEST(CliHeightmap, RealFilesFitOrSayWhyWithAPlotAndGiveAFiniteMeasuredBrdf) {
         fs::remove(plot);
         const auto fit = run_cli({"surface", "fit", file, "--form", "poly2", "--plot", plot.string()});
         EXPECT_TRUE(fs::exists(plot)) << name << ": " << fit.err;
+        const fs::path info_plot = dir / (std::string(name) + "-measured.png");
+        const auto info = run_cli({"surface", "info", file, "--form", "poly2", "--plot", info_plot.string()});
+        ASSERT_EQ(info.exit_code, 0) << info.err;
+        EXPECT_TRUE(fs::exists(info_plot)) << name;
+        EXPECT_GT(parse_values(info).at("measured_sigma_standard_error"), 0.0) << info.out;
         if (fit.exit_code == 0) {
             const auto values = parse_values(fit);
             EXPECT_GT(values.at("corr_length"), 0.0) << name;
