@@ -145,12 +145,12 @@ void write_measured_plot(const InfoArgs& args, const surface::HeightMap& map, su
     {
         std::ofstream out(csv);
         if (!out) fail("--plot: cannot open '{}' for writing", csv);
-        out << "zeta,psd,count,independent_samples,model_psd,in_band\n";
+        out << "zeta,psd,count,model_psd,in_band,independent_samples\n";
         const auto& r = stats.rings();
         for (std::size_t i = 0; i < r.zeta.size(); ++i)
             out << format_number(r.zeta[i]) << ',' << format_number(r.psd[i]) << ',' << format_number(r.count[i])
-                << ',' << format_number(surface::effective_samples(r.window, r.count[i], r.valid_weight)) << ','
-                << format_number(stats.psd(r.zeta[i])) << ",1\n";
+                << ',' << format_number(stats.psd(r.zeta[i])) << ",1,"
+                << format_number(surface::effective_samples(r.window, r.count[i], r.valid_weight)) << '\n';
         if (!out) fail("--plot: write error on '{}'", csv);
     }
     run_plot_script("psd_fit.py",
@@ -165,13 +165,13 @@ void write_psd_csv(const surface::SurfaceFit& fit, const std::string& path) {
     const surface::KCorrelation model(fit.kc.sigma_h_um, fit.kc.corr_length_um, fit.kc.gamma);
     std::ofstream out(path);
     if (!out) fail("--csv: cannot open '{}' for writing", path);
-    out << "zeta,psd,count,independent_samples,kc_fit,in_band\n";
+    out << "zeta,psd,count,kc_fit,in_band,independent_samples\n";
     const auto& r = fit.radial;
     for (std::size_t i = 0; i < r.zeta.size(); ++i) {
         const bool in_band = r.zeta[i] >= fit.kc.zeta_min && r.zeta[i] <= fit.kc.zeta_max;
         out << format_number(r.zeta[i]) << ',' << format_number(r.psd[i]) << ',' << format_number(r.count[i]) << ','
-            << format_number(surface::effective_samples(r.window, r.count[i], r.valid_weight)) << ','
-            << format_number(model.psd(r.zeta[i])) << ',' << (in_band ? 1 : 0) << '\n';
+            << format_number(model.psd(r.zeta[i])) << ',' << (in_band ? 1 : 0) << ','
+            << format_number(surface::effective_samples(r.window, r.count[i], r.valid_weight)) << '\n';
     }
     if (!out) fail("--csv: write error on '{}'", path);
 }

@@ -2,8 +2,8 @@
 uses (`surfscatter surface info --plot`), and the 2-D PSD beside it.
 
 usage: psd_fit.py <psd.csv> <out.png> [title [<psd2d.npy> <zeta_x_left> <zeta_x_right> <zeta_y_bottom> <zeta_y_top>]]
-The CSV has columns zeta (rad/um), psd (um^4), count, independent_samples (of each ring: its mean's relative
-standard error is 1/sqrt of it, drawn as a band), kc_fit or model_psd (um^4), in_band (1 if the ring was used).
+The CSV has columns zeta (rad/um), psd (um^4), count, kc_fit or model_psd (um^4), in_band (1 if the ring was used),
+independent_samples (of each ring: its mean's relative standard error is 1/sqrt of it, drawn as a band).
 Rings whose periods exceed a third of the map (zeta < 3 dzeta) are shaded: few samples hold them.
 The .npy holds the 2-D PSD (um^4) over the zeta-plane, centred, rows = zeta_y; the four numbers are its outer
 edges (rad/um). A directional texture shows as a streak through the origin, perpendicular to the lay.

@@ -63,7 +63,7 @@ TEST(CliHeightmap, SynthThenFitRecoversParameters) {
     std::ifstream in(csv);
     std::string header;
     std::getline(in, header);
-    EXPECT_EQ(header, "zeta,psd,count,kc_fit,in_band");
+    EXPECT_EQ(header, "zeta,psd,count,kc_fit,in_band,independent_samples");
 }
 
 TEST(CliHeightmap, SameSeedSameFile) {
