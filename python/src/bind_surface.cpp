@@ -1,5 +1,5 @@
 // Surface statistics (surface/radial_statistics.hpp, relevant_roughness.hpp, self_convolution_table.hpp,
-// refit.hpp) and height maps (height_map*.hpp, synthesis.hpp, kc_fit.hpp, psd_estimate*.hpp).
+// refit.hpp) and height maps (height_map*.hpp, synthesis.hpp, kc_fit.hpp, psd_estimate.hpp, map_statistics.hpp).
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -21,7 +21,7 @@
 #include "surfscatter/surface/height_map_slope.hpp"
 #include "surfscatter/surface/kc_fit.hpp"
 #include "surfscatter/surface/psd_estimate.hpp"
-#include "surfscatter/surface/psd_estimate_table.hpp"
+#include "surfscatter/surface/map_statistics.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
 #include "surfscatter/surface/refit.hpp"
 #include "surfscatter/surface/relevant_roughness.hpp"
@@ -408,26 +408,44 @@ void bind_height_maps(py::module_& m) {
         "(size = n) or nx x ny (size = (nx, ny)) grid of spacing_um; the same seed gives the same surface as "
         "`surfscatter surface synth --seed`.");
 
+    py::class_<MapStatistics, RadialStatistics, std::shared_ptr<MapStatistics>>(
+        m, "MapStatistics",
+        "A height map's own statistics, what psd 'measured' uses (map_statistics.hpp): its periodogram's ring means "
+        "from the first ring to Nyquist (rolled off beyond), linear from the DC value below the first ring.")
+        .def_property_readonly("map_rms", &MapStatistics::map_rms, "rms of the form-removed map (um)")
+        .def_property_readonly("sigma_standard_error", &MapStatistics::sigma_relative_error,
+                               "relative standard error of sigma_h for a random surface of this spectrum")
+        .def_property_readonly("periodic", &MapStatistics::periodic, "True: the map wraps around (rectangular window)")
+        .def_property_readonly("first_ring", &MapStatistics::first_ring, "lowest frequency resolved (rad/um)")
+        .def_property_readonly("ring_width", &MapStatistics::ring_width, "rad/um")
+        .def_property_readonly("nyquist", &MapStatistics::nyquist, "top of the band (rad/um)")
+        .def_property_readonly("below_band_fraction", &MapStatistics::below_band_fraction,
+                               "share of sigma_h^2 below the first ring")
+        .def_property_readonly("above_band_fraction", &MapStatistics::above_band_fraction,
+                               "share of sigma_h^2 rolled off beyond Nyquist")
+        .def(
+            "ring_samples",
+            [](const MapStatistics& s, py::handle zeta) {
+                return map_scalars({{zeta, "zeta", Domain::non_negative}}, [&](double z) { return s.ring_samples(z); });
+            },
+            py::arg("zeta"), "independent periodogram samples of the ring holding zeta (relative error 1/sqrt)")
+        .def("__repr__", [](const MapStatistics& s) {
+            return fmt::format("<surfscatter.MapStatistics sigma={:.4g} um (map rms {:.4g} um, +-{:.2g} %), band "
+                               "{:.3g}..{:.3g} rad/um, {} window>",
+                               s.sigma_h(), s.map_rms(), 100.0 * s.sigma_relative_error(), s.first_ring(), s.nyquist(),
+                               s.periodic() ? "rectangular" : "Hann");
+        });
+
     m.def(
         "measured_statistics",
-        [](const HeightMap& map, const std::string& form, std::size_t min_ring, double max_zeta_fraction,
-           double bins_per_decade, double min_effective_samples) {
-            PsdTableOptions options;
-            options.form = parse_form(form, "form");
-            options.min_ring = min_ring;
-            options.max_nyquist_fraction = max_zeta_fraction;
-            options.bins_per_decade = bins_per_decade;
-            options.min_effective_samples = min_effective_samples;
+        [](const HeightMap& map, const std::string& form) {
+            const Form f = parse_form(form, "form");
             py::gil_scoped_release release;
-            return std::make_shared<TabulatedPsd>(tabulated_psd(map, options));
+            return std::make_shared<MapStatistics>(map, f);
         },
-        py::arg("height_map"), py::arg("form") = "plane", py::arg("min_ring") = PsdTableOptions{}.min_ring,
-        py::arg("max_zeta_fraction") = PsdTableOptions{}.max_nyquist_fraction,
-        py::arg("bins_per_decade") = PsdTableOptions{}.bins_per_decade,
-        py::arg("min_effective_samples") = PsdTableOptions{}.min_effective_samples,
-        "The map's own radial PSD as statistics (psd_estimate_table.hpp): ring means of the Hann periodogram from "
-        "ring min_ring up to max_zeta_fraction of Nyquist, merged into log bins of 1/bins_per_decade decade holding "
-        "at least min_effective_samples independent samples; a TabulatedPsd.");
+        py::arg("height_map"), py::arg("form") = "plane",
+        "The map's own statistics after removing `form`, what psd 'measured' uses: a MapStatistics "
+        "(docs/HEIGHTMAPS.md).");
 
     py::class_<SurfaceFit>(m, "SurfaceFit",
                            "A KC fit to a height map (fit_surface), with the names `surfscatter surface fit` prints.")

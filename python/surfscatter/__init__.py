@@ -4,7 +4,7 @@ A thin layer over the C++ library, like the `surfscatter` command-line tool (doc
 
 - materials: Conductor("Au" | path | "perfect") with .ior(lambda_nm) and .reflectance(cos_theta, lambda_nm);
 - surface statistics: KCorrelation(sigma, corr_length, gamma), GaussianAcv(sigma, corr_length), TabulatedPsd,
-  measured_statistics(height_map); .psd(zeta), .acv(r), .relevant_roughness(theta_i_deg, lambda_nm),
+  measured_statistics(height_map) -> MapStatistics; .psd(zeta), .acv(r), .relevant_roughness(theta_i_deg, lambda_nm),
   .self_convolution(max_order), KCorrelation.refit(max_order);
 - height maps: HeightMap(heights_um, spacing_um, valid=None), read_height_map, synthesize, fit_surface;
 - scattering models: bsdf(model, surface=..., material=..., **options) -> Bsdf with .eval, .pdf, .sample,

@@ -40,7 +40,7 @@ def test_error_is_a_value_error_named_in_the_package():
 
 
 def test_expected_names_are_exported():
-    for name in ("Conductor", "KCorrelation", "GaussianAcv", "TabulatedPsd", "HeightMap", "read_height_map",
+    for name in ("Conductor", "KCorrelation", "GaussianAcv", "TabulatedPsd", "MapStatistics", "HeightMap", "read_height_map",
                  "synthesize", "fit_surface", "measured_statistics", "bsdf", "Bsdf", "direction", "render",
                  "read_photo", "write_photo", "read_camera", "undistort", "Board", "calibrate", "pose", "colorcorrect",
                  "compare", "set_max_threads", "Error"):

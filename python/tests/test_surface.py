@@ -174,9 +174,15 @@ def test_measured_statistics_follow_the_surface_they_were_drawn_from():
     kc = ss.KCorrelation(0.1, 2.0, 3.0)
     surface = ss.synthesize(kc, 512, spacing_um=0.25, seed=3)
     measured = ss.measured_statistics(surface, form="none")
-    assert isinstance(measured, ss.TabulatedPsd)
+    assert isinstance(measured, ss.MapStatistics)
+    assert measured.periodic  # synthesised maps wrap around
+    assert measured.map_rms == pytest.approx(surface.rms_height("none"), rel=1e-12)
+    assert measured.sigma_h == pytest.approx(measured.map_rms, rel=0.02)
     zeta = np.geomspace(0.5, 5.0, 7)
-    np.testing.assert_allclose(measured.psd(zeta), kc.psd(zeta), rtol=0.2)
+    # Each ring a mean of its own periodogram values: within four standard errors of the truth.
+    tolerance = 4.0 / np.sqrt(measured.ring_samples(zeta))
+    assert np.all(np.abs(measured.psd(zeta) / kc.psd(zeta) - 1.0) < tolerance)
+    assert "MapStatistics sigma=" in repr(measured) and len(repr(measured)) < 200
 
 
 def test_height_map_round_trip_through_gsf_with_invalid_points(tmp_path):

@@ -1,4 +1,4 @@
-// The measured-PSD route (psd measured: the height map's own radial PSD, TabulatedPsd from tabulated_psd()) against
+// The measured-PSD route (psd measured: the height map's own ring spectrum, MapStatistics) against
 // the KC-fit route (psd file) and the truth, on synthesized maps written as .gsf files: for a KC surface both routes
 // agree with the true lobe within the periodogram's statistical error; for surfaces no KC can represent (a Gaussian
 // ACV, which the KC fit rejects, and the sum of two KC surfaces of different lengths, which it fits badly) the measured

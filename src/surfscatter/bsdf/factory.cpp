@@ -17,7 +17,6 @@
 #include "surfscatter/surface/height_map_slope.hpp"
 #include "surfscatter/surface/kc_fit.hpp"
 #include "surfscatter/surface/map_statistics.hpp"
-#include "surfscatter/surface/psd_estimate_table.hpp"
 #include "surfscatter/surface/psd_split.hpp"
 #include "surfscatter/surface/refit.hpp"
 
