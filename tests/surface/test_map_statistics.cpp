@@ -1,88 +1,24 @@
-// MapStatistics (`--psd measured`) against references written here: periodic maps synthesised with exact spectral
-// amplitudes and random phases, so that each map's own periodogram is known exactly, and the self-convolutions of
-// eq. 2 evaluated directly as the 2-D DTFT of the map's circular ACV to the power m (no Hankel transform, no table).
+// MapStatistics (`--psd measured`) against references written here (exact_amplitude.hpp): periodic maps synthesised
+// with exact spectral amplitudes and random phases, so that each map's own periodogram is known exactly, and the
+// self-convolutions of eq. 2 on the map's own lattice, DFT[rho^m] of its circular ACV (no Hankel transform, no table).
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <complex>
-#include <random>
 #include <vector>
 
 #include "surfscatter/math/vec.hpp"
 #include "surfscatter/surface/height_map.hpp"
-#include "surfscatter/surface/height_map_fft.hpp"
 #include "surfscatter/surface/map_statistics.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
 #include "surfscatter/surface/self_convolution_table.hpp"
+#include "exact_amplitude.hpp"
 
 namespace surfscatter::surface {
 namespace {
 
-// A periodic map whose periodogram |H_k|^2 dx dy / (4 pi^2 N) equals P(|zeta_k|) at every lattice point but DC.
-HeightMap exact_amplitude_map(const RadialStatistics& stats, std::size_t n, double dx, unsigned seed, double scale = 1.0) {
-    const std::size_t half = n / 2 + 1;
-    std::vector<std::complex<double>> spectrum(n * half);
-    std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> phase(0.0, 2.0 * kPi);
-    const double dzeta = 2.0 * kPi / (n * dx);
-    const double norm = 4.0 * kPi * kPi * static_cast<double>(n * n) / (dx * dx);
-    for (std::size_t ky = 0; ky < n; ++ky)
-        for (std::size_t kx = 0; kx < half; ++kx) {
-            const double zx = kx * dzeta, zy = signed_frequency_index(ky, n) * dzeta;
-            const double amplitude = std::sqrt(norm * stats.psd(std::hypot(zx, zy)));
-            spectrum[ky * half + kx] = std::polar(amplitude, phase(rng));
-        }
-    // Columns kx = 0 and n/2 hold their own mirrors: make them Hermitian, their self-mirrored entries real.
-    for (std::size_t kx : {std::size_t{0}, n / 2})
-        for (std::size_t ky = 0; ky < n; ++ky) {
-            const std::size_t mirror = (n - ky) % n;
-            if (mirror == ky) spectrum[ky * half + kx] = std::abs(spectrum[ky * half + kx]);
-            else if (mirror < ky) spectrum[ky * half + kx] = std::conj(spectrum[mirror * half + kx]);
-        }
-    spectrum[0] = 0.0;
-    std::vector<double> h = inverse_fft_2d(std::move(spectrum), n, n);
-    for (double& v : h) v *= scale / static_cast<double>(n * n);
-    return HeightMap(n, n, dx, dx, std::move(h), "exact-amplitude map");
-}
-
-// Circular normalised ACV of a zero-mean periodic map, lags wrapped into [-n/2, n/2).
-std::vector<double> circular_rho(const HeightMap& map) {
-    const std::size_t n = map.nx();
-    double c0 = 0.0;
-    for (double v : map.heights()) c0 += v * v;
-    c0 /= static_cast<double>(map.size());
-    auto spectrum = forward_fft_2d(map.heights(), n, n);
-    for (auto& c : spectrum) c = std::norm(c);
-    std::vector<double> rho = inverse_fft_2d(std::move(spectrum), n, n);
-    for (double& v : rho) v /= static_cast<double>(n * n) * static_cast<double>(n * n) * c0;
-    return rho;
-}
-
-// Ring means of P-hat^{*m} on the map's own lattice: (dx dy / 4 pi^2) DFT[rho^m] (eq. 2 on the lattice, the m-fold
-// discrete self-convolution of the normalised periodogram), averaged over the lattice points of each ring of width
-// dzeta; returns {mean |zeta|, mean value} per ring 1 .. n/2 - 1.
-std::vector<std::pair<double, double>> lattice_rings(const std::vector<double>& rho, std::size_t n, double dx, int m) {
-    std::vector<double> power(rho.size());
-    for (std::size_t i = 0; i < rho.size(); ++i) power[i] = std::pow(rho[i], m);
-    const auto spectrum = forward_fft_2d(power, n, n);
-    const std::size_t half = n / 2 + 1;
-    const double dzeta = 2.0 * kPi / (n * dx);
-    std::vector<double> sum_z(n / 2, 0.0), sum_v(n / 2, 0.0), count(n / 2, 0.0);
-    for (std::size_t ky = 0; ky < n; ++ky)
-        for (std::size_t kx = 0; kx < half; ++kx) {
-            const double zx = kx * dzeta, zy = signed_frequency_index(ky, n) * dzeta;
-            const double z = std::hypot(zx, zy);
-            const std::size_t ring = static_cast<std::size_t>(std::lround(z / dzeta));
-            if (ring == 0 || ring >= n / 2) continue;
-            const double weight = (kx == 0 || kx == n / 2) ? 1.0 : 2.0;  // half-plane entries stand for two
-            sum_z[ring] += weight * z;
-            sum_v[ring] += weight * spectrum[ky * half + kx].real() * dx * dx / (4.0 * kPi * kPi);
-            count[ring] += weight;
-        }
-    std::vector<std::pair<double, double>> rings;
-    for (std::size_t r = 1; r < n / 2; ++r) rings.emplace_back(sum_z[r] / count[r], sum_v[r] / count[r]);
-    return rings;
-}
+using test::circular_rho;
+using test::exact_amplitude_map;
+using test::lattice_rings;
 
 double rms(const HeightMap& map) {
     double s = 0.0;
@@ -106,16 +42,26 @@ TEST(MapStatistics, RmsAndRingMeansAreTheMapsOwn) {
         const MapStatistics stats(map, Form::none);
         EXPECT_TRUE(stats.periodic());
         EXPECT_NEAR(stats.map_rms(), rms(map), 1e-12 * rms(map)) << truth->cache_key();
-        // The model's sigma is the integral of the ring PSD: the lattice's Parseval sum up to the discreteness of the
-        // lowest rings (measured -0.3 % and -1.0 % for the KC maps).
-        EXPECT_NEAR(stats.sigma_h() / rms(map), 1.0, 0.015) << truth->cache_key();
+        // Parseval over the band: sigma^2 inside Nyquist is the lattice's sum over DC and the rings used (to the
+        // quadrature's 1e-9), and the scale that makes it so is within 1 % of 1.
+        const auto rings = lattice_rings(circular_rho(map), 512, 0.1, 1);
+        const std::size_t used = stats.rings().zeta.size();
+        double band_sum = 0.0;
+        for (std::size_t r = 0; r < used; ++r)
+            band_sum += rings[r].second * stats.rings().count[r];  // P-hat ring mean times its points
+        band_sum *= std::pow(2.0 * kPi / (512 * 0.1), 2) * rms(map) * rms(map);
+        EXPECT_NEAR(stats.sigma_h() * stats.sigma_h() * stats.radial_cdf(stats.nyquist()) / band_sum, 1.0, 1e-8)
+            << truth->cache_key();
+        EXPECT_NEAR(stats.band_scale(), 1.0, 0.01) << truth->cache_key();
+        EXPECT_NEAR(stats.sigma_h() / rms(map), 1.0, 0.01) << truth->cache_key();
         // Next to nothing is rolled off beyond Nyquist.
         EXPECT_LT(stats.above_band_fraction(), 1e-3) << truth->cache_key();
-        // Unnormalised P at each ring's mean radius is the ring's mean periodogram value, down the steepest tail.
-        const auto rings = lattice_rings(circular_rho(map), 512, 0.1, 1);
+        // P at each ring's mean radius is the ring's mean periodogram value times that one scale, down the steepest
+        // tail.
         for (std::size_t r = 0; r < rings.size(); ++r) {
             if (rings[r].second < 1e-12 * rings[0].second) break;  // the Gaussian's tail below double rounding
-            EXPECT_NEAR(stats.psd(rings[r].first) / (rings[r].second * rms(map) * rms(map)), 1.0, 1e-6)
+            EXPECT_NEAR(stats.psd(rings[r].first) / (stats.band_scale() * rings[r].second * rms(map) * rms(map)), 1.0,
+                        1e-6)
                 << truth->cache_key() << " ring " << r + 1;
         }
     }
@@ -165,7 +111,7 @@ TEST(MapStatistics, LobeCoreMatchesTheMapsOwnSelfConvolutions) {
             std::printf("%s g %g worst %.4f at ring %zu\n", truth->cache_key().c_str(), g_ref, worst, worst_ring);
             // The exception: the slowest tail (KC gamma 2) at g = 30, whose near-Cauchy lobe sums the most orders
             // through the lattice's DC cell (mean removed: a hole in every discrete convolution that the continuous
-            // ramp below the first ring only approximates): 4.0 % at ring 1, 2 % elsewhere.
+            // ramp below the first ring only approximates): 3.7 % at ring 1, 2 % elsewhere.
             const auto* kc = dynamic_cast<const KCorrelation*>(truth.get());
             const double tolerance = kc && kc->gamma() < 3.0 && g_ref > 10.0 ? 0.05 : 0.02;
             EXPECT_LT(worst, tolerance) << truth->cache_key() << " g " << g_ref << " ring " << worst_ring;

@@ -21,8 +21,9 @@
 //    reading of the lattice does: 0 with the rectangular window (the mean is removed), with the Hann window the
 //    power its main lobe moved there from the first rings; nothing is held flat or extrapolated. Its share of
 //    the variance is reported (below_band_fraction()).
-// 4. sigma_h^2 is the integral of that P, the continuous counterpart of the periodogram's sum over the disc of the
-//    band (Parseval); the map's own rms (all of its variance, corners of the lattice beyond the
+// 4. sigma_h^2 is the integral of that P, which equals the periodogram's sum over the disc of the band (Parseval):
+//    the ring means are scaled by the one factor that makes it so (band_scale(), within 1 % of 1: the lowest rings
+//    hold more lattice points than their annuli's area), plus the small share rolled off; the map's own rms (all of its variance, corners of the lattice beyond the
 //    Nyquist disc included) is reported beside it (map_rms()). The self-convolutions are exact transforms of the
 //    resulting rho^m (eq. 2).
 // Uncertainty: a ring mean over nu independent periodogram values (ring_samples(): effective_samples() of its
@@ -67,6 +68,8 @@ public:
     double below_band_fraction() const { return radial_cdf(0.5 * ring_width()); }  // of sigma_h^2, continued
     double above_band_fraction() const { return 1.0 - radial_cdf(nyquist()); }      // of sigma_h^2, rolled off
     std::size_t skipped_rings() const { return skipped_rings_; }
+    // The factor on the ring means that makes the continuous PSD carry the lattice's sum over the band (Parseval).
+    double band_scale() const { return band_scale_; }
     const Psd2d& spectrum() const { return spectrum_; }       // the 2-D periodogram
     const RadialPsd& rings() const { return radial_; }        // its ring means
     // Independent periodogram samples of the ring holding zeta (relative standard error 1/sqrt of it).
@@ -77,7 +80,7 @@ public:
 
 private:
     bool periodic_ = false;
-    double map_rms_ = 0;
+    double map_rms_ = 0, band_scale_ = 1;
     std::size_t skipped_rings_ = 0;
     Psd2d spectrum_;
     RadialPsd radial_;
