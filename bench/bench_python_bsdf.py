@@ -29,7 +29,7 @@ MODELS = {  # bench_bsdf.cpp options_for(model, g): name -> keyword options of s
     0: ("ghs_exact", dict(model="ghs")),
     1: ("ghs_refit", dict(model="ghs", method="refit")),
     2: ("ghs_ssa", dict(model="ghs_ssa")),
-    3: ("ggx", dict(model="ggx", alpha_from="smoothed", smoothing=0.1)),
+    3: ("ggx_stats", dict(model="ggx_stats", alpha_from="smoothed", smoothing=0.1)),
     4: ("two_scale", dict(model="two_scale", cutoff_wavelengths=50)),
 }
 LAMBDA_NM = 550.0

@@ -41,8 +41,10 @@ void validate_surface(const SurfaceOptions& s) {
             surface::require_surface_length(s.sigma, "sigma");
             surface::require_surface_length(s.corr_length, "corr_length");
             break;
-        case PsdKind::file:
         case PsdKind::measured:
+            if (s.measured_psd) break;
+            [[fallthrough]];
+        case PsdKind::file:
             if (s.surface_file.empty()) fail("surface_file is empty: give a height map file for psd {}", to_string(s.psd));
             break;
     }
@@ -79,6 +81,11 @@ public:
                 statistics_ = std::make_shared<surface::GaussianAcv>(options_.sigma, options_.corr_length);
                 break;
             case PsdKind::measured: {
+                if (options_.measured_psd) {
+                    if (notes) notes->push_back(extrapolation_note(*options_.measured_psd));
+                    statistics_ = options_.measured_psd;
+                    break;
+                }
                 // Rings are merged only up to 4 effective samples (the KC fit's 100 flatten a PSD that falls within
                 // the first decade of the data into one low bin: sigma came out 12 % low for a surface with two
                 // correlation lengths); the lobe averages the larger scatter of the lowest bins.
@@ -103,10 +110,10 @@ private:
     std::string extrapolation_note(const surface::TabulatedPsd& psd) const {
         const double lo = psd.first_zeta(), hi = psd.last_zeta();
         return fmt::format(
-            "measured PSD of {}: data cover zeta {:.3g} .. {:.3g} rad/um (lateral periods {:.3g} .. {:.3g} um); "
+            "measured PSD{}: data cover zeta {:.3g} .. {:.3g} rad/um (lateral periods {:.3g} .. {:.3g} um); "
             "extrapolated flat below ({:.2g} % of sigma^2) and as zeta^{:.2f} above ({:.2g} % of sigma^2); lobes "
             "reach the extrapolated range at wavelengths below {:.0f} nm (below {:.0f} nm at normal incidence)",
-            options_.surface_file, lo, hi, kTwoPi / hi, kTwoPi / lo, 100.0 * psd.radial_cdf(lo), psd.tail_slope(),
+            options_.surface_file.empty() ? "" : " of " + options_.surface_file, lo, hi, kTwoPi / hi, kTwoPi / lo, 100.0 * psd.radial_cdf(lo), psd.tail_slope(),
             100.0 * (1.0 - psd.radial_cdf(hi)), 2e3 * kTwoPi / hi, 1e3 * kTwoPi / hi);
     }
 
@@ -128,9 +135,15 @@ std::function<double(double)> ggx_alpha(const ModelOptions& o, SurfaceSource& su
             } else {
                 const double no_cutoff = std::numeric_limits<double>::infinity();
                 const double slope2 = surface.statistics(notes)->mean_square_slope(smoothing, no_cutoff);
-                if (!std::isfinite(slope2))
-                    fail("alpha_from {}: the rms slope of this PSD diverges (KC needs gamma > 3, or smoothing > 0, or "
-                         "a height map)", to_string(o.alpha_from));
+                if (!std::isfinite(slope2)) {
+                    const bool kc = o.surface.psd == PsdKind::kc;
+                    fail("alpha_from {}: the rms slope of {} diverges{}; use alpha_from kc_link (alpha from the "
+                         "correlation length and the wavelength), alpha_from smoothed with smoothing S > 0 (um, the "
+                         "slope seen at that lateral resolution), a height map, or alpha_from none with alpha A",
+                         to_string(o.alpha_from),
+                         kc ? fmt::format("a KC surface with gamma = {}", o.surface.gamma) : "this PSD",
+                         kc ? " (it is finite for gamma > 3 only)" : "");
+                }
                 alpha = std::sqrt(slope2);
             }
             if (!(alpha >= kMinMicrofacetAlpha && alpha <= kMaxMicrofacetAlpha))
@@ -159,7 +172,7 @@ GhsSettings ghs_settings(const ModelOptions& o) {
 
 void load_height_map(SurfaceOptions& surface) {
     if ((surface.psd == PsdKind::file || surface.psd == PsdKind::measured) && !surface.height_map &&
-        !surface.surface_file.empty())
+        !surface.measured_psd && !surface.surface_file.empty())
         surface.height_map =
             std::make_shared<const surface::HeightMap>(surface::read_height_map(surface.surface_file, std::nullopt));
 }
