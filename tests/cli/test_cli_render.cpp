@@ -99,6 +99,20 @@ TEST(CliCompareModels, BadOptionsExitTwo) {
     EXPECT_EQ(result.exit_code, 2);
 }
 
+// Without -o the output is named after the scene, beside it (Mitsuba's rule), and the command says what it wrote.
+TEST(CliRender, OutputNamedAfterTheScene) {
+    const fs::path scene = write("named_after.xml", kScene);
+    const fs::path exr = temp_dir() / "named_after.exr", png = temp_dir() / "named_after.png";
+    fs::remove(exr);
+    fs::remove(png);
+    const auto result = run_cli({"render", scene.string(), "--spp", "1", "--quiet"});
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_TRUE(fs::exists(exr));
+    EXPECT_TRUE(fs::exists(png));
+    EXPECT_NE(result.err.find("wrote " + exr.string() + " and " + png.string()), std::string::npos) << result.err;
+    EXPECT_FALSE(fs::exists("render.exr"));
+}
+
 // -D model= takes the models' one vocabulary: an old spelling works with a note, an unknown one lists what works.
 TEST(CliRender, ModelDefineListsTheModelsAndTakesOldSpellings) {
     const std::string scene = std::string(SURFSCATTER_SOURCE_DIR) + "/scenes/photo-setup/scene.xml";
@@ -122,4 +136,13 @@ TEST(CliRender, ModelDefineListsTheModelsAndTakesOldSpellings) {
     EXPECT_NE(result.err.find("model=phong names no file (metal_phong.xml not found): model must be one of conductor | "
                               "ggx_stats | ghs | ghs_ssa | roughconductor | two_scale"),
               std::string::npos) << result.err;
+}
+
+// A progress bar only on a terminal: into a pipe or log the render writes its final line alone, no carriage returns.
+TEST(CliRender, ProgressIntoAPipeIsOneLine) {
+    const fs::path scene = write("progress.xml", kScene);
+    const auto result = run_cli({"render", scene.string(), "--spp", "2", "-o", (temp_dir() / "progress.exr").string()});
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_EQ(result.err.find('\r'), std::string::npos) << result.err;
+    EXPECT_NE(result.err.find("render: 100.0% done in"), std::string::npos) << result.err;
 }
