@@ -82,7 +82,7 @@ def timed_table_cli(cli, sigma, theta_o, phi_o):
     """CPU (user + system of the process) and wall seconds of the same table by one `surfscatter brdf eval`
     (theta_o and phi_o of one element: a single direction pair)."""
     args = [cli, "brdf", "eval", "--model", "ghs", "--psd", "kc", "--sigma", repr(sigma), "--corr-length", "1",
-            "--gamma", "3", "--wavelength", repr(LAMBDA_NM), "--theta-i", repr(THETA_I_DEG),
+            "--gamma", "3", "--material", "perfect", "--wavelength", repr(LAMBDA_NM), "--theta-i", repr(THETA_I_DEG),
             "--theta-o", ",".join(repr(float(t)) for t in theta_o), "--phi-o", ",".join(repr(float(p)) for p in phi_o)]
     wall = time.perf_counter()
     with open(os.devnull, "w") as sink:

@@ -187,9 +187,16 @@ py::object pair_map(py::handle wi, py::handle wo, py::handle lambda_nm, const F&
                        {lambda_nm, "lambda_nm", Domain::wavelength_nm}});
     auto out = batch.output<double>();
     double* values = out.mutable_data();
-    batch.for_each([&](std::size_t i) {
-        values[i] = f(vec(batch.at(0, i)), vec(batch.at(1, i)), *batch.at(2, i));
-    });
+    if (batch.single(0) && batch.single(2)) {  // one wi and wavelength, many wo (a lobe, a table): read once
+        const Vec3 i = vec(batch.at(0, 0));
+        const double lambda = *batch.at(2, 0);
+        const double* o = batch.at(1, 0);
+        batch.for_each([&](std::size_t k) { values[k] = f(i, vec(o + 3 * k), lambda); });
+    } else {
+        batch.for_each([&](std::size_t k) {
+            values[k] = f(vec(batch.at(0, k)), vec(batch.at(1, k)), *batch.at(2, k));
+        });
+    }
     return result(out);
 }
 
