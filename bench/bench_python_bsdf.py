@@ -29,7 +29,7 @@ MODELS = {  # bench_bsdf.cpp options_for(model, g): name -> keyword options of s
     0: ("ghs_exact", dict(model="ghs")),
     1: ("ghs_refit", dict(model="ghs", method="refit")),
     2: ("ghs_ssa", dict(model="ghs_ssa")),
-    3: ("ggx", dict(model="ggx", alpha_from="smoothed", smoothing=0.1)),
+    3: ("ggx_stats", dict(model="ggx_stats", alpha_from="smoothed", smoothing=0.1)),
     4: ("two_scale", dict(model="two_scale", cutoff_wavelengths=50)),
 }
 LAMBDA_NM = 550.0
@@ -82,7 +82,7 @@ def timed_table_cli(cli, sigma, theta_o, phi_o):
     """CPU (user + system of the process) and wall seconds of the same table by one `surfscatter brdf eval`
     (theta_o and phi_o of one element: a single direction pair)."""
     args = [cli, "brdf", "eval", "--model", "ghs", "--psd", "kc", "--sigma", repr(sigma), "--corr-length", "1",
-            "--gamma", "3", "--wavelength", repr(LAMBDA_NM), "--theta-i", repr(THETA_I_DEG),
+            "--gamma", "3", "--material", "perfect", "--wavelength", repr(LAMBDA_NM), "--theta-i", repr(THETA_I_DEG),
             "--theta-o", ",".join(repr(float(t)) for t in theta_o), "--phi-o", ",".join(repr(float(p)) for p in phi_o)]
     wall = time.perf_counter()
     with open(os.devnull, "w") as sink:

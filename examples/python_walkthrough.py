@@ -74,7 +74,7 @@ def main():
     models = {
         "GHS": ss.bsdf("ghs", surface=surface, material=args.material),
         "GHS-SSA": ss.bsdf("ghs_ssa", surface=surface, material=args.material),
-        "GGX (rms slope of the map)": ss.bsdf("ggx", surface=height_map, alpha_from="measured",
+        "GGX (rms slope of the map)": ss.bsdf("ggx_stats", surface=height_map, alpha_from="measured",
                                               material=args.material),
         "two-scale": ss.bsdf("two_scale", surface=surface, material=args.material),
     }

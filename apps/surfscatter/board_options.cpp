@@ -19,15 +19,18 @@ void parse_size(const std::string& text, const char* option, int& width, int& he
     }
 }
 
-void BoardOptions::add_to(CLI::App& cmd, const std::string& types, const std::string& default_board) {
+void BoardOptions::add_to(CLI::App& cmd, const std::string& types, const std::string& default_board, bool grid) {
     board = default_board;
     auto* option = cmd.add_option("--board", board, "board type: " + types);
     if (!default_board.empty()) option->capture_default_str();
     cmd.add_option("--squares", squares, "ChArUco or chess board: number of squares WxH, e.g. 7x5");
     cmd.add_option("--square-length", square_length, "ChArUco or chess board: square edge in metres");
-    cmd.add_option("--markers", markers, "grid board: number of markers WxH, e.g. 5x7");
-    cmd.add_option("--marker-separation", marker_separation, "grid board: gap between neighbouring markers, metres");
-    cmd.add_option("--marker-length", marker_length, "marker edge in metres (ChArUco, grid and single markers)");
+    if (grid) {  // a command without grid boards does not list their options (calibrate)
+        cmd.add_option("--markers", markers, "grid board: number of markers WxH, e.g. 5x7");
+        cmd.add_option("--marker-separation", marker_separation, "grid board: gap between neighbouring markers, metres");
+    }
+    cmd.add_option("--marker-length", marker_length,
+                   grid ? "marker edge in metres (ChArUco, grid and single markers)" : "ChArUco: marker edge in metres");
     cmd.add_option("--dictionary", dictionary,
                    "ArUco dictionary: a name (4X4_50, 6X6_250, APRILTAG_36H11, ...) or an OpenCV dictionary file "
                    "(.yml/.xml/.json with nmarkers, markersize, marker_0 ...)")

@@ -16,8 +16,8 @@ struct BoardOptions {
     std::string dictionary = "4X4_50";
 
     // `types` lists the board types the command accepts, for the help text; `default_board` is "" if --board may
-    // be left out.
-    void add_to(CLI::App& cmd, const std::string& types, const std::string& default_board);
+    // be left out; `grid`: whether grid boards are among them (--markers, --marker-separation offered).
+    void add_to(CLI::App& cmd, const std::string& types, const std::string& default_board, bool grid = true);
     // The spec of --board (validated); throws Error naming the bad option or one its board type does not use.
     photo::BoardSpec spec() const;
     // Whether any option that only a board uses was given (--squares, --markers, --square-length,

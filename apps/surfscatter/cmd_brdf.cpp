@@ -26,7 +26,7 @@ namespace {
 // Options as typed; turned into bsdf::ModelOptions (same names, snake_case) by model_options().
 struct BrdfArgs {
     std::string model = "ghs", method = "exact", truncation = "three_sigma", fresnel = "incident";
-    std::string ssa_form = "energy", alpha_from = "none", macro_ndf = "ggx", material = "perfect";
+    std::string ssa_form = "energy", alpha_from, macro_ndf = "ggx", material;  // alpha_from, material: not given
     double epsilon = 1e-6, alpha = 0, smoothing = 0, cutoff_wavelengths = 100;
     bool no_renormalization = false;
     std::string psd, surface_file, form = "plane";
@@ -91,12 +91,18 @@ void require_theta(double t, const char* what) {
 
 // `spec` is a model name, optionally with the surface statistics to use after a colon (brdf slice --models
 // ghs:file,ghs:measured overlays the KC-fit and measured-PSD versions of one model on the same --surface).
+bool given(const BrdfArgs& a, const char* name) { return std::count(a.given.begin(), a.given.end(), name) > 0; }
+
 bsdf::ModelOptions model_options(const BrdfArgs& a, const std::string& spec) {
     const std::size_t colon = spec.find(':');
-    const std::string model = spec.substr(0, colon);
-    const std::string psd = colon == std::string::npos ? a.psd : spec.substr(colon + 1);
+    const bool kc_given = given(a, "sigma") || given(a, "corr_length") || given(a, "gamma");
+    // KC parameters without --psd (and without --surface) mean --psd kc, as in scenes and Python.
+    const std::string psd = colon != std::string::npos ? spec.substr(colon + 1)
+                            : !a.psd.empty() || !a.surface_file.empty() || !kc_given ? a.psd
+                                                                                     : std::string("kc");
     bsdf::ModelOptions o;
-    o.model = bsdf::parse_model(model, "--model");
+    o.model = bsdf::parse_model(spec.substr(0, colon), a.models.empty() ? "--model" : "--models");
+    const std::string model = bsdf::to_string(o.model);
     o.method = bsdf::parse_method(a.method, "--method");
     o.truncation = bsdf::parse_truncation(a.truncation, "--truncation");
     o.epsilon = a.epsilon;
@@ -104,7 +110,8 @@ bsdf::ModelOptions model_options(const BrdfArgs& a, const std::string& spec) {
     o.renormalization = !a.no_renormalization;
     o.ssa_form = bsdf::parse_ssa_form(a.ssa_form, "--ssa-form");
     o.alpha = a.alpha;
-    o.alpha_from = bsdf::parse_alpha_from(a.alpha_from, "--alpha-from");
+    if (!a.alpha_from.empty()) o.alpha_from = bsdf::parse_alpha_from(a.alpha_from, "--alpha-from");
+    bsdf::imply_alpha_from(o, given(a, "alpha"), !a.alpha_from.empty());
     o.smoothing = a.smoothing;
     o.cutoff_wavelengths = a.cutoff_wavelengths;
     o.macro_ndf = bsdf::parse_macro_ndf(a.macro_ndf, "--macro-ndf");
@@ -128,14 +135,21 @@ bsdf::ModelOptions model_options(const BrdfArgs& a, const std::string& spec) {
         if (o.surface.psd == bsdf::PsdKind::file || o.surface.psd == bsdf::PsdKind::measured)
             fail("--psd {} needs --surface MAP", psd);
         if (o.surface.psd == bsdf::PsdKind::gaussian && a.gamma != 0) fail("--gamma applies to --psd kc only");
+        if (o.surface.psd == bsdf::PsdKind::kc && a.gamma == 0 && a.psd.empty())
+            fail("--sigma and --corr-length without --psd mean --psd kc, which needs --gamma (or give --psd gaussian)");
         if (o.surface.psd == bsdf::PsdKind::kc && a.gamma == 0) fail("--psd kc needs --gamma");
         o.surface.sigma = a.sigma;
         o.surface.corr_length = a.corr_length;
         o.surface.gamma = a.gamma;
     } else if (needs_surface) {
-        fail("missing surface for --model {}: give --psd kc --sigma S --corr-length L --gamma G, "
-             "--psd gaussian --sigma S --corr-length l, or --surface MAP", model);
+        fail("missing surface for --model {}: give --sigma S --corr-length L --gamma G (KC), "
+             "--psd gaussian --sigma S --corr-length l, or --surface MAP{}", model,
+             o.model == bsdf::ModelKind::ggx ? ", or --alpha A for a given roughness" : "");
     }
+    // No silent perfect mirror (a user comparing with gold got 74.2 instead of 55.4 1/sr): the metal is asked for.
+    if (a.material.empty())
+        fail("--material is required: a built-in metal (Au, Ag, Al, Cu, ...), a refractive-index file, or "
+             "--material perfect for a perfect conductor (R = 1)");
     return o;
 }
 
@@ -165,7 +179,7 @@ Vec3 incident(double theta_deg, double phi_deg) { return spherical_direction(the
 // The single model of eval, albedo and sample, checked for options it does not use.
 std::unique_ptr<bsdf::Bsdf> single_model(const BrdfArgs& a) {
     const bsdf::ModelOptions o = model_options(a, a.model);
-    check_given_options_apply(a, {o}, {a.model});
+    check_given_options_apply(a, {o}, {bsdf::to_string(o.model)});
     return build_model(o);
 }
 
@@ -240,22 +254,24 @@ void slice(const BrdfArgs& a) {
 }
 
 void add_model_options(CLI::App* cmd, BrdfArgs& a, bool several_thetas) {
-    cmd->add_option("--model", a.model, "ghs | ghs-ssa | ggx | two-scale (default ghs)");
+    cmd->add_option("--model", a.model, bsdf::choices("model") + " (default ghs; docs/MODELS.md)");
     cmd->add_option("--method", a.method, "GHS lobe: exact (tabulated S_g, default) | refit (paper's KC series)");
-    cmd->add_option("--truncation", a.truncation, "refit orders: three-sigma (default) | poisson-mass");
-    cmd->add_option("--epsilon", a.epsilon, "poisson-mass: Poisson mass left out (default 1e-6)");
+    cmd->add_option("--truncation", a.truncation, "refit orders: three_sigma (default) | poisson_mass");
+    cmd->add_option("--epsilon", a.epsilon, "poisson_mass: Poisson mass left out (default 1e-6)");
     cmd->add_option("--fresnel", a.fresnel, "incident (R(theta_i), default) | half (F(theta_d)) | rr (Rayleigh-Rice)");
     cmd->add_flag("--no-renormalization", a.no_renormalization, "sigma_h instead of sigma_rel and K = 1");
-    cmd->add_option("--ssa-form", a.ssa_form, "ghs-ssa: energy (default) | strict");
-    cmd->add_option("--alpha", a.alpha, "ggx roughness (with --alpha-from none)");
-    cmd->add_option("--alpha-from", a.alpha_from, "ggx roughness: none | measured | smoothed | kc-link");
+    cmd->add_option("--ssa-form", a.ssa_form, "ghs_ssa: energy (default) | strict");
+    cmd->add_option("--alpha", a.alpha, "ggx_stats roughness given (implies --alpha-from none)");
+    cmd->add_option("--alpha-from", a.alpha_from, "ggx_stats roughness: " + bsdf::choices("alpha_from") +
+                                                      " (default measured: the surface's rms slope; none with --alpha)");
     cmd->add_option("--smoothing", a.smoothing, "Gaussian smoothing std (um) for --alpha-from smoothed");
-    cmd->add_option("--cutoff-wavelengths", a.cutoff_wavelengths, "two-scale: split at zeta_c = k/N (default 100)");
-    cmd->add_option("--macro-ndf", a.macro_ndf, "two-scale macro NDF: ggx (default) | beckmann");
-    cmd->add_option("--material", a.material, "built-in metal (Au, Ag, Al, Cu, ...), n,k file, or perfect");
+    cmd->add_option("--cutoff-wavelengths", a.cutoff_wavelengths, "two_scale: split at zeta_c = k/N (default 100)");
+    cmd->add_option("--macro-ndf", a.macro_ndf, "two_scale macro NDF: ggx (default) | beckmann");
+    cmd->add_option("--material", a.material, "required: built-in metal (Au, Ag, Al, Cu, ...), n,k file, or perfect "
+                                              "(a perfect conductor, R = 1)");
     cmd->add_option("--psd", a.psd, "surface statistics: kc | gaussian | file (KC fitted to --surface) | measured "
                                     "(the --surface map's own radial PSD)");
-    cmd->add_option("--sigma", a.sigma, "rms height (um)");
+    cmd->add_option("--sigma", a.sigma, "rms height (um); --sigma, --corr-length, --gamma alone mean --psd kc");
     cmd->add_option("--corr-length", a.corr_length, "correlation length (um): KC L, or Gaussian l");
     cmd->add_option("--gamma", a.gamma, "KC exponent gamma > 1");
     cmd->add_option("--surface", a.surface_file, "height map (any format `surface info` reads): KC fitted to it "

@@ -39,7 +39,7 @@ void run(const Options& o) {
     const auto& sd = c.intrinsics_std_dev;
     std::fprintf(stderr,
                  "surfscatter: calibrate: %dx%d, fx %.3f +- %.3f, fy %.3f +- %.3f, cx %.3f +- %.3f, cy %.3f +- %.3f px "
-                 "(one standard deviation), distortion [%s], RMS reprojection error %.4f px over %zu images -> %s\n",
+                 "(one standard deviation), distortion [%s], RMS reprojection error %.4f px over %zu images; wrote %s\n",
                  c.image_size.width, c.image_size.height, c.fx(), sd[0], c.fy(), sd[1], c.cx(), sd[2], c.cy(), sd[3],
                  fmt::format("{:.6g}", fmt::join(c.distortion, ", ")).c_str(), c.rms_reprojection_error,
                  result.used.size(), o.output.c_str());
@@ -55,7 +55,7 @@ const Command command("calibrate", [](CLI::App& app) {
         "Lens calibration (fx, fy, cx, cy, distortion k1 k2 p1 p2 [k3]) from several photographs of a ChArUco or chess "
         "board; writes an OpenCV YAML camera file. Prints per-image RMS reprojection error as CSV.");
     sub->add_option("images", options->images, "photographs of the board (PNG, JPEG, TIFF, EXR)")->required();
-    options->board.add_to(*sub, "charuco or chessboard", "charuco");
+    options->board.add_to(*sub, "charuco or chessboard", "charuco", false);
     sub->add_flag("--fit-k3", options->fit_k3, "also fit the 6th-order radial term k3 (wide-angle lenses)");
     sub->add_option("-o,--output", options->output, "camera file to write (.yml)")->required();
     sub->callback([options] { run(*options); });

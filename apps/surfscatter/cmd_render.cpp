@@ -23,7 +23,7 @@ struct RenderArgs {
     std::optional<int> spp;
     int threads = 0;
     std::optional<long long> seed;
-    std::string output = "render.exr";
+    std::string output;  // default: the scene's name with .exr, beside it (Mitsuba's rule)
     std::optional<double> exposure;
     std::optional<std::string> white_balance;
     bool quiet = false;
@@ -31,7 +31,8 @@ struct RenderArgs {
 
 void run(const RenderArgs& args) {
     distributed::Session session;
-    const std::filesystem::path output(args.output);
+    const std::filesystem::path output =
+        args.output.empty() ? std::filesystem::path(args.scene).replace_extension(".exr") : std::filesystem::path(args.output);
     std::unique_ptr<render::Scene> scene;
     render::RenderOptions options;
     session.collectively([&] {
@@ -39,7 +40,7 @@ void run(const RenderArgs& args) {
         require_thread_count(args.threads, "--threads");
         if (args.seed && *args.seed < 0) fail("--seed must be >= 0, got {}", *args.seed);
         if (output.extension() != ".exr")
-            fail("-o must name an .exr file (the .png is written beside it), got {}", printable(args.output));
+            fail("-o must name an .exr file (the .png is written beside it), got {}", printable(output.string()));
         scene = render::load_scene(args.scene, parse_defines(args.defines));
         // The scene's film was checked when it was loaded: what can fail now is the command line's.
         if (args.exposure) {
@@ -81,10 +82,11 @@ void run(const RenderArgs& args) {
     const std::string samples = stats.max_samples_per_pixel > stats.samples_per_pixel
                                     ? fmt::format("{}-{} spp", stats.samples_per_pixel, stats.max_samples_per_pixel)
                                     : fmt::format("{} spp", stats.samples_per_pixel);
-    std::fprintf(stderr, "%s: %dx%d, %s%s, %.2f s%s, %.3g Mrays/s -> %s (+ .png)\n", args.scene.c_str(), film.width(),
+    std::fprintf(stderr, "%s: %dx%d, %s%s, %.2f s%s, %.3g Mrays/s; wrote %s and %s\n", args.scene.c_str(), film.width(),
                  film.height(), samples.c_str(), stats.interrupted ? " (interrupted)" : "", stats.seconds,
                  session.size() > 1 ? fmt::format(" on {} ranks", session.size()).c_str() : "",
-                 static_cast<double>(stats.rays) / std::max(stats.seconds, 1e-9) * 1e-6, args.output.c_str());
+                 static_cast<double>(stats.rays) / std::max(stats.seconds, 1e-9) * 1e-6, output.string().c_str(),
+                 std::filesystem::path(output).replace_extension(".png").string().c_str());
 }
 
 const Command command("render", [](CLI::App& app) {
@@ -95,7 +97,8 @@ const Command command("render", [](CLI::App& app) {
     sub->add_option("--spp", args->spp, "Samples per pixel (default: the scene's sampler)");
     sub->add_option("--threads", args->threads, "Worker threads, 1..256 (default 0: all cores)");
     sub->add_option("--seed", args->seed, "Random seed (default: the scene's sampler seed)");
-    sub->add_option("-o,--output", args->output, "Output .exr (the .png goes beside it)");
+    sub->add_option("-o,--output", args->output, "Output .exr, the .png beside it (default: the scene's name, "
+                                                 "scene.xml -> scene.exr + scene.png, as Mitsuba)");
     sub->add_option("--exposure", args->exposure, "Exposure in stops, -64..64 (overrides the film's)");
     sub->add_option("--white-balance", args->white_balance, "d65 (none) or a blackbody temperature in K, e.g. 2700");
     sub->add_flag("--quiet", args->quiet, "No progress bar");

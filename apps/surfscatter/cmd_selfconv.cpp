@@ -67,6 +67,7 @@ void run(const SelfconvArgs& args) {
         if (!file) fail("--out: cannot open '{}' for writing", args.out);
         write_table(fit, file);
         if (std::fclose(file) != 0) fail("--out: write error on '{}'", args.out);
+        std::fprintf(stderr, "surfscatter: selfconv: wrote %s\n", args.out.c_str());
     }
     if (!args.plot.empty()) {
         const std::string base = std::filesystem::path(args.plot).replace_extension("").string();
@@ -79,6 +80,8 @@ void run(const SelfconvArgs& args) {
         run_plot_script("selfconv.py", {curves, table, args.plot,
                                         fmt::format("KC self-convolutions, gamma = {:g}, L = {:g} um: x = {:.4f}",
                                                     args.gamma, args.corr_length, fit.exponent_x)});
+        std::fprintf(stderr, "surfscatter: selfconv: wrote %s (data: %s, %s)\n", args.plot.c_str(), curves.c_str(),
+                     table.c_str());
     }
 }
 

@@ -70,6 +70,8 @@ void synth(const SynthArgs& args) {
                                   s.gamma ? fmt::format(" gamma={}", *s.gamma) : "", args.seed)
                     : args.title;
     surface::write_height_map(map, args.output);
+    std::fprintf(stderr, "surfscatter: surface synth: wrote %s (%zu x %zu points of %s um, %s)\n", args.output.c_str(), n,
+                 n, format_number(args.spacing).c_str(), map.title.c_str());
 }
 
 void add_map_options(CLI::App* cmd, MapArgs& a) {

@@ -3,11 +3,14 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <mutex>
+#include <set>
 #include <vector>
 
 #include <fmt/format.h>
 
 #include "command.hpp"
+#include "surfscatter/core/deprecation.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/progress.hpp"
 #include "surfscatter/distributed/session.hpp"
@@ -67,7 +70,14 @@ int main(int argc, char** argv) {
         "surfscatter: rough-metal appearance from surface statistics and wave-optical scattering theories.\n"
         "Units: wavelengths in nm, surface lengths in micrometres, angles in degrees."};
     app.require_subcommand(1);
-    app.set_version_flag("--version", "surfscatter 0.1.0");
+    app.set_version_flag("--version", "surfscatter " SURFSCATTER_VERSION);
+    // An old spelling is named once per run, however many jobs or models repeat it.
+    surfscatter::set_deprecation_handler([](const std::string& message) {
+        static std::mutex mutex;
+        static std::set<std::string> printed;
+        const std::lock_guard lock(mutex);
+        if (printed.insert(message).second) std::fprintf(stderr, "surfscatter: warning: %s\n", message.c_str());
+    });
     for (auto& [name, setup] : surfscatter::cli::registry()) setup(app);
     surfscatter::cli::refuse_empty_values(app);
     try {

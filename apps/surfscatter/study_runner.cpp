@@ -130,8 +130,13 @@ void run_study(const std::function<study::Study()>& make, const StudyRunOptions&
         manifest->save();
         interrupted = interrupted || (interrupt_requested() && finished < to_run);
         const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        std::fprintf(stderr, "study %s: %d of %d jobs run in %s; manifest %s\n", s.origin.c_str(), finished, to_run,
-                     format_duration(wall).c_str(), manifest->file().string().c_str());
+        if (to_run == 0)  // a finished study run again
+            std::fprintf(stderr, "study %s: complete, all %zu jobs up to date (outputs in %s; manifest %s)\n",
+                         s.origin.c_str(), jobs.size(), s.folder.string().c_str(), manifest->file().string().c_str());
+        else
+            std::fprintf(stderr, "study %s: %d of %d jobs run in %s; outputs in %s, manifest %s\n", s.origin.c_str(),
+                         finished, to_run, format_duration(wall).c_str(), s.folder.string().c_str(),
+                         manifest->file().string().c_str());
         if (!failures.empty()) {
             std::fprintf(stderr, "surfscatter: error: %zu job%s failed:\n", failures.size(), failures.size() > 1 ? "s" : "");
             for (const std::string& f : failures) std::fprintf(stderr, "  %s\n", f.c_str());

@@ -100,6 +100,8 @@ public:
     Batch& operator=(const Batch&) = delete;
 
     std::size_t size() const { return size_; }
+    // Whether argument k is one value repeated over the batch (a fixed wi, a scalar wavelength).
+    bool single(std::size_t k) const { return operands_[k].stride == 0; }
     // Element i of argument k (a pointer to 3 values for vector arguments).
     const double* at(std::size_t k, std::size_t i) const {
         const Operand& o = operands_[k];
@@ -117,6 +119,15 @@ public:
     template <typename Body>
     void for_each(const Body& body) const {
         std::atomic<bool> bad{false};
+        if (varying_.size() == 1 && varying_[0]->vector) {  // one array of vectors (wo of a lobe or table): its
+            const Operand& o = *varying_[0];                 // check without the loop over operands
+            parallel_for_each(size_, [&](std::size_t i) {
+                if (accepted_vector(o.data + 3 * i, o.domain)) body(i);
+                else bad.store(true, std::memory_order_relaxed);
+            });
+            if (bad.load()) report_bad_values();
+            return;
+        }
         parallel_for_each(size_, [&](std::size_t i) {
             bool ok = true;
             for (const Operand* o : varying_)

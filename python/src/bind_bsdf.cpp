@@ -76,7 +76,8 @@ const std::map<std::string, Setter>& option_setters() {
 // The surface= argument: statistics objects and height maps become the SurfaceOptions the XML would give. A height
 // map (object or file) is the surface of psd 'file' (KC fitted to it) unless psd 'measured' (its own PSD) was given.
 void set_surface(ModelOptions& o, py::handle value, bool psd_given) {
-    const bool statistics = py::isinstance<surface::KCorrelation>(value) || py::isinstance<surface::GaussianAcv>(value);
+    const bool statistics = py::isinstance<surface::KCorrelation>(value) || py::isinstance<surface::GaussianAcv>(value) ||
+                            py::isinstance<surface::MapStatistics>(value);
     if (statistics && psd_given) fail("psd applies to a height map surface (file or measured), not to {}",
                                       py::repr(value).cast<std::string>());
     if (py::isinstance<surface::KCorrelation>(value)) {
@@ -94,6 +95,11 @@ void set_surface(ModelOptions& o, py::handle value, bool psd_given) {
         o.surface.corr_length = g.correlation_length();
         return;
     }
+    if (py::isinstance<surface::MapStatistics>(value)) {  // measured_statistics(map): the map's own PSD
+        o.surface.psd = bsdf::PsdKind::measured;
+        o.surface.measured_psd = value.cast<std::shared_ptr<surface::MapStatistics>>();
+        return;
+    }
     if (py::isinstance<surface::HeightMap>(value)) {
         const auto map = value.cast<std::shared_ptr<surface::HeightMap>>();
         o.surface.surface_file = map->origin();
@@ -101,8 +107,8 @@ void set_surface(ModelOptions& o, py::handle value, bool psd_given) {
     } else if (py::isinstance<py::str>(value) || py::isinstance(value, py::module_::import("os").attr("PathLike"))) {
         o.surface.surface_file = path_string(value, "surface");
     } else {
-        fail("surface must be a KCorrelation, a GaussianAcv, a HeightMap or the path of a height map file, got {}",
-             py::repr(value).cast<std::string>());
+        fail("surface must be a KCorrelation, a GaussianAcv, a MapStatistics (measured_statistics), a HeightMap or the "
+             "path of a height map file, got {}", printable(py::repr(value).cast<std::string>()));
     }
     if (!psd_given) o.surface.psd = bsdf::PsdKind::file;
     else if (o.surface.psd != bsdf::PsdKind::file && o.surface.psd != bsdf::PsdKind::measured)
@@ -113,6 +119,7 @@ void set_surface(ModelOptions& o, py::handle value, bool psd_given) {
 PyBsdf make(const std::string& model, py::handle surface_arg, py::handle material, const py::kwargs& options) {
     ModelOptions o;
     o.model = bsdf::parse_model(model, "model");
+    const std::string model_name = bsdf::to_string(o.model);
     o.material = path_string(material, "material");
     const auto& setters = option_setters();
     bool parameter_keywords = false;
@@ -128,6 +135,12 @@ PyBsdf make(const std::string& model, py::handle surface_arg, py::handle materia
         parameter_keywords |= name == "sigma" || name == "corr_length" || name == "gamma" || name == "surface_file";
     }
     const bool psd_given = options.contains("psd");
+    bsdf::imply_alpha_from(o, options.contains("alpha"), options.contains("alpha_from"));
+    const bool needs_surface = o.model != bsdf::ModelKind::ggx || o.alpha_from != bsdf::AlphaFrom::none;
+    if (needs_surface && surface_arg.is_none() && !parameter_keywords)
+        fail("bsdf('{}') needs surface=: KCorrelation(sigma, corr_length, gamma), GaussianAcv(sigma, corr_length), "
+             "measured_statistics(height_map), a HeightMap or a height map path{}", model_name,
+             o.model == bsdf::ModelKind::ggx ? "; or alpha= for a given roughness" : "");
     if (!surface_arg.is_none()) {
         if (parameter_keywords) fail("give either surface= or sigma/corr_length/gamma/surface_file, not both");
         set_surface(o, surface_arg, psd_given);
@@ -138,9 +151,10 @@ PyBsdf make(const std::string& model, py::handle surface_arg, py::handle materia
     std::vector<std::string> given;
     for (const auto& [key, value] : options) given.push_back(key.cast<std::string>());
     if (!surface_arg.is_none()) given.emplace_back("surface");
-    for (const std::string& name : given)
-        if (const std::string why = bsdf::inapplicable_option(o, name == "surface" ? "psd" : name); !why.empty())
-            fail("{} does not apply to model {}: {}", name, model, why);
+    for (const std::string& given_name : given)
+        if (const std::string why = bsdf::inapplicable_option(o, given_name == "surface" ? "psd" : given_name);
+            !why.empty())
+            fail("{} does not apply to model {}: {}", given_name, model_name, why);
     std::vector<std::string> notes;
     std::shared_ptr<const bsdf::Bsdf> built;
     {
@@ -173,9 +187,16 @@ py::object pair_map(py::handle wi, py::handle wo, py::handle lambda_nm, const F&
                        {lambda_nm, "lambda_nm", Domain::wavelength_nm}});
     auto out = batch.output<double>();
     double* values = out.mutable_data();
-    batch.for_each([&](std::size_t i) {
-        values[i] = f(vec(batch.at(0, i)), vec(batch.at(1, i)), *batch.at(2, i));
-    });
+    if (batch.single(0) && batch.single(2)) {  // one wi and wavelength, many wo (a lobe, a table): read once
+        const Vec3 i = vec(batch.at(0, 0));
+        const double lambda = *batch.at(2, 0);
+        const double* o = batch.at(1, 0);
+        batch.for_each([&](std::size_t k) { values[k] = f(i, vec(o + 3 * k), lambda); });
+    } else {
+        batch.for_each([&](std::size_t k) {
+            values[k] = f(vec(batch.at(0, k)), vec(batch.at(1, k)), *batch.at(2, k));
+        });
+    }
     return result(out);
 }
 
@@ -227,16 +248,19 @@ py::tuple albedo(const bsdf::Bsdf& model, py::handle theta_i_deg, py::handle lam
 
 constexpr const char* kBsdfDoc = R"(Builds a scattering model (docs/MODELS.md) from its options.
 
-model: 'ghs' (full GHS), 'ghs_ssa' (smooth-surface approximation), 'ggx', 'two_scale' ('-' or '_').
+model: 'ghs' (full GHS), 'ghs_ssa' (smooth-surface approximation), 'ggx_stats' (GGX from the surface statistics,
+    or of a given alpha), 'two_scale': the scene plugins' names (docs/CONVENTIONS.md; old spellings such as 'ggx'
+    work with a DeprecationWarning).
 surface: the surface statistics: KCorrelation(sigma, corr_length, gamma), GaussianAcv(sigma, corr_length), a
-    HeightMap or the path of a height map file (after removing `form`: KC fitted to it, or with psd='measured' its
-    own radial PSD); or None and the XML's keywords psd ('kc' | 'gaussian' | 'file' | 'measured'), sigma (um),
-    corr_length (um), gamma, surface_file instead.
+    MapStatistics (measured_statistics(height_map): psd 'measured'), a HeightMap or the path of a height map file
+    (after removing `form`: KC fitted to it, or with psd='measured' its own radial PSD); or None and the XML's
+    keywords psd ('kc' | 'gaussian' | 'file' | 'measured'), sigma (um), corr_length (um), gamma, surface_file.
 material: 'perfect', a built-in metal (Au, Ag, Al, Cu, ...) or a refractive-index file (as Conductor).
 Keyword options, named and spelled as in the XML plugins and bsdf::ModelOptions:
     method 'exact' | 'refit' (GHS lobe), truncation 'three_sigma' | 'poisson_mass', epsilon,
     fresnel 'incident' | 'half' | 'rr', renormalization True | False, ssa_form 'energy' | 'strict',
-    alpha (GGX), alpha_from 'none' | 'measured' | 'smoothed' | 'kc_link', smoothing (um),
+    alpha (ggx_stats; alone it means alpha_from 'none'), alpha_from 'measured' (default: the surface's rms slope)
+    | 'smoothed' | 'kc_link' | 'none', smoothing (um),
     cutoff_wavelengths (two-scale N), macro_ndf 'ggx' | 'beckmann', form 'none' | 'plane' | 'poly2'..'poly4'.
 Unknown options, bad values and missing parameters raise surfscatter.Error with the library's message.
 Building a model may tabulate its lobes (seconds the first time; cached on disk, $SURFSCATTER_CACHE_DIR).

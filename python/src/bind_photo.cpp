@@ -301,6 +301,8 @@ void bind_photo(py::module_& m) {
                 target.marker.dictionary = dictionary;
                 target.marker.marker_id = marker_id;
                 target.marker.length_name = "marker_length_m";
+                target.marker.dictionary_name = "dictionary=";
+                target.marker.id_name = "marker_id=";
             }
             const std::string name = input_name(image, "image");
             const photo::Photo photo = photo_value(image, "image", photo::Encoding::Srgb);

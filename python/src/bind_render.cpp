@@ -116,7 +116,7 @@ py::dict render_scene(py::handle scene_path, std::optional<int> spp, py::handle 
     std::unique_ptr<render::Scene> scene;
     {
         py::gil_scoped_release release;
-        scene = render::load_scene(path, defines);
+        scene = render::load_scene(path, defines, nullptr, render::ParameterSyntax::python);
     }
     // The scene's film was checked when it was loaded: what can fail now is the caller's overrides.
     if (exposure) {

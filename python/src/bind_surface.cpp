@@ -1,5 +1,6 @@
 // Surface statistics (surface/radial_statistics.hpp, relevant_roughness.hpp, self_convolution_table.hpp,
 // refit.hpp) and height maps (height_map*.hpp, synthesis.hpp, kc_fit.hpp, psd_estimate.hpp, map_statistics.hpp).
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -60,7 +61,16 @@ std::shared_ptr<HeightMap> height_map_from_numpy(py::handle heights_um, py::hand
     const auto ny = static_cast<std::size_t>(h.shape(0)), nx = static_cast<std::size_t>(h.shape(1));
     const auto [dx, dy] = spacing_pair(spacing_um);
     std::vector<double> values(h.data(), h.data() + h.size());
-    if (valid.is_none()) return std::make_shared<HeightMap>(nx, ny, dx, dy, std::move(values), origin);
+    if (valid.is_none()) {
+        // NaN is how numpy data mark points without a measurement: say how to tell the map so (docs/PYTHON.md).
+        const auto nan = std::find_if(values.begin(), values.end(), [](double v) { return std::isnan(v); });
+        if (nan != values.end()) {
+            const auto i = static_cast<std::size_t>(nan - values.begin());
+            fail("heights_um is NaN at column {}, row {}: mark the points without data invalid, "
+                 "HeightMap(heights_um, spacing_um, valid=~np.isnan(heights_um))", i % nx, i / nx);
+        }
+        return std::make_shared<HeightMap>(nx, ny, dx, dy, std::move(values), origin);
+    }
     const py::array mask = py::module_::import("numpy").attr("asarray")(valid);
     if (mask.dtype().kind() != 'b')
         fail("valid must be a boolean array (True = valid point), got dtype {}", py::str(mask.dtype()).cast<std::string>());
@@ -296,7 +306,10 @@ void bind_statistics(py::module_& m) {
              }),
              py::arg("zeta"), py::arg("psd"),
              "zeta: strictly increasing angular frequencies (rad/um); psd: P at them (um^4, > 0).")
-        .def("__repr__", [](const TabulatedPsd& s) { return "surfscatter.TabulatedPsd(" + s.cache_key() + ")"; });
+        .def("__repr__", [](const TabulatedPsd& s) {  // short: the whole table (cache_key) is kilobytes
+            return fmt::format("<surfscatter.TabulatedPsd sigma={:.4g} um, data zeta {:.3g}..{:.3g} rad/um, tail "
+                               "zeta^{:.2f}>", s.sigma_h(), s.first_zeta(), s.last_zeta(), s.tail_slope());
+        });
 }
 
 void bind_height_maps(py::module_& m) {

@@ -7,6 +7,7 @@
 
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "surfscatter/core/deprecation.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/resources.hpp"
 #include "surfscatter/math/vec.hpp"
@@ -40,6 +41,14 @@ void bind_core(py::module_& m) {
     m.attr("Error").attr("__doc__") =
         "Bad input to a surfscatter function: a ValueError whose message is the library's one line naming the bad "
         "value and where it came from (the same text the CLI prints after 'surfscatter: error:').";
+
+    m.attr("__version__") = SURFSCATTER_VERSION;  // the CMake project's version, as `surfscatter --version`
+    // Old spellings (docs/CONVENTIONS.md, "Names") as DeprecationWarnings at the caller's line; with warnings turned
+    // into errors the warning propagates as the exception.
+    set_deprecation_handler([](const std::string& message) {
+        const py::gil_scoped_acquire gil;
+        if (PyErr_WarnEx(PyExc_DeprecationWarning, message.c_str(), 1) != 0) throw py::error_already_set();
+    });
 
     m.def("set_max_threads", &set_max_threads, py::arg("threads"),
           "Limits the threads of every parallel loop (Bsdf.eval/sample/pdf/albedo, the vectorised statistics, "

@@ -19,6 +19,6 @@ Bad input raises surfscatter.Error (a ValueError) with the library's one-line me
 """
 
 from ._surfscatter import *  # noqa: F401,F403  (the compiled module defines __all__-worthy names only)
-from ._surfscatter import Error
+from ._surfscatter import Error, __version__
 
 __all__ = [name for name in dir() if not name.startswith("_")]

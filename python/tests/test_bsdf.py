@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 import surfscatter as ss
-from conftest import CLI_RTOL, cli_csv, cli_values, numbers, shared
+from conftest import CLI_RTOL, cli_csv, cli_values, numbers, run_cli, shared
 
 KC = dict(sigma=0.05, corr_length=2.0, gamma=3.0)
 KC_CLI = ["--psd", "kc", "--sigma", 0.05, "--corr-length", 2.0, "--gamma", 3.0]
@@ -16,13 +16,13 @@ MODELS = [
     (dict(model="ghs", method="refit", **KC), ["--model", "ghs", "--method", "refit", *KC_CLI]),
     (dict(model="ghs", fresnel="half", renormalization=False, **KC),
      ["--model", "ghs", "--fresnel", "half", "--no-renormalization", *KC_CLI]),
-    (dict(model="ghs_ssa", **KC), ["--model", "ghs-ssa", *KC_CLI]),
+    (dict(model="ghs_ssa", **KC), ["--model", "ghs_ssa", *KC_CLI]),
     (dict(model="ghs_ssa", psd="gaussian", sigma=0.03, corr_length=1.0),
-     ["--model", "ghs-ssa", "--psd", "gaussian", "--sigma", 0.03, "--corr-length", 1.0]),
-    (dict(model="ggx", alpha=0.2), ["--model", "ggx", "--alpha", 0.2]),
-    (dict(model="ggx", alpha_from="smoothed", smoothing=0.1, **KC),
-     ["--model", "ggx", "--alpha-from", "smoothed", "--smoothing", 0.1, *KC_CLI]),
-    (dict(model="two_scale", cutoff_wavelengths=50, **KC), ["--model", "two-scale", "--cutoff-wavelengths", 50, *KC_CLI]),
+     ["--model", "ghs_ssa", "--psd", "gaussian", "--sigma", 0.03, "--corr-length", 1.0]),
+    (dict(model="ggx_stats", alpha=0.2), ["--model", "ggx_stats", "--alpha", 0.2]),
+    (dict(model="ggx_stats", alpha_from="smoothed", smoothing=0.1, **KC),
+     ["--model", "ggx_stats", "--alpha-from", "smoothed", "--smoothing", 0.1, *KC_CLI]),
+    (dict(model="two_scale", cutoff_wavelengths=50, **KC), ["--model", "two_scale", "--cutoff-wavelengths", 50, *KC_CLI]),
 ]
 THETA_O = np.array([0.0, 15.0, 29.0, 30.0, 31.0, 60.0, 85.0])
 PHI_O = np.array([0.0, 90.0, 170.0, 180.0])
@@ -126,7 +126,7 @@ def test_broadcasting_matches_elementwise_calls():
 
 
 def test_directions_below_the_surface_give_zero():
-    model = ss.bsdf("ggx", alpha=0.3)
+    model = ss.bsdf("ggx_stats", alpha=0.3)
     below = ss.direction(120.0, 0.0)
     assert model.eval(below, ss.direction(10.0, 180.0), 550.0) == 0.0
     wo, weight, pdf, delta = model.sample(below, 550.0, [0.5, 0.5, 0.5])
@@ -135,7 +135,7 @@ def test_directions_below_the_surface_give_zero():
 
 
 def test_options_and_repr():
-    model = ss.bsdf("two-scale", surface=ss.KCorrelation(**KC), material="Al", macro_ndf="beckmann",
+    model = ss.bsdf("two_scale", surface=ss.KCorrelation(**KC), material="Al", macro_ndf="beckmann",
                     cutoff_wavelengths=75)
     options = model.options
     assert options["model"] == "two_scale" and options["macro_ndf"] == "beckmann"
@@ -144,14 +144,15 @@ def test_options_and_repr():
     assert "Al" in repr(model)
     gaussian = ss.bsdf("ghs_ssa", surface=ss.GaussianAcv(0.03, 1.0))
     assert gaussian.options["psd"] == "gaussian"
-    assert not ss.bsdf("ggx", alpha=0.1).is_pure_delta
+    assert not ss.bsdf("ggx_stats", alpha=0.1).is_pure_delta
+    assert ss.bsdf("ggx_stats", alpha=0.1).name == "ggx_stats"
     assert "surface" in ss.bsdf.__doc__ and "lambda_nm" in ss.Bsdf.eval.__doc__
 
 
 @pytest.mark.parametrize(
     "make, message",
     [
-        (lambda: ss.bsdf("phong"), "model"),
+        (lambda: ss.bsdf("phong"), r"model must be one of ghs \| ghs_ssa \| ggx_stats \| two_scale, got 'phong'"),
         (lambda: ss.bsdf("ghs", **KC, roughness=3), "unknown option 'roughness'"),
         (lambda: ss.bsdf("ghs", **KC, method="fast"), "method"),
         (lambda: ss.bsdf("ghs", **KC, method=3), "method must be a string"),
@@ -159,14 +160,16 @@ def test_options_and_repr():
         (lambda: ss.bsdf("ghs", **KC, renormalization="no"), "renormalization must be True or False"),
         (lambda: ss.bsdf("ghs", sigma=np.nan, corr_length=2, gamma=3), "sigma must be a finite number"),
         (lambda: ss.bsdf("ghs", sigma=0.1, corr_length=2, gamma=0.5), r"gamma must be between 1.01 and 100 \(KC\), got 0.5"),
-        (lambda: ss.bsdf("ghs"), r"sigma must be between 1e-09 and 1e\+09 um, got 0"),
+        (lambda: ss.bsdf("ghs"), r"bsdf\('ghs'\) needs surface=: KCorrelation"),
+        (lambda: ss.bsdf("ghs", sigma=0, corr_length=2, gamma=3), r"sigma must be between 1e-09 and 1e\+09 um, got 0"),
         (lambda: ss.bsdf("ghs", surface=ss.KCorrelation(**KC), sigma=0.1), "not both"),
         (lambda: ss.bsdf("ghs", psd="measured"), "measured"),
-        (lambda: ss.bsdf("ghs", surface=3.5), "surface must be a KCorrelation, a GaussianAcv, a HeightMap or"),
-        (lambda: ss.bsdf("ghs", surface=ss.TabulatedPsd(np.geomspace(1, 10, 5), np.geomspace(1, 1e-4, 5))),
-         "surface must be a KCorrelation"),
-        (lambda: ss.bsdf("ggx"), "alpha must be between 0.0001 and 100, got 0"),
-        (lambda: ss.bsdf("ggx", alpha=0.1, material="Kryptonite"), "Kryptonite"),
+        (lambda: ss.bsdf("ghs", surface=3.5), "surface must be a KCorrelation, a GaussianAcv, a MapStatistics"),
+        (lambda: ss.bsdf("ghs", surface=ss.TabulatedPsd(np.geomspace(1, 10, 5), np.geomspace(1, 1e-4, 5)),
+                         psd="measured"), "psd applies to a height map surface"),
+        (lambda: ss.bsdf("ggx_stats"), r"needs surface=.*; or alpha= for a given roughness"),
+        (lambda: ss.bsdf("ggx_stats", alpha_from="none"), "alpha must be between 0.0001 and 100, got 0"),
+        (lambda: ss.bsdf("ggx_stats", alpha=0.1, material="Kryptonite"), "Kryptonite"),
         (lambda: ss.bsdf("ghs", surface="/nonexistent.gsf"), "/nonexistent.gsf"),
     ],
 )
@@ -208,3 +211,41 @@ def test_direction_helper():
     assert ss.direction(30.0).shape == (3,)
     with pytest.raises(ss.Error, match="theta_deg must be a finite number"):
         ss.direction(np.nan, 0.0)
+
+
+def test_old_model_spellings_work_with_a_deprecation_warning():
+    """One vocabulary (docs/CONVENTIONS.md): the scene plugins' names; 'ggx' and kebab-case values still work."""
+    with pytest.warns(DeprecationWarning, match="model 'ggx' is an old spelling: write 'ggx_stats'"):
+        old = ss.bsdf("ggx", alpha=0.2, material="Au")
+    with pytest.warns(DeprecationWarning, match="truncation 'three-sigma' is an old spelling: write 'three_sigma'"):
+        ss.bsdf("ghs", surface=ss.KCorrelation(**KC), method="refit", truncation="three-sigma")
+    new = ss.bsdf("ggx_stats", alpha=0.2, material="Au")
+    assert old.options == new.options and old.options["model"] == "ggx_stats" and old.options["alpha_from"] == "none"
+    wi, wo = ss.direction(30.0), ss.direction(40.0, 180.0)
+    assert old.eval(wi, wo, 550.0) == new.eval(wi, wo, 550.0)
+
+
+def test_ggx_stats_takes_alpha_from_the_surface_by_default_and_says_what_works_for_gamma_3():
+    model = ss.bsdf("ggx_stats", surface=ss.KCorrelation(sigma=0.2, corr_length=1.0, gamma=4.0))
+    assert model.options["alpha_from"] == "measured"
+    with pytest.raises(ss.Error, match=r"gamma = 3 diverges .*use alpha_from kc_link"):
+        ss.bsdf("ggx_stats", surface=ss.KCorrelation(**KC), material="Au")
+    assert ss.bsdf("ggx_stats", surface=ss.KCorrelation(**KC), alpha_from="kc_link").options["alpha_from"] == "kc_link"
+
+
+def test_measured_statistics_is_a_surface_and_equals_psd_measured():
+    path = shared("realdata", "heightmaps", "opd-1.opd")
+    height_map = ss.read_height_map(path)
+    psd = ss.measured_statistics(height_map)  # what psd 'measured' builds from the map
+    assert len(repr(psd)) < 200 and "MapStatistics" in repr(psd)
+    with pytest.warns(UserWarning, match="measured PSD"):
+        from_psd = ss.bsdf("ghs", surface=psd, material="Ag")
+    with pytest.warns(UserWarning, match="measured PSD"):
+        from_map = ss.bsdf("ghs", surface=height_map, psd="measured", material="Ag")
+    assert from_psd.options["psd"] == "measured"
+    wi, wo = ss.direction(20.0), ss.direction(THETA_O, 180.0)
+    np.testing.assert_allclose(from_psd.eval(wi, wo, 500.0), from_map.eval(wi, wo, 500.0), rtol=1e-12)
+
+
+def test_version_is_the_cli_version():
+    assert ss.__version__ == run_cli("--version").split()[-1] and ss.__version__.count(".") == 2

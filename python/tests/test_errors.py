@@ -21,8 +21,8 @@ DEFINES = sum((["-D", f"{k}={v}"] for k, v in SMALL.items()), [])
 KC = ["--psd", "kc", "--sigma", "0.1", "--corr-length", "1", "--gamma", "3"]
 KC_PY = dict(psd="kc", sigma=0.1, corr_length=1, gamma=3)
 ALBEDO = ["brdf", "albedo", "--wavelength", "550", "--theta-i", "10"]
-GGX = ["--model", "ggx", "--alpha-from", "none", "--alpha", "0.3"]
-GGX_PY = dict(model="ggx", alpha_from="none", alpha=0.3)
+GGX = ["--model", "ggx_stats", "--alpha-from", "none", "--alpha", "0.3", "--material", "perfect"]
+GGX_PY = dict(model="ggx_stats", alpha_from="none", alpha=0.3)
 
 
 def cli_error(args):
@@ -61,7 +61,7 @@ def cases(f):
     out = f["out"]
     return [
         ("sigma", ["brdf", "albedo", "--psd", "kc", "--sigma", "-1", "--corr-length", "1", "--gamma", "3",
-                   "--wavelength", "550", "--theta-i", "10"],
+                   "--material", "perfect", "--wavelength", "550", "--theta-i", "10"],
          lambda: ss.bsdf(psd="kc", sigma=-1, corr_length=1, gamma=3), {}),
         ("material", [*ALBEDO, *KC, "--material", "Xx"], lambda: ss.bsdf(material="Xx", **KC_PY), {}),
         ("method", [*ALBEDO, *KC, "--method", "foo"], lambda: ss.bsdf(method="foo", **KC_PY), {"--method": "method"}),
@@ -86,7 +86,7 @@ def cases(f):
         ("white balance", ["render", SCENE, *DEFINES, "--white-balance", "purple", "-o", out / "r.exr"],
          lambda: ss.render(SCENE, params=SMALL, white_balance="purple"), {"--white-balance": "white_balance"}),
         ("unused parameter", ["render", SCENE, *DEFINES, "-D", "colour=1", "-o", out / "r.exr"],
-         lambda: ss.render(SCENE, params={**SMALL, "colour": 1}), {}),
+         lambda: ss.render(SCENE, params={**SMALL, "colour": 1}), {"-D colour": "params['colour']"}),
         ("height map", ["surface", "info", "/nonexistent/map.gwy"], lambda: ss.read_height_map("/nonexistent/map.gwy"),
          {}),
         ("scene", ["render", "/nonexistent/scene.xml", "-o", out / "r.exr"], lambda: ss.render("/nonexistent/scene.xml"),

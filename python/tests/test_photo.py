@@ -307,3 +307,21 @@ def test_compare_matches_the_definitions_and_the_cli(tmp_path):
 def test_bad_photo_pipeline_input_raises_error_naming_it(call, message, camera_file):
     with pytest.raises(ss.Error, match=message):
         call(camera_file)
+
+
+def test_pose_names_the_dictionary_that_fits_and_takes_the_size_from_the_photo():
+    """OpenCV's own camera file holds camera_matrix and distortion_coefficients only: the photo gives the size. With
+    the default dictionary 4X4_50 the 6X6_250 markers of the photo give a false, ambiguous marker; the message says
+    which dictionary fits, in Python's terms."""
+    jpg = shared("realdata", "photos", "singlemarkersoriginal.jpg")
+    camera = shared("realdata", "photos", "tutorial_camera_params.yml")
+    assert ss.read_camera(camera).image_size == (0, 0)
+    with pytest.raises(ss.Error, match=r"markers of dictionary 6X6_250 \(ids 23, 40, 62, 98, 124, 203\), 1 of 4X4_50: "
+                                       r"pass dictionary=6X6_250"):
+        ss.pose(jpg, camera, marker_length_m=0.05)
+    with pytest.raises(ss.Error, match="several markers found .*; choose one with marker_id="):
+        ss.pose(jpg, camera, marker_length_m=0.05, dictionary="6X6_250")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the tutorial camera's notes, if any
+        pose = ss.pose(jpg, camera, marker_length_m=0.05, dictionary="6X6_250", marker_id=23, allow_ambiguous=True)
+    assert pose["image_size"] == [640, 480] and pose["marker"]["id"] == 23

@@ -212,7 +212,10 @@ def test_height_map_round_trip_through_gsf_with_invalid_points(tmp_path):
         (lambda: ss.KCorrelation(0.1, 2, 3).acv([0, np.inf]), r"r_um must be a finite number, got inf at index \(1,\)"),
         (lambda: ss.KCorrelation(0.1, 2, 3).relevant_roughness(90, 550), r"theta_i_deg must be in \[0, 90\) degrees"),
         (lambda: ss.KCorrelation(0.1, 2, 3).relevant_roughness([[0, 1]], [1, 2, 3]), "do not broadcast"),
-        (lambda: ss.HeightMap(np.full((16, 16), np.nan), 1.0), "finite"),
+        (lambda: ss.HeightMap(np.full((16, 16), np.nan), 1.0),
+         r"heights_um is NaN at column 0, row 0: mark the points without data invalid, "
+         r"HeightMap\(heights_um, spacing_um, valid=~np.isnan\(heights_um\)\)"),
+        (lambda: ss.HeightMap(np.full((16, 16), np.inf), 1.0), "finite"),
         (lambda: ss.HeightMap(np.zeros(16), 1.0), "heights_um must be a 2-D array"),
         (lambda: ss.HeightMap(np.zeros((16, 16)), -1.0), "spacing_um must be > 0"),
         (lambda: ss.HeightMap(np.zeros((16, 16)), (1.0, 2.0, 3.0)), "one number or a pair"),

@@ -114,7 +114,7 @@ def test_thread_limit_is_applied_and_restored():
     try:
         ss.set_max_threads(1)
         assert ss.max_threads() == 1
-        model = ss.bsdf("ggx", alpha=0.3)
+        model = ss.bsdf("ggx_stats", alpha=0.3)
         wi, wo, lam, _ = queries(2, 1000)
         single = model.eval(wi, wo, lam)
         ss.set_max_threads(0)

@@ -73,6 +73,7 @@ TEST(Models, NoModelExceedsOne) {
     for (double alpha : {0.05, 0.5, 1.0}) {
         ModelOptions o;
         o.model = ModelKind::ggx;
+        o.alpha_from = AlphaFrom::none;
         o.alpha = alpha;
         models.push_back(o);
     }
@@ -103,6 +104,7 @@ TEST(Factory, RejectsBadOptionsNamingThem) {
     expect_error(test::kc_options(ModelKind::ghs, 0.1, 0, 3), "corr_length must be between 1e-09 and 1e+09 um, got 0");
     ModelOptions ggx;
     ggx.model = ModelKind::ggx;
+    ggx.alpha_from = AlphaFrom::none;
     expect_error(ggx, "alpha must be between 0.0001 and 100, got 0");
     ggx.alpha_from = AlphaFrom::measured;
     ggx.surface = test::kc_options(ModelKind::ggx, 0.1, 1.0, 2.5).surface;
@@ -149,6 +151,7 @@ TEST(Models, ExtremeInputsStayFinite) {
     for (double alpha : {1e-4, 1.0}) {
         ModelOptions o;
         o.model = ModelKind::ggx;
+        o.alpha_from = AlphaFrom::none;
         o.alpha = alpha;
         models.push_back(o);
     }

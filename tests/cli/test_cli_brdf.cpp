@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "cli_runner.hpp"
 
@@ -34,7 +35,7 @@ TEST(CliBrdf, EvalPrintsEveryCombination) {
 
 TEST(CliBrdf, AlbedoOfThePerfectConductorGhsIsOne) {
     const auto r = run_cli({"brdf", "albedo", "--model", "ghs", "--psd", "gaussian", "--sigma", "2.27",
-                            "--corr-length", "20.9", "--wavelength", "10600", "--theta-i", "40"});
+                            "--corr-length", "20.9", "--material", "perfect", "--wavelength", "10600", "--theta-i", "40"});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const auto lines = r.out_lines();
     ASSERT_EQ(lines.size(), 2u);
@@ -45,7 +46,7 @@ TEST(CliBrdf, AlbedoOfThePerfectConductorGhsIsOne) {
 }
 
 TEST(CliBrdf, SamplePrintsDirectionsWeightsPdfs) {
-    const auto r = run_cli({"brdf", "sample", "--model", "ggx", "--alpha", "0.3", "--material", "perfect",
+    const auto r = run_cli({"brdf", "sample", "--model", "ggx_stats", "--alpha", "0.3", "--material", "perfect",
                             "--wavelength", "550", "--theta-i", "45", "--count", "200", "--seed", "3"});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const auto lines = r.out_lines();
@@ -61,8 +62,8 @@ TEST(CliBrdf, SamplePrintsDirectionsWeightsPdfs) {
 TEST(CliBrdf, SliceWritesCsvAndPng) {
     const std::string dir = std::filesystem::temp_directory_path() / "surfscatter_cli_brdf_slice";
     std::filesystem::create_directories(dir);
-    const auto r = run_cli({"brdf", "slice", "--models", "ghs,ghs-ssa,ggx", "--alpha-from", "kc-link", "--psd", "kc",
-                            "--sigma", "0.03", "--corr-length", "1", "--gamma", "3", "--wavelength", "550",
+    const auto r = run_cli({"brdf", "slice", "--models", "ghs,ghs_ssa,ggx_stats", "--alpha-from", "kc_link", "--psd",
+                            "kc", "--material", "perfect", "--sigma", "0.03", "--corr-length", "1", "--gamma", "3", "--wavelength", "550",
                             "--theta-i", "0,60", "--plot", dir + "/slice.png"});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_TRUE(std::filesystem::exists(dir + "/slice.csv"));
@@ -79,14 +80,14 @@ TEST(CliBrdf, MeasuredPsdRouteAndOverlay) {
                        "--size", "256", "--spacing", "0.1", "--seed", "4", "-o", map})
                   .exit_code,
               0);
-    const auto r = run_cli({"brdf", "eval", "--model", "ghs", "--psd", "measured", "--surface", map, "--wavelength",
-                            "550", "--theta-i", "30", "--theta-o", "10,30,50"});
+    const auto r = run_cli({"brdf", "eval", "--model", "ghs", "--psd", "measured", "--surface", map, "--material",
+                            "perfect", "--wavelength", "550", "--theta-i", "30", "--theta-o", "10,30,50"});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(r.out_lines().size(), 4u);
     EXPECT_NE(r.err.find("note: measured PSD of"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("rolled off"), std::string::npos) << r.err;
-    const auto s = run_cli({"brdf", "slice", "--models", "ghs:file,ghs:measured", "--surface", map, "--wavelength",
-                            "550", "--theta-i", "30", "--csv", (dir / "overlay.csv").string()});
+    const auto s = run_cli({"brdf", "slice", "--models", "ghs:file,ghs:measured", "--surface", map, "--material",
+                            "perfect", "--wavelength", "550", "--theta-i", "30", "--csv", (dir / "overlay.csv").string()});
     ASSERT_EQ(s.exit_code, 0) << s.err;
     const std::string csv = surfscatter::test::read_whole_file((dir / "overlay.csv").string());
     EXPECT_NE(csv.find("\nghs:file,"), std::string::npos);
@@ -112,8 +113,77 @@ TEST(CliBrdf, BadParametersExitWithStatus2) {
                "--wavelength must be > 0 nm");
     expect_bad({"brdf", "albedo", "--model", "ghs", "--wavelength", "550", "--theta-i", "10"}, "missing surface");
     expect_bad({"brdf", "albedo", "--model", "phong", "--wavelength", "550", "--theta-i", "10"},
-               "--model must be one of");
+               "--model must be one of ghs | ghs_ssa | ggx_stats | two_scale, got 'phong'");
+    expect_bad({"brdf", "albedo", "--psd", "kc", "--sigma", "0.1", "--corr-length", "1", "--gamma", "3",
+                "--method", "tabulated", "--material", "Au", "--wavelength", "550", "--theta-i", "10"},
+               "--method must be one of exact | refit, got 'tabulated'");
     expect_bad({"brdf", "albedo", "--psd", "kc", "--sigma", "0.1", "--corr-length", "1", "--gamma", "0.8",
-                "--wavelength", "550", "--theta-i", "10"},
+                "--material", "Au", "--wavelength", "550", "--theta-i", "10"},
                "gamma must be between 1.01 and 100 (KC), got 0.8");
+}
+
+// One vocabulary (docs/CONVENTIONS.md): the scene plugins' names; the old spellings still work with one note each.
+TEST(CliBrdf, OldModelSpellingsWorkWithOneDeprecationNote) {
+    const std::vector<std::string> kc = {"--sigma", "0.05", "--corr-length", "2", "--gamma", "3", "--material", "Au",
+                                         "--wavelength", "550", "--theta-i", "30"};
+    const auto args = [&](std::vector<std::string> head) {
+        head.insert(head.end(), kc.begin(), kc.end());
+        return head;
+    };
+    const auto canonical = run_cli(args({"brdf", "eval", "--model", "two_scale", "--macro-ndf", "ggx", "--theta-o", "10,30"}));
+    ASSERT_EQ(canonical.exit_code, 0) << canonical.err;
+    EXPECT_EQ(canonical.err.find("warning"), std::string::npos) << canonical.err;
+    const auto old = run_cli(args({"brdf", "eval", "--model", "two-scale", "--cutoff-wavelengths", "100", "--theta-o", "10,30"}));
+    ASSERT_EQ(old.exit_code, 0) << old.err;
+    EXPECT_EQ(old.out, canonical.out);
+    EXPECT_NE(old.err.find("surfscatter: warning: --model 'two-scale' is an old spelling: write 'two_scale'"),
+              std::string::npos) << old.err;
+    const auto ggx = run_cli(args({"brdf", "slice", "--models", "ggx,ggx", "--alpha-from", "kc-link", "--csv",
+                                   (std::filesystem::temp_directory_path() / "surfscatter_cli_old_ggx.csv").string()}));
+    ASSERT_EQ(ggx.exit_code, 0) << ggx.err;
+    EXPECT_NE(ggx.err.find("--models 'ggx' is an old spelling: write 'ggx_stats'"), std::string::npos) << ggx.err;
+    EXPECT_NE(ggx.err.find("--alpha-from 'kc-link' is an old spelling: write 'kc_link'"), std::string::npos) << ggx.err;
+    // Once per run, however many models repeat it.
+    EXPECT_EQ(ggx.err.find("'ggx' is an old spelling"), ggx.err.rfind("'ggx' is an old spelling")) << ggx.err;
+    std::filesystem::remove(std::filesystem::temp_directory_path() / "surfscatter_cli_old_ggx.csv");
+}
+
+// Honest defaults: no silent perfect mirror, KC parameters alone mean --psd kc, and GGX from statistics on the
+// README's surface (gamma 3, whose slopes diverge) says what works.
+TEST(CliBrdf, DefaultsAreAskedForOrSaid) {
+    const std::vector<std::string> where = {"--wavelength", "550", "--theta-i", "30", "--theta-o", "30"};
+    const auto run = [&](std::vector<std::string> head) {
+        head.insert(head.end(), where.begin(), where.end());
+        return run_cli(head);
+    };
+    const auto no_material = run({"brdf", "eval", "--model", "ghs", "--sigma", "0.05", "--corr-length", "2", "--gamma", "3"});
+    EXPECT_EQ(no_material.exit_code, 2);
+    EXPECT_NE(no_material.err.find("--material is required"), std::string::npos) << no_material.err;
+    EXPECT_NE(no_material.err.find("--material perfect"), std::string::npos) << no_material.err;
+    // README's example: Au, sigma 0.05, L 2, gamma 3; --psd kc is implied by the KC options.
+    const auto implied = run({"brdf", "eval", "--model", "ghs", "--sigma", "0.05", "--corr-length", "2", "--gamma", "3",
+                              "--material", "Au"});
+    const auto explicit_kc = run({"brdf", "eval", "--model", "ghs", "--psd", "kc", "--sigma", "0.05", "--corr-length",
+                                  "2", "--gamma", "3", "--material", "Au"});
+    ASSERT_EQ(implied.exit_code, 0) << implied.err;
+    EXPECT_EQ(implied.out, explicit_kc.out);
+    const auto no_gamma = run({"brdf", "eval", "--model", "ghs", "--sigma", "0.05", "--corr-length", "2", "--material", "Au"});
+    EXPECT_EQ(no_gamma.exit_code, 2);
+    EXPECT_NE(no_gamma.err.find("mean --psd kc, which needs --gamma"), std::string::npos) << no_gamma.err;
+    const auto diverges = run({"brdf", "eval", "--model", "ggx_stats", "--sigma", "0.05", "--corr-length", "2",
+                               "--gamma", "3", "--material", "Au"});
+    EXPECT_EQ(diverges.exit_code, 2);
+    EXPECT_NE(diverges.err.find("gamma = 3 diverges"), std::string::npos) << diverges.err;
+    EXPECT_NE(diverges.err.find("use alpha_from kc_link"), std::string::npos) << diverges.err;
+    const auto advised = run({"brdf", "eval", "--model", "ggx_stats", "--alpha-from", "kc_link", "--sigma", "0.05",
+                              "--corr-length", "2", "--gamma", "3", "--material", "Au"});
+    ASSERT_EQ(advised.exit_code, 0) << advised.err;
+    // A given alpha means --alpha-from none.
+    const auto given = run({"brdf", "eval", "--model", "ggx_stats", "--alpha", "0.2", "--material", "Au"});
+    const auto none = run({"brdf", "eval", "--model", "ggx_stats", "--alpha-from", "none", "--alpha", "0.2", "--material", "Au"});
+    ASSERT_EQ(given.exit_code, 0) << given.err;
+    EXPECT_EQ(given.out, none.out);
+    const auto help = run_cli({"brdf", "eval", "--help"});
+    EXPECT_NE(help.out.find("ghs | ghs_ssa | ggx_stats | two_scale"), std::string::npos) << help.out;
+    EXPECT_NE(help.out.find("required: built-in metal"), std::string::npos) << help.out;
 }

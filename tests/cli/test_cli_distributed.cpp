@@ -304,6 +304,8 @@ TEST_F(Distributed, StudyOverRanksMakesEveryOutputTheManifestAndTheSheetsAndARer
     r = run(cli(mpirun(2), {"study", (dir / "study.json").string()}), "study_mpi_again");
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.err.find(fmt::format("{} jobs, {} up to date, 0 to run", jobs.size(), jobs.size())), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(fmt::format("complete, all {} jobs up to date", jobs.size())), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("0 of 0 jobs run"), std::string::npos) << r.err;
     EXPECT_EQ(fs::last_write_time(dir / "sheets/view2.png"), sheet_time);
     EXPECT_EQ(entries(json::parse(bytes(dir / "manifest.json"))), entries(json::parse(manifest_before)));
 

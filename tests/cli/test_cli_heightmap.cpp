@@ -255,8 +255,8 @@ TEST(CliHeightmap, FitThroughInvalidPointsAndAFormWithTheTwoDimensionalPsdPlot) 
 
 TEST(CliHeightmap, BrdfReadsAnyHeightMapAndReportsItsValidFraction) {
     const std::string opd = (fs::path(SURFSCATTER_SHARED_DATA) / "realdata" / "heightmaps" / "opd-1.opd").string();
-    const auto result = run_cli({"brdf", "albedo", "--model", "ggx", "--alpha-from", "measured", "--surface", opd,
-                                 "--form", "poly2", "--wavelength", "550", "--theta-i", "20"});
+    const auto result = run_cli({"brdf", "albedo", "--model", "ggx_stats", "--alpha-from", "measured", "--surface", opd,
+                                 "--form", "poly2", "--material", "perfect", "--wavelength", "550", "--theta-i", "20"});
     ASSERT_EQ(result.exit_code, 0) << result.err;
     EXPECT_NE(result.err.find("surfscatter: brdf: " + opd + ": Wyko OPD files (.opd), 640 x 480 points of 0.1967 x "
                               "0.1967 um, 99.96 % valid"),

@@ -707,3 +707,25 @@ TEST_F(RenderedPhotoPipeline, CalibratePoseUndistortColorcorrectCompareOnRendere
 
 }  // namespace
 }  // namespace surfscatter::photo
+
+// A photo of 6X6_250 markers with the default dictionary 4X4_50 "finds" a false marker whose pose is ambiguous: the
+// message names the dictionary that fits. OpenCV's own camera file (camera_matrix and distortion_coefficients only)
+// takes its image size from the photo.
+TEST(CliPhoto, PoseNamesTheDictionaryThatFitsAndTakesTheImageSizeFromThePhoto) {
+    const std::filesystem::path photos = std::filesystem::path(SURFSCATTER_SHARED_DATA) / "realdata" / "photos";
+    const std::string jpg = (photos / "singlemarkersoriginal.jpg").string();
+    const std::string camera = (photos / "tutorial_camera_params.yml").string();
+    const std::string out = (std::filesystem::temp_directory_path() / "surfscatter_cli_pose_dictionary.json").string();
+    auto r = surfscatter::test::run_cli({"pose", jpg, "--camera", camera, "--marker-length", "0.05", "-o", out});
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("markers of dictionary 6X6_250"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("of 4X4_50: pass --dictionary 6X6_250"), std::string::npos) << r.err;
+    r = surfscatter::test::run_cli({"pose", jpg, "--camera", camera, "--marker-length", "0.05", "--dictionary", "6X6_250", "-o", out});
+    EXPECT_NE(r.err.find("several markers found"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("image_width"), std::string::npos) << r.err;
+    r = surfscatter::test::run_cli({"undistort", jpg, "--camera", camera, "-o",
+                 (std::filesystem::temp_directory_path() / "surfscatter_cli_undistort_nosize.exr").string()});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    std::filesystem::remove(out);
+    std::filesystem::remove(std::filesystem::temp_directory_path() / "surfscatter_cli_undistort_nosize.exr");
+}

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "cli_runner.hpp"
 #include "surfscatter/io/image.hpp"
@@ -96,4 +97,52 @@ TEST(CliCompareModels, BadOptionsExitTwo) {
     EXPECT_NE(result.err.find("scene file not found"), std::string::npos) << result.err;
     result = run_cli({"compare-models", "--focus", "0,0", "-o", (temp_dir() / "cmp").string()});
     EXPECT_EQ(result.exit_code, 2);
+}
+
+// Without -o the output is named after the scene, beside it (Mitsuba's rule), and the command says what it wrote.
+TEST(CliRender, OutputNamedAfterTheScene) {
+    const fs::path scene = write("named_after.xml", kScene);
+    const fs::path exr = temp_dir() / "named_after.exr", png = temp_dir() / "named_after.png";
+    fs::remove(exr);
+    fs::remove(png);
+    const auto result = run_cli({"render", scene.string(), "--spp", "1", "--quiet"});
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_TRUE(fs::exists(exr));
+    EXPECT_TRUE(fs::exists(png));
+    EXPECT_NE(result.err.find("wrote " + exr.string() + " and " + png.string()), std::string::npos) << result.err;
+    EXPECT_FALSE(fs::exists("render.exr"));
+}
+
+// -D model= takes the models' one vocabulary: an old spelling works with a note, an unknown one lists what works.
+TEST(CliRender, ModelDefineListsTheModelsAndTakesOldSpellings) {
+    const std::string scene = std::string(SURFSCATTER_SOURCE_DIR) + "/scenes/photo-setup/scene.xml";
+    const std::vector<std::string> small = {"-D", "width=8", "-D", "height=6", "--spp", "1", "--quiet", "--threads", "1"};
+    auto args = [&](const std::string& model, const fs::path& out) {
+        std::vector<std::string> a = {"render", scene, "-D", "model=" + model, "-o", out.string()};
+        a.insert(a.end(), small.begin(), small.end());
+        return a;
+    };
+    auto result = run_cli(args("ggx", temp_dir() / "old.exr"));
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_NE(result.err.find("surfscatter: warning: -D model 'ggx' is an old spelling: write 'ggx_stats'"),
+              std::string::npos) << result.err;
+    result = run_cli(args("ggx_stats", temp_dir() / "new.exr"));
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_EQ(result.err.find("warning"), std::string::npos) << result.err;
+    EXPECT_EQ(surfscatter::io::read_image(temp_dir() / "old.exr").pixels,
+              surfscatter::io::read_image(temp_dir() / "new.exr").pixels);
+    result = run_cli(args("phong", temp_dir() / "x.exr"));
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_NE(result.err.find("model=phong names no file (metal_phong.xml not found): model must be one of conductor | "
+                              "ggx_stats | ghs | ghs_ssa | roughconductor | two_scale"),
+              std::string::npos) << result.err;
+}
+
+// A progress bar only on a terminal: into a pipe or log the render writes its final line alone, no carriage returns.
+TEST(CliRender, ProgressIntoAPipeIsOneLine) {
+    const fs::path scene = write("progress.xml", kScene);
+    const auto result = run_cli({"render", scene.string(), "--spp", "2", "-o", (temp_dir() / "progress.exr").string()});
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_EQ(result.err.find('\r'), std::string::npos) << result.err;
+    EXPECT_NE(result.err.find("render: 100.0% done in"), std::string::npos) << result.err;
 }

@@ -123,7 +123,8 @@ TEST(ModelParameters, TextErrorsNameTheOriginAndTheParameter) {
         return m;
     };
     EXPECT_EQ(message("ghs", with("alpha_from", "measured")),
-              "models[1]: alpha_from: parameter 'alpha_from' does not apply to bsdf 'ghs': used by model ggx only");
+              "models[1]: alpha_from: parameter 'alpha_from' does not apply to bsdf 'ghs': used by model ggx_stats only");
+    EXPECT_EQ(message("ghs", with("psd", "kcc")), "models[1]: psd must be one of kc | gaussian | file | measured, got 'kcc'");
     EXPECT_NE(message("ghs", with("alpha_form", "measured")).find("'alpha_form' is not a parameter of bsdf 'ghs'"),
               std::string::npos);
     EXPECT_NE(message("ghs", with("sigma", "0.1x")).find("models[1]: sigma: '0.1x' is not a finite number"),

@@ -41,8 +41,10 @@ void validate_surface(const SurfaceOptions& s) {
             surface::require_surface_length(s.sigma, "sigma");
             surface::require_surface_length(s.corr_length, "corr_length");
             break;
-        case PsdKind::file:
         case PsdKind::measured:
+            if (s.measured_psd) break;
+            [[fallthrough]];
+        case PsdKind::file:
             if (s.surface_file.empty()) fail("surface_file is empty: give a height map file for psd {}", to_string(s.psd));
             break;
     }
@@ -84,6 +86,12 @@ public:
                 statistics_ = std::make_shared<surface::GaussianAcv>(options_.sigma, options_.corr_length);
                 break;
             case PsdKind::measured: {
+                if (options_.measured_psd) {  // estimated already (Python's measured_statistics)
+                    check_measured_uncertainty(*options_.measured_psd, notes);
+                    if (notes) notes->push_back(measured_note(*options_.measured_psd));
+                    statistics_ = options_.measured_psd;
+                    break;
+                }
                 auto measured = std::make_shared<surface::MapStatistics>(*map(), options_.form);
                 check_measured_uncertainty(*measured, notes);
                 if (notes) notes->push_back(measured_note(*measured));
@@ -102,9 +110,9 @@ private:
     void check_measured_uncertainty(const surface::MapStatistics& s, std::vector<std::string>* notes) const {
         const double error = s.sigma_relative_error();
         const std::string what = fmt::format(
-            "the measured PSD of {} rests on a few long periods: the standard error of its sigma is {:.2g} % (rings "
+            "the measured PSD{} rests on a few long periods: the standard error of its sigma is {:.2g} % (rings "
             "1-3, {:.3g} .. {:.3g} um periods, hold {:.2g} % of the variance)",
-            options_.surface_file, 100.0 * error, kTwoPi / (3 * s.ring_width()), kTwoPi / s.first_ring(),
+            options_.surface_file.empty() ? "" : " of " + options_.surface_file, 100.0 * error, kTwoPi / (3 * s.ring_width()), kTwoPi / s.first_ring(),
             100.0 * s.radial_cdf(3.5 * s.ring_width()));
         if (error > kMaxMeasuredSigmaError)
             fail("{}, more than the {:.0f} % the models accept: remove more form (--form poly2 .. poly4) or measure a "
@@ -118,13 +126,13 @@ private:
     std::string measured_note(const surface::MapStatistics& s) const {
         const double dz = s.ring_width();
         return fmt::format(
-            "measured PSD of {} ({}{}): band zeta {:.3g} .. {:.3g} rad/um (lateral periods {:.3g} .. {:.3g} um), "
+            "measured PSD{} ({}{}): band zeta {:.3g} .. {:.3g} rad/um (lateral periods {:.3g} .. {:.3g} um), "
             "rolled off as zeta^-200 beyond ({:.2g} % of sigma^2 there); model sigma {:.6g} um against the map's rms {:.6g} um ({:.2g} % of sigma^2 below the "
             "first ring, continued linearly from the DC value; standard error of sigma {:.2g} %); rings 1-3 rest on {:.3g}, {:.3g}, {:.3g} independent samples; lobes "
             "draw on periods longer than a third of the map (> {:.3g} um) where |zeta| < {:.3g} rad/um, within about "
             "{:.2g} deg of the specular direction at 550 nm; lobes reach beyond the band at wavelengths "
             "below {:.0f} nm (below {:.0f} nm at normal incidence)",
-            options_.surface_file, s.periodic() ? "periodic map, rectangular window" : "Hann window",
+            options_.surface_file.empty() ? "" : " of " + options_.surface_file, s.periodic() ? "periodic map, rectangular window" : "Hann window",
             s.skipped_rings() ? fmt::format(", {} non-positive rings skipped", s.skipped_rings()) : "", s.first_ring(),
             s.nyquist(), kTwoPi / s.nyquist(), kTwoPi / s.first_ring(), 100.0 * s.above_band_fraction(), s.sigma_h(),
             s.map_rms(),
@@ -151,9 +159,15 @@ std::function<double(double)> ggx_alpha(const ModelOptions& o, SurfaceSource& su
             } else {
                 const double no_cutoff = std::numeric_limits<double>::infinity();
                 const double slope2 = surface.statistics(notes)->mean_square_slope(smoothing, no_cutoff);
-                if (!std::isfinite(slope2))
-                    fail("alpha_from {}: the rms slope of this PSD diverges (KC needs gamma > 3, or smoothing > 0, or "
-                         "a height map)", to_string(o.alpha_from));
+                if (!std::isfinite(slope2)) {
+                    const bool kc = o.surface.psd == PsdKind::kc;
+                    fail("alpha_from {}: the rms slope of {} diverges{}; use alpha_from kc_link (alpha from the "
+                         "correlation length and the wavelength), alpha_from smoothed with smoothing S > 0 (um, the "
+                         "slope seen at that lateral resolution), a height map, or alpha_from none with alpha A",
+                         to_string(o.alpha_from),
+                         kc ? fmt::format("a KC surface with gamma = {}", o.surface.gamma) : "this PSD",
+                         kc ? " (it is finite for gamma > 3 only)" : "");
+                }
                 alpha = std::sqrt(slope2);
             }
             if (!(alpha >= kMinMicrofacetAlpha && alpha <= kMaxMicrofacetAlpha))
@@ -182,7 +196,7 @@ GhsSettings ghs_settings(const ModelOptions& o) {
 
 void load_height_map(SurfaceOptions& surface) {
     if ((surface.psd == PsdKind::file || surface.psd == PsdKind::measured) && !surface.height_map &&
-        !surface.surface_file.empty())
+        !surface.measured_psd && !surface.surface_file.empty())
         surface.height_map =
             std::make_shared<const surface::HeightMap>(surface::read_height_map(surface.surface_file, std::nullopt));
 }

@@ -20,7 +20,7 @@ public:
     // The half vector, and D, G2 and the density when alpha does not depend on lambda, once for all wavelengths.
     WavelengthValues eval_packet(const Vec3& wi, const Vec3& wo, const WavelengthValues& lambda_nm,
                                  WavelengthValues* pdf) const override;
-    std::string name() const override { return "ggx"; }
+    std::string name() const override { return "ggx_stats"; }  // the model's one name (model_options)
 
     double alpha(double lambda_nm) const { return alpha_(lambda_nm); }
 

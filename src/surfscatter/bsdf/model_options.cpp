@@ -1,68 +1,123 @@
 #include "surfscatter/bsdf/model_options.hpp"
 
 #include <algorithm>
-#include <array>
+#include <optional>
+#include <span>
 #include <utility>
 
+#include <fmt/format.h>
+
+#include "surfscatter/core/deprecation.hpp"
 #include "surfscatter/core/error.hpp"
 
 namespace surfscatter::bsdf {
 
 namespace {
 
-// CLI spelling (kebab-case) and XML spelling (snake_case) are the same word: compare with '-' read as '_'.
-std::string canonical(std::string_view text) {
+// Kebab-case (the CLI's old spelling of values: ghs-ssa, three-sigma) read as snake_case.
+std::string snake_case(std::string_view text) {
     std::string s(text);
     std::replace(s.begin(), s.end(), '-', '_');
     return s;
 }
 
-template <typename E, std::size_t N>
-E parse_enum(std::string_view text, const char* what, const std::array<std::pair<const char*, E>, N>& names) {
-    const std::string s = canonical(text);
-    for (const auto& [name, value] : names)
-        if (s == name) return value;
+template <typename E>
+struct Names {
+    std::span<const std::pair<const char*, E>> canonical;
+    std::span<const std::pair<const char*, const char*>> aliases;  // old spelling -> canonical name
+};
+
+template <typename E>
+std::string list_of(const Names<E>& names) {
     std::string list;
-    for (const auto& [name, value] : names) list += (list.empty() ? "" : " | ") + std::string(name);
-    fail("{} must be one of {}, got '{}'", what, list, text);
+    for (const auto& [name, value] : names.canonical) list += (list.empty() ? "" : " | ") + std::string(name);
+    return list;
 }
 
-template <typename E, std::size_t N>
-std::string enum_name(E v, const std::array<std::pair<const char*, E>, N>& names) {
-    for (const auto& [name, value] : names)
+// The value `text` names, canonical or an old spelling (reported through deprecated()); nullopt if none.
+template <typename E>
+std::optional<E> find_enum(std::string_view text, const char* what, const Names<E>& names) {
+    const std::string s = snake_case(text);
+    std::string name = s;
+    for (const auto& [alias, target] : names.aliases)
+        if (s == alias) name = target;
+    for (const auto& [canonical, value] : names.canonical)
+        if (name == canonical) {
+            if (text != canonical)
+                deprecated(fmt::format("{} '{}' is an old spelling: write '{}' (docs/CONVENTIONS.md)", what,
+                                       printable(text), canonical));
+            return value;
+        }
+    return std::nullopt;
+}
+
+template <typename E>
+E parse_enum(std::string_view text, const char* what, const Names<E>& names) {
+    if (const auto value = find_enum(text, what, names)) return *value;
+    fail("{} must be one of {}, got '{}'", what, list_of(names), printable(text));
+}
+
+template <typename E>
+std::string enum_name(E v, const Names<E>& names) {
+    for (const auto& [name, value] : names.canonical)
         if (v == value) return name;
     return "?";
 }
 
-constexpr std::array<std::pair<const char*, ModelKind>, 4> kModels{
-    {{"ghs", ModelKind::ghs}, {"ghs_ssa", ModelKind::ghs_ssa}, {"ggx", ModelKind::ggx},
-     {"two_scale", ModelKind::two_scale}}};
-constexpr std::array<std::pair<const char*, GhsMethod>, 2> kMethods{
-    {{"exact", GhsMethod::exact}, {"refit", GhsMethod::refit}}};
-constexpr std::array<std::pair<const char*, Truncation>, 2> kTruncations{
-    {{"three_sigma", Truncation::three_sigma}, {"poisson_mass", Truncation::poisson_mass}}};
-constexpr std::array<std::pair<const char*, FresnelMode>, 3> kFresnel{
-    {{"incident", FresnelMode::incident}, {"half", FresnelMode::half}, {"rr", FresnelMode::rr}}};
-constexpr std::array<std::pair<const char*, SsaForm>, 2> kSsaForms{
-    {{"energy", SsaForm::energy}, {"strict", SsaForm::strict}}};
-constexpr std::array<std::pair<const char*, AlphaFrom>, 4> kAlphaFrom{
-    {{"none", AlphaFrom::none}, {"measured", AlphaFrom::measured}, {"smoothed", AlphaFrom::smoothed},
-     {"kc_link", AlphaFrom::kc_link}}};
-constexpr std::array<std::pair<const char*, MacroNdf>, 2> kMacroNdf{
-    {{"ggx", MacroNdf::ggx}, {"beckmann", MacroNdf::beckmann}}};
-constexpr std::array<std::pair<const char*, PsdKind>, 4> kPsd{
-    {{"kc", PsdKind::kc}, {"gaussian", PsdKind::gaussian}, {"file", PsdKind::file}, {"measured", PsdKind::measured}}};
+// The one vocabulary of docs/CONVENTIONS.md: the scene plugins' names (snake_case) everywhere.
+constexpr std::pair<const char*, ModelKind> kModelNames[]{{"ghs", ModelKind::ghs},
+                                                          {"ghs_ssa", ModelKind::ghs_ssa},
+                                                          {"ggx_stats", ModelKind::ggx},
+                                                          {"two_scale", ModelKind::two_scale}};
+// The CLI's and Python's name for GGX from statistics until the names were made one.
+constexpr std::pair<const char*, const char*> kModelAliases[]{{"ggx", "ggx_stats"}};
+constexpr std::pair<const char*, GhsMethod> kMethods[]{{"exact", GhsMethod::exact}, {"refit", GhsMethod::refit}};
+constexpr std::pair<const char*, Truncation> kTruncations[]{{"three_sigma", Truncation::three_sigma},
+                                                            {"poisson_mass", Truncation::poisson_mass}};
+constexpr std::pair<const char*, FresnelMode> kFresnel[]{
+    {"incident", FresnelMode::incident}, {"half", FresnelMode::half}, {"rr", FresnelMode::rr}};
+constexpr std::pair<const char*, SsaForm> kSsaForms[]{{"energy", SsaForm::energy}, {"strict", SsaForm::strict}};
+constexpr std::pair<const char*, AlphaFrom> kAlphaFrom[]{{"none", AlphaFrom::none},
+                                                         {"measured", AlphaFrom::measured},
+                                                         {"smoothed", AlphaFrom::smoothed},
+                                                         {"kc_link", AlphaFrom::kc_link}};
+constexpr std::pair<const char*, MacroNdf> kMacroNdf[]{{"ggx", MacroNdf::ggx}, {"beckmann", MacroNdf::beckmann}};
+constexpr std::pair<const char*, PsdKind> kPsd[]{
+    {"kc", PsdKind::kc}, {"gaussian", PsdKind::gaussian}, {"file", PsdKind::file}, {"measured", PsdKind::measured}};
+
+constexpr Names<ModelKind> kModels{kModelNames, kModelAliases};
+template <typename E, std::size_t N>
+constexpr Names<E> names(const std::pair<const char*, E> (&table)[N]) {
+    return {table, {}};
+}
 
 }  // namespace
 
 ModelKind parse_model(std::string_view t, const char* what) { return parse_enum(t, what, kModels); }
-GhsMethod parse_method(std::string_view t, const char* what) { return parse_enum(t, what, kMethods); }
-Truncation parse_truncation(std::string_view t, const char* what) { return parse_enum(t, what, kTruncations); }
-FresnelMode parse_fresnel(std::string_view t, const char* what) { return parse_enum(t, what, kFresnel); }
-SsaForm parse_ssa_form(std::string_view t, const char* what) { return parse_enum(t, what, kSsaForms); }
-AlphaFrom parse_alpha_from(std::string_view t, const char* what) { return parse_enum(t, what, kAlphaFrom); }
-MacroNdf parse_macro_ndf(std::string_view t, const char* what) { return parse_enum(t, what, kMacroNdf); }
-PsdKind parse_psd(std::string_view t, const char* what) { return parse_enum(t, what, kPsd); }
+std::optional<ModelKind> find_model(std::string_view t, const char* what) { return find_enum(t, what, kModels); }
+GhsMethod parse_method(std::string_view t, const char* what) { return parse_enum(t, what, names(kMethods)); }
+Truncation parse_truncation(std::string_view t, const char* what) { return parse_enum(t, what, names(kTruncations)); }
+FresnelMode parse_fresnel(std::string_view t, const char* what) { return parse_enum(t, what, names(kFresnel)); }
+SsaForm parse_ssa_form(std::string_view t, const char* what) { return parse_enum(t, what, names(kSsaForms)); }
+AlphaFrom parse_alpha_from(std::string_view t, const char* what) { return parse_enum(t, what, names(kAlphaFrom)); }
+MacroNdf parse_macro_ndf(std::string_view t, const char* what) { return parse_enum(t, what, names(kMacroNdf)); }
+PsdKind parse_psd(std::string_view t, const char* what) { return parse_enum(t, what, names(kPsd)); }
+
+std::string choices(std::string_view option) {
+    if (option == "model") return list_of(kModels);
+    if (option == "method") return list_of(names(kMethods));
+    if (option == "truncation") return list_of(names(kTruncations));
+    if (option == "fresnel") return list_of(names(kFresnel));
+    if (option == "ssa_form") return list_of(names(kSsaForms));
+    if (option == "alpha_from") return list_of(names(kAlphaFrom));
+    if (option == "macro_ndf") return list_of(names(kMacroNdf));
+    if (option == "psd") return list_of(names(kPsd));
+    fail("choices: '{}' is not an enumerated model option", printable(option));
+}
+
+void imply_alpha_from(ModelOptions& o, bool alpha_given, bool alpha_from_given) {
+    if (alpha_given && !alpha_from_given) o.alpha_from = AlphaFrom::none;
+}
 
 std::string inapplicable_option(const ModelOptions& o, std::string_view name) {
     const ModelKind m = o.model;
@@ -80,13 +135,13 @@ std::string inapplicable_option(const ModelOptions& o, std::string_view name) {
     if (name == "fresnel") return unless(!ggx, "used by models ghs, ghs_ssa and two_scale only");
     if (name == "renormalization") return unless(ghs || m == ModelKind::two_scale, "used by models ghs and two_scale only");
     if (name == "ssa_form") return unless(m == ModelKind::ghs_ssa, "used by model ghs_ssa only");
-    if (name == "alpha") return unless(ggx && o.alpha_from == AlphaFrom::none, "used by model ggx with alpha_from none only");
-    if (name == "alpha_from") return unless(ggx, "used by model ggx only");
+    if (name == "alpha") return unless(ggx && o.alpha_from == AlphaFrom::none, "used by model ggx_stats with alpha_from none only");
+    if (name == "alpha_from") return unless(ggx, "used by model ggx_stats only");
     if (name == "smoothing") return unless(ggx && o.alpha_from == AlphaFrom::smoothed, "used with alpha_from smoothed only");
     if (name == "cutoff_wavelengths" || name == "macro_ndf") return unless(m == ModelKind::two_scale, "used by model two_scale only");
     if (name == "psd" || name == "sigma" || name == "corr_length" || name == "gamma" || name == "surface_file" ||
         name == "form") {
-        if (!with_surface) return "model ggx with alpha_from none takes no surface";
+        if (!with_surface) return "model ggx_stats with alpha_from none takes no surface";
         if (name == "sigma" || name == "corr_length")
             return unless(!from_map, "a height map gives its own statistics (psd file or measured)");
         if (name == "gamma") return unless(psd == PsdKind::kc, "used with psd kc only");
@@ -97,12 +152,12 @@ std::string inapplicable_option(const ModelOptions& o, std::string_view name) {
 }
 
 std::string to_string(ModelKind v) { return enum_name(v, kModels); }
-std::string to_string(GhsMethod v) { return enum_name(v, kMethods); }
-std::string to_string(Truncation v) { return enum_name(v, kTruncations); }
-std::string to_string(FresnelMode v) { return enum_name(v, kFresnel); }
-std::string to_string(SsaForm v) { return enum_name(v, kSsaForms); }
-std::string to_string(AlphaFrom v) { return enum_name(v, kAlphaFrom); }
-std::string to_string(MacroNdf v) { return enum_name(v, kMacroNdf); }
-std::string to_string(PsdKind v) { return enum_name(v, kPsd); }
+std::string to_string(GhsMethod v) { return enum_name(v, names(kMethods)); }
+std::string to_string(Truncation v) { return enum_name(v, names(kTruncations)); }
+std::string to_string(FresnelMode v) { return enum_name(v, names(kFresnel)); }
+std::string to_string(SsaForm v) { return enum_name(v, names(kSsaForms)); }
+std::string to_string(AlphaFrom v) { return enum_name(v, names(kAlphaFrom)); }
+std::string to_string(MacroNdf v) { return enum_name(v, names(kMacroNdf)); }
+std::string to_string(PsdKind v) { return enum_name(v, names(kPsd)); }
 
 }  // namespace surfscatter::bsdf

@@ -1,18 +1,23 @@
 #pragma once
 // Every option of the scattering models, with one name per option shared by the CLI (kebab-case: --corr-length),
-// the renderer's XML plugins and this struct (snake_case: corr_length). Values of the enumerations are spelled
-// as in the CLI/XML ("ghs_ssa" and "ghs-ssa" are both accepted by the parse_* functions).
+// the renderer's XML plugins, studies, Python and this struct (snake_case: corr_length). Values of the enumerations
+// (model names included) have one spelling everywhere, the scene plugins' snake_case (docs/CONVENTIONS.md, "Names");
+// the parse_* functions accept the old spellings (kebab-case values such as "ghs-ssa", the CLI's "ggx") and report
+// them through deprecated() (core/deprecation.hpp).
 // Units: wavelengths in nm, surface lengths (sigma, corr_length, smoothing) in micrometres.
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 
 #include "surfscatter/surface/height_map.hpp"
 #include "surfscatter/surface/height_map_form.hpp"
+#include "surfscatter/surface/map_statistics.hpp"
+#include "surfscatter/surface/radial_statistics.hpp"
 
 namespace surfscatter::bsdf {
 
-enum class ModelKind { ghs, ghs_ssa, ggx, two_scale };
+enum class ModelKind { ghs, ghs_ssa, ggx, two_scale };  // ggx: GGX from statistics, named ggx_stats
 enum class GhsMethod { exact, refit };                   // exact: tabulated S_g; refit: Poisson series of KC refits
 enum class Truncation { three_sigma, poisson_mass };     // which orders the refit series keeps
 enum class FresnelMode { incident, half, rr };           // R(theta_i), F(theta_d), Rayleigh-Rice Q (THEORY 1.3)
@@ -32,6 +37,8 @@ struct SurfaceOptions {
     // The map read from surface_file when the caller has read it already (to report on it, load_height_map());
     // make_bsdf reads surface_file itself otherwise.
     std::shared_ptr<const surface::HeightMap> height_map;
+    // psd measured only: a map's statistics estimated already (Python's measured_statistics()), used instead of a map.
+    std::shared_ptr<const surface::MapStatistics> measured_psd;
 };
 
 struct ModelOptions {
@@ -46,7 +53,7 @@ struct ModelOptions {
     SsaForm ssa_form = SsaForm::energy;
     // GGX
     double alpha = 0;                                 // used when alpha_from = none
-    AlphaFrom alpha_from = AlphaFrom::none;
+    AlphaFrom alpha_from = AlphaFrom::measured;       // from the surface unless alpha is given (imply_alpha_from)
     double smoothing = 0;                             // um, Gaussian smoothing std (alpha_from = smoothed)
     // two-scale
     double cutoff_wavelengths = 100;                  // N: macro/micro split at zeta_c = k / N
@@ -56,8 +63,11 @@ struct ModelOptions {
     SurfaceOptions surface;
 };
 
-// Parse an enumeration value as written in the CLI or XML; throw surfscatter::Error naming `what` otherwise.
+// Parse an enumeration value as written in the CLI, XML, a study or Python; throw surfscatter::Error naming `what`
+// and listing the valid values otherwise ("--model must be one of ghs | ghs_ssa | ggx_stats | two_scale, got 'x'").
 ModelKind parse_model(std::string_view text, const char* what = "model");
+// The model `text` names, or nullopt if it names none (a scene's other BSDF plugins, a -D model=conductor).
+std::optional<ModelKind> find_model(std::string_view text, const char* what = "model");
 GhsMethod parse_method(std::string_view text, const char* what = "method");
 Truncation parse_truncation(std::string_view text, const char* what = "truncation");
 FresnelMode parse_fresnel(std::string_view text, const char* what = "fresnel");
@@ -65,6 +75,14 @@ SsaForm parse_ssa_form(std::string_view text, const char* what = "ssa_form");
 AlphaFrom parse_alpha_from(std::string_view text, const char* what = "alpha_from");
 MacroNdf parse_macro_ndf(std::string_view text, const char* what = "macro_ndf");
 PsdKind parse_psd(std::string_view text, const char* what = "psd");
+
+// The valid values of the enumerated option `name` ("model", "method", "truncation", "fresnel", "ssa_form",
+// "alpha_from", "macro_ndf", "psd") as "a | b | c", for help texts.
+std::string choices(std::string_view name);
+
+// A given alpha without alpha_from means alpha_from none, as KC parameters without psd mean psd kc: the rule every
+// front end applies before validate().
+void imply_alpha_from(ModelOptions& options, bool alpha_given, bool alpha_from_given);
 
 // Why the option `name` (snake_case, as in ModelOptions: "smoothing", "surface_file", "renormalization") has no
 // effect for the model and modes of `options`, as a phrase such as "used with alpha_from smoothed only"; empty if it

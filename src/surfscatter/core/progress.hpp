@@ -1,5 +1,6 @@
 #pragma once
-// Progress reporting for long jobs: percentage and ETA on stderr, safe to call from many threads.
+// Progress reporting for long jobs: percentage and ETA on stderr, safe to call from many threads. A bar redrawn in
+// place when stderr is a terminal; otherwise (a log file, a pipe) only the final line, without carriage returns.
 #include <atomic>
 #include <chrono>
 #include <cstdint>
@@ -27,6 +28,7 @@ private:
     std::string label_;
     std::uint64_t total_;
     bool enabled_;
+    bool terminal_;  // stderr is a terminal
     std::atomic<std::uint64_t> done_{0};
     std::chrono::steady_clock::time_point start_;
     std::chrono::steady_clock::time_point last_draw_;

@@ -18,8 +18,10 @@ void write_camera(const std::filesystem::path& path, const CameraModel& camera) 
         fail("camera file '{}' could not be written: {}", path.string(), e.what());
     }
     if (!fs.isOpened()) fail("camera file '{}' could not be written", path.string());
-    fs << "image_width" << camera.image_size.width;
-    fs << "image_height" << camera.image_size.height;
+    if (!camera.image_size.empty()) {  // unknown (read from a file without it): still taken from the photograph
+        fs << "image_width" << camera.image_size.width;
+        fs << "image_height" << camera.image_size.height;
+    }
     fs << "camera_matrix" << cv::Mat(camera.matrix);
     fs << "distortion_coefficients" << cv::Mat(camera.distortion).reshape(1, 1);
     fs << "rms_reprojection_error" << camera.rms_reprojection_error;
@@ -107,7 +109,9 @@ private:
 CameraModel parse_camera(const cv::FileStorage& fs, const std::string& name) {
     const CameraFileReader in(fs, name);
     CameraModel camera;
-    camera.image_size = {in.integer("image_width", 1, kMaxImageSide), in.integer("image_height", 1, kMaxImageSide)};
+    // OpenCV's own files may hold the intrinsics alone; the photograph then gives the size (camera_for_image).
+    if (!fs["image_width"].empty() || !fs["image_height"].empty())
+        camera.image_size = {in.integer("image_width", 1, kMaxImageSide), in.integer("image_height", 1, kMaxImageSide)};
     const cv::Mat matrix = in.matrix("camera_matrix");
     if (matrix.rows != 3 || matrix.cols != 3)
         fail("camera file '{}': camera_matrix must be 3x3, got {}x{}", name, matrix.rows, matrix.cols);
@@ -153,9 +157,16 @@ CameraModel read_camera(const std::filesystem::path& path) {
 }
 
 void require_image_size(const CameraModel& camera, cv::Size size, const std::string& what) {
-    if (size != camera.image_size)
+    if (!camera.image_size.empty() && size != camera.image_size)
         fail("{} is {}x{} pixels but the camera was calibrated at {}x{}", what, size.width, size.height,
              camera.image_size.width, camera.image_size.height);
+}
+
+CameraModel camera_for_image(const CameraModel& camera, cv::Size size, const std::string& what) {
+    require_image_size(camera, size, what);
+    CameraModel sized = camera;
+    sized.image_size = size;
+    return sized;
 }
 
 }  // namespace surfscatter::photo

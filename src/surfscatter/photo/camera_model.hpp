@@ -10,7 +10,7 @@
 namespace surfscatter::photo {
 
 struct CameraModel {
-    cv::Size image_size;
+    cv::Size image_size;  // empty: not in the camera file (OpenCV's bare camera_matrix + distortion_coefficients)
     cv::Matx33d matrix = cv::Matx33d::eye();  // [fx 0 cx; 0 fy cy; 0 0 1] in pixels
     std::vector<double> distortion;           // k1 k2 p1 p2 k3 (OpenCV order)
     double rms_reprojection_error = 0.0;      // pixels, from the calibration (0 if unknown)
@@ -30,10 +30,13 @@ struct CameraModel {
 // Writes image_width, image_height, camera_matrix, distortion_coefficients, rms_reprojection_error, views and, when
 // known, intrinsics_std_dev and calibration_warnings.
 void write_camera(const std::filesystem::path& path, const CameraModel& camera);
-// Throws Error naming the file and the missing or bad entry.
+// Throws Error naming the file and the missing or bad entry. image_width and image_height are optional (both or
+// neither): a file without them leaves image_size empty, to be taken from the photograph (camera_for_image).
 CameraModel read_camera(const std::filesystem::path& path);
 
-// Throws Error if an image of `size` (from `what`) does not match the calibrated image size.
+// Throws Error if an image of `size` (from `what`) does not match the calibrated image size (if it is known).
 void require_image_size(const CameraModel& camera, cv::Size size, const std::string& what);
+// The camera for an image of `size`: its image size if the camera file gave none, else checked by require_image_size.
+CameraModel camera_for_image(const CameraModel& camera, cv::Size size, const std::string& what);
 
 }  // namespace surfscatter::photo

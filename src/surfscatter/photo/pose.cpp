@@ -194,16 +194,22 @@ MarkerPose estimate_marker_pose(const cv::Mat& linear_rgb, const CameraModel& ca
     require_positive(options.marker_length, options.length_name.c_str());
     const auto dictionary = load_dictionary(options.dictionary);
     const DetectedMarkers found = detect_markers(linear_rgb, dictionary);
-    if (found.ids.empty()) fail("no ArUco marker of dictionary {} found in the image", options.dictionary);
+    const auto hint = [&] {
+        const std::string h = dictionary_hint(linear_rgb, options, found.ids.size());
+        return h.empty() ? h : "; " + h;
+    };
+    if (found.ids.empty()) fail("no ArUco marker of dictionary {} found in the image{}", options.dictionary, hint());
 
     std::size_t chosen = found.ids.size();
     if (options.marker_id) {
         for (std::size_t i = 0; i < found.ids.size(); ++i)
             if (found.ids[i] == *options.marker_id) chosen = i;
         if (chosen == found.ids.size())
-            fail("marker {} not found (markers found: {})", *options.marker_id, list_ids(found.ids));
+            fail("marker {} not found (markers of dictionary {} found: {}){}", *options.marker_id, options.dictionary,
+                 list_ids(found.ids), hint());
     } else {
-        if (found.ids.size() > 1) fail("several markers found ({}); choose one with --marker-id", list_ids(found.ids));
+        if (found.ids.size() > 1)
+            fail("several markers found ({}); choose one with {}", list_ids(found.ids), options.id_name);
         chosen = 0;
     }
 
@@ -216,7 +222,30 @@ MarkerPose estimate_marker_pose(const cv::Mat& linear_rgb, const CameraModel& ca
     if (marker.corners.method == "pattern") noise = marker.corners.pattern->corner_std_px;
     marker.pose = solve_planar_pose(marker_object_points(options.marker_length), marker.corners.corners, camera, true,
                                     noise);
+    if (marker.pose.ambiguous) marker.dictionary_hint = dictionary_hint(linear_rgb, options, found.ids.size());
     return marker;
+}
+
+std::string dictionary_hint(const cv::Mat& linear_rgb, const MarkerPoseOptions& options, std::size_t found) {
+    static constexpr const char* kFamilies[] = {"4X4_1000",      "5X5_1000",      "6X6_1000",
+                                                "7X7_1000",      "ARUCO_ORIGINAL", "APRILTAG_16H5",
+                                                "APRILTAG_25H9", "APRILTAG_36H10", "APRILTAG_36H11"};
+    std::string best;
+    std::vector<int> best_ids;
+    for (const char* family : kFamilies) {
+        std::vector<int> ids = detect_markers(linear_rgb, load_dictionary(family)).ids;
+        if (ids.size() > std::max(found, best_ids.size())) best = family, best_ids = std::move(ids);
+    }
+    if (best.empty()) return {};
+    std::sort(best_ids.begin(), best_ids.end());
+    if (best.ends_with("_1000")) {  // the family's smallest dictionary that holds every id
+        const int largest = best_ids.back();
+        const char* size = largest < 50 ? "50" : largest < 100 ? "100" : largest < 250 ? "250" : "1000";
+        best = best.substr(0, best.size() - 4) + size;
+    }
+    if (best == options.dictionary) return {};
+    return fmt::format("the photo shows {} markers of dictionary {} (ids {}), {} of {}: pass {}{}", best_ids.size(),
+                       best, list_ids(best_ids), found, printable(options.dictionary), options.dictionary_name, best);
 }
 
 std::vector<cv::Point3d> board_to_scene(const BoardSpec& board, const std::vector<cv::Point3f>& opencv_points) {

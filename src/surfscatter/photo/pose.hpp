@@ -76,7 +76,9 @@ struct MarkerPoseOptions {
     double marker_length = 0.0;  // metres, black square edge
     std::string dictionary = "4X4_50";  // a name or a file (load_dictionary)
     std::optional<int> marker_id;  // required when several markers are visible
-    std::string length_name = "--marker-length";  // how messages name marker_length
+    std::string length_name = "--marker-length";  // how messages name marker_length, dictionary and marker_id
+    std::string dictionary_name = "--dictionary ";  // followed by the name in "pass --dictionary 6X6_250"
+    std::string id_name = "--marker-id";
 };
 
 struct MarkerPose {
@@ -84,12 +86,24 @@ struct MarkerPose {
     int markers_detected = 0;
     MarkerCorners corners;  // the corners used (corners.corners, in the detector's order) and the candidates
     Pose pose;
+    // When the pose is ambiguous and another standard dictionary finds more markers in the photo: which, as
+    // dictionary_hint() words it (a marker of the wrong dictionary is often a false detection).
+    std::string dictionary_hint;
 };
 
 // `linear_rgb`: the photograph as CV_32FC3 linear light (read_photo). Markers are detected on its display encoding
 // and their corners refined on its linear luminance. Throws Error if no marker (or not the requested one) is found
-// or several are found and none was chosen. An ambiguous pose is returned with `pose.ambiguous` set.
+// or several are found and none was chosen; when no marker or not the requested one is found, the message names the
+// standard dictionary that finds markers in the photo (dictionary_hint). An ambiguous pose is returned with
+// `pose.ambiguous` set.
 MarkerPose estimate_marker_pose(const cv::Mat& linear_rgb, const CameraModel& camera, const MarkerPoseOptions& options);
+
+// If another of the standard dictionaries (every family's largest: 4X4_1000 ... 7X7_1000, ARUCO_ORIGINAL, the
+// AprilTag ones) finds more markers in the photo than `found` of `options.dictionary`: "the photo shows 6 markers of
+// dictionary 6X6_250 (ids 1, 2, ...), 1 of 4X4_50: pass --dictionary 6X6_250", naming the smallest dictionary of the
+// family that holds every id found. Empty otherwise. Detects once per dictionary (about a second on a 12-Mpixel
+// photo), so it is called only after a failure.
+std::string dictionary_hint(const cv::Mat& linear_rgb, const MarkerPoseOptions& options, std::size_t found);
 
 struct BoardPose {
     int corners = 0;           // board corners the pose was solved from

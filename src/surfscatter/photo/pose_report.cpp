@@ -54,7 +54,7 @@ json solution_json(const PoseSolution& s, const CameraModel& camera) {
 
 PoseReport marker_report(const Photo& image, const CameraModel& camera, const MarkerPoseOptions& options) {
     const MarkerPose marker = estimate_marker_pose(image.rgb, camera, options);
-    PoseReport report{marker.pose, fmt::format("marker {}", marker.marker_id), {}, {}};
+    PoseReport report{marker.pose, fmt::format("marker {}", marker.marker_id), {}, {}, marker.dictionary_hint};
     json candidates = json::array();
     for (const auto& c : marker.corners.candidates)
         candidates.push_back({{"method", c.method},
@@ -97,9 +97,9 @@ PoseReport board_report(const Photo& image, const CameraModel& camera, const Boa
 
 }  // namespace
 
-PoseReport report_pose(const Photo& image, const std::string& image_name, const CameraModel& camera,
+PoseReport report_pose(const Photo& image, const std::string& image_name, const CameraModel& camera_file,
                        const PoseTarget& target) {
-    require_image_size(camera, image.rgb.size(), image_name);
+    const CameraModel camera = camera_for_image(camera_file, image.rgb.size(), image_name);
     PoseReport report = target.board ? board_report(image, camera, *target.board)
                                      : marker_report(image, camera, target.marker);
     const Pose& pose = report.pose;
@@ -152,10 +152,10 @@ void require_unambiguous(const PoseReport& report, const std::string& allow_opti
     fail("the pose of {} is ambiguous: its mirror image about the line of sight, {:.1f} deg away, reprojects almost "
          "as well ({:.3g} px against {:.3g} px: ratio {:.2f}, chi-square {:.3g} at {:.2g} px image noise; rejecting it "
          "needs ratio >= {} and chi-square >= {}); photograph it larger or more obliquely, or pass {} to get both "
-         "poses",
+         "poses{}",
          report.what, pose.mirror_angle_deg, pose.alternative->reprojection_rms, pose.best.reprojection_rms,
          pose.ambiguity_ratio, pose.ambiguity_chi2, pose.uncertainty.image_noise_px, kAmbiguityRatio, kAmbiguityChi2,
-         allow_option);
+         allow_option, report.dictionary_hint.empty() ? "" : "; but " + report.dictionary_hint);
 }
 
 }  // namespace surfscatter::photo

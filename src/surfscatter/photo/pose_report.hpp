@@ -25,6 +25,7 @@ struct PoseReport {
     std::string what;                // "marker 7", "ChArUco board", "grid board"
     nlohmann::json json;             // what `pose` writes, but the names of its input files
     std::vector<std::string> notes;  // what the user should know: less accurate corners, non-square pixels
+    std::string dictionary_hint;     // a single marker's ambiguous pose: MarkerPose::dictionary_hint
 };
 
 // Solves the pose of `target` in `image` (`image_name` names it in errors: its size must be the camera's) and

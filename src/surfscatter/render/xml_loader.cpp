@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <map>
+#include <optional>
 #include <set>
 #include <string_view>
 #include <variant>
@@ -113,8 +114,15 @@ bool is_parameter_char(char c) { return std::isalnum(static_cast<unsigned char>(
 
 class Loader {
 public:
-    explicit Loader(std::map<std::string, std::string> defines)
-        : defines_(defines), command_line_defines_(std::move(defines)) {}
+    explicit Loader(std::map<std::string, std::string> defines, ParameterSyntax syntax = ParameterSyntax::command_line)
+        : syntax_(syntax) {
+        // The parameter `model` names the metal's BSDF (scenes/photo-setup, studies): an old spelling of a scattering
+        // model's name (-D model=ggx) is read as the name its files and plugins have.
+        if (const auto it = defines.find("model"); it != defines.end())
+            if (const auto kind = bsdf::find_model(it->second, given("model").c_str())) it->second = bsdf::to_string(*kind);
+        defines_ = defines;
+        command_line_defines_ = std::move(defines);
+    }
 
     // `used_parameters` null: a -D name the scene never uses is an error; else the names used are added to it.
     std::unique_ptr<Scene> load(const Source& root, std::set<std::string>* used_parameters) {
@@ -129,13 +137,18 @@ public:
         } else {
             for (const auto& [name, value] : command_line_defines_)
                 if (!used_defines_.count(name))
-                    fail("-D {}={}: the scene {} never uses ${} (a misspelt parameter would be silently ignored)", name,
-                         printable(value), root.path.string(), name);
+                    fail("{}={}: the scene {} never uses ${} (a misspelt parameter would be silently ignored)",
+                         given(name), printable(value), root.path.string(), name);
         }
         return std::move(scene_);
     }
 
 private:
+    // A parameter as the caller passes it.
+    std::string given(const std::string& name) const {
+        return syntax_ == ParameterSyntax::python ? fmt::format("params['{}']", name) : "-D " + name;
+    }
+
     // ---------------------------------------------------------------- attributes and values
 
     std::string attribute(const Node& node, const char* name, bool required = true) {
@@ -160,7 +173,8 @@ private:
             if (name.empty()) fail_at(node, "'$' without a parameter name in '{}'", printable(text));
             const auto it = defines_.find(name);
             if (it == defines_.end())
-                fail_at(node, "parameter ${} is not defined (pass -D {}=... or add <default name=\"{}\" .../>)", name, name, name);
+                fail_at(node, "parameter ${} is not defined (pass {}=... or add <default name=\"{}\" .../>)", name,
+                        given(name), name);
             used_defines_.insert(name);
             out += it->second;
             i = j;
@@ -628,17 +642,20 @@ private:
             {"twosided", plugins::twosided},       {"blendbsdf", plugins::blendbsdf},
             {"mask", plugins::mask},               {"bumpmap", plugins::bumpmap},
             {"normalmap", plugins::normalmap}};
-        const bool model = type == "ghs" || type == "ghs_ssa" || type == "ggx_stats" || type == "two_scale";
         const auto it = factories.find(type);
+        // A scattering model is built under its canonical name (an old spelling is reported once, here).
+        std::optional<bsdf::ModelKind> model;
+        if (it == factories.end()) model = bsdf::find_model(type, (node.where() + ": bsdf type").c_str());
         if (!model && it == factories.end())
             fail_at(node, "unknown bsdf plugin '{}' (diffuse, conductor, roughconductor, dielectric, thindielectric, "
                           "roughdielectric, plastic, roughplastic, twosided, blendbsdf, mask, bumpmap, normalmap, "
-                          "ghs, ghs_ssa, ggx_stats, two_scale)", printable(type));
+                          "{})", printable(type), bsdf::choices("model"));
+        const std::string plugin = model ? bsdf::to_string(*model) : type;
         ElementProperties props(*this, node);
-        MaterialPtr material = build(node, "bsdf '" + type + "'", [&] {
-            return model ? plugins::scattering_model(props, type) : it->second(props);
+        MaterialPtr material = build(node, "bsdf '" + plugin + "'", [&] {
+            return model ? plugins::scattering_model(props, plugin) : it->second(props);
         });
-        props.check_all_used("bsdf '" + type + "'");
+        props.check_all_used("bsdf '" + plugin + "'");
         register_id(node, material);
         return material;
     }
@@ -794,7 +811,7 @@ private:
                 defines_.emplace(name, node.xml.attribute("value").value());  // -D values win
             } else if (tag == "include") {
                 check_leaf(node, {"filename"});
-                const fs::path path = resolve(node, attribute(node, "filename"));
+                const fs::path path = resolve_include(node);
                 if (++include_depth_ > kMaxIncludeDepth)
                     fail_at(node, "includes nested more than {} deep (a cycle?)", kMaxIncludeDepth);
                 if (++include_count_ > kMaxIncludes) fail_at(node, "more than {} <include>s in one scene", kMaxIncludes);
@@ -839,6 +856,34 @@ private:
         if (!root.xml) fail("{}:1: the file has no <scene> element", source.path.string());
         check_no_text(root);
         return root;
+    }
+
+    // An <include> named by a parameter (filename="metal_$model.xml") that names no file is an error listing the
+    // values that would, from the files beside it.
+    fs::path resolve_include(const Node& node) {
+        const std::string raw = node.xml.attribute("filename").value();
+        const std::string filename = attribute(node, "filename");
+        const std::size_t dollar = raw.find('$');
+        std::size_t end = dollar + 1;
+        while (dollar != std::string::npos && end < raw.size() && is_parameter_char(raw[end])) ++end;
+        fs::path p(filename);
+        if (p.is_relative()) p = node.source->path.parent_path() / p;
+        if (dollar == std::string::npos || raw.find('$', end) != std::string::npos || fs::exists(p))
+            return resolve(node, filename);
+        const std::string name = raw.substr(dollar + 1, end - dollar - 1);
+        const fs::path prefix = node.source->path.parent_path() / raw.substr(0, dollar);
+        const std::string stem = prefix.filename().string(), suffix = raw.substr(end);
+        std::set<std::string> values;
+        std::error_code ec;
+        for (const auto& entry : fs::directory_iterator(prefix.parent_path(), ec)) {
+            const std::string file = entry.path().filename().string();
+            if (file.size() > stem.size() + suffix.size() && file.starts_with(stem) && file.ends_with(suffix))
+                values.insert(file.substr(stem.size(), file.size() - stem.size() - suffix.size()));
+        }
+        if (values.empty())
+            fail_at(node, "file not found: {} (from {}={})", p.string(), name, printable(defines_.at(name)));
+        fail_at(node, "{}={} names no file ({} not found): {} must be one of {}", name, printable(defines_.at(name)),
+                p.filename().string(), name, fmt::join(values, " | "));
     }
 
     fs::path resolve(const Node& node, const std::string& filename) {
@@ -966,6 +1011,7 @@ private:
     std::map<std::string, std::string> command_line_defines_;
     std::set<std::string> used_defines_;
     bool has_sensor_ = false;
+    ParameterSyntax syntax_;
     int include_depth_ = 0;
     int include_count_ = 0;
 };
@@ -977,8 +1023,8 @@ bool is_parameter_name(std::string_view name) {
 }
 
 std::unique_ptr<Scene> load_scene(const std::filesystem::path& path, const std::map<std::string, std::string>& defines,
-                                  std::set<std::string>* used_parameters) {
-    Loader loader(defines);
+                                  std::set<std::string>* used_parameters, ParameterSyntax syntax) {
+    Loader loader(defines, syntax);
     const Source& root = loader.open(path, nullptr);
     return loader.load(root, used_parameters);
 }

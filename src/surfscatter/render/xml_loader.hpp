@@ -28,8 +28,14 @@ inline constexpr std::size_t kMaxSceneListItems = 1'000'000;  // numbers in one 
 // Whether `name` can name a scene parameter ($name, -D name=value): letters, digits and '_' only, at least one.
 bool is_parameter_name(std::string_view name);
 
+// How the caller's parameters are named in messages: the CLI's "-D name=value" or Python's "params['name']".
+enum class ParameterSyntax { command_line, python };
+
+// `defines` replace the scene's $name parameters (the parameter `model`, the metal's BSDF, is read through
+// bsdf::find_model: an old spelling of a scattering model's name becomes its name, with a deprecation note).
 std::unique_ptr<Scene> load_scene(const std::filesystem::path& path, const std::map<std::string, std::string>& defines = {},
-                                  std::set<std::string>* used_parameters = nullptr);
+                                  std::set<std::string>* used_parameters = nullptr,
+                                  ParameterSyntax syntax = ParameterSyntax::command_line);
 
 // Same, from XML text; `virtual_path` names it in messages and anchors relative file names.
 std::unique_ptr<Scene> load_scene_from_string(const std::string& xml, const std::filesystem::path& virtual_path,

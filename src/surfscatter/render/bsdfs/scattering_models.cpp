@@ -1,5 +1,6 @@
 // surfscatter's own BSDFs: `ghs` (full generalised Harvey-Shack), `ghs_ssa` (its smooth-surface approximation),
-// `ggx_stats` (GGX with alpha from the surface statistics) and `two_scale` (bsdf/factory.hpp, THEORY.md). They are
+// `ggx_stats` (GGX with alpha from the surface statistics, or given: `alpha` alone means alpha_from none) and
+// `two_scale` (bsdf/factory.hpp, THEORY.md); old spellings of the names (bsdf::find_model) are accepted with a note. They are
 // ordinary BSDF plugins: usable wherever a BSDF is (shapes, twosided, blendbsdf, mask, bumpmap, normalmap).
 //
 // Parameters (bsdf/model_options.hpp, the same names as the CLI): `material`, `psd`, `sigma`, `corr_length`,
@@ -10,6 +11,8 @@
 // error at its line (bsdf::inapplicable_option: e.g. `smoothing` without alpha_from smoothed).
 // The models are evaluated for the four wavelengths of a path in one call (Bsdf::eval_packet). One-sided (use
 // twosided).
+#include <optional>
+
 #include "surfscatter/bsdf/factory.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/render/model_parameters.hpp"
@@ -62,21 +65,36 @@ private:
     std::shared_ptr<const bsdf::Bsdf> model_;
 };
 
+// An enumerated parameter, parsed by the library's one vocabulary; an old spelling's note names the element's line.
+template <typename Parse>
+auto read_choice(Properties& props, const std::string& name, Parse parse) -> std::optional<decltype(parse("", ""))> {
+    const std::string text = props.get_string(name, "");
+    if (text.empty()) return std::nullopt;
+    std::string what = props.where(name);  // "file:line" of the element, or "origin: name" for text parameters
+    if (!what.ends_with(name)) what += ": " + name;
+    try {
+        return parse(text, what.c_str());
+    } catch (const SceneError&) {
+        throw;
+    } catch (const Error& e) {
+        throw SceneError(e.what());  // located already
+    }
+}
+
 void read_surface_options(Properties& props, bsdf::ModelOptions& o) {
     o.material = props.get_string("material", o.material);
-    const std::string psd = props.get_string("psd", "");
-    if (!psd.empty()) o.surface.psd = bsdf::parse_psd(psd);
+    const auto psd = read_choice(props, "psd", bsdf::parse_psd);
+    if (psd) o.surface.psd = *psd;
     o.surface.sigma = props.get_float("sigma", o.surface.sigma);
     o.surface.corr_length = props.get_float("corr_length", o.surface.corr_length);
     o.surface.gamma = props.get_float("gamma", o.surface.gamma);
     if (props.has("surface_file")) {
         o.surface.surface_file = props.get_file("surface_file").string();
-        if (psd.empty()) o.surface.psd = bsdf::PsdKind::file;
+        if (!psd) o.surface.psd = bsdf::PsdKind::file;
     }
     const std::string form = props.get_string("form", "");
     if (!form.empty()) o.surface.form = surface::parse_form(form, "form");
-    const std::string fresnel = props.get_string("fresnel", "");
-    if (!fresnel.empty()) o.fresnel = bsdf::parse_fresnel(fresnel);
+    if (const auto fresnel = read_choice(props, "fresnel", bsdf::parse_fresnel)) o.fresnel = *fresnel;
 }
 
 // An option given in the scene that the model and modes chosen do not use is an error at its line (the CLI's rule).
@@ -90,10 +108,8 @@ void check_applicable(Properties& props, const bsdf::ModelOptions& o, const std:
 }
 
 void read_ghs_options(Properties& props, bsdf::ModelOptions& o) {
-    const std::string method = props.get_string("method", "");
-    if (!method.empty()) o.method = bsdf::parse_method(method);
-    const std::string truncation = props.get_string("truncation", "");
-    if (!truncation.empty()) o.truncation = bsdf::parse_truncation(truncation);
+    if (const auto method = read_choice(props, "method", bsdf::parse_method)) o.method = *method;
+    if (const auto truncation = read_choice(props, "truncation", bsdf::parse_truncation)) o.truncation = *truncation;
     o.epsilon = props.get_float("epsilon", o.epsilon);
     o.renormalization = props.get_bool("renormalization", o.renormalization);
 }
@@ -107,34 +123,30 @@ MaterialPtr make_model_material(std::shared_ptr<const bsdf::Bsdf> model) {
 bsdf::ModelOptions scattering_model_options(Properties& props, const std::string& type) {
     bsdf::ModelOptions o;
     try {
-        if (type == "ggx_stats") {
-            o.model = bsdf::ModelKind::ggx;
-            o.alpha_from = bsdf::AlphaFrom::measured;
-            const std::string from = props.get_string("alpha_from", "");
-            if (!from.empty()) o.alpha_from = bsdf::parse_alpha_from(from);
-            o.smoothing = props.get_float("smoothing", o.smoothing);
-            o.alpha = props.get_float("alpha", o.alpha);
-            read_surface_options(props, o);
-        } else if (type == "ghs") {
-            o.model = bsdf::ModelKind::ghs;
-            read_ghs_options(props, o);
-            read_surface_options(props, o);
-        } else if (type == "ghs_ssa") {
-            o.model = bsdf::ModelKind::ghs_ssa;
-            const std::string form = props.get_string("ssa_form", "");
-            if (!form.empty()) o.ssa_form = bsdf::parse_ssa_form(form);
-            o.renormalization = props.get_bool("renormalization", o.renormalization);
-            read_surface_options(props, o);
-        } else if (type == "two_scale") {
-            o.model = bsdf::ModelKind::two_scale;
-            o.cutoff_wavelengths = props.get_float("cutoff_wavelengths", o.cutoff_wavelengths);
-            const std::string ndf = props.get_string("macro_ndf", "");
-            if (!ndf.empty()) o.macro_ndf = bsdf::parse_macro_ndf(ndf);
-            read_ghs_options(props, o);
-            read_surface_options(props, o);
-        } else {
-            props.fail("unknown scattering model '{}'", type);
+        const auto kind = bsdf::find_model(type, (props.where() + ": bsdf type").c_str());
+        if (!kind) props.fail("unknown scattering model '{}' (bsdf type must be one of {})", type, bsdf::choices("model"));
+        o.model = *kind;
+        switch (o.model) {
+            case bsdf::ModelKind::ggx: {
+                const auto from = read_choice(props, "alpha_from", bsdf::parse_alpha_from);
+                if (from) o.alpha_from = *from;
+                bsdf::imply_alpha_from(o, props.has("alpha"), from.has_value());
+                o.smoothing = props.get_float("smoothing", o.smoothing);
+                o.alpha = props.get_float("alpha", o.alpha);
+                break;
+            }
+            case bsdf::ModelKind::ghs: read_ghs_options(props, o); break;
+            case bsdf::ModelKind::ghs_ssa:
+                if (const auto form = read_choice(props, "ssa_form", bsdf::parse_ssa_form)) o.ssa_form = *form;
+                o.renormalization = props.get_bool("renormalization", o.renormalization);
+                break;
+            case bsdf::ModelKind::two_scale:
+                o.cutoff_wavelengths = props.get_float("cutoff_wavelengths", o.cutoff_wavelengths);
+                if (const auto ndf = read_choice(props, "macro_ndf", bsdf::parse_macro_ndf)) o.macro_ndf = *ndf;
+                read_ghs_options(props, o);
+                break;
         }
+        read_surface_options(props, o);
         check_applicable(props, o, type);
         bsdf::validate(o);
         props.share_height_map(o.surface);
