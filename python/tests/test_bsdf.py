@@ -165,7 +165,7 @@ def test_options_and_repr():
         (lambda: ss.bsdf("ghs", surface=ss.KCorrelation(**KC), sigma=0.1), "not both"),
         (lambda: ss.bsdf("ghs", psd="measured"), "measured"),
         (lambda: ss.bsdf("ghs", surface=3.5), "surface must be a KCorrelation, a GaussianAcv, a MapStatistics"),
-        (lambda: ss.bsdf("ghs", surface=ss.TabulatedPsd(np.geomspace(1, 10, 5), np.geomspace(1, 1e-4, 5)),
+        (lambda: ss.bsdf("ghs", surface=ss.measured_statistics(ss.synthesize(ss.KCorrelation(**KC), 64, spacing_um=0.5)),
                          psd="measured"), "psd applies to a height map surface"),
         (lambda: ss.bsdf("ggx_stats"), r"needs surface=.*; or alpha= for a given roughness"),
         (lambda: ss.bsdf("ggx_stats", alpha_from="none"), "alpha must be between 0.0001 and 100, got 0"),
