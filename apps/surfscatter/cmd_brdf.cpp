@@ -89,10 +89,11 @@ void require_theta(double t, const char* what) {
     if (t < 0 || t >= 90) fail("{} must be in [0, 90) degrees, got {}", what, t);
 }
 
-// `spec` is a model name, optionally with the surface statistics to use after a colon (brdf slice --models
-// ghs:file,ghs:measured overlays the KC-fit and measured-PSD versions of one model on the same --surface).
+// Whether the option `name` (as in ModelOptions) was given on the command line.
 bool given(const BrdfArgs& a, const char* name) { return std::count(a.given.begin(), a.given.end(), name) > 0; }
 
+// `spec` is a model name, optionally with the surface statistics to use after a colon (brdf slice --models
+// ghs:file,ghs:measured overlays the KC-fit and measured-PSD versions of one model on the same --surface).
 bsdf::ModelOptions model_options(const BrdfArgs& a, const std::string& spec) {
     const std::size_t colon = spec.find(':');
     const bool kc_given = given(a, "sigma") || given(a, "corr_length") || given(a, "gamma");

@@ -90,7 +90,9 @@ void run_study(const std::function<study::Study()>& make, const StudyRunOptions&
     if (options.list) return;
 
     install_interrupt_handler();
-    const study::JobContext context{options.threads, !options.quiet && session.size() == 1, session.host()};
+    // Render bars on a terminal only: in a log the study's own line per job is the progress.
+    const study::JobContext context{options.threads, !options.quiet && session.size() == 1 && stderr_is_terminal(),
+                                    session.host()};
     const auto start = std::chrono::steady_clock::now();
     int finished = 0;
     std::vector<std::string> failures;

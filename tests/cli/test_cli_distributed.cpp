@@ -204,8 +204,8 @@ void interrupt_render(const std::vector<std::string>& launcher, int sig, const s
                                  std::string("spp=12800"), std::string("-o"), exr.string()})
         argv.push_back(a);
     BackgroundProcess p(argv, temp_dir() / (name + ".out"), temp_dir() / (name + ".err"));
-    // Rank 0's bar shows that the ranks are rendering.
-    for (int i = 0; i < 3000 && p.err().find("elapsed") == std::string::npos; ++i)
+    // Rank 0's progress line (stderr is a file: "render: started") shows that the ranks are rendering.
+    for (int i = 0; i < 3000 && p.err().find("render: started") == std::string::npos; ++i)
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
     ASSERT_TRUE(p.running()) << p.err();
     p.signal(sig);

@@ -605,7 +605,8 @@ void expect_interrupt_writes_image(int signal_number) {
     ASSERT_EQ(posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ), 0);
     posix_spawn_file_actions_destroy(&actions);
     const auto started = std::chrono::steady_clock::now();
-    while (surfscatter::test::read_whole_file(err).find("render [") == std::string::npos) {
+    // stderr is a file: the progress reports the start on a line of its own ("render: started").
+    while (surfscatter::test::read_whole_file(err).find("render: started") == std::string::npos) {
         if (std::chrono::steady_clock::now() - started > std::chrono::seconds(60)) {
             kill(pid, SIGKILL);
             waitpid(pid, nullptr, 0);

@@ -144,5 +144,5 @@ TEST(CliRender, ProgressIntoAPipeIsOneLine) {
     const auto result = run_cli({"render", scene.string(), "--spp", "2", "-o", (temp_dir() / "progress.exr").string()});
     ASSERT_EQ(result.exit_code, 0) << result.err;
     EXPECT_EQ(result.err.find('\r'), std::string::npos) << result.err;
-    EXPECT_NE(result.err.find("render: 100.0% done in"), std::string::npos) << result.err;
+    EXPECT_NE(result.err.find("render: started\nrender: 100.0% done in"), std::string::npos) << result.err;
 }

@@ -32,6 +32,8 @@ int interrupt_signal() { return g_interrupted; }
 void clear_interrupt() { g_interrupted = 0; }
 void request_interrupt() { g_interrupted = SIGINT; }
 
+bool stderr_is_terminal() { return isatty(fileno(stderr)) == 1; }
+
 std::string format_duration(double seconds) {
     if (!(seconds >= 0.0)) return "--";
     if (seconds < 60.0) return fmt::format("{:.1f}s", seconds);
@@ -43,7 +45,13 @@ std::string format_duration(double seconds) {
 Progress::Progress(std::string label, std::uint64_t total, bool enabled)
     : label_(std::move(label)), total_(total == 0 ? 1 : total), enabled_(enabled),
       // A log file or pipe gets the final line only: redrawn bars left a study's log 43 KB of carriage returns.
-      terminal_(isatty(fileno(stderr)) == 1), start_(std::chrono::steady_clock::now()), last_draw_(start_) {}
+      terminal_(stderr_is_terminal()), start_(std::chrono::steady_clock::now()), last_draw_(start_) {
+    // A log shows what is under way (and a test or a watcher when to act), one line at the start, one at the end.
+    if (enabled_ && !terminal_) {
+        std::fprintf(stderr, "%s: started\n", label_.c_str());
+        std::fflush(stderr);
+    }
+}
 
 Progress::~Progress() { finish(); }
 

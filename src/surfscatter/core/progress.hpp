@@ -1,6 +1,7 @@
 #pragma once
 // Progress reporting for long jobs: percentage and ETA on stderr, safe to call from many threads. A bar redrawn in
-// place when stderr is a terminal; otherwise (a log file, a pipe) only the final line, without carriage returns.
+// place when stderr is a terminal; otherwise (a log file, a pipe) a line when it starts ("render: started") and the
+// final one, without carriage returns.
 #include <atomic>
 #include <chrono>
 #include <cstdint>
@@ -8,6 +9,8 @@
 #include <string>
 
 namespace surfscatter {
+
+bool stderr_is_terminal();  // whether progress is drawn as a bar
 
 class Progress {
 public:
