@@ -229,13 +229,21 @@ void fit(const FitArgs& args) {
     options.min_ring = args.min_ring;
     options.max_nyquist_fraction = args.max_zeta_fraction;
     const surface::SurfaceFit result = surface::fit_surface(map, options);
-    const bool resolved = result.kc.failure.empty();
-
-    if (resolved) {
-        std::printf("sigma_h = %s\n", format_number(result.kc.sigma_h_um).c_str());
-        std::printf("corr_length = %s\n", format_number(result.kc.corr_length_um).c_str());
-        std::printf("gamma = %s\n", format_number(result.kc.gamma).c_str());
+    std::string csv = args.csv;
+    if (csv.empty() && !args.plot.empty()) csv = std::filesystem::path(args.plot).replace_extension(".csv").string();
+    // An unresolved fit prints nothing on stdout (a failing command's output is its error line alone) but still
+    // writes its plot and CSV: a user must see the PSD that did not fit.
+    const auto write_outputs = [&] {
+        if (!csv.empty()) write_psd_csv(result, csv);
+        if (!args.plot.empty()) write_fit_plot(args, map, result, csv);
+    };
+    if (!result.kc.failure.empty()) {
+        write_outputs();
+        surface::require_resolved(result.kc);
     }
+    std::printf("sigma_h = %s\n", format_number(result.kc.sigma_h_um).c_str());
+    std::printf("corr_length = %s\n", format_number(result.kc.corr_length_um).c_str());
+    std::printf("gamma = %s\n", format_number(result.kc.gamma).c_str());
     std::printf("rms_slope = %s\n", format_number(result.rms_slope).c_str());
     if (args.smoothing)
         std::printf("rms_slope_smoothed = %s\n",
@@ -249,7 +257,7 @@ void fit(const FitArgs& args) {
     std::printf("texture_aspect_ratio = %s\n", format_number(result.acv.texture_aspect_ratio).c_str());
     std::printf("lay_direction_deg = %s\n", format_number(result.acv.slowest_direction_deg).c_str());
     print_value("valid_fraction", map.valid_fraction());
-    if (resolved && result.kc.log_residual_rms > surface::kPoorFitFactor * result.kc.statistical_floor)
+    if (result.kc.log_residual_rms > surface::kPoorFitFactor * result.kc.statistical_floor)
         std::printf("warning = the KC model fits this PSD poorly (log_residual_rms %.3g, %.1f times its statistical "
                     "floor): use --psd measured for the map's own spectrum\n",
                     result.kc.log_residual_rms, result.kc.log_residual_rms / result.kc.statistical_floor);
@@ -258,13 +266,7 @@ void fit(const FitArgs& args) {
                     "misrepresents a directional surface\n",
                     result.acv.texture_aspect_ratio, result.acv.str_is_bound ? " (an upper bound)" : "",
                     result.acv.slowest_direction_deg);
-
-    std::string csv = args.csv;
-    if (csv.empty() && !args.plot.empty()) csv = std::filesystem::path(args.plot).replace_extension(".csv").string();
-    if (!csv.empty()) write_psd_csv(result, csv);
-    // The plot is written whether or not the fit is resolved: a user must see the PSD that did not fit.
-    if (!args.plot.empty()) write_fit_plot(args, map, result, csv);
-    surface::require_resolved(result.kc);
+    write_outputs();
 }
 
 void write_fit_plot(const FitArgs& args, const surface::HeightMap& map, const surface::SurfaceFit& result,
