@@ -2,9 +2,13 @@
 // the board image that `surfscatter board` wrote, lying flat, seen from several viewpoints through a known camera
 // with barrel distortion (tests/photo/synthetic.hpp: exact ray casting, 3x3 sub-pixels averaged in linear light,
 // sRGB-encoded 8-bit PNG). Writes the photographs, the true camera (camera_true.yml: what calibrate should recover)
-// and each photograph's true camera-to-board pose (views.json, the board frame of `pose --board`).
+// and each photograph's true camera-to-board pose (views.json, the board frame of `pose --board`); and, for
+// `colorcorrect`, a ColorChecker under a warm cast and uneven light (chart.jpg, JPEG as a camera writes it) with a grey card in the same light
+// (grey_card.jpg).
 //
 //   example-board-photos <board.png> <output folder>
+#include <algorithm>
+#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +21,8 @@
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/io/raster.hpp"
 #include "surfscatter/photo/camera_model.hpp"
+#include "surfscatter/photo/color_checker.hpp"
+#include "surfscatter/photo/photo_io.hpp"
 
 namespace {
 
@@ -30,6 +36,32 @@ photo::CameraModel example_camera() {
     c.matrix = cv::Matx33d(673.0, 0.0, 325.0, 0.0, 670.5, 234.8, 0.0, 0.0, 1.0);
     c.distortion = {-0.16, 0.09, 0.0012, -0.0008, 0.0};
     return c;
+}
+
+// The light of the chart photograph: a warm cast (the matrix of tests/cli/test_cli_photo.cpp's chart) times a fall-off
+// of 30 % from the image's centre to its corners, which only the grey card's flat field removes.
+cv::Mat cast_light(const cv::Mat& linear_rgb) {
+    const cv::Matx33d cast(0.80, 0.10, -0.02, 0.04, 0.62, 0.08, -0.02, 0.06, 0.45);
+    cv::Mat out(linear_rgb.size(), CV_32FC3);
+    const double cx = 0.5 * (linear_rgb.cols - 1), cy = 0.5 * (linear_rgb.rows - 1), r2 = cx * cx + cy * cy;
+    for (int y = 0; y < linear_rgb.rows; ++y)
+        for (int x = 0; x < linear_rgb.cols; ++x) {
+            const double falloff = 1.0 - 0.3 * ((x - cx) * (x - cx) + (y - cy) * (y - cy)) / r2;
+            const cv::Vec3f v = linear_rgb.at<cv::Vec3f>(y, x);
+            const cv::Vec3d c = falloff * (cast * cv::Vec3d(v[0], v[1], v[2]));
+            out.at<cv::Vec3f>(y, x) = cv::Vec3f(float(c[0]), float(c[1]), float(c[2]));
+        }
+    return out;
+}
+
+void write_chart_photos(const std::filesystem::path& folder, cv::Size size) {
+    const photo::ChartReference reference = photo::read_chart_reference();
+    std::array<photo::Vec3d, photo::kChartPatches> patches;
+    for (std::size_t i = 0; i < patches.size(); ++i)
+        for (int c = 0; c < 3; ++c) patches[i][c] = std::clamp(reference.linear_srgb[i][c], 0.0, 1.0);
+    const std::array<cv::Point2f, 4> corners{cv::Point2f{133, 100}, {507, 113}, {497, 373}, {143, 363}};
+    photo::write_photo(folder / "chart.jpg", cast_light(synthetic::chart_photo(patches, size, corners)));
+    photo::write_photo(folder / "grey_card.jpg", cast_light(cv::Mat(size, CV_32FC3, cv::Scalar::all(0.45))));
 }
 
 int run(const std::filesystem::path& board_png, const std::filesystem::path& folder) {
@@ -68,6 +100,7 @@ int run(const std::filesystem::path& board_png, const std::filesystem::path& fol
                          {"camera_to_board", matrix}});
     }
     photo::write_camera(folder / "camera_true.yml", camera);
+    write_chart_photos(folder, camera.image_size);
     std::ofstream(folder / "views.json")
         << nlohmann::json{{"board", board_png.filename().string()},
                           {"frame", "board frame of `pose --board`: origin at the board's centre, +y to its top, "
@@ -75,7 +108,8 @@ int run(const std::filesystem::path& board_png, const std::filesystem::path& fol
                           {"views", views}}
                .dump(2)
         << "\n";
-    std::printf("wrote %zu photographs, camera_true.yml and views.json to %s\n", eyes.size(), folder.c_str());
+    std::printf("wrote %zu board photographs, camera_true.yml, views.json, chart.jpg and grey_card.jpg to %s\n",
+                eyes.size(), folder.c_str());
     return 0;
 }
 
