@@ -16,6 +16,7 @@
 #include "surfscatter/io/raster.hpp"
 #include "surfscatter/photo/camera_model.hpp"
 #include "surfscatter/photo/markers.hpp"
+#include "surfscatter/photo/photo_io.hpp"
 
 namespace surfscatter::photo {
 namespace {
@@ -27,16 +28,9 @@ using test::scratch_directory;
 
 const fs::path kExampleData = fs::path(SURFSCATTER_SOURCE_DIR) / "examples" / "data";
 
-cv::Mat grey(const io::Raster& raster) {
-    cv::Mat image(raster.height, raster.width, CV_8UC1);
-    for (int y = 0; y < raster.height; ++y)
-        for (int x = 0; x < raster.width; ++x) image.at<std::uint8_t>(y, x) = static_cast<std::uint8_t>(raster.at(x, y, 0));
-    return image;
-}
-
 // The board image as a camera looking straight at it would see it, `width` px wide, for detect_board.
 BoardView detect_in_print(const fs::path& png, const BoardSpec& spec, double width) {
-    const cv::Mat image = grey(io::read_raster(png));
+    const cv::Mat image = read_grey8(png, "board");
     cv::Mat small;
     const double scale = width / image.cols;
     cv::resize(image, small, cv::Size(), scale, scale, cv::INTER_AREA);
@@ -104,7 +98,7 @@ TEST(BoardCli, GridAndChessboardsAreFoundInTheirPrints) {
     camera.matrix = cv::Matx33d(400, 0, 200, 0, 400, camera.image_size.height / 2.0, 0, 0, 1);
     camera.distortion = {0, 0, 0, 0, 0};
     cv::Mat small;
-    cv::resize(grey(grid_png), small, camera.image_size, 0, 0, cv::INTER_AREA);
+    cv::resize(read_grey8(dir / "grid.png", "board"), small, camera.image_size, 0, 0, cv::INTER_AREA);
     const BoardView grid_view = detect_board(synthetic::linear_rgb_from_srgb8(small), grid, &camera);
     ASSERT_TRUE(grid_view.found()) << grid_view.problem;
     EXPECT_EQ(grid_view.markers_detected, 12);
@@ -150,7 +144,8 @@ TEST(BoardCli, BadOptionsExitWithStatus2AndOneLineNamingTheValue) {
     EXPECT_FALSE(fs::exists(out));
 }
 
-// The committed example photographs are what `board` and example-board-photos make today, sample for sample.
+// The committed example photographs (boards, chart, grey card) are what `board` and example-board-photos make today,
+// sample for sample.
 TEST(ExampleData, BoardPhotosAreRemadeByTheCommandsOfTheirReadme) {
     const fs::path dir = scratch_directory("surfscatter_example_photos");
     auto r = run_cli({"board", "--squares", "10x7", "--square-length", "0.03", "--marker-length", "0.022", "--dpi",
@@ -160,8 +155,9 @@ TEST(ExampleData, BoardPhotosAreRemadeByTheCommandsOfTheirReadme) {
                                 test::shell_quote((dir / "board.png").string()) + " " +
                                 test::shell_quote((dir / "photos").string()) + " >/dev/null";
     ASSERT_EQ(std::system(command.c_str()), 0);
-    for (int i = 1; i <= 7; ++i) {
-        const std::string name = "board" + std::to_string(i) + ".png";
+    std::vector<std::string> names{"chart.jpg", "grey_card.jpg"};
+    for (int i = 1; i <= 7; ++i) names.push_back("board" + std::to_string(i) + ".png");
+    for (const std::string& name : names) {
         const io::Raster made = io::read_raster(dir / "photos" / name);
         const io::Raster committed = io::read_raster(kExampleData / "photos" / name);
         ASSERT_EQ(made.width, committed.width) << name;
