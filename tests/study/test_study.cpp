@@ -328,10 +328,20 @@ TEST(StudyRun, BrdfJobsWriteTablesAndTheManifestKnowsWhenTheyAreUpToDate) {
               std::string::npos);
 }
 
-TEST(StudyRun, ASheetCroppedToTheDifferenceWithCaptionsAndWarningsIsWritten) {
-    const fs::path dir = scratch("sheet_crop");
+// A study in `dir` only (jobs built by hand), and a job of it run and expected done with `image` written.
+Study study_in(const fs::path& dir) {
     Study s;
     s.folder = dir;
+    return s;
+}
+void expect_done(const Study& s, const Job& job, const fs::path& image) {
+    const nlohmann::json report = run_job(s, job, JobContext{1, false, "testhost"});
+    EXPECT_EQ(report["status"], "done") << report.dump();
+    EXPECT_TRUE(fs::exists(image));
+}
+
+TEST(StudyRun, ASheetCroppedToTheDifferenceWithCaptionsAndWarningsIsWritten) {
+    const fs::path dir = scratch("sheet_crop");
     // Two 64 x 48 renders alike but for a 12 x 10 patch (the "sample"), and a missing third panel.
     fs::create_directories(dir / "renders");
     for (const char* name : {"a", "b"}) {
@@ -351,15 +361,11 @@ TEST(StudyRun, ASheetCroppedToTheDifferenceWithCaptionsAndWarningsIsWritten) {
                                                           nlohmann::json::array({"C", "renders/c.png"})})}};
     sheet.outputs = {"sheets/view1.png"};
     sheet.inputs = {"renders/a.png", "renders/b.png", "renders/c.png"};
-    const nlohmann::json report = run_job(s, sheet, JobContext{1, false, "testhost"});
-    EXPECT_EQ(report["status"], "done") << report.dump();
-    EXPECT_TRUE(fs::exists(dir / "sheets/view1.png"));
+    expect_done(study_in(dir), sheet, dir / "sheets/view1.png");
 }
 
 TEST(StudyRun, ASlicePlotWithTheStudysLabelsIsWritten) {
     const fs::path dir = scratch("slice_plot");
-    Study s;
-    s.folder = dir;
     fs::create_directories(dir / "brdf");
     for (const char* model : {"ghs", "ggx"}) {
         std::ofstream csv(dir / "brdf" / (std::string(model) + ".csv"));
@@ -373,9 +379,7 @@ TEST(StudyRun, ASlicePlotWithTheStudysLabelsIsWritten) {
                        {"parts", {"brdf/ghs.csv", "brdf/ggx.csv"}},
                        {"labels", {{"ghs", "GHS"}, {"ggx", "GGX (measured slope)"}}}};
     plot.outputs = {"brdf/slice_550nm.csv", "brdf/slice_550nm.png"};
-    const nlohmann::json report = run_job(s, plot, JobContext{1, false, "testhost"});
-    EXPECT_EQ(report["status"], "done") << report.dump();
-    EXPECT_TRUE(fs::exists(dir / "brdf/slice_550nm.png"));
+    expect_done(study_in(dir), plot, dir / "brdf/slice_550nm.png");
 }
 
 TEST(StudyRun, ASheetWithoutAnyOfItsImagesFailsSayingWhy) {
