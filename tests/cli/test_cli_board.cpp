@@ -1,5 +1,6 @@
 // `surfscatter board` (printable boards as PNG + PDF at their size) and the example photographs of examples/data,
 // which example-board-photos made from such a board: calibrate and pose must recover the camera that took them.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -8,6 +9,7 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include <zlib.h>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -37,9 +39,26 @@ BoardView detect_in_print(const fs::path& png, const BoardSpec& spec, double wid
     return detect_board(synthetic::linear_rgb_from_srgb8(small), spec);
 }
 
-// MediaBox and the cross-reference table of a PDF that `board` wrote; every object offset must point at "N 0 obj".
+// MediaBox and the cross-reference table of a PDF that `board` wrote (every object offset must point at "N 0 obj"),
+// and its image: the PNG's samples, deflated.
 void expect_valid_pdf(const fs::path& pdf, double width_mm, double height_mm) {
     const std::string text = read_whole_file(pdf.string());
+    {
+        const io::Raster png = io::read_raster(fs::path(pdf).replace_extension(".png"));
+        std::smatch image;
+        ASSERT_TRUE(std::regex_search(text, image, std::regex(R"(/Width (\d+) /Height (\d+) /ColorSpace /DeviceGray )"
+                                                                R"(/BitsPerComponent 8 .*?/Length (\d+) >>\nstream\n)")));
+        EXPECT_EQ(std::stoi(image[1]), png.width);
+        EXPECT_EQ(std::stoi(image[2]), png.height);
+        std::vector<unsigned char> samples(png.samples.size());
+        uLongf size = static_cast<uLongf>(samples.size());
+        const std::size_t start = static_cast<std::size_t>(image.position(0) + image.length(0));
+        ASSERT_EQ(uncompress(samples.data(), &size, reinterpret_cast<const Bytef*>(text.data() + start),
+                             std::stoul(image[3])),
+                  Z_OK);
+        ASSERT_EQ(size, samples.size());
+        EXPECT_TRUE(std::equal(samples.begin(), samples.end(), png.samples.begin()));
+    }
     ASSERT_EQ(text.rfind("%PDF-1.4\n", 0), 0u);
     std::smatch box;
     ASSERT_TRUE(std::regex_search(text, box, std::regex(R"(/MediaBox \[0 0 ([0-9.]+) ([0-9.]+)\])")));
