@@ -3,8 +3,8 @@
 // with barrel distortion (tests/photo/synthetic.hpp: exact ray casting, 3x3 sub-pixels averaged in linear light,
 // sRGB-encoded 8-bit PNG). Writes the photographs, the true camera (camera_true.yml: what calibrate should recover)
 // and each photograph's true camera-to-board pose (views.json, the board frame of `pose --board`); and, for
-// `colorcorrect`, a ColorChecker under a warm cast and uneven light (chart.jpg, JPEG as a camera writes it) with a grey card in the same light
-// (grey_card.jpg).
+// `colorcorrect`, a ColorChecker under a warm cast and uneven light (chart.jpg, JPEG as a camera writes it) with a
+// grey card in the same light (grey_card.jpg).
 //
 //   example-board-photos <board.png> <output folder>
 #include <algorithm>
@@ -70,7 +70,8 @@ int run(const std::filesystem::path& board_png, const std::filesystem::path& fol
         fail("{} is not a board written by `surfscatter board` (8-bit grey PNG with its density)", board_png.string());
     cv::Mat texture(raster.height, raster.width, CV_8UC1);
     for (int y = 0; y < raster.height; ++y)
-        for (int x = 0; x < raster.width; ++x) texture.at<std::uint8_t>(y, x) = static_cast<std::uint8_t>(raster.at(x, y, 0));
+        for (int x = 0; x < raster.width; ++x)
+            texture.at<std::uint8_t>(y, x) = static_cast<std::uint8_t>(raster.at(x, y, 0));
     const double width = raster.width / raster.pixels_per_metre, height = raster.height / raster.pixels_per_metre;
 
     const photo::CameraModel camera = example_camera();

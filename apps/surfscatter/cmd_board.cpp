@@ -54,6 +54,9 @@ void run(const Options& o) {
         fail("--margin {} must lie between 0 and {} m", margin, photo::kMaxBoardLength);
 
     const photo::BoardImage board = photo::draw_board(spec, o.dpi / kMetresPerInch, margin);
+    if (board.width_m > io::kMaxPdfPageMetres || board.height_m > io::kMaxPdfPageMetres)
+        fail("the board's page would be {:.0f} x {:.0f} mm, more than a PDF page's {:.0f} mm a side: make the board "
+             "smaller", board.width_m * 1e3, board.height_m * 1e3, io::kMaxPdfPageMetres * 1e3);
     io::Raster raster(board.image.cols, board.image.rows, 1, 8);
     for (int y = 0; y < board.image.rows; ++y)
         for (int x = 0; x < board.image.cols; ++x) raster.at(x, y, 0) = board.image.at<std::uint8_t>(y, x);

@@ -46,8 +46,9 @@ void expect_valid_pdf(const fs::path& pdf, double width_mm, double height_mm) {
     {
         const io::Raster png = io::read_raster(fs::path(pdf).replace_extension(".png"));
         std::smatch image;
-        ASSERT_TRUE(std::regex_search(text, image, std::regex(R"(/Width (\d+) /Height (\d+) /ColorSpace /DeviceGray )"
-                                                                R"(/BitsPerComponent 8 .*?/Length (\d+) >>\nstream\n)")));
+        const std::regex header(R"(/Width (\d+) /Height (\d+) /ColorSpace /DeviceGray )"
+                                R"(/BitsPerComponent 8 .*?/Length (\d+) >>\nstream\n)");
+        ASSERT_TRUE(std::regex_search(text, image, header));
         EXPECT_EQ(std::stoi(image[1]), png.width);
         EXPECT_EQ(std::stoi(image[2]), png.height);
         std::vector<unsigned char> samples(png.samples.size());
@@ -151,6 +152,14 @@ TEST(BoardCli, BadOptionsExitWithStatus2AndOneLineNamingTheValue) {
         {{"--board", "chessboard", "--squares", "9x6", "--square-length", "0.025", "--marker-length", "0.01", "-o",
           out},
          "--marker-length"},
+        {{"--squares", "200x10", "--square-length", "0.03", "--marker-length", "0.022", "--dictionary", "6X6_1000",
+          "--dpi", "50", "-o", out},
+         "more than a PDF page's 5080 mm a side"},
+        {{"--squares", "10x7", "--square-length", "0.03", "--marker-length", "0.022", "--dpi", "nan", "-o", out},
+         "--dpi nan"},
+        {{"--squares", "10x7", "--square-length", "0.03", "--marker-length", "0.022", "-o",
+          (dir / "no" / "such" / "b.png").string()},
+         "cannot open"},
     };
     for (const auto& [options, expected] : cases) {
         std::vector<std::string> args{"board"};
@@ -193,7 +202,8 @@ TEST(ExampleData, BoardPhotosAreRemadeByTheCommandsOfTheirReadme) {
 TEST(ExampleData, CalibrateAndPoseOnTheExamplePhotosRecoverTheTrueCamera) {
     const fs::path dir = scratch_directory("surfscatter_example_photos");
     std::vector<std::string> args{"calibrate"};
-    for (int i = 1; i <= 7; ++i) args.push_back((kExampleData / "photos" / ("board" + std::to_string(i) + ".png")).string());
+    for (int i = 1; i <= 7; ++i)
+        args.push_back((kExampleData / "photos" / ("board" + std::to_string(i) + ".png")).string());
     for (const char* a : {"--board", "charuco", "--squares", "10x7", "--square-length", "0.03", "--marker-length",
                           "0.022", "-o"})
         args.push_back(a);
@@ -208,7 +218,8 @@ TEST(ExampleData, CalibrateAndPoseOnTheExamplePhotosRecoverTheTrueCamera) {
     EXPECT_NEAR(found.cy(), truth.cy(), 1.5);
     EXPECT_NEAR(found.distortion[0], truth.distortion[0], 0.01);
 
-    const nlohmann::json views = nlohmann::json::parse(read_whole_file((kExampleData / "photos" / "views.json").string()));
+    const nlohmann::json views =
+        nlohmann::json::parse(read_whole_file((kExampleData / "photos" / "views.json").string()));
     for (int i : {1, 3, 6}) {
         const auto& view = views["views"][static_cast<std::size_t>(i - 1)];
         r = run_cli({"pose", (kExampleData / "photos" / view["image"].get<std::string>()).string(), "--camera",

@@ -14,7 +14,6 @@ namespace surfscatter::io {
 namespace {
 
 constexpr double kPointsPerMetre = 72.0 / 0.0254;
-constexpr double kMaxPagePoints = 200.0 * 72.0;  // 200 inches: Acrobat's largest page
 
 std::string deflate(const std::vector<unsigned char>& bytes, const std::filesystem::path& path) {
     uLongf size = compressBound(static_cast<uLong>(bytes.size()));
@@ -33,7 +32,7 @@ void write_image_pdf(const std::filesystem::path& path, const Raster& raster, do
         fail("{}: a PDF page holds an 8-bit grey or RGB image, not {} channels of {} bits", path.string(),
              raster.channels, raster.bit_depth);
     const double width_pt = width_m * kPointsPerMetre, height_pt = height_m * kPointsPerMetre;
-    if (!(width_pt > 0.0 && height_pt > 0.0 && width_pt <= kMaxPagePoints && height_pt <= kMaxPagePoints))
+    if (!(width_m > 0.0 && height_m > 0.0 && width_m <= kMaxPdfPageMetres && height_m <= kMaxPdfPageMetres))
         fail("{}: page {} x {} m must be positive and at most 200 inches (5.08 m) a side", path.string(), width_m,
              height_m);
     std::vector<unsigned char> bytes(raster.samples.size());

@@ -8,6 +8,9 @@
 
 namespace surfscatter::io {
 
+// The largest page side PDF readers take: 200 inches (Acrobat's limit), in metres.
+inline constexpr double kMaxPdfPageMetres = 200.0 * 0.0254;
+
 // Writes `raster` (8-bit grey or RGB) as the only content of a one-page PDF 1.4 whose page is `width_m` x
 // `height_m` metres (PDF points of 1/72 inch; at most 200 inches a side, the largest page PDF readers take), the
 // image deflated (zlib) and drawn over the whole page. Throws Error naming the file when it cannot be written, the

@@ -29,7 +29,8 @@ BoardImage draw_board(const BoardSpec& board, double pixels_per_metre, double ma
         height_m = board.squares_y * board.square_length;
     }
     const double margin_px = std::round(margin_m * out.pixels_per_metre);
-    const double board_w = std::round(width_m * out.pixels_per_metre), board_h = std::round(height_m * out.pixels_per_metre);
+    const double board_w = std::round(width_m * out.pixels_per_metre);
+    const double board_h = std::round(height_m * out.pixels_per_metre);
     const double image_w = board_w + 2.0 * margin_px, image_h = board_h + 2.0 * margin_px;
     if (image_w > kMaxBoardImageSide || image_h > kMaxBoardImageSide)
         fail("the board would be {:.0f} x {:.0f} pixels at {:.4g} dpi, more than {} a side: lower the density",
@@ -46,7 +47,8 @@ BoardImage draw_board(const BoardSpec& board, double pixels_per_metre, double ma
         // OpenCV's convention (and its ChArUco board's): the top-left square is black.
         for (int j = 0; j < board.squares_y; ++j)
             for (int i = 0; i < board.squares_x; ++i)
-                if ((i + j) % 2 == 0) out.image(cv::Rect(margin + i * square, margin + j * square, square, square)).setTo(0);
+                if ((i + j) % 2 == 0)
+                    out.image(cv::Rect(margin + i * square, margin + j * square, square, square)).setTo(0);
     }
     out.width_m = size.width / out.pixels_per_metre;
     out.height_m = size.height / out.pixels_per_metre;
