@@ -19,6 +19,7 @@
 #include "surfscatter/photo/camera_model.hpp"
 #include "surfscatter/photo/markers.hpp"
 #include "surfscatter/photo/photo_io.hpp"
+#include "surfscatter/surface/height_map_io.hpp"
 
 namespace surfscatter::photo {
 namespace {
@@ -197,6 +198,26 @@ TEST(ExampleData, BoardPhotosAreRemadeByTheCommandsOfTheirReadme) {
     }
     EXPECT_EQ(read_whole_file((dir / "photos" / "views.json").string()),
               read_whole_file((kExampleData / "photos" / "views.json").string()));
+}
+
+// The example height map is what the README's synth command makes (heights within float rounding: the .gsf holds
+// 32-bit floats, and another CPU's FFT code may round differently).
+TEST(ExampleData, TheHeightMapIsRemadeByTheCommandOfItsReadme) {
+    const fs::path dir = scratch_directory("surfscatter_example_photos");
+    const auto r = run_cli({"surface", "synth", "--model", "kc", "--sigma", "0.05", "--corr-length", "2", "--gamma",
+                            "3", "--size", "128", "--spacing", "0.5", "--seed", "1", "--title",
+                            "surfscatter example: KC sigma 0.05 um, L 2 um, gamma 3", "-o",
+                            (dir / "kc_surface.gsf").string()});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const surface::HeightMap made = surface::read_gsf(dir / "kc_surface.gsf");
+    const surface::HeightMap committed = surface::read_gsf(kExampleData / "kc_surface.gsf");
+    ASSERT_EQ(made.nx(), committed.nx());
+    ASSERT_EQ(made.ny(), committed.ny());
+    EXPECT_EQ(made.spacing_x(), committed.spacing_x());
+    double largest = 0.0;
+    for (std::size_t i = 0; i < made.size(); ++i)
+        largest = std::max(largest, std::abs(made.heights()[i] - committed.heights()[i]));
+    EXPECT_LT(largest, 1e-6);  // um; the heights are about 0.05 um
 }
 
 TEST(ExampleData, CalibrateAndPoseOnTheExamplePhotosRecoverTheTrueCamera) {
