@@ -40,6 +40,17 @@ output, not run
 | z | `surfscatter pose photo.jpg [--marker-id 0]` and `surfscatter surface info MAP --plot psd.png` |
 
 Prose naming `surfscatter render` and `surfscatter brdf eval`, `make test` and `build/bench/bench_bsdf --x`.
+
+    surfscatter metals --out m
+    surfscatter ior --material Ag --wavelength 500   # an indented block of commands
+
+Its syntax:
+
+    surfscatter surface info MAP [--form poly2]
+
+- a list item
+
+    surfscatter ior --material Cu --wavelength 500
 """
 
 
@@ -55,7 +66,9 @@ def test_extracts_blocks_and_whole_inline_commands_and_honours_the_marker(tmp_pa
         (12, "python", 'print("hello")', ""),
         (22, "sh", "surfscatter fresnel --material Au --wavelength 550 --theta 0", ""),
         (23, "sh", "surfscatter render big.xml --spp 4096", "hours"),
-    ]
+        (28, "sh", "surfscatter metals --out m\nsurfscatter ior --material Ag --wavelength 500   # an indented block "
+                   "of commands", ""),
+    ]  # not the syntax line (MAP, [...]) nor the list item's continuation
 
 
 def test_a_failing_command_fails_the_run_naming_its_line(tmp_path):
