@@ -26,8 +26,9 @@ REPOSITORY = Path(__file__).resolve().parents[1]
 def arguments():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("height_map", nargs="?", type=Path,
-                        default=REPOSITORY.parent / "shared" / "data" / "realdata" / "heightmaps" / "opd-1.opd",
-                        help="height map file (default: the Wyko OPD measurement of the shared real data)")
+                        default=REPOSITORY / "examples" / "data" / "kc_surface.gsf",
+                        help="height map file (default: the synthetic KC surface of examples/data, "
+                             "sigma 0.05 um, L 2 um, gamma 3)")
     parser.add_argument("--material", default="Al", help="metal of the sample (default Al)")
     parser.add_argument("--wavelength", type=float, default=550.0, help="wavelength of the slices in nm")
     parser.add_argument("--spp", type=int, default=16, help="samples per pixel of the rendering")

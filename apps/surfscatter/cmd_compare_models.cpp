@@ -107,7 +107,9 @@ const Command command("compare-models", [](CLI::App& app) {
     sub->add_option("--height", args->height, "Image height");
     sub->add_option("--smoothing", args->smoothing, "Gaussian smoothing std for the smoothed GGX, um");
     add_number_list(sub, "--focus", args->focus, "World point (x,y,z, metres) the sheet's panels are cropped around");
-    sub->add_option("--focus-radius", args->focus_radius, "Half-size of the cropped square, metres (0: whole images)");
+    sub->add_option("--focus-radius", args->focus_radius,
+                    "Half-size of the cropped square, metres (0: whole images, the sheet's panels cropped to where the "
+                    "models differ)");
     sub->add_option("-o,--output-dir", args->output_dir, "Folder for the renders, sheets/, manifest.json, study.json");
     add_study_run_options(sub, args->run);
     sub->callback([args, sub] {

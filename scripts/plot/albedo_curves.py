@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Directional albedo against the incidence angle, one curve per model, from the CSV a study's albedo jobs write
-(model,theta_i,albedo,scatter,specular). Usage: albedo_curves.py albedo.csv out.png [title]"""
+(model,theta_i,albedo,scatter,specular).
+Usage: albedo_curves.py albedo.csv out.png [title] [name=label ...] (legends show a model's label instead of its name)"""
 import csv
 import sys
 from collections import defaultdict
@@ -14,6 +15,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 def main():
     path, out = sys.argv[1], sys.argv[2]
     title = sys.argv[3] if len(sys.argv) > 3 else ""
+    labels = dict(a.partition("=")[::2] for a in sys.argv[4:])
     curves = defaultdict(lambda: ([], [], []))
     with open(path) as f:
         for row in csv.DictReader(f):
@@ -22,7 +24,8 @@ def main():
             total.append(float(row["albedo"]))
             specular.append(float(row["specular"]))
     fig, ax = plt.subplots(figsize=(5.6, 3.8))
-    for model, (theta, total, specular) in curves.items():
+    for name, (theta, total, specular) in curves.items():
+        model = labels.get(name, name)
         line = ax.plot(theta, total, marker="o", ms=3, lw=1.3, label=model)[0]
         if any(s > 0 for s in specular):
             ax.plot(theta, specular, ls=":", lw=1.0, color=line.get_color(), label=f"{model} (delta part)")

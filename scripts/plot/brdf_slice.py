@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """In-plane BRDF slices written by `surfscatter brdf slice`: one panel per incidence angle, one curve per model,
-log scale; the delta (specular) part is printed in the legend. Usage: brdf_slice.py slices.csv out.png [title]"""
+log scale; the delta (specular) part is printed in the legend.
+Usage: brdf_slice.py slices.csv out.png [title] [name=label ...] (legends show a model's label instead of its name)"""
 import csv
 import sys
 from collections import defaultdict
@@ -14,6 +15,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 def main():
     path, out = sys.argv[1], sys.argv[2]
     title = sys.argv[3] if len(sys.argv) > 3 else ""
+    labels = dict(a.partition("=")[::2] for a in sys.argv[4:])
     data = defaultdict(lambda: ([], []))
     specular = {}
     with open(path) as f:
@@ -30,7 +32,8 @@ def main():
         for m in models:
             x, y = data[(ti, m)]
             y = [v if v > 0 else float("nan") for v in y]
-            label = m if specular[(ti, m)] == 0 else f"{m} (delta {specular[(ti, m)]:.3g})"
+            name = labels.get(m, m)
+            label = name if specular[(ti, m)] == 0 else f"{name} (delta {specular[(ti, m)]:.3g})"
             ax.semilogy(x, y, label=label, lw=1.3)
         ax.axvline(ti, color="0.7", lw=0.8, ls=":")
         ax.set_title(f"theta_i = {ti:g} deg")

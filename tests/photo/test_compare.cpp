@@ -70,6 +70,25 @@ TEST(Compare, RanksTheWrongRenderingBelowTheRightOne) {
     EXPECT_EQ(sheet.rows, 2 * (360 + 64));
 }
 
+TEST(Compare, WithAMaskTheSheetShowsTheMasksBoxEnlarged) {
+    const cv::Size size(160, 120);
+    const cv::Mat photo = highlight_image(size, {80, 55}, 25, {0.95f, 0.75f, 0.45f});
+    const cv::Mat render = photo * 0.5;
+    cv::Mat mask(size, CV_8UC1, cv::Scalar(0));
+    mask(cv::Rect(60, 40, 40, 20)).setTo(255);
+    // The 40 x 20 box with a quarter of its size on each side: 60 x 30 from (50, 35).
+    EXPECT_EQ(sheet_crop(size, mask), cv::Rect(50, 35, 60, 30));
+    EXPECT_EQ(sheet_crop(size, cv::Mat()), cv::Rect(0, 0, 160, 120));
+    cv::Mat most(size, CV_8UC1, cv::Scalar(255));
+    most(cv::Rect(0, 0, 4, 4)).setTo(0);
+    EXPECT_EQ(sheet_crop(size, most), cv::Rect(0, 0, 160, 120));  // nearly everything: the whole image
+
+    const ComparisonMetrics m = compare_to_photo(photo, render, mask, "half");
+    const cv::Mat sheet = comparison_sheet(photo, {render}, mask, {m});
+    EXPECT_EQ(sheet.cols, 2 * 480);
+    EXPECT_EQ(sheet.rows, 2 * (240 + 64));  // tiles of the crop's 2:1 aspect
+}
+
 TEST(Compare, BadInputsAreReported) {
     const cv::Mat photo = highlight_image({64, 48}, {30, 20}, 12, {1, 1, 1});
     EXPECT_THROW(compare_to_photo(photo, cv::Mat(40, 64, CV_32FC3, cv::Scalar::all(0.5)), cv::Mat(), "x"), Error);

@@ -2,6 +2,7 @@
 // and the MPI runs are exercised end to end in tests/cli/test_cli_distributed.cpp.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -10,9 +11,11 @@
 #include <unistd.h>
 
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/io/image.hpp"
 #include "surfscatter/study/jobs.hpp"
 #include "surfscatter/study/manifest.hpp"
 #include "surfscatter/study/run_job.hpp"
+#include "surfscatter/study/sheet_caption.hpp"
 #include "surfscatter/study/study.hpp"
 
 namespace surfscatter::study {
@@ -181,6 +184,54 @@ TEST(StudyJobs, ExpandsViewsModelsSurfacesLampsAndWavelengths) {
     for (const int d : sheet.dependencies) shown.insert(jobs.at(static_cast<std::size_t>(d)).id);
     EXPECT_EQ(shown, (std::set<std::string>{"render/kc/warm/view1/ggx", "render/kc/warm/view1/ghs",
                                             "render/kc/warm/view1/ssa", "overview/kc/warm/view1"}));
+    // Captions: label, surface and g0 (sigma 0.15 um at 550 nm: (4 pi 0.15 / 0.55)^2 = 11.7), SSA's warning.
+    EXPECT_EQ(sheet.parameters["panels"][0][0], "GGX\nsigma 0.15 um, g0 11.7 at 550 nm");
+    EXPECT_EQ(sheet.parameters["panels"][3][0],
+              "SSA GHS\nsigma 0.15 um, g0 11.7 at 550 nm\n!SSA outside its validity (g0 11.7 > 1): far too sharp");
+    EXPECT_EQ(sheet.parameters["crop_to_difference"], false);  // the study crops its renders itself
+    // Plots name the models by their labels.
+    const Job& plot = jobs.at(index.at("slice-plot/kc/450nm"));
+    EXPECT_EQ(plot.parameters["labels"], (nlohmann::json{{"ggx", "GGX"}, {"ghs", "ghs"}, {"ssa", "SSA GHS"}}));
+}
+
+TEST(StudyJobs, SheetColumnsFollowThePanelCountAndUncroppedSheetsCropToTheSample) {
+    EXPECT_EQ(sheet_columns(1, 0), 1);
+    EXPECT_EQ(sheet_columns(3, 0), 3);
+    EXPECT_EQ(sheet_columns(4, 0), 4);
+    EXPECT_EQ(sheet_columns(5, 0), 3);
+    EXPECT_EQ(sheet_columns(8, 0), 4);  // compare-models: seven models and the overview
+    EXPECT_EQ(sheet_columns(9, 0), 3);
+    EXPECT_EQ(sheet_columns(9, 2), 2);
+
+    // Two models, no crop, no columns: one row of two, cropped to where they differ; sigma from the scene's default
+    // (0.15 um), GGX within its validity there, and at sigma 0.01 um (g0 0.052) outside it.
+    const Study s = parse_study(R"({
+  "scene": ")" + kScene + R"(",
+  "views": [1],
+  "models": [{"name": "ggx", "label": "GGX", "model": "ggx_stats", "alpha_from": "measured"},
+             {"name": "ghs", "model": "ghs"}],
+  "surfaces": [{"name": "scene"}, {"name": "smooth", "sigma": 0.01}],
+  "render": {"spp": 4, "width": 64, "height": 48}
+})",
+                                "/base", "s.json");
+    int sheets = 0;
+    for (const Job& j : expand(s)) {
+        if (j.id == "sheet/scene/view1") {
+            ++sheets;
+            EXPECT_EQ(j.parameters["columns"], 2);
+            EXPECT_EQ(j.parameters["crop_to_difference"], true);
+            EXPECT_EQ(j.parameters["panels"][0][0], "GGX\nsigma 0.15 um, g0 11.7 at 550 nm");
+            EXPECT_EQ(j.parameters["panels"][1][0], "ghs\nsigma 0.15 um, g0 11.7 at 550 nm");
+        } else if (j.id == "sheet/smooth/view1") {
+            ++sheets;
+            EXPECT_EQ(j.parameters["panels"][0][0],
+                      "GGX\nsigma 0.01 um, g0 0.0522 at 550 nm\n!GGX outside its validity (g0 0.052 < 1): no specular part");
+        }
+    }
+    EXPECT_EQ(sheets, 2);
+    EXPECT_EQ(scene_default(kScene, "sigma"), "0.15");
+    EXPECT_EQ(scene_default(kScene, "no_such_parameter"), "");
+    EXPECT_EQ(scene_default("/no/such/scene.xml", "sigma"), "");
 }
 
 TEST(StudyJobs, TablesOnlyWhereSeveralJobsShareThem) {
@@ -275,6 +326,60 @@ TEST(StudyRun, BrdfJobsWriteTablesAndTheManifestKnowsWhenTheyAreUpToDate) {
     unknown.parameters["model_options"]["lamp_power"] = "1";
     EXPECT_NE(run_job(s, unknown, context)["error"].get<std::string>().find("'lamp_power' is not a parameter of bsdf 'ghs'"),
               std::string::npos);
+}
+
+// A study in `dir` only (jobs built by hand), and a job of it run and expected done with `image` written.
+Study study_in(const fs::path& dir) {
+    Study s;
+    s.folder = dir;
+    return s;
+}
+void expect_done(const Study& s, const Job& job, const fs::path& image) {
+    const nlohmann::json report = run_job(s, job, JobContext{1, false, "testhost"});
+    EXPECT_EQ(report["status"], "done") << report.dump();
+    EXPECT_TRUE(fs::exists(image));
+}
+
+TEST(StudyRun, ASheetCroppedToTheDifferenceWithCaptionsAndWarningsIsWritten) {
+    const fs::path dir = scratch("sheet_crop");
+    // Two 64 x 48 renders alike but for a 12 x 10 patch (the "sample"), and a missing third panel.
+    fs::create_directories(dir / "renders");
+    for (const char* name : {"a", "b"}) {
+        io::Image image(64, 48, 3, 0.2f);
+        for (int y = 20; y < 30; ++y)
+            for (int x = 30; x < 42; ++x) image.at(x, y, 0) = name[0] == 'a' ? 0.9f : 0.1f;
+        io::write_png(dir / "renders" / (std::string(name) + ".png"), image);
+    }
+    Job sheet;
+    sheet.id = "sheet/view1";
+    sheet.kind = JobKind::sheet;
+    sheet.parameters = {{"title", "t"},
+                        {"columns", 3},
+                        {"crop_to_difference", true},
+                        {"panels", nlohmann::json::array({nlohmann::json::array({"A\nsigma 0.15 um", "renders/a.png"}),
+                                                          nlohmann::json::array({"B\n!outside", "renders/b.png"}),
+                                                          nlohmann::json::array({"C", "renders/c.png"})})}};
+    sheet.outputs = {"sheets/view1.png"};
+    sheet.inputs = {"renders/a.png", "renders/b.png", "renders/c.png"};
+    expect_done(study_in(dir), sheet, dir / "sheets/view1.png");
+}
+
+TEST(StudyRun, ASlicePlotWithTheStudysLabelsIsWritten) {
+    const fs::path dir = scratch("slice_plot");
+    fs::create_directories(dir / "brdf");
+    for (const char* model : {"ghs", "ggx"}) {
+        std::ofstream csv(dir / "brdf" / (std::string(model) + ".csv"));
+        csv << "model,theta_i,theta_o_signed,brdf,specular\n";
+        for (int t = -80; t <= 80; t += 10) csv << model << ",30," << t << "," << 1.0 / (1 + std::abs(t - 30)) << ",0\n";
+    }
+    Job plot;
+    plot.id = "slice-plot/550nm";
+    plot.kind = JobKind::slice_plot;
+    plot.parameters = {{"title", "550 nm"},
+                       {"parts", {"brdf/ghs.csv", "brdf/ggx.csv"}},
+                       {"labels", {{"ghs", "GHS"}, {"ggx", "GGX (measured slope)"}}}};
+    plot.outputs = {"brdf/slice_550nm.csv", "brdf/slice_550nm.png"};
+    expect_done(study_in(dir), plot, dir / "brdf/slice_550nm.png");
 }
 
 TEST(StudyRun, ASheetWithoutAnyOfItsImagesFailsSayingWhy) {

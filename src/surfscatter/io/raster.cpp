@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <csetjmp>
 #include <cstdarg>
 #include <cstdio>
@@ -151,6 +152,11 @@ bool decode_png(PngState& state, Raster& raster) {
     if ((color_type & PNG_COLOR_MASK_COLOR) == 0 && depth < 8) png_set_expand_gray_1_2_4_to_8(png);
     if ((color_type & PNG_COLOR_MASK_COLOR) == 0 && channels == 4) png_set_gray_to_rgb(png);
     png_set_interlace_handling(png);
+    png_uint_32 density_x = 0, density_y = 0;
+    int density_unit = 0;
+    if (png_get_pHYs(png, info, &density_x, &density_y, &density_unit) && density_unit == PNG_RESOLUTION_METER &&
+        density_x == density_y)
+        raster.pixels_per_metre = density_x;
     png_read_update_info(png, info);
     const std::size_t row_bytes = raster.samples.size() / static_cast<std::size_t>(height) * (raster.bit_depth / 8);
     if (png_get_rowbytes(png, info) != row_bytes) png_error(png, "unexpected row size after the transformations");
@@ -213,6 +219,11 @@ bool encode_png(PngState& state, std::FILE* file, const Raster& raster) {
     // 8-bit files are sRGB-encoded images (film, sheets) and say so, as libpng's simplified API wrote them; 16-bit
     // ones are photographs in the encoding the user chose, written without a colour chunk as OpenCV did.
     if (raster.bit_depth == 8) png_set_sRGB(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
+    // The physical size of a printable image (a calibration board): pixels per metre, as pHYs holds it.
+    if (raster.pixels_per_metre > 0.0) {
+        const auto density = static_cast<png_uint_32>(std::lround(raster.pixels_per_metre));
+        png_set_pHYs(png, info, density, density, PNG_RESOLUTION_METER);
+    }
     // libpng's own "fast" choice (PNG_IMAGE_FLAG_FAST): a quarter of the default's deflate time.
     png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_NONE);
     png_set_compression_level(png, 3);

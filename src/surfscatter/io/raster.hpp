@@ -22,6 +22,7 @@ struct Raster {
     int bit_depth = 8;                   // 8 or 16
     std::vector<std::uint16_t> samples;  // width * height * channels, top row first, channels interleaved
     std::string warnings;                // the decoder's warnings on a file it could decode, "; "-separated
+    double pixels_per_metre = 0.0;       // PNG: the physical pixel density of a pHYs chunk in metres (0: none)
 
     Raster() = default;
     Raster(int width_, int height_, int channels_, int bit_depth_);  // zero samples; checks sizes and memory

@@ -98,7 +98,8 @@ constexpr int kLabelHeight = 64;
 
 cv::Mat fit_tile(const cv::Mat& bgr8, cv::Size tile) {
     cv::Mat out;
-    cv::resize(bgr8, out, tile, 0, 0, cv::INTER_AREA);
+    // Enlarged crops keep their pixels square and sharp: noise and edges as rendered, not smeared.
+    cv::resize(bgr8, out, tile, 0, 0, bgr8.cols < tile.width ? cv::INTER_NEAREST : cv::INTER_AREA);
     return out;
 }
 
@@ -116,11 +117,24 @@ cv::Mat display(const cv::Mat& linear, double peak) {
 }
 }  // namespace
 
-cv::Mat comparison_sheet(const cv::Mat& photo, const std::vector<cv::Mat>& renders, const cv::Mat& mask,
+cv::Rect sheet_crop(cv::Size size, const cv::Mat& mask) {
+    const cv::Rect whole(cv::Point(0, 0), size);
+    if (mask.empty() || cv::countNonZero(mask) == 0) return whole;
+    const cv::Rect box = cv::boundingRect(mask);
+    const int mx = std::max(4, box.width / 4), my = std::max(4, box.height / 4);
+    const cv::Rect crop = cv::Rect(box.x - mx, box.y - my, box.width + 2 * mx, box.height + 2 * my) & whole;
+    return crop.area() > 0.8 * whole.area() ? whole : crop;
+}
+
+cv::Mat comparison_sheet(const cv::Mat& full_photo, const std::vector<cv::Mat>& full_renders, const cv::Mat& mask,
                          const std::vector<ComparisonMetrics>& metrics) {
-    CV_Assert(renders.size() == metrics.size());
-    const cv::Mat m = effective_mask(photo, photo, mask);
-    const double peak = peak_in_mask(photo, m);
+    CV_Assert(full_renders.size() == metrics.size());
+    const cv::Mat full_mask = effective_mask(full_photo, full_photo, mask);
+    const double peak = peak_in_mask(full_photo, full_mask);
+    const cv::Rect crop = sheet_crop(full_photo.size(), mask);
+    const cv::Mat photo = full_photo(crop), m = full_mask(crop);
+    std::vector<cv::Mat> renders;
+    for (const cv::Mat& r : full_renders) renders.push_back(r(crop));
     const int tile_h = std::max(1, static_cast<int>(std::lround(double(kTileWidth) * photo.rows / photo.cols)));
     const cv::Size tile(kTileWidth, tile_h);
     const int columns = static_cast<int>(renders.size()) + 1;
@@ -148,7 +162,11 @@ cv::Mat comparison_sheet(const cv::Mat& photo, const std::vector<cv::Mat>& rende
         put_lines(sheet, {x, y}, lines);
         fit_tile(bgr8, tile).copyTo(sheet(cv::Rect(x, y + kLabelHeight, kTileWidth, tile_h)));
     };
-    place(display(photo, peak), 0, 0, {"photo", fmt::format("peak {:.4g} (shown as white)", peak)});
+    std::vector<std::string> photo_lines{"photo", fmt::format("peak {:.4g} (shown as white)", peak)};
+    if (crop.size() != full_photo.size())
+        photo_lines.push_back(fmt::format("mask's box: {}x{} px at ({}, {}) of {}x{}", crop.width, crop.height, crop.x,
+                                          crop.y, full_photo.cols, full_photo.rows));
+    place(display(photo, peak), 0, 0, photo_lines);
     put_lines(sheet, {0, tile_h + kLabelHeight},
               {"difference |photo - k render| / peak", fmt::format("false colour (inferno) 0 .. {:.3g}", largest)});
     for (std::size_t i = 0; i < renders.size(); ++i) {

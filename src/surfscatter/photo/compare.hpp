@@ -37,8 +37,13 @@ ComparisonMetrics compare_to_photo(const cv::Mat& photo, const cv::Mat& render, 
 
 // The sheet: top row photo and exposure-matched renderings (sRGB, divided by the photo's peak), bottom row the
 // false-colour (inferno) magnitude of the RGB difference on a common scale, each tile labelled with its metrics.
+// With a mask the tiles show the mask's bounding box (sheet_crop), enlarged: the sample, not the room around it.
 // Returns 8-bit B, G, R.
 cv::Mat comparison_sheet(const cv::Mat& photo, const std::vector<cv::Mat>& renders, const cv::Mat& mask,
                          const std::vector<ComparisonMetrics>& metrics);
+
+// What the sheet shows of an image of `size`: the whole image without a mask (or when the mask's box, with a margin
+// of a quarter of its size on each side, would cover more than 80 % of it), else that box.
+cv::Rect sheet_crop(cv::Size size, const cv::Mat& mask);
 
 }  // namespace surfscatter::photo

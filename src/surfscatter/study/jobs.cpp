@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/study/sheet_caption.hpp"
 
 namespace surfscatter::study {
 
@@ -121,17 +122,26 @@ private:
             for (const Variant& lamp : s_.lamps)
                 for (const std::string& view : s_.views) {
                     const std::string where = join({surface.name, lamp.name, "view" + view}, "/");
-                    std::vector<std::pair<std::string, std::string>> panels;  // label, path
+                    // Each panel is captioned with its label, its surface and roughness, and a warning where its model
+                    // is outside its validity (sheet_caption.hpp); sheet_compare.py draws lines starting with '!'
+                    // as warnings.
+                    std::vector<std::pair<std::string, std::string>> panels;  // caption, path
                     std::vector<int> panel_jobs;
+                    const int columns = sheet_columns(s_.models.size() + (r.overview ? 1 : 0), r.columns);
                     for (const Variant& model : s_.models) {
                         Job j;
                         j.kind = JobKind::render;
                         j.id = "render/" + where + "/" + model.name;
-                        j.parameters = render_parameters(scene_parameters(surface, lamp, model, view), r.spp);
+                        const Parameters defines = scene_parameters(surface, lamp, model, view);
+                        j.parameters = render_parameters(defines, r.spp);
                         const std::string stem = "renders/" + where + "/" + model.name;
                         j.outputs = {stem + ".exr", stem + ".png"};
                         j.dependencies = tables_of(surface, model);
-                        panels.emplace_back(model.label, stem + ".png");
+                        const PanelCaption caption = panel_caption(defines, s_.resolve(s_.scene));
+                        std::string text = model.label;
+                        if (!caption.surface.empty()) text += "\n" + caption.surface;
+                        if (!caption.warning.empty()) text += "\n!" + caption.warning;
+                        panels.emplace_back(text, stem + ".png");
                         panel_jobs.push_back(add(std::move(j)));
                     }
                     if (r.overview) {
@@ -145,7 +155,7 @@ private:
                         j.outputs = {"renders/" + where + "/overview.png"};
                         j.dependencies = tables_of(surface, s_.models.front());
                         // As in the supplemental: the overview opens the second row.
-                        const auto at = panels.begin() + std::min<std::ptrdiff_t>(r.columns, static_cast<std::ptrdiff_t>(panels.size()));
+                        const auto at = panels.begin() + std::min<std::ptrdiff_t>(columns, static_cast<std::ptrdiff_t>(panels.size()));
                         panels.insert(at, {"whole view", j.outputs.front()});
                         panel_jobs.push_back(add(std::move(j)));
                     }
@@ -165,7 +175,9 @@ private:
                         list.push_back({label, path});
                         sheet.inputs.push_back(path);
                     }
-                    sheet.parameters = {{"title", title}, {"columns", r.columns}, {"panels", list}};
+                    // Without a crop the panels are cropped to where the models differ: the sample.
+                    sheet.parameters = {{"title", title}, {"columns", columns}, {"panels", list},
+                                        {"crop_to_difference", !r.crop && s_.models.size() > 1}};
                     sheet.outputs = {"sheets/" + join({surface.name, lamp.name, "view" + view}, "_") + ".png"};
                     sheet.dependencies = panel_jobs;
                     deferred_.push_back(std::move(sheet));
@@ -195,7 +207,9 @@ private:
         }
         std::string title = fmt::format("{} nm", wavelength);
         if (!surface.name.empty()) title = surface.label + ", " + title;
-        plot.parameters = {{"title", title}, {"parts", plot.inputs}};
+        json labels = json::object();
+        for (const Variant& model : s_.models) labels[model.name] = model.label;
+        plot.parameters = {{"title", title}, {"parts", plot.inputs}, {"labels", labels}};
         const std::string stem = fmt::format("{}/{}_{}", folder, what, wavelength_name(wavelength));
         plot.outputs = {stem + ".csv", stem + ".png"};
         deferred_.push_back(std::move(plot));

@@ -244,6 +244,7 @@ private:
         if (missing == panels.size()) fail("none of the sheet's images exists (their jobs failed)");
         write_atomically(output(0), [&](const fs::path& tmp) {
             std::vector<std::string> args = {tmp.string(), p["title"].get<std::string>(), std::to_string(p["columns"].get<int>())};
+            if (p.value("crop_to_difference", false)) args.push_back("--crop-to-difference");
             args.insert(args.end(), panels.begin(), panels.end());
             run_plot_script("sheet_compare.py", args);
         });
@@ -267,7 +268,11 @@ private:
         write_file_atomically(output(0), text);
         const char* script = job_.kind == JobKind::slice_plot ? "brdf_slice.py" : "albedo_curves.py";
         write_atomically(output(1), [&](const fs::path& tmp) {
-            run_plot_script(script, {output(0).string(), tmp.string(), job_.parameters["title"].get<std::string>()});
+            std::vector<std::string> args{output(0).string(), tmp.string(), job_.parameters["title"].get<std::string>()};
+            const json labels = job_.parameters.value("labels", json::object());  // kept: items() refers to it
+            for (const auto& [name, label] : labels.items())
+                args.push_back(name + "=" + label.get<std::string>());  // legends show the study's labels
+            run_plot_script(script, args);
         });
     }
 

@@ -264,7 +264,8 @@ std::string to_json(const Study& s) {
     if (s.render) {
         out["scene"] = s.resolve(s.scene).string();
         out["views"] = s.views;
-        json r = {{"spp", s.render->spp}, {"columns", s.render->columns}, {"overview", s.render->overview}};
+        json r = {{"spp", s.render->spp}, {"overview", s.render->overview}};
+        if (s.render->columns > 0) r["columns"] = s.render->columns;
         if (s.render->width) r["width"] = s.render->width;
         if (s.render->height) r["height"] = s.render->height;
         if (s.render->seed) r["seed"] = *s.render->seed;

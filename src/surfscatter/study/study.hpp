@@ -40,7 +40,7 @@ struct RenderSettings {
     Parameters parameters;               // scene-only parameters for every render
     std::optional<Crop> crop;            // render only the pixels around `focus` (Mitsuba's crop window)
     bool overview = false;               // a low-resolution whole view with the crop outlined, on every sheet
-    int columns = 4;                     // sheet columns
+    int columns = 0;                     // sheet columns; 0: from the panel count (sheet_caption.hpp)
 };
 
 struct AngleSettings {
