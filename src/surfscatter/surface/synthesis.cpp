@@ -1,5 +1,6 @@
 #include "surfscatter/surface/synthesis.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <random>
@@ -7,6 +8,7 @@
 
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/resources.hpp"
+#include "surfscatter/math/quadrature.hpp"
 #include "surfscatter/math/vec.hpp"
 #include "surfscatter/surface/height_map_fft.hpp"
 
@@ -55,6 +57,31 @@ HeightMap synthesize_surface(const RadialStatistics& statistics, const Synthesis
     }
     return HeightMap(nx, ny, grid.spacing_um, grid.spacing_um, inverse_fft_2d(std::move(spectrum), nx, ny),
                      "synthesized surface");
+}
+
+double profile_psd(const RadialStatistics& statistics, double zeta_x) {
+    require_finite(zeta_x, "profile PSD frequency");
+    // zeta_y = c u / (1 - u) maps [0, 1) onto [0, inf); c near the PSD's knee keeps the integrand smooth in u.
+    const double c = std::max(std::abs(zeta_x), 1.0 / statistics.correlation_length());
+    const auto integrand = [&](double u) {
+        if (u >= 1.0) return 0.0;
+        const double zeta_y = c * u / (1.0 - u);
+        return statistics.psd(std::hypot(zeta_x, zeta_y)) * c / ((1.0 - u) * (1.0 - u));
+    };
+    return 2.0 * math::integrate_adaptive(integrand, 0.0, 1.0, 1e-10);
+}
+
+std::vector<double> synthesize_profile(const RadialStatistics& statistics, std::size_t n, double spacing_um,
+                                       std::uint64_t seed) {
+    if (n < 4) fail("profile length must be at least 4 samples, got {}", n);
+    require_valid_spacing(spacing_um, "profile spacing");
+    require_memory(48.0 * static_cast<double>(n), fmt::format("a profile of {} samples", n));
+    auto spectrum = forward_fft_2d(white_noise(n, seed), n, 1);
+    const double dz = 2.0 * kPi / (static_cast<double>(n) * spacing_um);
+    const double scale = std::sqrt(dz / static_cast<double>(n));  // A_k / N with A_k = sqrt(N P1 dzeta)
+    for (std::size_t kx = 0; kx < spectrum.size(); ++kx)
+        spectrum[kx] *= kx == 0 ? 0.0 : scale * std::sqrt(profile_psd(statistics, static_cast<double>(kx) * dz));
+    return inverse_fft_2d(std::move(spectrum), n, 1);
 }
 
 }  // namespace surfscatter::surface

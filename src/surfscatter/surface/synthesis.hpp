@@ -14,6 +14,7 @@
 // so the same seed gives a bit-identical surface with any standard library.
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "surfscatter/surface/height_map.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
@@ -27,5 +28,16 @@ struct SynthesisGrid {
 
 // A surface with the PSD statistics.psd(zeta) (um^4, zeta in rad/um, e.g. KCorrelation or GaussianAcv).
 HeightMap synthesize_surface(const RadialStatistics& statistics, const SynthesisGrid& grid, std::uint64_t seed);
+
+// The PSD of a straight cut z = h(x, y0) through an isotropic surface: P1(zeta_x) = int P(sqrt(zeta_x^2 + zeta_y^2))
+// dzeta_y in um^3, so that int P1 dzeta_x = sigma_h^2 and the cut's ACV is C(|x|) (THEORY.md 2.1 has KC's closed
+// form). By adaptive quadrature to 1e-10 relative.
+double profile_psd(const RadialStatistics& statistics, double zeta_x);
+
+// A random profile of n samples (>= 4) spaced spacing_um apart with the 1-D PSD profile_psd: the same spectral
+// synthesis and noise as synthesize_surface in one dimension (periodic over n spacing, zero mean, variance
+// sum_k P1(zeta_k) dzeta up to Nyquist).
+std::vector<double> synthesize_profile(const RadialStatistics& statistics, std::size_t n, double spacing_um,
+                                       std::uint64_t seed);
 
 }  // namespace surfscatter::surface

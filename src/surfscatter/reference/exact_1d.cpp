@@ -1,0 +1,364 @@
+#include "surfscatter/reference/exact_1d.hpp"
+
+#include <cmath>
+
+#include <Eigen/Dense>
+
+#include "surfscatter/core/error.hpp"
+#include "surfscatter/core/resources.hpp"
+#include "surfscatter/math/quadrature.hpp"
+#include "surfscatter/math/vec.hpp"
+#include "surfscatter/reference/hankel.hpp"
+
+namespace surfscatter::reference {
+
+namespace {
+
+using Complex = std::complex<double>;
+constexpr Complex kI{0.0, 1.0};
+constexpr double kEulerGamma = 0.57721566490153286061;
+// zeta'(-2) = -zeta(3)/(4 pi^2) and zeta'(-4) = 3 zeta(5)/(4 pi^4).
+constexpr double kZetaPrimeMinus2 = -0.030448457058393270780;
+constexpr double kZetaPrimeMinus4 = 0.0079838114502686242;
+
+// Navot's expansion of the trapezoid rule for f(x) ln|x - x_i| on a uniform grid (step D, node x_i included with
+// the weight ln(D / 2 pi)): int = D sum_{j != i} f_j ln|x_j - x_i| + D f_i ln(D/2pi)
+//   + 2 sum_{p >= 1} D^{2p+1} zeta'(-2p) f^(2p)(x_i) / (2p)!.
+// The p = 1, 2 terms with f'' and f'''' from five-point differences leave an error O(D^7) (docs/REFERENCE.md);
+// kLogCorrection[m + 2] is the weight of f_{i+m} over D.
+constexpr double kLogCorrection[5] = {
+    kZetaPrimeMinus2 * -1.0 / 12.0 + kZetaPrimeMinus4 / 12.0,
+    kZetaPrimeMinus2 * 16.0 / 12.0 - 4.0 * kZetaPrimeMinus4 / 12.0,
+    kZetaPrimeMinus2 * -30.0 / 12.0 + 6.0 * kZetaPrimeMinus4 / 12.0,
+    kZetaPrimeMinus2 * 16.0 / 12.0 - 4.0 * kZetaPrimeMinus4 / 12.0,
+    kZetaPrimeMinus2 * -1.0 / 12.0 + kZetaPrimeMinus4 / 12.0,
+};
+
+struct Surface {
+    std::size_t n = 0;
+    double step = 0.0;
+    std::vector<double> x, h, dh, d2h;
+};
+
+Surface solver_surface(const Profile& profile, double lambda_um, double points_per_wavelength) {
+    const auto subdivisions =
+        static_cast<std::size_t>(std::ceil(profile.spacing_um * points_per_wavelength / lambda_um - 1e-9));
+    SplineNodes nodes = spline_nodes(profile, std::max<std::size_t>(subdivisions, 1));
+    Surface s;
+    s.n = nodes.h.size();
+    s.step = nodes.step_um;
+    s.x.resize(s.n);
+    for (std::size_t j = 0; j < s.n; ++j) s.x[j] = nodes.x0_um + nodes.step_um * static_cast<double>(j);
+    s.h = std::move(nodes.h);
+    s.dh = std::move(nodes.dh);
+    s.d2h = std::move(nodes.d2h);
+    return s;
+}
+
+// s (Dirichlet): psi_inc(x_i) = int (i/4) H0(k R) U(x') dx', U = dpsi/dn sqrt(1 + h'^2). Log part of the kernel
+// -J0(kR)/(2 pi) ln|x - x'|; the rest tends to i/4 - (ln(k s/2) + gamma)/(2 pi), s = sqrt(1 + h'^2).
+Eigen::MatrixXcd dirichlet_matrix(const Surface& s, double k) {
+    const std::size_t n = s.n;
+    const double step = s.step;
+    Eigen::MatrixXcd m(n, n);
+    for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t j = i + 1; j < n; ++j) {
+            const double z = k * std::hypot(s.x[j] - s.x[i], s.h[j] - s.h[i]);
+            const Complex value = step * 0.25 * Complex(-::y0(z), ::j0(z));
+            m(i, j) = value;
+            m(j, i) = value;
+        }
+        const double slope_norm = std::sqrt(1.0 + s.dh[i] * s.dh[i]);
+        m(i, i) = step * (-std::log(step / kTwoPi) / kTwoPi + 0.25 * kI -
+                          (std::log(0.5 * k * slope_norm) + kEulerGamma) / kTwoPi);
+    }
+    for (std::size_t i = 0; i < n; ++i)
+        for (int o = -2; o <= 2; ++o) {
+            const auto j = static_cast<std::ptrdiff_t>(i) + o;
+            if (j < 0 || j >= static_cast<std::ptrdiff_t>(n)) continue;
+            const auto jj = static_cast<std::size_t>(j);
+            const double log_part = -::j0(k * std::hypot(s.x[jj] - s.x[i], s.h[jj] - s.h[i])) / kTwoPi;
+            m(i, jj) += step * kLogCorrection[o + 2] * log_part;
+        }
+    return m;
+}
+
+// Double layer: (DL psi)_i ~ int D(x_i, x') psi(x') dx', D = (-ik/4) H1(kR) num / R with num = (h(x') - h(x)) -
+// h'(x') (x' - x) (the unnormalised normal (-h', 1) at x' dotted with r' - r). D -> h''/(4 pi s^2) as x' -> x; its
+// log part (k/2pi) J1(kR) num/R ln|x - x'| vanishes there like (x' - x)^2.
+Eigen::MatrixXcd double_layer_matrix(const Surface& s, double k) {
+    const std::size_t n = s.n;
+    const double step = s.step;
+    Eigen::MatrixXcd m(n, n);
+    for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t j = i + 1; j < n; ++j) {
+            const double dx = s.x[j] - s.x[i], dz = s.h[j] - s.h[i];
+            const double r = std::hypot(dx, dz), z = k * r;
+            const Complex h1 = Complex(::j1(z), ::y1(z)) * (-0.25 * k * kI) / r;
+            m(i, j) = step * h1 * (dz - s.dh[j] * dx);
+            m(j, i) = step * h1 * (-dz + s.dh[i] * dx);
+        }
+        m(i, i) = step * s.d2h[i] / (4.0 * kPi * (1.0 + s.dh[i] * s.dh[i]));
+    }
+    for (std::size_t i = 0; i < n; ++i)
+        for (int o = -2; o <= 2; ++o) {
+            const auto j = static_cast<std::ptrdiff_t>(i) + o;
+            if (o == 0 || j < 0 || j >= static_cast<std::ptrdiff_t>(n)) continue;
+            const auto jj = static_cast<std::size_t>(j);
+            const double dx = s.x[jj] - s.x[i], dz = s.h[jj] - s.h[i];
+            const double r = std::hypot(dx, dz);
+            m(i, jj) += step * kLogCorrection[o + 2] * k / kTwoPi * ::j1(k * r) * (dz - s.dh[jj] * dx) / r;
+        }
+    return m;
+}
+
+// The interior medium (wavenumber k2 = N k, Im k2 > 0): its kernels decay like exp(-Im(k2) R), often within one node
+// spacing (a skin depth of ~25 nm against 55 nm), too fast for a Nystrom rule. Product integration instead: psi
+// and L are the cubic Lagrange interpolants of their node values (four nodes around each interval), and each
+// interval within reach / Im(k2) of x_i is integrated by Gauss-Legendre (the two next to x_i graded as
+// t = u^3 against the logarithm). Entries beyond are below exp(-reach) of the nearest ones and left out: the
+// matrices are banded.
+constexpr int kInteriorGauss = 16;
+
+struct BandedPair {
+    std::size_t band = 0;   // entries with |i - j| <= band
+    Eigen::MatrixXcd single, dbl;  // (S2 L)_i and (DL2 psi)_i, dense storage, zero outside the band
+};
+
+BandedPair interior_matrices(const Surface& s, Complex k2, double reach_decay_lengths) {
+    const std::size_t n = s.n;
+    const double step = s.step;
+    const double reach = reach_decay_lengths / std::max(k2.imag(), 1e-300);
+    const std::size_t cells = static_cast<std::size_t>(std::min(std::ceil(reach / step), static_cast<double>(n)));
+    BandedPair out;
+    out.band = std::min(cells + 3, n - 1);
+    out.single = Eigen::MatrixXcd::Zero(n, n);
+    out.dbl = Eigen::MatrixXcd::Zero(n, n);
+    const math::GaussLegendreRule rule(kInteriorGauss);
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t first = i > cells ? i - cells : 0, last = std::min(i + cells, n - 1);  // intervals [m, m+1]
+        for (std::size_t m = first; m < last; ++m) {
+            const std::size_t start = std::min(m > 0 ? m - 1 : 0, n - 4);  // the four interpolation nodes
+            const bool right = m == i, left = m + 1 == i;
+            for (int q = 0; q < kInteriorGauss; ++q) {
+                const double u = 0.5 * (rule.nodes[q] + 1.0);
+                double t = u, jacobian = 1.0;
+                if (right) { t = u * u * u; jacobian = 3.0 * u * u; }
+                if (left) { t = 1.0 - u * u * u; jacobian = 3.0 * u * u; }
+                const double weight = 0.5 * rule.weights[q] * jacobian * step;
+                // Cubic Hermite through (h, h') at nodes m, m+1: the spline itself.
+                const double t2 = t * t, t3 = t2 * t;
+                const double hx = (2 * t3 - 3 * t2 + 1) * s.h[m] + (t3 - 2 * t2 + t) * step * s.dh[m] +
+                                  (-2 * t3 + 3 * t2) * s.h[m + 1] + (t3 - t2) * step * s.dh[m + 1];
+                const double dhx = ((6 * t2 - 6 * t) * s.h[m] + (-6 * t2 + 6 * t) * s.h[m + 1]) / step +
+                                   (3 * t2 - 4 * t + 1) * s.dh[m] + (3 * t2 - 2 * t) * s.dh[m + 1];
+                const double dx = step * (static_cast<double>(m) - static_cast<double>(i) + t), dz = hx - s.h[i];
+                const double r = std::hypot(dx, dz);
+                if (r == 0.0) continue;  // u = 0 is never a Gauss node; guards a degenerate surface only
+                const HankelPair hp = hankel01(k2 * r);
+                const Complex single = 0.25 * kI * hp.h0;
+                const Complex dbl = -0.25 * kI * k2 * hp.h1 * (dz - dhx * dx) / r;
+                const double v = static_cast<double>(m - start) + t;  // position among the four nodes
+                for (int a = 0; a < 4; ++a) {
+                    double lagrange = 1.0;
+                    for (int b = 0; b < 4; ++b)
+                        if (b != a) lagrange *= (v - b) / static_cast<double>(a - b);
+                    out.single(i, start + a) += weight * lagrange * single;
+                    out.dbl(i, start + a) += weight * lagrange * dbl;
+                }
+            }
+        }
+    }
+    return out;
+}
+
+// LU factors of a banded matrix without pivoting (the interior single layer is dominated by its diagonal: its
+// kernel's integral over the node's own cells), in place; throws if a pivot vanishes.
+void banded_lu(Eigen::MatrixXcd& a, std::size_t band) {
+    const std::size_t n = a.rows();
+    for (std::size_t p = 0; p < n; ++p) {
+        const Complex pivot = a(p, p);
+        if (!(std::abs(pivot) > 0)) fail("exact-1d: the interior single-layer matrix is singular at node {}", p);
+        const std::size_t end = std::min(p + band + 1, n);
+        for (std::size_t r = p + 1; r < end; ++r) {
+            const Complex f = a(r, p) / pivot;
+            a(r, p) = f;
+            if (f == Complex(0.0)) continue;
+            for (std::size_t c = p + 1; c < end; ++c) a(r, c) -= f * a(p, c);
+        }
+    }
+}
+
+// x = A^{-1} b for the banded LU factors of A.
+Eigen::VectorXcd banded_solve(const Eigen::MatrixXcd& lu, std::size_t band, Eigen::VectorXcd b) {
+    const std::size_t n = lu.rows();
+    for (std::size_t r = 0; r < n; ++r)
+        for (std::size_t c = r > band ? r - band : 0; c < r; ++c) b[r] -= lu(r, c) * b[c];
+    for (std::size_t r = n; r-- > 0;) {
+        for (std::size_t c = r + 1; c < std::min(r + band + 1, n); ++c) b[r] -= lu(r, c) * b[c];
+        b[r] /= lu(r, r);
+    }
+    return b;
+}
+
+// W = B A^{-1} for the banded LU factors of A (row by row: w^T L U = b^T).
+Eigen::MatrixXcd banded_right_solve(const Eigen::MatrixXcd& lu, std::size_t band, const Eigen::MatrixXcd& b) {
+    const std::size_t n = lu.rows();
+    Eigen::Matrix<Complex, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> w = b;
+    for (std::size_t row = 0; row < n; ++row) {
+        Complex* x = w.row(row).data();
+        for (std::size_t j = 0; j < n; ++j) {  // y U = b
+            Complex v = x[j];
+            for (std::size_t k = j > band ? j - band : 0; k < j; ++k) v -= x[k] * lu(k, j);
+            x[j] = v / lu(j, j);
+        }
+        for (std::size_t j = n; j-- > 0;) {  // w L = y (unit diagonal)
+            Complex v = x[j];
+            for (std::size_t k = j + 1; k < std::min(j + band + 1, n); ++k) v -= x[k] * lu(k, j);
+            x[j] = v;
+        }
+    }
+    return w;
+}
+
+void check_options(const Profile& profile, const Exact1dOptions& o) {
+    require_valid_profile(profile, "profile");
+    require_positive(o.lambda_nm, "wavelength (nm)");
+    require_finite(o.theta_i_rad, "theta_i");
+    if (!(o.theta_i_rad >= 0 && o.theta_i_rad < 0.5 * kPi))
+        fail("theta_i must be in [0, 90) degrees, got {} deg", o.theta_i_rad / kDegree);
+    require_positive(o.beam_width_um, "beam width (um)");
+    if (!(o.points_per_wavelength >= 4 && o.points_per_wavelength <= 1000))
+        fail("points per wavelength must be between 4 and 1000, got {}", o.points_per_wavelength);
+    if (!(o.interior_reach >= 10 && o.interior_reach <= 100))
+        fail("interior reach must be between 10 and 100 decay lengths, got {}", o.interior_reach);
+    const double k = kTwoPi / (o.lambda_nm * 1e-3);
+    const double kgc = k * o.beam_width_um * std::cos(o.theta_i_rad);
+    const double correction = (1.0 + 2.0 * std::pow(std::tan(o.theta_i_rad), 2)) / (2.0 * kgc * kgc);
+    // Thorsos' beam solves the wave equation only to O(1/(k g cos)^2): beyond 1e-2 its power formula misleads.
+    if (correction > 1e-2)
+        fail("beam width {} um is too narrow for theta_i = {} deg at {} nm: (1 + 2 tan^2) / (2 (k g cos)^2) = {:.3g} "
+             "> 0.01 (Thorsos' beam no longer solves the wave equation)",
+             o.beam_width_um, o.theta_i_rad / kDegree, o.lambda_nm, correction);
+    const double margin = kProfileBeamMargin * o.beam_width_um;
+    if (profile.x0_um > -margin || profile.x_end_um() < margin)
+        fail("profile x from {} to {} um does not hold the beam: it must reach from -{} to {} um ({} beam widths "
+             "of {} um either side of x = 0, where the beam is centred)",
+             profile.x0_um, profile.x_end_um(), margin, margin, kProfileBeamMargin, o.beam_width_um);
+}
+
+}  // namespace
+
+std::vector<double> FarField::intensity_per_rad() const {
+    std::vector<double> out(amplitude.size());
+    for (std::size_t j = 0; j < amplitude.size(); ++j) out[j] = std::norm(amplitude[j]);
+    return out;
+}
+
+double thorsos_incident_power(double k, double theta_i, double g) {
+    const double c = std::cos(theta_i), t = std::tan(theta_i);
+    return std::sqrt(0.5 * kPi) * g * c * (1.0 - (1.0 + 2.0 * t * t) / (2.0 * k * k * g * g * c * c));
+}
+
+double incident_power(double k, double theta_i, double g) {
+    // A(K) is a Gaussian of width ~2/g around alpha = k sin(theta_i): K steps of 0.2/g over +-14/g; the field
+    // without its carrier e^{i alpha x} is smooth on the scale g: x steps of g/40 over +-6 g (taper exp(-36)).
+    const double alpha = k * std::sin(theta_i);
+    const double dk = 0.2 / g, k_lo = std::max(-k, alpha - 14.0 / g), k_hi = std::min(k, alpha + 14.0 / g);
+    const double dx = g / 40.0;
+    const long nx = 240;
+    std::vector<Complex> field(2 * static_cast<std::size_t>(nx) + 1);
+    for (long j = -nx; j <= nx; ++j) {
+        const double x = static_cast<double>(j) * dx;
+        field[static_cast<std::size_t>(j + nx)] = thorsos_beam(k, theta_i, g, x, 0.0) * std::exp(Complex(0.0, -alpha * x));
+    }
+    double power = 0.0;
+    const auto nk = static_cast<long>(std::ceil((k_hi - k_lo) / dk));
+    for (long q = 0; q <= nk; ++q) {
+        const double kx = k_lo + (k_hi - k_lo) * static_cast<double>(q) / static_cast<double>(nk);
+        Complex a = 0.0;
+        for (long j = -nx; j <= nx; ++j)
+            a += field[static_cast<std::size_t>(j + nx)] * std::exp(Complex(0.0, (alpha - kx) * static_cast<double>(j) * dx));
+        const double weight = (q == 0 || q == nk) ? 0.5 : 1.0;
+        power += weight * std::sqrt(std::max(0.0, 1.0 - kx * kx / (k * k))) * std::norm(a * dx);
+    }
+    return power * (k_hi - k_lo) / static_cast<double>(nk) / kTwoPi;
+}
+
+std::complex<double> thorsos_beam(double k, double theta_i, double g, double x, double z) {
+    const double c = std::cos(theta_i), s = std::sin(theta_i), t = std::tan(theta_i);
+    const double u = x + z * t;
+    const double w = (2.0 * u * u / (g * g) - 1.0) / (k * k * g * g * c * c);
+    return std::exp(Complex(-u * u / (g * g), k * (x * s - z * c) * (1.0 + w)));
+}
+
+FarField solve_exact_1d(const Profile& profile, const material::Conductor& conductor, const Exact1dOptions& options) {
+    check_options(profile, options);
+    const double lambda_um = options.lambda_nm * 1e-3, k = kTwoPi / lambda_um;
+    const double theta_i = options.theta_i_rad, g = options.beam_width_um;
+    const Surface surface = solver_surface(profile, lambda_um, options.points_per_wavelength);
+    const std::size_t n = surface.n;
+    require_memory(2.2 * 16.0 * static_cast<double>(n) * static_cast<double>(n),
+                   fmt::format("an exact-1d solve with {} unknowns", n));
+
+    Eigen::VectorXcd incident(n);
+    for (std::size_t j = 0; j < n; ++j) incident[j] = thorsos_beam(k, theta_i, g, surface.x[j], surface.h[j]);
+    const bool s_pol = options.polarisation == Polarisation::s;
+    // Unknowns on the surface: psi and L = dpsi/dn sqrt(1 + h'^2) on the outside. Outside,
+    //   psi/2 = psi_inc + int [psi dG1/dn' - G1 L] dx'    (DL1, S1);
+    // a perfect conductor has psi = 0 (s) or L = 0 (p). A metal adds the inside, with its index N and
+    // L_inside = rho L (rho = 1 in s, N^2 in p: continuity of H_y / eps's normal derivative),
+    //   psi/2 = -int [psi dG2/dn' - G2 rho L] dx',  so  L = (rho S2)^-1 (1/2 + DL2) psi.
+    Eigen::VectorXcd psi = Eigen::VectorXcd::Zero(n), normal = Eigen::VectorXcd::Zero(n);
+    if (conductor.is_perfect() && s_pol) {
+        normal = Eigen::PartialPivLU<Eigen::MatrixXcd>(dirichlet_matrix(surface, k)).solve(incident);
+    } else if (conductor.is_perfect()) {
+        Eigen::MatrixXcd m = -double_layer_matrix(surface, k);
+        m.diagonal().array() += 0.5;
+        psi = Eigen::PartialPivLU<Eigen::MatrixXcd>(m).solve(incident);
+    } else {
+        const Complex index = conductor.ior(options.lambda_nm);
+        const Complex rho = s_pol ? Complex(1.0) : index * index;
+        BandedPair inside = interior_matrices(surface, index * k, options.interior_reach);
+        inside.dbl.diagonal().array() += 0.5;
+        banded_lu(inside.single, inside.band);
+        // S1 (rho S2)^-1 (1/2 + DL2), by rows against the banded factors and then a banded product.
+        const Eigen::MatrixXcd w = banded_right_solve(inside.single, inside.band, dirichlet_matrix(surface, k));
+        Eigen::MatrixXcd m = -double_layer_matrix(surface, k);
+        m.diagonal().array() += 0.5;
+        for (std::size_t i = 0; i < n; ++i)
+            for (std::size_t j = 0; j < n; ++j) {
+                Complex sum = 0.0;
+                const std::size_t lo = j > inside.band ? j - inside.band : 0, hi = std::min(j + inside.band + 1, n);
+                for (std::size_t l = lo; l < hi; ++l) sum += w(i, l) * inside.dbl(l, j);
+                m(i, j) += sum / rho;
+            }
+        psi = Eigen::PartialPivLU<Eigen::MatrixXcd>(m).solve(incident);
+        normal = banded_solve(inside.single, inside.band, inside.dbl * psi) / rho;
+    }
+
+    // Far field of int [psi dG1/dn' - G1 L] dx': |psi_sc|^2 r = |F|^2 / (8 pi k) with
+    // F = int [L + i k psi (cos - h' sin)] e^{-i k o.r'} dx'.
+    FarField out;
+    const double scale = surface.step / std::sqrt(8.0 * kPi * k * incident_power(k, theta_i, g));
+    out.theta_o_rad.resize(kFarFieldSteps + 1);
+    out.amplitude.resize(kFarFieldSteps + 1);
+    for (int q = 0; q <= kFarFieldSteps; ++q) {
+        const double theta = (-90.0 + 180.0 * q / kFarFieldSteps) * kDegree;
+        const double so = std::sin(theta), co = std::cos(theta);
+        Complex sum = 0.0;
+        for (std::size_t j = 0; j < n; ++j) {
+            const double phase = -k * (so * surface.x[j] + co * surface.h[j]);
+            const Complex weight = normal[j] + kI * k * (co - surface.dh[j] * so) * psi[j];
+            sum += weight * Complex(std::cos(phase), std::sin(phase));
+        }
+        out.theta_o_rad[q] = theta;
+        out.amplitude[q] = sum * scale;
+    }
+    for (const Complex& a : out.amplitude)
+        if (!std::isfinite(a.real()) || !std::isfinite(a.imag()))
+            fail("exact-1d: the solve gave a non-finite far field ({} unknowns): the profile is too rough for its sampling", n);
+    return out;
+}
+
+}  // namespace surfscatter::reference

@@ -1,0 +1,57 @@
+#pragma once
+// Rigorous 2-D scattering of a Thorsos-tapered beam by a 1-D profile z = h(x) (docs/REFERENCE.md): boundary integral
+// equations discretised by a Nystrom rule whose weights next to the logarithmic singularity are corrected to
+// seventh order (Navot's zeta-function correction of the trapezoid rule), solved by dense LU.
+// Geometry: light in the x-z plane arriving from negative x, so that theta_o = +theta_i is specular; the beam is
+// centred at x = 0 with its taper width g along x. Time dependence exp(-i omega t).
+#include <complex>
+#include <vector>
+
+#include "surfscatter/material/conductor.hpp"
+#include "surfscatter/reference/profile.hpp"
+
+namespace surfscatter::reference {
+
+enum class Polarisation { s, p };  // s (TE): E along y; p (TM): H along y
+
+struct Exact1dOptions {
+    double lambda_nm = 0.0;
+    double theta_i_rad = 0.0;          // in [0, pi/2)
+    Polarisation polarisation = Polarisation::s;
+    double beam_width_um = 0.0;        // Thorsos taper g
+    double points_per_wavelength = 10; // solver nodes per wavelength along x, >= 4 (the profile is splined onto them)
+    // A metal's interior kernels are kept within this many decay lengths 1/Im(k N) of each node (their size there is
+    // exp(-interior_reach) of the nearest ones): 10..100.
+    double interior_reach = 30;
+};
+
+// The scattered far field on the grid theta_o = -90, -89.9, ..., 90 deg: amplitude[j] with |amplitude|^2 the
+// scattered power per radian over the incident power (so a perfect conductor's integrates to 1).
+struct FarField {
+    std::vector<double> theta_o_rad;
+    std::vector<std::complex<double>> amplitude;
+    std::vector<double> intensity_per_rad() const;
+};
+
+inline constexpr int kFarFieldSteps = 1800;  // 0.1 deg
+
+// Thorsos (1988) incident power through a horizontal line:
+// sqrt(pi/2) g cos(theta_i) [1 - (1 + 2 tan^2 theta_i) / (2 k^2 g^2 cos^2 theta_i)], to O((k g cos)^-4).
+double thorsos_incident_power(double k_per_um, double theta_i_rad, double beam_width_um);
+// The normalisation of FarField: the power the beam's propagating plane waves carry down through z = 0,
+// (1/2pi) int_{|K|<k} sqrt(1 - K^2/k^2) |A(K)|^2 dK with A(K) = int psi_inc(x, 0) e^{-iKx} dx (trapezoid rules, to
+// ~1e-10), so that a flat perfect conductor reflects exactly 1. Thorsos' closed form differs by ~1e-4 at
+// (1 + 2 tan^2) / (2 (k g cos)^2) = 5e-3.
+double incident_power(double k_per_um, double theta_i_rad, double beam_width_um);
+// The tapered incident field at (x, z), Thorsos eq. (19): exp(i k (x sin - z cos)(1 + w)) exp(-(x + z tan)^2/g^2),
+// w = (2 (x + z tan)^2 / g^2 - 1) / (k g cos)^2.
+std::complex<double> thorsos_beam(double k_per_um, double theta_i_rad, double beam_width_um, double x_um, double z_um);
+
+// Profile ends at least this many beam widths from x = 0 (docs/REFERENCE.md: the truncation error it leaves).
+inline constexpr double kProfileBeamMargin = 2.5;
+
+// Throws Error naming the value for a bad wavelength, angle, beam width or sampling, or a profile that does not
+// hold the beam (its ends within 2.5 g of x = 0).
+FarField solve_exact_1d(const Profile& profile, const material::Conductor& conductor, const Exact1dOptions& options);
+
+}  // namespace surfscatter::reference

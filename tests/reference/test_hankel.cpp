@@ -1,0 +1,71 @@
+// Complex-argument Hankel functions against SciPy's (Amos' algorithm), computed by Debian's /usr/bin/python3.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "surfscatter/core/error.hpp"
+#include "surfscatter/math/vec.hpp"
+#include "surfscatter/reference/hankel.hpp"
+
+namespace sr = surfscatter::reference;
+using Complex = std::complex<double>;
+
+namespace {
+
+// Points over the upper half plane: |z| from 1e-3 to 200 (both sides of the series/asymptotic switch at 12),
+// arguments from the real axis to the imaginary one (a metal's k n R lies near 85-89 degrees).
+std::vector<Complex> sample_points() {
+    std::vector<Complex> points;
+    for (double r : {1e-3, 0.05, 0.5, 1.0, 2.5, 5.0, 8.0, 11.9, 12.1, 15.0, 25.0, 60.0, 200.0})
+        for (double degrees : {0.0, 10.0, 30.0, 45.0, 60.0, 80.0, 85.0, 88.0, 89.5, 90.0, 120.0, 175.0, 180.0})
+            points.push_back(std::polar(r, degrees * surfscatter::kDegree));
+    return points;
+}
+
+}  // namespace
+
+TEST(Hankel, MatchesScipy) {
+    const auto points = sample_points();
+    std::string list;
+    for (const Complex& z : points) list += fmt::format("complex({:.17g},{:.17g}),", z.real(), z.imag());
+    const std::string command = fmt::format(
+        "/usr/bin/python3 -c \"import scipy.special as s\nfor z in [{}]:\n print(repr(s.hankel1(0, z).real), "
+        "repr(s.hankel1(0, z).imag), repr(s.hankel1(1, z).real), repr(s.hankel1(1, z).imag))\"",
+        list);
+    std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
+    ASSERT_TRUE(pipe);
+    double worst_near = 0, worst_far = 0;
+    for (const Complex& z : points) {
+        double a, b, c, d;
+        ASSERT_EQ(std::fscanf(pipe.get(), "%lf %lf %lf %lf", &a, &b, &c, &d), 4) << "python3 with scipy is needed";
+        const Complex h0(a, b), h1(c, d);
+        const auto ours = sr::hankel01(z);
+        // Absolute error for |z| <= 12 (relative to max(1, |H|) near the singularity), relative beyond.
+        const double e0 = std::abs(ours.h0 - h0) / std::max(1.0, std::abs(h0));
+        const double e1 = std::abs(ours.h1 - h1) / std::max(1.0, std::abs(h1));
+        if (std::abs(z) <= 12) {
+            worst_near = std::max({worst_near, e0, e1});
+            EXPECT_LT(e0, 2e-11) << z;
+            EXPECT_LT(e1, 2e-11) << z;
+        } else {
+            const double r0 = std::abs(ours.h0 - h0) / std::abs(h0), r1 = std::abs(ours.h1 - h1) / std::abs(h1);
+            worst_far = std::max({worst_far, r0, r1});
+            EXPECT_LT(r0, 1e-11) << z;
+            EXPECT_LT(r1, 1e-11) << z;
+        }
+    }
+    std::printf("worst absolute error |z| <= 12: %.3g, relative beyond: %.3g\n", worst_near, worst_far);
+}
+
+TEST(Hankel, RefusesTheLowerHalfPlaneAndZero) {
+    EXPECT_THROW(sr::hankel01(Complex(1.0, -0.1)), surfscatter::Error);
+    EXPECT_THROW(sr::hankel01(Complex(0.0, 0.0)), surfscatter::Error);
+    EXPECT_THROW(sr::hankel01(Complex(std::nan(""), 1.0)), surfscatter::Error);
+}
