@@ -88,14 +88,18 @@ SplineNodes spline_nodes(const Profile& profile, std::size_t subdivisions) {
     const auto& y = profile.h_um;
     // Natural spline: second derivatives M with M_0 = M_{n-1} = 0, M_{j-1} + 4 M_j + M_{j+1} = 6 (y_{j-1} - 2 y_j +
     // y_{j+1}) / dx^2, by the Thomas algorithm (diagonally dominant, stable).
-    std::vector<double> m(n, 0.0), c(n, 0.0), d(n, 0.0);
+    // (one buffer: GCC 12 warns falsely about freeing three separate vectors here)
+    std::vector<double> buffer(3 * n, 0.0);
+    double* m = buffer.data();
+    double* c = m + n;
+    double* d = c + n;
     for (std::size_t j = 1; j + 1 < n; ++j) {
         const double rhs = 6.0 * (y[j - 1] - 2.0 * y[j] + y[j + 1]) / (dx * dx);
         const double denom = 4.0 - c[j - 1];
         c[j] = 1.0 / denom;
         d[j] = (rhs - d[j - 1]) / denom;
     }
-    for (std::size_t j = n - 2; j >= 1; --j) m[j] = d[j] - c[j] * m[j + 1];
+    for (std::size_t j = n - 1; j-- > 1;) m[j] = d[j] - c[j] * m[j + 1];
     SplineNodes nodes;
     nodes.x0_um = profile.x0_um;
     nodes.step_um = dx / static_cast<double>(subdivisions);

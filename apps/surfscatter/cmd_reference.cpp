@@ -1,0 +1,150 @@
+// surfscatter reference exact-1d: the rigorous scattering of a tapered beam by a 1-D profile (docs/REFERENCE.md),
+// written as CSV theta_o_deg,intensity_per_rad; with --psd, averaged over random profiles (coherent and incoherent
+// parts and their standard errors in further columns).
+#include <cmath>
+#include <cstdio>
+#include <optional>
+#include <utility>
+#include <memory>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "command.hpp"
+#include "surfscatter/core/error.hpp"
+#include "surfscatter/core/paths.hpp"
+#include "surfscatter/material/conductor.hpp"
+#include "surfscatter/math/vec.hpp"
+#include "surfscatter/core/progress.hpp"
+#include "surfscatter/core/resources.hpp"
+#include "surfscatter/reference/exact_1d.hpp"
+#include "surfscatter/reference/exact_1d_statistics.hpp"
+#include "surfscatter/reference/profile.hpp"
+#include "surfscatter/surface/radial_statistics.hpp"
+
+namespace surfscatter::cli {
+
+namespace {
+
+struct Exact1dArgs {
+    std::string profile, material, polarisation, output;
+    double wavelength = 0, theta_i = 0, beam_width = 0, points_per_wavelength = 10;
+    // Statistical mode.
+    std::optional<std::string> psd;
+    std::optional<double> sigma, corr_length, gamma, length;
+    long long realizations = 0, seed = 1;
+    int threads = 0;
+};
+
+std::unique_ptr<surface::RadialStatistics> statistics_from(const Exact1dArgs& a) {
+    if (!a.sigma || !a.corr_length) fail("--psd {} needs --sigma and --corr-length", *a.psd);
+    surface::require_surface_length(*a.sigma, "--sigma");
+    surface::require_surface_length(*a.corr_length, "--corr-length");
+    if (*a.psd == "kc") {
+        if (!a.gamma) fail("--gamma is required for --psd kc");
+        surface::require_kc_gamma(*a.gamma, "--gamma");
+        return std::make_unique<surface::KCorrelation>(*a.sigma, *a.corr_length, *a.gamma);
+    }
+    if (a.gamma) fail("--gamma applies to --psd kc only");
+    return std::make_unique<surface::GaussianAcv>(*a.sigma, *a.corr_length);
+}
+
+std::string statistics_csv(const reference::StatisticalResult& r) {
+    std::string out = "theta_o_deg,intensity_per_rad,coherent_per_rad,coherent_stderr_per_rad,incoherent_per_rad,"
+                      "incoherent_stderr_per_rad\n";
+    for (std::size_t j = 0; j < r.theta_o_rad.size(); ++j)
+        out += fmt::format("{},{},{},{},{},{}\n", format_number(r.theta_o_rad[j] / kDegree),
+                           format_number(r.intensity[j]), format_number(r.coherent[j]),
+                           format_number(r.coherent_stderr[j]), format_number(r.incoherent[j]),
+                           format_number(r.incoherent_stderr[j]));
+    return out;
+}
+
+std::string far_field_csv(const reference::FarField& far_field) {
+    std::string out = "theta_o_deg,intensity_per_rad\n";
+    const auto intensity = far_field.intensity_per_rad();
+    for (std::size_t j = 0; j < intensity.size(); ++j)
+        out += fmt::format("{},{}\n", format_number(far_field.theta_o_rad[j] / kDegree), format_number(intensity[j]));
+    return out;
+}
+
+void run_exact_1d(const Exact1dArgs& a) {
+    require_finite(a.theta_i, "--theta-i");
+    if (a.theta_i < 0 || a.theta_i >= 90) fail("--theta-i must be in [0, 90) degrees, got {}", a.theta_i);
+    require_positive(a.wavelength, "--wavelength");
+    require_positive(a.beam_width, "--beam-width");
+    const auto conductor = material::Conductor::from_name(a.material);
+    reference::Exact1dOptions options;
+    options.lambda_nm = a.wavelength;
+    options.theta_i_rad = a.theta_i * kDegree;
+    options.polarisation = a.polarisation == "s" ? reference::Polarisation::s : reference::Polarisation::p;
+    options.beam_width_um = a.beam_width;
+    options.points_per_wavelength = a.points_per_wavelength;
+    if (!a.psd) {
+        for (const auto& [given, name] : {std::pair{a.length.has_value(), "--length-um"},
+                                         std::pair{a.sigma.has_value(), "--sigma"},
+                                         std::pair{a.corr_length.has_value(), "--corr-length"},
+                                         std::pair{a.gamma.has_value(), "--gamma"},
+                                         std::pair{a.realizations != 0, "--realizations"}})
+            if (given) fail("{} applies to the statistical mode (--psd) only", name);
+        if (a.profile.empty()) fail("give --profile FILE.csv or the statistical mode --psd kc|gaussian");
+        const reference::Profile profile = reference::read_profile_csv(a.profile);
+        write_file_atomically(a.output, far_field_csv(reference::solve_exact_1d(profile, conductor, options)));
+        return;
+    }
+    if (!a.profile.empty()) fail("--profile and --psd exclude each other: one profile or random ones");
+    const auto statistics = statistics_from(a);
+    if (!a.length) fail("--psd needs --length-um (the random profiles' length)");
+    if (a.realizations < 2) fail("--realizations must be at least 2, got {}", a.realizations);
+    if (a.seed < 0) fail("--seed must be >= 0, got {}", a.seed);
+    require_thread_count(a.threads, "--threads");
+    reference::StatisticalOptions st;
+    st.length_um = *a.length;
+    st.realizations = static_cast<std::size_t>(a.realizations);
+    st.seed = static_cast<std::uint64_t>(a.seed);
+    st.threads = a.threads;
+    st.progress = true;
+    install_interrupt_handler();
+    const auto result = reference::solve_exact_1d_statistics(*statistics, conductor, options, st);
+    if (result.realizations < st.realizations)
+        std::fprintf(stderr, "surfscatter: interrupted: %s holds %zu of %zu realizations\n", a.output.c_str(),
+                     result.realizations, st.realizations);
+    if (result.realizations > 0) write_file_atomically(a.output, statistics_csv(result));
+}
+
+const Command command("reference", [](CLI::App& app) {
+    auto* cmd = app.add_subcommand("reference", "Rigorous scattering solutions the models are checked against");
+    cmd->require_subcommand(1);
+    auto a = std::make_shared<Exact1dArgs>();
+    auto* sub = cmd->add_subcommand(
+        "exact-1d", "Boundary-integral solution for a 1-D profile z = h(x) under a Thorsos-tapered beam: CSV "
+                    "theta_o_deg,intensity_per_rad (scattered power per radian over the incident power)");
+    sub->add_option("--profile", a->profile, "profile CSV with header x_um,h_um, uniformly spaced, beam centred at x = 0");
+    sub->add_option("--material", a->material,
+                    "perfect, a built-in metal (Ag, Au, Al, Cu, ...) or a .yml/.csv refractive index file")
+        ->required();
+    sub->add_option("--wavelength", a->wavelength, "wavelength in nm")->required();
+    sub->add_option("--theta-i", a->theta_i, "angle of incidence in degrees, light arriving from negative x")->required();
+    sub->add_option("--polarisation", a->polarisation, "s (TE, E along y) or p (TM, H along y)")
+        ->required()
+        ->check(CLI::IsMember({"s", "p"}));
+    sub->add_option("--beam-width", a->beam_width, "Thorsos taper width g along x in um")->required();
+    sub->add_option("--points-per-wavelength", a->points_per_wavelength,
+                    "solver nodes per wavelength along x, 4..1000 (default 10)");
+    sub->add_option("-o", a->output, "output CSV")->required();
+    sub->add_option("--psd", a->psd, "statistical mode: random profiles with a kc or gaussian PSD (a cut through the "
+                                     "isotropic surface)")
+        ->check(CLI::IsMember({"kc", "gaussian"}));
+    sub->add_option("--sigma", a->sigma, "rms height sigma_h (um), with --psd");
+    sub->add_option("--corr-length", a->corr_length, "correlation length (um), with --psd");
+    sub->add_option("--gamma", a->gamma, "KC exponent gamma > 1, with --psd kc");
+    sub->add_option("--length-um", a->length, "length of each random profile (um), centred on x = 0");
+    sub->add_option("--realizations", a->realizations, "number of random profiles (>= 2)");
+    sub->add_option("--seed", a->seed, "seed of the first profile; profile r uses seed + r (default 1)");
+    sub->add_option("--threads", a->threads, "realizations solved at once, 0 = all cores (default)");
+    sub->callback([a] { run_exact_1d(*a); });
+});
+
+}  // namespace
+
+}  // namespace surfscatter::cli

@@ -1,0 +1,41 @@
+#pragma once
+// The exact 1-D solution averaged over random profiles (docs/REFERENCE.md): realizations solved in parallel, the
+// mean far field split into its coherent part |<a>|^2 and its incoherent part <|a|^2> - |<a>|^2, each with its
+// Monte Carlo standard error.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "surfscatter/material/conductor.hpp"
+#include "surfscatter/reference/exact_1d.hpp"
+#include "surfscatter/reference/profile.hpp"
+#include "surfscatter/surface/radial_statistics.hpp"
+
+namespace surfscatter::reference {
+
+struct StatisticalOptions {
+    double length_um = 0.0;        // profile length, centred on x = 0
+    std::size_t realizations = 0;  // >= 2
+    std::uint64_t seed = 0;        // realization r uses seed + r
+    int threads = 0;               // 0: all hardware threads
+    bool progress = false;         // progress bar with ETA on stderr
+};
+
+struct StatisticalResult {
+    std::vector<double> theta_o_rad;
+    std::vector<double> intensity, coherent, incoherent;  // per radian over the incident power
+    std::vector<double> coherent_stderr, incoherent_stderr;
+    std::size_t realizations = 0;  // completed (fewer than asked if interrupted)
+};
+
+// The random profile of realization `index`: a cut through an isotropic surface with `statistics`
+// (surface::synthesize_profile), sampled at lambda / points_per_wavelength over length_um, centred on x = 0.
+Profile random_profile(const surface::RadialStatistics& statistics, const Exact1dOptions& options, double length_um,
+                       std::uint64_t seed);
+
+// Stops early (keeping the realizations completed) when interrupt_requested(); throws Error for bad options.
+StatisticalResult solve_exact_1d_statistics(const surface::RadialStatistics& statistics,
+                                            const material::Conductor& conductor, const Exact1dOptions& options,
+                                            const StatisticalOptions& statistical);
+
+}  // namespace surfscatter::reference
