@@ -229,7 +229,7 @@ void check_options(const Profile& profile, const Exact1dOptions& o) {
         fail("theta_i must be in [0, 90) degrees, got {} deg", o.theta_i_rad / kDegree);
     require_positive(o.beam_width_um, "beam width (um)");
     if (!(o.points_per_wavelength >= 4 && o.points_per_wavelength <= 1000))
-        fail("points per wavelength must be between 4 and 1000, got {}", o.points_per_wavelength);
+        fail("points per wavelength (--points-per-wavelength) must be between 4 and 1000, got {}", o.points_per_wavelength);
     if (!(o.interior_reach >= 10 && o.interior_reach <= 100))
         fail("interior reach must be between 10 and 100 decay lengths, got {}", o.interior_reach);
     const double k = kTwoPi / (o.lambda_nm * 1e-3);

@@ -1,0 +1,122 @@
+// End-to-end tests of `surfscatter reference exact-1d`: the CSV it writes (a flat perfect conductor reflects 1, a
+// flat silver profile what `surfscatter fresnel` prints), the statistical mode's columns, and bad input (exit 2,
+// one line naming the value).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "cli_runner.hpp"
+#include "spectrum/test_data.hpp"
+
+using surfscatter::test::read_whole_file;
+using surfscatter::test::run_cli;
+using surfscatter::test::scratch_directory;
+using surfscatter::test::write_temp_file;
+
+namespace {
+
+// A flat profile from -half to half um.
+std::string flat_profile(double half, double step) {
+    std::string text = "x_um,h_um\n";
+    for (double x = -half; x <= half + 1e-9; x += step) text += fmt::format("{:.6f},0\n", x);
+    return text;
+}
+
+// Integral of intensity_per_rad over theta_o (degrees converted), and the row count.
+double integrate(const std::string& csv, std::size_t& rows) {
+    double sum = 0;
+    rows = 0;
+    std::size_t start = csv.find('\n') + 1;
+    while (start < csv.size()) {
+        const std::size_t end = csv.find('\n', start);
+        double theta = 0, value = 0;
+        if (std::sscanf(csv.c_str() + start, "%lf,%lf", &theta, &value) == 2) {
+            sum += value * (std::abs(theta) == 90 ? 0.5 : 1.0) * 0.1 * M_PI / 180;
+            ++rows;
+        }
+        start = end + 1;
+    }
+    return sum;
+}
+
+void expect_bad_input(const std::vector<std::string>& args, const std::string& needle) {
+    const auto r = run_cli(args);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find(needle), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+}
+
+}  // namespace
+
+TEST(CliReference, FlatProfilesReflectAsFresnelSays) {
+    const std::string profile = write_temp_file(flat_profile(15, 0.05), ".csv");
+    const auto out = (scratch_directory("surfscatter_cli_reference") / "flat.csv").string();
+    auto r = run_cli({"reference", "exact-1d", "--profile", profile, "--material", "perfect", "--wavelength", "550",
+                      "--theta-i", "30", "--polarisation", "s", "--beam-width", "5", "-o", out});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    std::string csv = read_whole_file(out);
+    EXPECT_EQ(csv.substr(0, csv.find('\n')), "theta_o_deg,intensity_per_rad");
+    std::size_t rows = 0;
+    EXPECT_NEAR(integrate(csv, rows), 1.0, 1e-5);
+    EXPECT_EQ(rows, 1801u);  // -90 to 90 every 0.1 deg
+    r = run_cli({"reference", "exact-1d", "--profile", profile, "--material", "Ag", "--wavelength", "550",
+                 "--theta-i", "30", "--polarisation", "p", "--beam-width", "5", "-o", out});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto fresnel = run_cli({"fresnel", "--material", "Ag", "--wavelength", "550", "--theta", "30",
+                                  "--polarization", "p"});
+    ASSERT_EQ(fresnel.exit_code, 0) << fresnel.err;
+    double theta = 0, reflectance = 0;
+    ASSERT_EQ(std::sscanf(fresnel.out_lines().at(1).c_str(), "%lf,%lf", &theta, &reflectance), 2);
+    EXPECT_NEAR(integrate(read_whole_file(out), rows), reflectance, 1e-3);
+}
+
+TEST(CliReference, StatisticalModeWritesCoherentAndIncoherentParts) {
+    const auto out = (scratch_directory("surfscatter_cli_reference") / "stat.csv").string();
+    const auto r = run_cli({"reference", "exact-1d", "--psd", "kc", "--sigma", "0.02", "--corr-length", "1",
+                            "--gamma", "3", "--length-um", "30", "--realizations", "2", "--seed", "4", "--material",
+                            "perfect", "--wavelength", "1000", "--theta-i", "10", "--polarisation", "s",
+                            "--beam-width", "5", "--threads", "2", "-o", out});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::string csv = read_whole_file(out);
+    EXPECT_EQ(csv.substr(0, csv.find('\n')),
+              "theta_o_deg,intensity_per_rad,coherent_per_rad,coherent_stderr_per_rad,incoherent_per_rad,"
+              "incoherent_stderr_per_rad");
+    std::size_t rows = 0;
+    EXPECT_NEAR(integrate(csv, rows), 1.0, 2e-3);
+    EXPECT_EQ(rows, 1801u);
+}
+
+TEST(CliReference, BadInputIsOneLine) {
+    const std::string profile = write_temp_file(flat_profile(15, 0.05), ".csv");
+    const std::vector<std::string> base = {"reference", "exact-1d", "--material", "perfect", "--wavelength", "550",
+                                           "--polarisation", "s", "-o", "/tmp/surfscatter_ref_unused.csv"};
+    auto with = [&](std::vector<std::string> extra) {
+        std::vector<std::string> args = base;
+        args.insert(args.end(), extra.begin(), extra.end());
+        return args;
+    };
+    expect_bad_input(with({"--profile", profile, "--theta-i", "90", "--beam-width", "5"}), "--theta-i must be in [0, 90)");
+    expect_bad_input(with({"--profile", profile, "--theta-i", "10", "--beam-width", "8"}),
+                     "does not hold the beam");
+    expect_bad_input(with({"--profile", profile, "--theta-i", "10", "--beam-width", "0.5"}), "too narrow");
+    expect_bad_input(with({"--profile", profile, "--theta-i", "10", "--beam-width", "5", "--psd", "kc"}),
+                     "--profile and --psd exclude each other");
+    expect_bad_input(with({"--theta-i", "10", "--beam-width", "5"}), "give --profile");
+    expect_bad_input(with({"--profile", profile, "--theta-i", "10", "--beam-width", "5", "--realizations", "3"}),
+                     "--realizations applies to the statistical mode");
+    expect_bad_input(with({"--psd", "kc", "--sigma", "0.1", "--corr-length", "1", "--length-um", "30",
+                           "--realizations", "3", "--theta-i", "10", "--beam-width", "5"}),
+                     "--gamma is required for --psd kc");
+    expect_bad_input(with({"--profile", write_temp_file("x_um,h_um\n0,0\n1,0\n3,0\n4,0\n", ".csv"), "--theta-i", "10",
+                           "--beam-width", "5"}),
+                     ":4: x = 3 um breaks the uniform step");
+    expect_bad_input(with({"--profile", profile, "--theta-i", "10", "--beam-width", "5", "--points-per-wavelength",
+                           "2"}),
+                     "points per wavelength (--points-per-wavelength) must be between 4 and 1000");
+}
