@@ -13,6 +13,29 @@ namespace reference_test {
 
 namespace sr = surfscatter::reference;
 
+// Solver options for a test.
+inline sr::Exact1dOptions solver_options(double lambda_nm, double theta_deg, sr::Polarisation pol, double g,
+                                         double ppw = 10) {
+    sr::Exact1dOptions o;
+    o.lambda_nm = lambda_nm;
+    o.theta_i_rad = theta_deg * surfscatter::kDegree;
+    o.polarisation = pol;
+    o.beam_width_um = g;
+    o.points_per_wavelength = ppw;
+    return o;
+}
+
+// The relative L1 distance of two patterns.
+inline double pattern_distance(const sr::FarField& a, const sr::FarField& b) {
+    const auto ia = a.intensity_per_rad(), ib = b.intensity_per_rad();
+    double diff = 0, norm = 0;
+    for (std::size_t j = 0; j < ia.size(); ++j) {
+        diff += std::abs(ia[j] - ib[j]);
+        norm += ib[j];
+    }
+    return diff / norm;
+}
+
 // Samples of f on [-half_length, half_length] with the given step.
 inline sr::Profile sample_profile(const std::function<double(double)>& f, double half_length, double step) {
     sr::Profile p;

@@ -23,19 +23,6 @@ using surfscatter::kTwoPi;
 using Complex = std::complex<double>;
 using namespace reference_test;
 
-namespace {
-
-sr::Exact1dOptions options(double lambda_nm, double theta_deg, sr::Polarisation pol, double g, double ppw = 10) {
-    sr::Exact1dOptions o;
-    o.lambda_nm = lambda_nm;
-    o.theta_i_rad = theta_deg * kDegree;
-    o.polarisation = pol;
-    o.beam_width_um = g;
-    o.points_per_wavelength = ppw;
-    return o;
-}
-
-}  // namespace
 
 // The numerical incident power against Thorsos' closed form: they differ at second order in his correction.
 TEST(Exact1d, IncidentPowerMatchesThorsos) {
@@ -55,7 +42,7 @@ TEST(Exact1d, FlatProfileIsAMirror) {
     const auto flat = sample_profile([](double) { return 0.0; }, 20.0, 0.25);
     for (double theta_i : {0.0, 30.0, 60.0})
         for (auto pol : {sr::Polarisation::s, sr::Polarisation::p}) {
-            const auto f = sr::solve_exact_1d(flat, sm::Conductor::perfect(), options(lambda, theta_i, pol, g));
+            const auto f = sr::solve_exact_1d(flat, sm::Conductor::perfect(), solver_options(lambda, theta_i, pol, g));
             const auto intensity = f.intensity_per_rad();
             double peak = 0, worst = 0, reference_power = 0;
             for (std::size_t j = 0; j < intensity.size(); j += 5) {
@@ -83,21 +70,10 @@ TEST(Exact1d, PerfectConductorConservesEnergy) {
         for (auto pol : {sr::Polarisation::s, sr::Polarisation::p}) {
             const double half = (pol == sr::Polarisation::s ? 3.0 : 10.0) * g;
             const auto f = sr::solve_exact_1d(sample_profile(rough, half, 0.25), sm::Conductor::perfect(),
-                                              options(1000, theta_i, pol, g));
+                                              solver_options(1000, theta_i, pol, g));
             std::printf("energy th %g pol %d : %.3g\n", theta_i, int(pol), total_power(f) - 1);
             EXPECT_NEAR(total_power(f), 1.0, 1e-3) << theta_i << " deg, " << (pol == sr::Polarisation::s ? "s" : "p");
         }
-}
-
-// The relative L1 distance of two patterns.
-double pattern_distance(const sr::FarField& a, const sr::FarField& b) {
-    const auto ia = a.intensity_per_rad(), ib = b.intensity_per_rad();
-    double diff = 0, norm = 0;
-    for (std::size_t j = 0; j < ia.size(); ++j) {
-        diff += std::abs(ia[j] - ib[j]);
-        norm += ib[j];
-    }
-    return diff / norm;
 }
 
 // Against 40 points per wavelength: s converges at ~3.5th order (1.2e-3, 1e-4, 2e-5 at 5, 10, 20), p at ~1.5th
@@ -105,10 +81,10 @@ double pattern_distance(const sr::FarField& a, const sr::FarField& b) {
 TEST(Exact1d, ConvergesWithSampling) {
     const auto profile = sample_profile(random_cosines(0.15, 1.0, 6.0, 12, 7), 24.0, 0.5);
     for (auto pol : {sr::Polarisation::s, sr::Polarisation::p}) {
-        const auto fine = sr::solve_exact_1d(profile, sm::Conductor::perfect(), options(1000, 20, pol, 8, 40));
+        const auto fine = sr::solve_exact_1d(profile, sm::Conductor::perfect(), solver_options(1000, 20, pol, 8, 40));
         double previous = 1;
         for (double ppw : {5.0, 10.0, 20.0}) {
-            const double d = pattern_distance(sr::solve_exact_1d(profile, sm::Conductor::perfect(), options(1000, 20, pol, 8, ppw)), fine);
+            const double d = pattern_distance(sr::solve_exact_1d(profile, sm::Conductor::perfect(), solver_options(1000, 20, pol, 8, ppw)), fine);
             std::printf("conv pol %d ppw %g %.3g\n", int(pol), ppw, d);
             EXPECT_LT(d, 0.6 * previous) << ppw;
             if (ppw == 10.0) {
@@ -134,9 +110,9 @@ TEST(Exact1d, Reciprocity) {
     };
     for (auto pol : {sr::Polarisation::s, sr::Polarisation::p})
         for (auto [ti, ts] : {std::pair{20.0, -40.0}, std::pair{10.0, 50.0}, std::pair{0.0, 70.0}}) {
-            const auto forward = sr::solve_exact_1d(profile, sm::Conductor::perfect(), options(1000, ti, pol, 15));
+            const auto forward = sr::solve_exact_1d(profile, sm::Conductor::perfect(), solver_options(1000, ti, pol, 15));
             const auto reverse = sr::solve_exact_1d(ts >= 0 ? mirrored : profile, sm::Conductor::perfect(),
-                                                    options(1000, std::abs(ts), pol, 15));
+                                                    solver_options(1000, std::abs(ts), pol, 15));
             const double a = at(forward, ts) * std::cos(ti * kDegree), b = at(reverse, ts >= 0 ? ti : -ti) * std::cos(ts * kDegree);
             std::printf("recip pol %d %g->%g %.4g %.4g\n", int(pol), ti, ts, a, b);
             EXPECT_NEAR(a, b, pol == sr::Polarisation::s ? 2e-4 : 3e-3) << ti << " -> " << ts;
@@ -192,10 +168,10 @@ TEST(Exact1d, GratingOrdersMatchRayleigh) {
         double expected_sum = 0;
         for (auto [order, e] : expected) expected_sum += e;
         EXPECT_NEAR(expected_sum, 1.0, 1e-9);  // the reference itself conserves energy
-        const double half = (pol == sr::Polarisation::s ? 3.0 : 6.0) * g;
-        for (double ppw : {10.0, 20.0}) {
+        const double half = (pol == sr::Polarisation::s ? 3.0 : 4.0) * g;
+        for (double ppw : {10.0, 15.0}) {
             const auto f = sr::solve_exact_1d(sample_profile(grating, half, 0.1), sm::Conductor::perfect(),
-                                              options(lambda, theta_i / kDegree, pol, g, ppw));
+                                              solver_options(lambda, theta_i / kDegree, pol, g, ppw));
             // Power around each order: every direction goes to the order nearest in sin(theta_o).
             std::map<int, double> found;
             const auto intensity = f.intensity_per_rad();
@@ -225,7 +201,7 @@ TEST(Exact1d, SmallRoughnessMatchesPerturbationTheory) {
     for (auto pol : {sr::Polarisation::s, sr::Polarisation::p}) {
         const double half = (pol == sr::Polarisation::s ? 3.0 : 6.0) * g;
         const auto f = sr::solve_exact_1d(sample_profile([&](double x) { return a * std::cos(kTwoPi * x / period); }, half, 0.1),
-                                          sm::Conductor::perfect(), options(1000, theta_i / kDegree, pol, g));
+                                          sm::Conductor::perfect(), solver_options(1000, theta_i / kDegree, pol, g));
         std::map<int, double> found;
         const auto intensity = f.intensity_per_rad();
         for (std::size_t j = 0; j < intensity.size(); ++j)

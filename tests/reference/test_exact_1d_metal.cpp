@@ -19,16 +19,6 @@ using namespace reference_test;
 
 namespace {
 
-sr::Exact1dOptions metal_options(double lambda_nm, double theta_deg, sr::Polarisation pol, double g, double ppw = 10) {
-    sr::Exact1dOptions o;
-    o.lambda_nm = lambda_nm;
-    o.theta_i_rad = theta_deg * kDegree;
-    o.polarisation = pol;
-    o.beam_width_um = g;
-    o.points_per_wavelength = ppw;
-    return o;
-}
-
 // Fresnel amplitude reflection of a medium of index n (vacuum outside), exp(-i omega t).
 double fresnel_reflectance(Complex n, double theta, sr::Polarisation pol) {
     const double c = std::cos(theta), s = std::sin(theta);
@@ -42,14 +32,14 @@ double fresnel_reflectance(Complex n, double theta, sr::Polarisation pol) {
 // A flat metal reflects each plane wave of the beam with Fresnel's |r(theta)|^2: the pattern is the perfect
 // mirror's times it, and its integral is R(theta_i) up to the beam's angular spread.
 TEST(Exact1dMetal, FlatProfileGivesFresnel) {
-    const double lambda = 550, k = kTwoPi / 0.55, g = 6;
+    const double lambda = 550, k = kTwoPi / 0.55, g = 10;
     const auto flat = sample_profile([](double) { return 0.0; }, 3 * g, 0.05);
-    for (const char* name : {"Ag", "Au", "Al"}) {
+    for (const char* name : {"Ag", "Au"}) {
         const auto metal = sm::Conductor::from_name(name);
         const Complex n = metal.ior(lambda);
         for (double theta_i : {0.0, 45.0, 65.0})
             for (auto pol : {sr::Polarisation::s, sr::Polarisation::p}) {
-                const auto f = sr::solve_exact_1d(flat, metal, metal_options(lambda, theta_i, pol, g));
+                const auto f = sr::solve_exact_1d(flat, metal, solver_options(lambda, theta_i, pol, g));
                 const auto intensity = f.intensity_per_rad();
                 double expected_total = 0, worst = 0, peak = 0;
                 for (std::size_t j = 0; j < intensity.size(); j += 5) {
@@ -62,6 +52,7 @@ TEST(Exact1dMetal, FlatProfileGivesFresnel) {
                 const double r = fresnel_reflectance(n, theta_i * kDegree, pol);
                 std::printf("%s th %g pol %d: total %.6f fresnel %.6f beam-avg %.6f worst/peak %.3g\n", name, theta_i, int(pol), total_power(f), r, expected_total, worst / peak);
                 EXPECT_NEAR(total_power(f), r, 1e-3) << name << " " << theta_i;
+                EXPECT_NEAR(total_power(f), expected_total, 3e-4) << name << " " << theta_i;  // the beam's average
                 EXPECT_LT(worst / peak, 2e-3) << name << " " << theta_i;
             }
     }
@@ -80,8 +71,8 @@ TEST(Exact1dMetal, Reciprocity) {
     };
     for (auto pol : {sr::Polarisation::s, sr::Polarisation::p})
         for (auto [ti, ts] : {std::pair{20.0, -40.0}, std::pair{10.0, 50.0}, std::pair{0.0, 60.0}}) {
-            const auto forward = sr::solve_exact_1d(profile, silver, metal_options(550, ti, pol, 12));
-            const auto reverse = sr::solve_exact_1d(ts >= 0 ? mirrored : profile, silver, metal_options(550, std::abs(ts), pol, 12));
+            const auto forward = sr::solve_exact_1d(profile, silver, solver_options(550, ti, pol, 12));
+            const auto reverse = sr::solve_exact_1d(ts >= 0 ? mirrored : profile, silver, solver_options(550, std::abs(ts), pol, 12));
             const double a = at(forward, ts) * std::cos(ti * kDegree), b = at(reverse, ts >= 0 ? ti : -ti) * std::cos(ts * kDegree);
             std::printf("metal recip pol %d %g->%g %.5g %.5g\n", int(pol), ti, ts, a, b);
             EXPECT_NEAR(a, b, pol == sr::Polarisation::s ? 5e-4 : 4e-3) << ti << " -> " << ts;
@@ -94,30 +85,21 @@ TEST(Exact1dMetal, ConvergesWithSamplingAndBand) {
     const auto profile = sample_profile(random_cosines(0.08, 0.6, 3.0, 12, 5), 12.0, 0.2);
     const auto gold = sm::Conductor::from_name("Au");
     for (auto pol : {sr::Polarisation::s, sr::Polarisation::p}) {
-        const auto fine = sr::solve_exact_1d(profile, gold, metal_options(550, 20, pol, 4, 40));
-        const auto distance = [&](const sr::FarField& a, const sr::FarField& b) {
-            const auto ia = a.intensity_per_rad(), ib = b.intensity_per_rad();
-            double diff = 0, norm = 0;
-            for (std::size_t j = 0; j < ia.size(); ++j) {
-                diff += std::abs(ia[j] - ib[j]);
-                norm += ib[j];
-            }
-            return diff / norm;
-        };
+        const auto fine = sr::solve_exact_1d(profile, gold, solver_options(550, 20, pol, 4, 40));
         double previous = 1;
         for (double ppw : {5.0, 10.0, 20.0}) {
-            const double d = distance(sr::solve_exact_1d(profile, gold, metal_options(550, 20, pol, 4, ppw)), fine);
+            const double d = pattern_distance(sr::solve_exact_1d(profile, gold, solver_options(550, 20, pol, 4, ppw)), fine);
             std::printf("metal conv pol %d ppw %g %.3g\n", int(pol), ppw, d);
             EXPECT_LT(d, 0.6 * previous) << ppw;
             previous = d;
         }
-        auto wide = metal_options(550, 20, pol, 4);
+        auto wide = solver_options(550, 20, pol, 4);
         wide.interior_reach = 60;
         const auto reference = sr::solve_exact_1d(profile, gold, wide);
         for (double reach : {20.0, 30.0}) {
-            auto o = metal_options(550, 20, pol, 4);
+            auto o = solver_options(550, 20, pol, 4);
             o.interior_reach = reach;
-            const double d = distance(sr::solve_exact_1d(profile, gold, o), reference);
+            const double d = pattern_distance(sr::solve_exact_1d(profile, gold, o), reference);
             std::printf("metal band pol %d reach %g %.3g\n", int(pol), reach, d);
             EXPECT_LT(d, 1e-6) << reach;
         }

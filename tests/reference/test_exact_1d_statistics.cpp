@@ -22,12 +22,7 @@ using surfscatter::kTwoPi;
 namespace {
 
 sr::Exact1dOptions stat_options(double theta_deg) {
-    sr::Exact1dOptions o;
-    o.lambda_nm = 1000;
-    o.theta_i_rad = theta_deg * kDegree;
-    o.polarisation = sr::Polarisation::s;
-    o.beam_width_um = 6;
-    return o;
+    return reference_test::solver_options(1000, theta_deg, sr::Polarisation::s, 6);
 }
 
 sr::StatisticalOptions runs(std::size_t n, std::uint64_t seed, int threads) {

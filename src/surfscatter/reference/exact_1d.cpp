@@ -55,6 +55,18 @@ Surface solver_surface(const Profile& profile, double lambda_um, double points_p
     return s;
 }
 
+// Navot's corrections on the five central entries of each row: D kLogCorrection[o + 2] A(x_i, x_{i+o}), A = the
+// kernel's log part log_part(i, j).
+template <typename LogPart>
+void add_log_corrections(Eigen::MatrixXcd& m, const Surface& s, LogPart log_part) {
+    const auto n = static_cast<std::ptrdiff_t>(s.n);
+    for (std::ptrdiff_t i = 0; i < n; ++i)
+        for (std::ptrdiff_t j = std::max<std::ptrdiff_t>(i - 2, 0); j <= std::min(i + 2, n - 1); ++j) {
+            const auto ui = static_cast<std::size_t>(i), uj = static_cast<std::size_t>(j);
+            m(ui, uj) += s.step * kLogCorrection[j - i + 2] * log_part(ui, uj);
+        }
+}
+
 // s (Dirichlet): psi_inc(x_i) = int (i/4) H0(k R) U(x') dx', U = dpsi/dn sqrt(1 + h'^2). Log part of the kernel
 // -J0(kR)/(2 pi) ln|x - x'|; the rest tends to i/4 - (ln(k s/2) + gamma)/(2 pi), s = sqrt(1 + h'^2).
 Eigen::MatrixXcd dirichlet_matrix(const Surface& s, double k) {
@@ -72,14 +84,9 @@ Eigen::MatrixXcd dirichlet_matrix(const Surface& s, double k) {
         m(i, i) = step * (-std::log(step / kTwoPi) / kTwoPi + 0.25 * kI -
                           (std::log(0.5 * k * slope_norm) + kEulerGamma) / kTwoPi);
     }
-    for (std::size_t i = 0; i < n; ++i)
-        for (int o = -2; o <= 2; ++o) {
-            const auto j = static_cast<std::ptrdiff_t>(i) + o;
-            if (j < 0 || j >= static_cast<std::ptrdiff_t>(n)) continue;
-            const auto jj = static_cast<std::size_t>(j);
-            const double log_part = -::j0(k * std::hypot(s.x[jj] - s.x[i], s.h[jj] - s.h[i])) / kTwoPi;
-            m(i, jj) += step * kLogCorrection[o + 2] * log_part;
-        }
+    add_log_corrections(m, s, [&](std::size_t i, std::size_t j) {
+        return -::j0(k * std::hypot(s.x[j] - s.x[i], s.h[j] - s.h[i])) / kTwoPi;
+    });
     return m;
 }
 
@@ -100,15 +107,12 @@ Eigen::MatrixXcd double_layer_matrix(const Surface& s, double k) {
         }
         m(i, i) = step * s.d2h[i] / (4.0 * kPi * (1.0 + s.dh[i] * s.dh[i]));
     }
-    for (std::size_t i = 0; i < n; ++i)
-        for (int o = -2; o <= 2; ++o) {
-            const auto j = static_cast<std::ptrdiff_t>(i) + o;
-            if (o == 0 || j < 0 || j >= static_cast<std::ptrdiff_t>(n)) continue;
-            const auto jj = static_cast<std::size_t>(j);
-            const double dx = s.x[jj] - s.x[i], dz = s.h[jj] - s.h[i];
-            const double r = std::hypot(dx, dz);
-            m(i, jj) += step * kLogCorrection[o + 2] * k / kTwoPi * ::j1(k * r) * (dz - s.dh[jj] * dx) / r;
-        }
+    add_log_corrections(m, s, [&](std::size_t i, std::size_t j) {
+        if (i == j) return 0.0;
+        const double dx = s.x[j] - s.x[i], dz = s.h[j] - s.h[i];
+        const double r = std::hypot(dx, dz);
+        return k / kTwoPi * ::j1(k * r) * (dz - s.dh[j] * dx) / r;
+    });
     return m;
 }
 

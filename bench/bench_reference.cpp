@@ -1,0 +1,60 @@
+// The exact 1-D solver: one solve of a KC profile (sigma 0.05 um, L 2 um, gamma 3) at 550 nm, 10 points per
+// wavelength, against profile length, for the perfect conductor (s, p) and silver (s, p); and the statistical mode's
+// realizations on 1 and 2 threads. CPU and wall time are reported separately (docs/PERFORMANCE.md).
+#include <benchmark/benchmark.h>
+
+#include "surfscatter/material/conductor.hpp"
+#include "surfscatter/math/vec.hpp"
+#include "surfscatter/reference/exact_1d.hpp"
+#include "surfscatter/reference/exact_1d_statistics.hpp"
+#include "surfscatter/surface/radial_statistics.hpp"
+
+namespace {
+
+namespace sr = surfscatter::reference;
+
+sr::Exact1dOptions bench_options(sr::Polarisation pol) {
+    sr::Exact1dOptions o;
+    o.lambda_nm = 550;
+    o.theta_i_rad = 30 * surfscatter::kDegree;
+    o.polarisation = pol;
+    o.points_per_wavelength = 10;
+    return o;
+}
+
+// range(0): profile length in um (beam width a fifth of it); range(1): 0 perfect s, 1 perfect p, 2 Ag s, 3 Ag p.
+void BM_Exact1dSolve(benchmark::State& state) {
+    const double length = static_cast<double>(state.range(0));
+    const int mode = static_cast<int>(state.range(1));
+    auto o = bench_options(mode % 2 == 0 ? sr::Polarisation::s : sr::Polarisation::p);
+    o.beam_width_um = length / 5;
+    const surfscatter::surface::KCorrelation kc(0.05, 2.0, 3.0);
+    const auto profile = sr::random_profile(kc, o, length, 1);
+    const auto metal = mode < 2 ? surfscatter::material::Conductor::perfect()
+                                : surfscatter::material::Conductor::from_name("Ag");
+    for (auto _ : state) benchmark::DoNotOptimize(sr::solve_exact_1d(profile, metal, o));
+    state.counters["unknowns"] = static_cast<double>(profile.h_um.size());
+}
+BENCHMARK(BM_Exact1dSolve)
+    ->ArgsProduct({{25, 50, 100}, {0, 1, 2, 3}})
+    ->Iterations(2)
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
+
+// Four realizations of 50 um profiles (perfect conductor, s) on range(0) threads.
+void BM_Exact1dStatistics(benchmark::State& state) {
+    auto o = bench_options(sr::Polarisation::s);
+    o.beam_width_um = 10;
+    const surfscatter::surface::KCorrelation kc(0.05, 2.0, 3.0);
+    sr::StatisticalOptions st;
+    st.length_um = 50;
+    st.realizations = 4;
+    st.seed = 1;
+    st.threads = static_cast<int>(state.range(0));
+    for (auto _ : state)
+        benchmark::DoNotOptimize(sr::solve_exact_1d_statistics(kc, surfscatter::material::Conductor::perfect(), o, st));
+}
+BENCHMARK(BM_Exact1dStatistics)->Arg(1)->Arg(2)->Iterations(1)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
+
+}  // namespace
