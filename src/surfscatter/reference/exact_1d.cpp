@@ -55,6 +55,13 @@ Surface solver_surface(const Profile& profile, double lambda_um, double points_p
     return s;
 }
 
+// fill(i, j) for every pair i < j: each kernel is evaluated once per pair and gives both entries.
+template <typename Fill>
+void for_each_pair(std::size_t n, Fill fill) {
+    for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = i + 1; j < n; ++j) fill(i, j);
+}
+
 // Navot's corrections on the five central entries of each row: D kLogCorrection[o + 2] A(x_i, x_{i+o}), A = the
 // kernel's log part log_part(i, j).
 template <typename LogPart>
@@ -73,13 +80,11 @@ Eigen::MatrixXcd dirichlet_matrix(const Surface& s, double k) {
     const std::size_t n = s.n;
     const double step = s.step;
     Eigen::MatrixXcd m(n, n);
+    for_each_pair(n, [&](std::size_t i, std::size_t j) {
+        const double z = k * std::hypot(s.x[j] - s.x[i], s.h[j] - s.h[i]);
+        m(i, j) = m(j, i) = step * 0.25 * Complex(-::y0(z), ::j0(z));
+    });
     for (std::size_t i = 0; i < n; ++i) {
-        for (std::size_t j = i + 1; j < n; ++j) {
-            const double z = k * std::hypot(s.x[j] - s.x[i], s.h[j] - s.h[i]);
-            const Complex value = step * 0.25 * Complex(-::y0(z), ::j0(z));
-            m(i, j) = value;
-            m(j, i) = value;
-        }
         const double slope_norm = std::sqrt(1.0 + s.dh[i] * s.dh[i]);
         m(i, i) = step * (-std::log(step / kTwoPi) / kTwoPi + 0.25 * kI -
                           (std::log(0.5 * k * slope_norm) + kEulerGamma) / kTwoPi);
@@ -97,16 +102,14 @@ Eigen::MatrixXcd double_layer_matrix(const Surface& s, double k) {
     const std::size_t n = s.n;
     const double step = s.step;
     Eigen::MatrixXcd m(n, n);
-    for (std::size_t i = 0; i < n; ++i) {
-        for (std::size_t j = i + 1; j < n; ++j) {
-            const double dx = s.x[j] - s.x[i], dz = s.h[j] - s.h[i];
-            const double r = std::hypot(dx, dz), z = k * r;
-            const Complex h1 = Complex(::j1(z), ::y1(z)) * (-0.25 * k * kI) / r;
-            m(i, j) = step * h1 * (dz - s.dh[j] * dx);
-            m(j, i) = step * h1 * (-dz + s.dh[i] * dx);
-        }
-        m(i, i) = step * s.d2h[i] / (4.0 * kPi * (1.0 + s.dh[i] * s.dh[i]));
-    }
+    for_each_pair(n, [&](std::size_t i, std::size_t j) {
+        const double dx = s.x[j] - s.x[i], dz = s.h[j] - s.h[i];
+        const double r = std::hypot(dx, dz), z = k * r;
+        const Complex h1 = Complex(::j1(z), ::y1(z)) * (-0.25 * k * kI) / r;  // one Hankel call for both entries
+        m(i, j) = step * h1 * (dz - s.dh[j] * dx);
+        m(j, i) = step * h1 * (-dz + s.dh[i] * dx);
+    });
+    for (std::size_t i = 0; i < n; ++i) m(i, i) = step * s.d2h[i] / (4.0 * kPi * (1.0 + s.dh[i] * s.dh[i]));
     add_log_corrections(m, s, [&](std::size_t i, std::size_t j) {
         if (i == j) return 0.0;
         const double dx = s.x[j] - s.x[i], dz = s.h[j] - s.h[i];
