@@ -458,7 +458,7 @@ const std::vector<HostileCase> kCases = {
      "@D@/pole.yml: DATA entry 1: formula 1 gives no real positive index at 0.95 um"},
     {"BinaryCsvNotEchoedRaw", {"ior", "--material", "@D@/binary.csv", "--wavelength", "500"}, 2,
      "got '500,1,\\x01\\x02\\xff\\x1b[3"},
-    {"UnknownSubcommand", {"rendr", "x.xml"}, 2, "unknown subcommand 'rendr' of surfscatter (known: acv, brdf,"},
+    {"UnknownSubcommand", {"rendr", "x.xml"}, 2, "unknown subcommand 'rendr' of surfscatter (known: acv, board, brdf,"},
     {"UnknownNestedSubcommand", {"surface", "fitt", "h.gsf"}, 2, "unknown subcommand 'fitt' of surfscatter surface"},
     // Added: more of the same kinds.
     {"PlyNanVertex", render("mesh_nan_vertex.ply.xml"), 2, "nan_vertex.ply: 'nan' in a property is not a finite number"},
