@@ -207,7 +207,8 @@ void albedo(const BrdfArgs& a) {
     if (a.theta_i.size() != 1) fail("--theta-i takes one angle for brdf albedo, got {}", a.theta_i.size());
     const auto model = single_model(a);
     const auto r = bsdf::directional_albedo(*model, a.theta_i[0] * kDegree, a.wavelength);
-    std::printf("albedo = %s\nspecular = %s\n", format_number(r.total()).c_str(), format_number(r.specular).c_str());
+    std::printf("albedo = %s\nspecular = %s\nerror = %s\n", format_number(r.total()).c_str(),
+                format_number(r.specular).c_str(), format_number(r.error).c_str());
 }
 
 void sample(const BrdfArgs& a) {

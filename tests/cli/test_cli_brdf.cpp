@@ -38,9 +38,11 @@ TEST(CliBrdf, AlbedoOfThePerfectConductorGhsIsOne) {
                             "--corr-length", "20.9", "--material", "perfect", "--wavelength", "10600", "--theta-i", "40"});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const auto lines = r.out_lines();
-    ASSERT_EQ(lines.size(), 2u);
+    ASSERT_EQ(lines.size(), 3u);
     ASSERT_EQ(lines[0].rfind("albedo = ", 0), 0u);
     ASSERT_EQ(lines[1].rfind("specular = ", 0), 0u);
+    ASSERT_EQ(lines[2].rfind("error = ", 0), 0u);
+    EXPECT_LT(std::stod(lines[2].substr(8)), 1e-4);
     EXPECT_NEAR(std::stod(lines[0].substr(9)), 1.0, 5e-3);
     EXPECT_GE(std::stod(lines[1].substr(11)), 0.0);
 }

@@ -59,6 +59,10 @@ public:
     // Probability that sample() chooses the delta lobe.
     virtual double delta_probability(const Vec3& /*wi*/, double /*lambda_nm*/) const { return 0.0; }
 
+    // Radius q = |i_xy + o_xy| about the specular direction where f jumps (the two-scale micro lobe's hole at
+    // zeta_c / k), 0 if it has none: integrators put an edge there (albedo.hpp).
+    virtual double jump_radius(double /*lambda_nm*/) const { return 0.0; }
+
     // True if the model has no continuous part (a smooth mirror).
     virtual bool is_pure_delta() const { return false; }
 

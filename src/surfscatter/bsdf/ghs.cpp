@@ -203,6 +203,8 @@ double GhsBsdf::delta_reflectance(const Vec3& wi, double lambda_nm) const {
     return material_.reflectance(std::min(1.0, wi.z), lambda_nm) * delta_probability(wi, lambda_nm);
 }
 
+double GhsBsdf::jump_radius(double lambda_nm) const { return stats_->psd_jump_radius() / wavenumber(lambda_nm); }
+
 GhsBsdf::Wedge::Wedge(const Vec3& wi, const Vec3& wo)
     : s(sin_theta(wi)), q(scatter_radius(wi, wo)), phi_max(wedge_half_angle(q, s)) {}
 

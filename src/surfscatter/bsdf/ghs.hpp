@@ -62,6 +62,7 @@ public:
                                  WavelengthValues* pdf) const override;
     double delta_reflectance(const Vec3& wi, double lambda_nm) const override;
     double delta_probability(const Vec3& wi, double lambda_nm) const override;
+    double jump_radius(double lambda_nm) const override;  // where the PSD jumps, in q
     std::string name() const override { return settings_.name; }
 
     // The roughness used in g (um) and the lobe normalisation N at (theta_i, lambda), as tabulated.

@@ -30,6 +30,7 @@ public:
     double eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const override;
     std::optional<BsdfSample> sample(const Vec3& wi, double lambda_nm, double u_lobe, Vec2 u) const override;
     double pdf(const Vec3& wi, const Vec3& wo, double lambda_nm) const override;
+    double jump_radius(double lambda_nm) const override { return micro_->jump_radius(lambda_nm); }
     std::string name() const override { return "two_scale"; }
 
     double macro_alpha() const { return alpha_; }
