@@ -225,7 +225,10 @@ void sample(const BrdfArgs& a) {
     for (long long n = 0; n < a.count; ++n) {
         const double ul = uniform(rng), u1 = uniform(rng), u2 = uniform(rng);
         const auto s = model->sample(wi, a.wavelength, ul, Vec2(u1, u2));
-        if (!s) continue;  // no direction drawn (below the horizon): the estimator counts it as zero
+        if (!s) {  // no direction drawn (below the horizon): a row of zeros, so that the mean weight is the albedo
+            std::printf("0,0,0,0,0,0\n");
+            continue;
+        }
         std::printf("%s,%s,%s,%s,%s,%d\n", format_number(s->wo.x).c_str(), format_number(s->wo.y).c_str(),
                     format_number(s->wo.z).c_str(), format_number(s->weight).c_str(),
                     format_number(s->pdf).c_str(), s->delta ? 1 : 0);
@@ -308,7 +311,7 @@ const Command command("brdf", [](CLI::App& app) {
         albedo(*a);
     });
 
-    CLI::App* sample_cmd = brdf_cmd->add_subcommand("sample", "CSV x,y,z,weight,pdf,delta of sampled directions");
+    CLI::App* sample_cmd = brdf_cmd->add_subcommand("sample", "CSV x,y,z,weight,pdf,delta of every draw (0,0,0,0,0,0 where none was drawn); mean weight = albedo");
     add_model_options(sample_cmd, *a, false);
     sample_cmd->add_option("--count", a->count, "number of samples (default 1000)");
     sample_cmd->add_option("--seed", a->seed, "random seed (default 1)");
