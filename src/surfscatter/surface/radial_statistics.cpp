@@ -121,7 +121,8 @@ double KCorrelation::acv_normalized(double r) const {
     if (x < 1e-8) {
         // Small-x expansion (THEORY.md 1.5): 1 + x^2/(4(1-nu)) - Gamma(1-nu)/Gamma(1+nu) (x/2)^{2 nu}.
         if (nu_ == std::round(nu_)) {
-            if (nu_ == 1.0) return 1.0 - 0.5 * x * x * (std::log(2.0 / x) + 0.5 - kEulerGamma);
+            // ln 2 - ln x, not ln(2 / x): 2 / x overflows for x below 1e-308 (acv --r 1e-320 printed -nan).
+            if (nu_ == 1.0) return 1.0 - 0.5 * x * x * (std::log(2.0) - std::log(x) + 0.5 - kEulerGamma);
             return 1.0 - x * x / (4.0 * (nu_ - 1.0));
         }
         const double power = std::tgamma(1.0 - nu_) / std::tgamma(1.0 + nu_) * std::pow(0.5 * x, 2.0 * nu_);
