@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "surfscatter/bsdf/microfacet.hpp"
+#include "surfscatter/core/error.hpp"
 
 namespace surfscatter::bsdf {
 
@@ -76,7 +77,12 @@ std::optional<BsdfSample> GgxBsdf::sample(const Vec3& wi, double lambda_nm, doub
 
 double kc_link_alpha(double corr_length_um, double lambda_nm) {
     const double k = kTwoPi / (lambda_nm * 1e-3);  // rad/um
-    return 1.0 / std::sqrt(1.0 + 4.0 * k * k * corr_length_um * corr_length_um);
+    const double alpha = 1.0 / std::sqrt(1.0 + 4.0 * k * k * corr_length_um * corr_length_um);
+    // At wavelengths far below L (1e-100 nm: k^2 overflows, alpha 0) GGX is not defined: refused, not NaN.
+    if (!(alpha >= kMinMicrofacetAlpha))
+        fail("alpha_from kc_link gives alpha = {} at wavelength {} nm (correlation length {} um), below GGX's {}", alpha,
+             lambda_nm, corr_length_um, kMinMicrofacetAlpha);
+    return alpha;
 }
 
 }  // namespace surfscatter::bsdf
