@@ -52,9 +52,10 @@ double exposure_scale(const cv::Mat& photo, const cv::Mat& render, const cv::Mat
     for (int y = 0; y < photo.rows; ++y)
         for (int x = 0; x < photo.cols; ++x)
             if (m.at<std::uint8_t>(y, x)) {
-                const cv::Vec3f p = photo.at<cv::Vec3f>(y, x), r = render.at<cv::Vec3f>(y, x);
-                pr += double(p.dot(r));
-                rr += double(r.dot(r));
+                // In double: float products of pixels near 1e38 overflow (rmse was inf).
+                const cv::Vec3d p = photo.at<cv::Vec3f>(y, x), r = render.at<cv::Vec3f>(y, x);
+                pr += p.dot(r);
+                rr += r.dot(r);
             }
     if (!(rr > 0.0)) fail("the rendering is black inside the mask; no exposure can match it");
     return pr / rr;
@@ -75,8 +76,8 @@ ComparisonMetrics compare_to_photo(const cv::Mat& photo, const cv::Mat& render, 
         for (int x = 0; x < photo.cols; ++x) {
             if (!m.at<std::uint8_t>(y, x)) continue;
             const cv::Vec3f p = photo.at<cv::Vec3f>(y, x), r = scaled.at<cv::Vec3f>(y, x);
-            const cv::Vec3f d = p - r;
-            sum_sq += double(d.dot(d));
+            const cv::Vec3d d = cv::Vec3d(p) - cv::Vec3d(r);
+            sum_sq += d.dot(d);
             sum_de += ciede2000(linear_srgb_to_lab({p[0], p[1], p[2]}), linear_srgb_to_lab({r[0], r[1], r[2]}));
             ++count;
         }

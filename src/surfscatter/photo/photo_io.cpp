@@ -39,11 +39,22 @@ Photo read_exr(const std::filesystem::path& path) {
     Photo photo;
     photo.bit_depth = 32;
     photo.rgb.create(image.height, image.width, CV_32FC3);
+    // The one float reader of photographs: a NaN or infinite sample (an EXR may hold them) is refused here, so that
+    // undistort, compare and colorcorrect never carry one into their outputs.
+    std::size_t bad = 0;
+    int first_x = 0, first_y = 0;
+    float first = 0;
     for (int y = 0; y < image.height; ++y)
         for (int x = 0; x < image.width; ++x) {
             cv::Vec3f& px = photo.rgb.at<cv::Vec3f>(y, x);
-            for (int c = 0; c < 3; ++c) px[c] = image.at(x, y, std::min(c, image.channels - 1));
+            for (int c = 0; c < 3; ++c) {
+                px[c] = image.at(x, y, std::min(c, image.channels - 1));
+                if (!std::isfinite(px[c]) && bad++ == 0) first_x = x, first_y = y, first = px[c];
+            }
         }
+    if (bad > 0)
+        fail("image '{}': {} samples are not finite (the first, at pixel ({}, {}), is {})", path.string(), bad, first_x,
+             first_y, first);
     return photo;
 }
 
