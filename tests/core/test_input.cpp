@@ -1,14 +1,21 @@
 // Defensive input reading and resource limits (core/input_file.hpp, core/resources.hpp, printable()).
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
-#include <functional>
 #include <fstream>
+#include <functional>
+#include <future>
 #include <string>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/input_file.hpp"
 #include "surfscatter/core/resources.hpp"
+#include "surfscatter/core/table_cache.hpp"
 
 namespace surfscatter {
 
@@ -63,6 +70,30 @@ TEST(Resources, LimitsThreadsAndMemory) {
               std::string::npos);
     EXPECT_EQ(format_bytes(512), "512 bytes");
     EXPECT_EQ(format_bytes(1536.0 * 1024 * 1024), "1.5 GiB");
+}
+
+// Issue 26: a FIFO where the table cache expects a table blocked the open forever; it is now passed over (the table
+// is rebuilt), and read_input_file refuses a FIFO by name. Each call runs under a 10 s watchdog that opens the FIFO for
+// writing if the call still waits, so that a regression fails instead of hanging.
+TEST(SpecialFiles, FifoIsRefusedAndTheCachePassesOverIt) {
+    const auto fifo = std::filesystem::temp_directory_path() / ("surfscatter_fifo_" + std::to_string(getpid()));
+    std::filesystem::remove(fifo);
+    ASSERT_EQ(mkfifo(fifo.c_str(), 0644), 0);
+    auto finishes = [&](const std::function<void()>& call) {
+        auto done = std::async(std::launch::async, call);
+        if (done.wait_for(std::chrono::seconds(10)) == std::future_status::ready) return true;
+        const int unblock = open(fifo.c_str(), O_WRONLY | O_NONBLOCK);
+        done.wait();
+        if (unblock >= 0) close(unblock);
+        return false;
+    };
+    bool cached = true;
+    EXPECT_TRUE(finishes([&] { cached = load_cached_table(fifo, 1, "key").has_value(); })) << "the cache blocked";
+    EXPECT_FALSE(cached);
+    std::string message;
+    EXPECT_TRUE(finishes([&] { message = error_of([&] { read_input_file(fifo, "scene file"); }); }));
+    EXPECT_EQ(message, "scene file " + fifo.string() + " is a FIFO (named pipe), not a file");
+    std::filesystem::remove(fifo);
 }
 
 }  // namespace surfscatter

@@ -21,8 +21,9 @@ void require_readable_file(const fs::path& path, const char* what) {
         fail("{} {}: {}", what, path.string(), ec.message());
     }
     switch (status.type()) {
-        case fs::file_type::regular:
-        case fs::file_type::fifo: return;
+        case fs::file_type::regular: return;
+        // A FIFO blocks the open until something writes to it, maybe forever.
+        case fs::file_type::fifo: fail("{} {} is a FIFO (named pipe), not a file", what, path.string());
         case fs::file_type::directory: fail("{} {} is a directory, not a file", what, path.string());
         default: fail("{} {} is not a regular file (a device or socket)", what, path.string());
     }

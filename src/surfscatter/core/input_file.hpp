@@ -15,7 +15,7 @@ namespace surfscatter {
 inline constexpr std::uint64_t kMaxTextInputBytes = std::uint64_t{256} << 20;
 
 // The whole file as bytes. `what` names the role of the file in messages ("scene file", "OBJ file"). Regular files
-// and pipes are read; directories, devices and sockets are refused; more than `max_bytes` bytes is an error.
+// are read; directories, FIFOs, devices and sockets are refused; more than `max_bytes` bytes is an error.
 std::string read_input_file(const std::filesystem::path& path, const char* what,
                             std::uint64_t max_bytes = kMaxTextInputBytes);
 

@@ -2,7 +2,9 @@
 
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 
 #include "surfscatter/core/error.hpp"
@@ -52,21 +54,25 @@ std::filesystem::path temporary_beside(const std::filesystem::path& file) {
 void write_file_atomically(const std::filesystem::path& file, const std::string& text) {
     const std::filesystem::path tmp = temporary_beside(file);
     bool out_ok = false;
+    int error = 0;
     {
+        errno = 0;
         std::ofstream out(tmp, std::ios::binary);
         out << text;
         out.close();
         out_ok = bool(out);
+        error = errno;
     }
     std::error_code ec;
     if (!out_ok) {
         std::filesystem::remove(tmp, ec);
-        fail("cannot write {}", tmp.string());
+        fail("cannot write {}{}", file.string(), error != 0 ? fmt::format(": {}", std::strerror(error)) : "");
     }
     std::filesystem::rename(tmp, file, ec);
     if (ec) {
+        const std::string why = ec.message();  // before remove() overwrites ec
         std::filesystem::remove(tmp, ec);
-        fail("cannot move {} into place: {}", file.string(), ec.message());
+        fail("cannot move {} into place: {}", file.string(), why);
     }
 }
 

@@ -50,6 +50,10 @@ void save_cached_table(const std::filesystem::path& file, std::uint32_t version,
 std::optional<std::vector<double>> load_cached_table(const std::filesystem::path& file, std::uint32_t version,
                                                      const std::string& key) {
     try {
+        // Only a regular file is read: a FIFO in its place blocked the open forever, a device fed it garbage. The
+        // table is rebuilt and saved over it.
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(file, ec)) return std::nullopt;
         std::ifstream in(file, std::ios::binary);
         if (!in) return std::nullopt;
         std::uint64_t magic = 0, key_size = 0, count = 0, checksum = 0;
