@@ -1,7 +1,9 @@
 // surfscatter compare: a photograph against renderings on one exposure scale, with metrics and a sheet.
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -10,6 +12,7 @@
 #include "command.hpp"
 #include "list_options.hpp"
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/paths.hpp"
 #include "surfscatter/photo/compare.hpp"
 #include "surfscatter/photo/photo_io.hpp"
 
@@ -48,21 +51,20 @@ void run(const Options& o) {
     const std::filesystem::path stem = std::filesystem::path(o.output).replace_extension();
     const std::string csv_path = stem.string() + ".csv", json_path = stem.string() + ".json";
     const std::string header = "label,render,exposure_scale,rmse,psnr_db,ssim,mean_ciede2000";
-    std::ofstream csv(csv_path);
-    if (!csv) fail("output '{}' could not be written", csv_path);
+    std::ostringstream csv;
     csv << header << "\n";
-    std::printf("%s\n", header.c_str());
     nlohmann::json j;
     j["photo"] = o.photo;
     j["mask"] = o.mask.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.mask);
     j["renders"] = nlohmann::json::array();
     for (std::size_t i = 0; i < metrics.size(); ++i) {
         const auto& m = metrics[i];
+        // PSNR is infinite for an exact match (zero error), the one infinity written on purpose.
+        const std::string psnr = std::isinf(m.psnr_db) && m.rmse == 0.0 ? "inf" : format_number(m.psnr_db);
         const std::string row = m.label + "," + o.renders[i] + "," + format_number(m.exposure_scale) + "," +
-                                format_number(m.rmse) + "," + format_number(m.psnr_db) + "," + format_number(m.ssim) +
-                                "," + format_number(m.mean_ciede2000);
+                                format_number(m.rmse) + "," + psnr + "," + format_number(m.ssim) + "," +
+                                format_number(m.mean_ciede2000);
         csv << row << "\n";
-        std::printf("%s\n", row.c_str());
         j["renders"].push_back({{"label", m.label},
                                 {"file", o.renders[i]},
                                 {"exposure_scale", m.exposure_scale},
@@ -71,9 +73,10 @@ void run(const Options& o) {
                                 {"ssim", m.ssim},
                                 {"mean_ciede2000", m.mean_ciede2000}});
     }
-    std::ofstream json(json_path);
-    if (!json) fail("output '{}' could not be written", json_path);
-    json << j.dump(2) << "\n";
+    // Checked writes (a full disk fails, leaving no partial file).
+    write_file_atomically(csv_path, csv.str());
+    write_file_atomically(json_path, j.dump(2) + "\n");
+    std::fputs(csv.str().c_str(), stdout);  // after the files: a failed write prints nothing
     std::fprintf(stderr, "surfscatter: compare: %zu rendering(s) -> %s, %s, %s\n", metrics.size(), o.output.c_str(),
                  csv_path.c_str(), json_path.c_str());
 }

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -52,7 +53,7 @@ void run_metals(MetalsArgs a) {
     // Normal-incidence reflectance, 1 nm steps.
     const auto reflectance_path = a.out / "metals_reflectance.csv";
     {
-        std::ofstream csv(reflectance_path);
+        std::ostringstream csv;
         csv << "wavelength_nm";
         for (const auto& m : metals) csv << "," << m.name();
         csv << "\n";
@@ -61,7 +62,7 @@ void run_metals(MetalsArgs a) {
             for (const auto& m : metals) csv << "," << format_number(m.reflectance(1.0, l));
             csv << "\n";
         }
-        if (!csv) fail("cannot write '{}'", reflectance_path.string());
+        write_file_atomically(reflectance_path, csv.str());  // checked; on a full disk nothing is left behind
     }
 
     // Colour under the lamp: XYZ with the perfect reflector at Y = 1, then either white-balanced to the lamp
@@ -78,7 +79,7 @@ void run_metals(MetalsArgs a) {
     json["white_balance"] = "Bradford from the lamp white to D65, then linear sRGB (IEC 61966-2-1)";
     json["as_lit_scale"] = as_lit_scale;
     const auto swatch_path = a.out / "metals_swatches.csv";
-    std::ofstream csv(swatch_path);
+    std::ostringstream csv;
     csv << "metal,X,Y,Z,x,y,r_linear,g_linear,b_linear,r8,g8,b8,r_linear_as_lit,g_linear_as_lit,b_linear_as_lit,"
            "r8_as_lit,g8_as_lit,b8_as_lit\n";
     for (const auto& m : metals) {
@@ -108,9 +109,9 @@ void run_metals(MetalsArgs a) {
                                   {"linear_srgb_as_lit", {as_lit.x, as_lit.y, as_lit.z}},
                                   {"srgb8_as_lit", {to_8bit(as_lit8.x), to_8bit(as_lit8.y), to_8bit(as_lit8.z)}}});
     }
-    if (!csv) fail("cannot write '{}'", swatch_path.string());
+    write_file_atomically(swatch_path, csv.str());
     const auto json_path = a.out / "metals_swatches.json";
-    std::ofstream(json_path) << json.dump(2) << "\n";
+    write_file_atomically(json_path, json.dump(2) + "\n");
 
     if (a.plot)
         run_plot_script("metals.py", {reflectance_path.string(), json_path.string(),

@@ -13,7 +13,12 @@ struct Command {
     Command(std::string name, std::function<void(CLI::App&)> setup);
 };
 
-// Prints a CSV header and rows with full precision (used by every subcommand that prints numbers).
+// A number as printed or written, with full precision (used by every subcommand that prints numbers); a NaN or an
+// infinity is an Error instead.
 std::string format_number(double v);
+
+// Flushes stdout; an Error if anything written to it was lost (a full disk, a closed pipe). main() calls it after
+// every command.
+void flush_standard_output();
 
 }  // namespace surfscatter::cli

@@ -1,6 +1,9 @@
 // surfscatter: command-line front end. Exit status 0 on success, 2 on bad input (one line on stderr).
 #include <algorithm>
+#include <cerrno>
+#include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <mutex>
@@ -28,7 +31,12 @@ Command::Command(std::string name, std::function<void(CLI::App&)> setup) {
     registry().emplace(std::move(name), std::move(setup));
 }
 
-std::string format_number(double v) { return fmt::format("{:.10g}", v); }
+// Every number a command prints or writes goes through here: a NaN or infinity is refused (exit 2) instead of
+// printed. The commands refuse the inputs that would make one, naming them; this is the net behind them.
+std::string format_number(double v) {
+    if (!std::isfinite(v)) fail("a result is {}: the inputs are outside the range where it is defined", v);
+    return fmt::format("{:.10g}", v);
+}
 
 namespace {
 
@@ -63,6 +71,14 @@ void check_subcommand_names(CLI::App& app, int argc, char** argv) {
 
 }  // namespace
 
+void flush_standard_output() {
+    errno = 0;
+    const bool flushed = std::fflush(stdout) == 0;
+    const int error = errno;
+    if (!flushed || std::ferror(stdout))
+        fail("could not write the standard output{}", error != 0 ? fmt::format(": {}", std::strerror(error)) : "");
+}
+
 }  // namespace surfscatter::cli
 
 int main(int argc, char** argv) {
@@ -83,6 +99,9 @@ int main(int argc, char** argv) {
     try {
         surfscatter::cli::check_subcommand_names(app, argc, argv);
         app.parse(argc, argv);
+        // Every write is checked, stdout too (docs/RELIABILITY.md): what a command printed may still sit in the
+        // buffer, and a full disk or a closed pipe shows only when it is flushed. One place for every command.
+        surfscatter::cli::flush_standard_output();
         // A job stopped by Ctrl-C or SIGTERM wrote what it had; its status says it did not finish (128 + signal).
         if (surfscatter::interrupt_requested()) return 128 + surfscatter::interrupt_signal();
     } catch (const CLI::CallForHelp& e) {

@@ -50,15 +50,18 @@ inline std::string read_whole_file(const std::string& path) {
 }
 
 // run_cli({"ior", "--material", "Au", "--wavelength", "550"}). With `timeout_seconds` > 0 the command is killed
-// after that long (exit code 137), so that a hang fails the test instead of stalling the suite.
-inline CliResult run_cli(const std::vector<std::string>& args, int timeout_seconds = 0) {
+// after that long (exit code 137), so that a hang fails the test instead of stalling the suite. `shell_prefix` runs
+// before it in the same shell ("ulimit -f 8;"); `stdout_path` takes its stdout instead of the capture ("/dev/full").
+inline CliResult run_cli(const std::vector<std::string>& args, int timeout_seconds = 0,
+                         const std::string& shell_prefix = "", const std::string& stdout_path = "") {
     char out_path[] = "/tmp/surfscatter_cli_out_XXXXXX";
     char err_path[] = "/tmp/surfscatter_cli_err_XXXXXX";
     const int out_fd = mkstemp(out_path);
     const int err_fd = mkstemp(err_path);
     if (out_fd >= 0) close(out_fd);
     if (err_fd >= 0) close(err_fd);
-    std::string command = timeout_seconds > 0 ? "timeout -s KILL " + std::to_string(timeout_seconds) + " " : "";
+    std::string command = shell_prefix;
+    if (timeout_seconds > 0) command += "timeout -s KILL " + std::to_string(timeout_seconds) + " ";
     command += shell_quote(SURFSCATTER_CLI);
     // Appended piece by piece: `" " + std::string` trips g++ 12's false -Wrestrict warning.
     for (const auto& a : args) {
@@ -66,7 +69,7 @@ inline CliResult run_cli(const std::vector<std::string>& args, int timeout_secon
         command += shell_quote(a);
     }
     command += " >";
-    command += shell_quote(out_path);
+    command += shell_quote(stdout_path.empty() ? std::string(out_path) : stdout_path);
     command += " 2>";
     command += shell_quote(err_path);
     command += " </dev/null";

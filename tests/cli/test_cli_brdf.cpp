@@ -93,7 +93,9 @@ TEST(CliBrdf, MeanWeightOfAllSampleRowsIsTheAlbedo) {
         const double n = double(rows.size() - 1), mean = sum / n, se = std::sqrt((sum2 / n - mean * mean) / n);
         const double expected = std::stod(ra.out_lines()[0].substr(9));
         EXPECT_NEAR(mean, expected, 4 * se + 1e-12) << model[1] << " (" << empty << " rows without a direction)";
-        if (model[1] == "ggx") EXPECT_GT(empty, 2000);  // ~8.7 % of the GGX draws fall below the horizon
+        if (model[1] == "ggx") {
+            EXPECT_GT(empty, 2000);  // ~8.7 % of the GGX draws fall below the horizon
+        }
     }
 }
 

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -18,6 +19,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 
 #include "cli_runner.hpp"
@@ -82,6 +84,12 @@ struct HostileCase {
     std::vector<std::string> args;  // "@D@" = scratch directory
     int exit_code;                  // 2: bad input; 0: a huge but valid value with finite output
     std::string message;            // substring of stderr (exit 2)
+    // Issue 26, checked writes: a shell prefix run before the command ("ulimit -f 16;": a full disk after 8 KiB), a
+    // file taking stdout instead of the capture ("/dev/full"), and a file the failed command must not leave behind
+    // (nor a temporary file beside it).
+    std::string shell_prefix = "";
+    std::string stdout_path = "";
+    std::string absent = "";
 };
 
 void PrintTo(const HostileCase& c, std::ostream* os) { *os << c.name; }
@@ -225,6 +233,26 @@ public:
             pixel_state = pixel_state * 6364136223846793005ull + 1442695040888963407ull;
             v = static_cast<float>(pixel_state >> 40) * 0x1.0p-24f;
         }
+        // EXR photographs (issue 26): a NaN sample, three infinite ones, and every sample near the float maximum.
+        const auto exr_variant = [&](const std::string& name, const std::function<void(surfscatter::io::Image&)>& edit) {
+            surfscatter::io::Image image = photo;
+            edit(image);
+            const fs::path whole = dir() / ("whole." + std::to_string(getpid()) + ".exr");
+            surfscatter::io::write_exr(whole, image);
+            const std::string bytes = surfscatter::test::read_whole_file(whole.string());
+            fs::remove(whole);
+            write(name, bytes);
+        };
+        exr_variant("noise.exr", [](surfscatter::io::Image&) {});
+        exr_variant("nan_pixel.exr", [](surfscatter::io::Image& i) { i.at(5, 7, 1) = std::nanf(""); });
+        exr_variant("inf_pixel.exr", [](surfscatter::io::Image& i) {
+            for (int c = 0; c < 3; ++c) i.at(2, 3, c) = INFINITY;
+        });
+        exr_variant("huge_pixels.exr", [](surfscatter::io::Image& i) {
+            for (float& v : i.pixels) v = 1e38f * (0.5f + 0.5f * v);
+        });
+        // A FIFO where a scene file is expected: opening it blocked until a writer came, maybe forever.
+        if (!fs::exists(dir() / "fifo.xml")) mkfifo((dir() / "fifo.xml").c_str(), 0644);
         for (const char* extension : {".png", ".jpg"}) {
             const fs::path whole = dir() / ("whole." + std::to_string(getpid()) + extension);
             surfscatter::io::write_image(whole, photo);
@@ -546,13 +574,51 @@ const std::vector<HostileCase> kCases = {
     {"PsdExtremeButValid", {"psd", "--sigma", "1e9", "--corr-length", "1e9", "--gamma", "100", "--zeta", "0,1e-9,1,1e300"}, 0, ""},
     {"AcvSmallGammaValid", {"acv", "--sigma", "1e-9", "--corr-length", "1e-9", "--gamma", "1.01", "--r", "0,1e-300,1,1e300"}, 0, ""},
     {"MetalsHotLamp", {"metals", "--no-plot", "--temperature", "1e9", "--out", "@D@/metals_hot"}, 0, ""},
+
+    // Issue 26, rules on numbers and writes (docs/RELIABILITY.md "Numbers and writes").
+    // Every printed number is finite or the input is refused (format_number is the net; the sources are fixed too).
+    {"AcvSubnormalR", {"acv", "--sigma", "1", "--corr-length", "1", "--gamma", "3", "--r", "1e-320,1e-310"}, 0, ""},
+    {"GgxKcLinkWavelength1e300", join({"brdf", "eval", "--model", "ggx", "--alpha-from", "kc-link", "--material",
+                                       "perfect", "--wavelength", "1e-300", "--theta-i", "30", "--theta-o", "30"}, kKc),
+     2, "alpha_from kc_link gives alpha = 0 at wavelength 1e-300 nm (correlation length 2 um), below GGX's 0.0001"},
+    {"GgxKcLinkWavelength1e100", join({"brdf", "eval", "--model", "ggx", "--alpha-from", "kc-link", "--material",
+                                       "perfect", "--wavelength", "1e-100", "--theta-i", "30", "--theta-o", "30"}, kKc),
+     2, "at wavelength 1e-100 nm (correlation length 2 um), below GGX's 0.0001"},
+    // Non-finite pixels of input images are refused, in the one float reader of photographs.
+    {"UndistortNanExr", undistort("camera.yml", "nan_pixel.exr"), 2,
+     "nan_pixel.exr': 1 samples are not finite (the first, at pixel (5, 7), is nan)"},
+    {"CompareInfExr", {"compare", "@D@/inf_pixel.exr", "@D@/noise.exr", "-o", "@D@/cmp_inf.png"}, 2,
+     "inf_pixel.exr': 3 samples are not finite (the first, at pixel (2, 3), is inf)"},
+    {"CompareInfRender", {"compare", "@D@/noise.exr", "@D@/inf_pixel.exr", "-o", "@D@/cmp_inf.png"}, 2,
+     "inf_pixel.exr': 3 samples are not finite"},
+    {"ColorcorrectNanExr", {"colorcorrect", "@D@/nan_pixel.exr", "-o", "@D@/cc_nan.exr", "--ccm", "@D@/cc_nan.json"}, 2,
+     "nan_pixel.exr': 1 samples are not finite"},
+    {"CompareHugePixels", {"compare", "@D@/huge_pixels.exr", "@D@/noise.exr", "-o", "@D@/cmp_huge.png"}, 0, ""},
+    // Every write is checked: stdout on a full device, files on a full disk (no partial file left).
+    {"IorStdoutFull", {"ior", "--material", "Au", "--wavelength", "400,500,600"}, 2,
+     "could not write the standard output: No space left on device", "", "/dev/full"},
+    {"PsdStdoutFull", {"psd", "--sigma", "1", "--corr-length", "1", "--gamma", "3", "--zeta", "0,1,2"}, 2,
+     "could not write the standard output: No space left on device", "", "/dev/full"},
+    {"BrdfSampleStdoutFull", join({"brdf", "sample", "--model", "ggx", "--alpha", "0.3"}, kBrdf, {"--count", "10"}), 2,
+     "could not write the standard output: No space left on device", "", "/dev/full"},
+    {"BrdfAlbedoStdoutFull", join({"brdf", "albedo", "--model", "ggx", "--alpha", "0.3"}, kBrdf), 2,
+     "could not write the standard output: No space left on device", "", "/dev/full"},
+    {"MetalsStdoutFull", {"metals", "--no-plot", "--out", "@D@/metals_stdout_full"}, 2,
+     "could not write the standard output: No space left on device", "", "/dev/full"},
+    {"MetalsCsvDiskFull", {"metals", "--no-plot", "--out", "@D@/metals_disk_full"}, 2,
+     "cannot write @D@/metals_disk_full/metals_reflectance.csv: File too large", "trap '' XFSZ; ulimit -f 16; ", "",
+     "@D@/metals_disk_full/metals_reflectance.csv"},
+    {"CompareCsvCannotBeWritten", {"compare", "@D@/noise.exr", "@D@/noise.exr", "-o", "@D@/compare_csv_dir/sheet.png"}, 2,
+     "cannot move @D@/compare_csv_dir/sheet.csv into place: Is a directory", "mkdir -p '@D@/compare_csv_dir/sheet.csv'; "},
+    // Special files are refused wherever a file is opened (the table cache: tests/core/test_input.cpp).
+    {"SceneIsAFifo", render("fifo.xml"), 2, "@D@/fifo.xml is a FIFO (named pipe), not a file"},
 };
 
 TEST_P(Hostile, KeepsThePromise) {
     const HostileCase& c = GetParam();
     std::vector<std::string> args;
     for (const std::string& a : c.args) args.push_back(expand(a));
-    const CliResult r = run_cli(args, 120);
+    const CliResult r = run_cli(args, 120, expand(c.shell_prefix), expand(c.stdout_path));
     ASSERT_NE(r.exit_code, 137) << "killed after 120 s: a hang";
     EXPECT_EQ(r.exit_code, c.exit_code) << r.err;
     EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
@@ -575,6 +641,14 @@ TEST_P(Hostile, KeepsThePromise) {
         }
         EXPECT_EQ(error_lines, 1u) << "one error line expected:\n" << r.err;
         EXPECT_NE(r.err.find(expand(c.message)), std::string::npos) << "expected: " << expand(c.message) << "\ngot: " << r.err;
+        if (!c.absent.empty()) {
+            const fs::path absent = expand(c.absent);
+            EXPECT_FALSE(fs::exists(absent)) << absent << " was left behind";
+            std::error_code ec;
+            for (const auto& entry : fs::directory_iterator(absent.parent_path(), ec))
+                EXPECT_EQ(entry.path().filename().string().rfind(absent.filename().string(), 0), std::string::npos)
+                    << entry.path() << " was left behind";
+        }
     } else {
         std::string lower = r.out;
         std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char ch) { return std::tolower(ch); });
