@@ -108,7 +108,9 @@ TEST(Albedo, EveryModelWithinHalfAPercentOfItsDocumentedValue) {
 
 // The library's albedo integrator (bsdf/albedo.hpp) against the references of hemisphere_albedo.hpp. It was wrong for
 // narrow lobes at grazing incidence (issue 26: 1231 for the first case below, 7.40 for GGX alpha 1e-4), and for exact
-// GHS on KC(3 um, 0.3 um, gamma 1.2) it reported 1.00075 at 60 deg and 1.0148 at 75 deg.
+// GHS on KC(3 um, 0.3 um, gamma 1.2) it reported 1.00075 at 60 deg and 1.0148 at 75 deg where the BRDF's integral was
+// 0.9944 and 1.0016: K came from the same inaccurate rule. K now comes from the new one, so the GHS values of the
+// issue no longer hold: the GHS rows check the documented bound |albedo - R| < 2e-3 (GhsEnergyOverGammaAndIncidence).
 namespace {
 
 struct AlbedoCase {
@@ -149,18 +151,22 @@ double check_against_reference(const AlbedoCase& c, double reference) {
 
 TEST(Albedo, IssueCasesMatchNestedQuadrature) {
     auto ghs_rough = test::kc_options(ModelKind::ghs, 3.0, 0.3, 1.2);
-    // The value each case should have (issue 26, by integrating `brdf eval`), and the reference here.
+    // The value each case should have (issue 26, by integrating `brdf eval`; 0: GHS, R = 1 within 2e-3), and the
+    // reference here.
     const std::vector<std::pair<AlbedoCase, double>> cases{
         {{"two_scale KC(0.001, 100, 6) N 100", two_scale(0.001, 100, 6, 100), 89.99}, 0.9988},
         {{"two_scale KC(0.02, 2, 3) N 150", two_scale(0.02, 2, 3, 150), 89.99}, 0.89},
         {{"ggx alpha 1e-4", ggx(1e-4), 89.99}, 0.905},
-        {{"ghs KC(3, 0.3, 1.2)", ghs_rough, 60.0}, 0.9944},
-        {{"ghs KC(3, 0.3, 1.2)", ghs_rough, 75.0}, 1.0016},
+        {{"ghs KC(3, 0.3, 1.2)", ghs_rough, 60.0}, 0},
+        {{"ghs KC(3, 0.3, 1.2)", ghs_rough, 75.0}, 0},
     };
     for (const auto& [c, issue] : cases) {
         const auto bsdf = make_bsdf(c.options);
         const double reference = test::hemisphere_albedo(*bsdf, c.theta_i_deg * kDegree, c.lambda_nm);
-        EXPECT_NEAR(reference, issue, std::pow(10.0, -double(fmt::format("{}", issue).size() - 2))) << c.label;
+        if (issue > 0)
+            EXPECT_NEAR(reference, issue, std::pow(10.0, -double(fmt::format("{}", issue).size() - 2))) << c.label;
+        else
+            EXPECT_NEAR(reference, 1.0, 2e-3) << c.label;
         check_against_reference(c, reference);
     }
 }
@@ -200,3 +206,27 @@ TEST(Albedo, EveryModelMatchesNestedQuadrature) {
     std::printf("worst |library - nested quadrature| %.2e\n", worst);
 }
 
+
+// The GHS energy at extreme gamma (issue 26): K now comes from the same lobe-following cubature (the fixed rule before
+// made KC(3 um, 0.3 um, gamma 1.2) carry 0.9944 at 60 deg), so what is left of |albedo - R| is the lookup of K:
+// ln K is linear in lambda between wavelength nodes 2 % apart, and for the roughest fractal surfaces ln K bends enough
+// in lambda for that to leave up to 1.8e-3 (measured 1.75e-3 at 75 deg, 549 nm, near the middle of a node interval).
+// The bound documented in docs/MODELS.md is this test's.
+TEST(Albedo, GhsEnergyOverGammaAndIncidence) {
+    double worst = 0;
+    for (const auto& [sigma, length] : {std::pair{3.0, 0.3}, std::pair{0.5, 2.0}})
+        for (double gamma : {1.2, 1.5, 2.0, 3.0, 4.0}) {
+            const auto bsdf = make_bsdf(test::kc_options(ModelKind::ghs, sigma, length, gamma));
+            for (double lambda : {549.0, 550.0})
+                for (double theta : {0.0, 30.0, 60.0, 75.0, 85.0, 89.0, 89.9}) {
+                    const DirectionalAlbedo a = directional_albedo(*bsdf, theta * kDegree, lambda);
+                    const double excess = std::abs(a.total() - 1.0);
+                    worst = std::max(worst, excess);
+                    EXPECT_LT(excess, 2e-3) << "KC(" << sigma << ", " << length << ", " << gamma << ") " << lambda
+                                            << " nm theta_i " << theta << ": " << a.total();
+                    std::printf("ghs KC(%g, %g, %g) %g nm theta_i %5.1f albedo - 1 %+.2e\n", sigma, length, gamma,
+                                lambda, theta, a.total() - 1.0);
+                }
+        }
+    std::printf("GHS worst |albedo - R| %.2e\n", worst);
+}
