@@ -129,6 +129,7 @@ ModelOptions two_scale(double sigma, double length, double gamma, double n, cons
 ModelOptions ggx(double alpha) {
     ModelOptions o;
     o.model = ModelKind::ggx;
+    o.alpha_from = AlphaFrom::none;
     o.alpha = alpha;
     return o;
 }
