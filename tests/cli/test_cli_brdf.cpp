@@ -68,7 +68,7 @@ TEST(CliBrdf, SamplePrintsDirectionsWeightsPdfs) {
 // standard errors), for GGX and for GHS with its delta lobe.
 TEST(CliBrdf, MeanWeightOfAllSampleRowsIsTheAlbedo) {
     const std::vector<std::vector<std::string>> models{
-        {"--model", "ggx", "--alpha", "0.3", "--material", "perfect"},
+        {"--model", "ggx_stats", "--alpha", "0.3", "--material", "perfect"},
         {"--model", "ghs", "--psd", "kc", "--sigma", "0.05", "--corr-length", "2", "--gamma", "3", "--material", "Au"}};
     for (const auto& model : models) {
         std::vector<std::string> common{"--wavelength", "550", "--theta-i", "45"};
@@ -93,7 +93,7 @@ TEST(CliBrdf, MeanWeightOfAllSampleRowsIsTheAlbedo) {
         const double n = double(rows.size() - 1), mean = sum / n, se = std::sqrt((sum2 / n - mean * mean) / n);
         const double expected = std::stod(ra.out_lines()[0].substr(9));
         EXPECT_NEAR(mean, expected, 4 * se + 1e-12) << model[1] << " (" << empty << " rows without a direction)";
-        if (model[1] == "ggx") {
+        if (model[1] == "ggx_stats") {
             EXPECT_GT(empty, 2000);  // ~8.7 % of the GGX draws fall below the horizon
         }
     }

@@ -578,10 +578,10 @@ const std::vector<HostileCase> kCases = {
     // Issue 26, rules on numbers and writes (docs/RELIABILITY.md "Numbers and writes").
     // Every printed number is finite or the input is refused (format_number is the net; the sources are fixed too).
     {"AcvSubnormalR", {"acv", "--sigma", "1", "--corr-length", "1", "--gamma", "3", "--r", "1e-320,1e-310"}, 0, ""},
-    {"GgxKcLinkWavelength1e300", join({"brdf", "eval", "--model", "ggx", "--alpha-from", "kc-link", "--material",
+    {"GgxKcLinkWavelength1e300", join({"brdf", "eval", "--model", "ggx_stats", "--alpha-from", "kc_link", "--material",
                                        "perfect", "--wavelength", "1e-300", "--theta-i", "30", "--theta-o", "30"}, kKc),
      2, "alpha_from kc_link gives alpha = 0 at wavelength 1e-300 nm (correlation length 2 um), below GGX's 0.0001"},
-    {"GgxKcLinkWavelength1e100", join({"brdf", "eval", "--model", "ggx", "--alpha-from", "kc-link", "--material",
+    {"GgxKcLinkWavelength1e100", join({"brdf", "eval", "--model", "ggx_stats", "--alpha-from", "kc_link", "--material",
                                        "perfect", "--wavelength", "1e-100", "--theta-i", "30", "--theta-o", "30"}, kKc),
      2, "at wavelength 1e-100 nm (correlation length 2 um), below GGX's 0.0001"},
     // Non-finite pixels of input images are refused, in the one float reader of photographs.
@@ -599,9 +599,9 @@ const std::vector<HostileCase> kCases = {
      "could not write the standard output: No space left on device", "", "/dev/full"},
     {"PsdStdoutFull", {"psd", "--sigma", "1", "--corr-length", "1", "--gamma", "3", "--zeta", "0,1,2"}, 2,
      "could not write the standard output: No space left on device", "", "/dev/full"},
-    {"BrdfSampleStdoutFull", join({"brdf", "sample", "--model", "ggx", "--alpha", "0.3"}, kBrdf, {"--count", "10"}), 2,
+    {"BrdfSampleStdoutFull", join({"brdf", "sample", "--model", "ggx_stats", "--alpha", "0.3"}, kBrdf, {"--count", "10"}), 2,
      "could not write the standard output: No space left on device", "", "/dev/full"},
-    {"BrdfAlbedoStdoutFull", join({"brdf", "albedo", "--model", "ggx", "--alpha", "0.3"}, kBrdf), 2,
+    {"BrdfAlbedoStdoutFull", join({"brdf", "albedo", "--model", "ggx_stats", "--alpha", "0.3"}, kBrdf), 2,
      "could not write the standard output: No space left on device", "", "/dev/full"},
     {"MetalsStdoutFull", {"metals", "--no-plot", "--out", "@D@/metals_stdout_full"}, 2,
      "could not write the standard output: No space left on device", "", "/dev/full"},
