@@ -288,7 +288,7 @@ private:
                 const std::string name = child.attribute("name") ? loader.substitute(node, child.attribute("name").value()) : "";
                 // Nested objects may carry names (Mitsuba ignores them); they are taken by kind. A named <ref> to
                 // anything but a texture (<ref id="mat" name="bsdf"/>) is a nested BSDF.
-                if (name.empty() || node.tag() == "bsdf" || (node.tag() == "ref" && !loader.names_texture(node))) {
+                if (name.empty() || loader.is_bsdf(node)) {
                     unnamed_.push_back({node});
                     continue;
                 }
@@ -404,9 +404,7 @@ private:
             std::vector<MaterialPtr> out;
             for (Property& p : unnamed_) {
                 if (p.used) continue;
-                // A <ref> that names no texture is taken as a BSDF (an undefined id is then reported).
-                const bool bsdf_ref = p.node.tag() == "ref" && !loader_.names_texture(p.node);
-                if (p.node.tag() == "bsdf" || bsdf_ref) {
+                if (loader_.is_bsdf(p.node)) {
                     p.used = true;
                     out.push_back(loader_.build_bsdf(p.node));
                 }
@@ -433,7 +431,7 @@ private:
         std::vector<Node> bsdf_nodes() {
             std::vector<Node> out;
             for (const Property& p : unnamed_)
-                if (!p.used && (p.node.tag() == "bsdf" || (p.node.tag() == "ref" && !loader_.names_texture(p.node))))
+                if (!p.used && loader_.is_bsdf(p.node))
                     out.push_back(p.node);
             return out;
         }
@@ -988,6 +986,9 @@ private:
             }
         }
     }
+
+    // A <bsdf>, or a <ref> that names no texture (an undefined id is then reported where it is built).
+    bool is_bsdf(const Node& node) { return node.tag() == "bsdf" || (node.tag() == "ref" && !names_texture(node)); }
 
     bool names_texture(const Node& ref) {
         const std::string id = attribute(ref, "id");
