@@ -126,7 +126,6 @@ bsdf::ModelOptions model_options(const BrdfArgs& a, const std::string& spec) {
         if (!a.height_map) {
             bsdf::load_height_map(o.surface);
             a.height_map = o.surface.height_map;
-            std::fprintf(stderr, "surfscatter: brdf: %s\n", surface::describe(*a.height_map).c_str());
         }
         o.surface.height_map = a.height_map;
     } else if (!a.surface_file.empty() && a.psd == psd) {
@@ -159,6 +158,12 @@ std::unique_ptr<bsdf::Bsdf> build_model(const bsdf::ModelOptions& options) {
     static std::vector<std::string> printed;
     std::vector<std::string> notes;
     auto model = bsdf::make_bsdf(options, &notes);
+    // The --surface map is described once the model is built from it: a map the model refuses gives the error alone.
+    static const surface::HeightMap* described = nullptr;
+    if (options.surface.height_map && options.surface.height_map.get() != described) {
+        described = options.surface.height_map.get();
+        std::fprintf(stderr, "surfscatter: brdf: %s\n", surface::describe(*described).c_str());
+    }
     for (const std::string& note : notes)
         if (std::find(printed.begin(), printed.end(), note) == printed.end()) {
             std::fprintf(stderr, "surfscatter: brdf: note: %s\n", note.c_str());

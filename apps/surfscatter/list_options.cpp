@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdlib>
 
+#include <fmt/format.h>
+
 #include "surfscatter/core/error.hpp"
 
 namespace surfscatter::cli {
@@ -67,6 +69,30 @@ CLI::Option* add_list(CLI::App* cmd, const std::string& name, std::vector<T>& va
 }
 
 }  // namespace
+
+void check_integer_ranges(CLI::App& app) {
+    for (CLI::Option* option : app.get_options()) {
+        if (option->get_items_expected_max() == 0) continue;  // a flag
+        const std::string type = option->get_type_name();
+        const bool is_unsigned = type.rfind("UINT", 0) == 0;
+        if (!is_unsigned && type.rfind("INT", 0) != 0) continue;
+        option->check(CLI::Validator(
+            [is_unsigned](std::string& value) {
+                const char* text = value.c_str();
+                while (*text == ' ' || *text == '\t') ++text;
+                if (is_unsigned && *text == '-') return fmt::format("'{}' is negative (must be >= 0)", printable(value));
+                char* end = nullptr;
+                errno = 0;
+                if (is_unsigned) std::strtoull(text, &end, 0);
+                else std::strtoll(text, &end, 0);
+                if (errno == ERANGE)
+                    return fmt::format("'{}' is beyond the 64-bit integer range", printable(value));
+                return std::string();  // a well-formed integer in range, or text that CLI11 refuses itself
+            },
+            ""));
+    }
+    for (CLI::App* sub : app.get_subcommands({})) check_integer_ranges(*sub);
+}
 
 CLI::Option* add_number_list(CLI::App* cmd, const std::string& name, std::vector<double>& values,
                              const std::string& help) {

@@ -18,6 +18,12 @@ inline constexpr std::size_t kMaxListItems = 100'000;
 std::vector<double> parse_number_list(const std::string& text, const std::string& option);
 std::vector<std::string> parse_string_list(const std::string& text, const std::string& option);
 
+// CLI11 reads integer options with strtoll / strtoull and keeps the saturated value (--seed 99999999999999999999
+// became 9223372036854775807; -5 for an unsigned option wrapped around): this range-checks every integer option and
+// positional of `app` and its subcommands, in one place (main calls it once). Values beyond the 64-bit range and
+// negative values of unsigned options are errors naming the option and the value.
+void check_integer_ranges(CLI::App& app);
+
 CLI::Option* add_number_list(CLI::App* cmd, const std::string& name, std::vector<double>& values,
                              const std::string& help);
 CLI::Option* add_string_list(CLI::App* cmd, const std::string& name, std::vector<std::string>& values,

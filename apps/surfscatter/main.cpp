@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "command.hpp"
+#include "list_options.hpp"
 #include "surfscatter/core/deprecation.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/progress.hpp"
@@ -95,6 +96,7 @@ int main(int argc, char** argv) {
         if (printed.insert(message).second) std::fprintf(stderr, "surfscatter: warning: %s\n", message.c_str());
     });
     for (auto& [name, setup] : surfscatter::cli::registry()) setup(app);
+    surfscatter::cli::check_integer_ranges(app);
     surfscatter::cli::refuse_empty_values(app);
     try {
         surfscatter::cli::check_subcommand_names(app, argc, argv);
@@ -116,14 +118,17 @@ int main(int argc, char** argv) {
     } catch (const surfscatter::distributed::QuietExit& e) {
         return e.status();  // another MPI rank reported the error
     } catch (const surfscatter::Error& e) {
-        std::fprintf(stderr, "surfscatter: error: %s\n", e.what());
+        // Through printable(): one line, whatever bytes a message quotes.
+        std::fprintf(stderr, "surfscatter: error: %s\n",
+                     surfscatter::printable(e.what(), surfscatter::kShownMessageChars).c_str());
         return 2;
     } catch (const std::filesystem::filesystem_error& e) {
         // Paths come from the user: a name too long, a permission denied, a file where a directory should be.
         std::fprintf(stderr, "surfscatter: error: %s\n", surfscatter::printable(e.what(), 400).c_str());
         return 2;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "surfscatter: internal error: %s\n", e.what());
+        std::fprintf(stderr, "surfscatter: internal error: %s\n",
+                     surfscatter::printable(e.what(), surfscatter::kShownMessageChars).c_str());
         return 1;
     }
     return 0;

@@ -91,8 +91,14 @@ RealArray real_array(py::handle value, const char* name, Domain domain, bool vec
     const auto kind = array.attr("dtype").attr("kind").cast<std::string>();
     if (kind != "f" && kind != "i" && kind != "u")
         fail("{} must hold real numbers, got dtype {}", name, py::str(array.attr("dtype")).cast<std::string>());
+    // numpy casts every integer and float dtype to float64 as 'safe' but longdouble (float96/float128): it refuses
+    // that cast, and its TypeError is translated here into one line naming the argument.
     auto converted = RealArray::ensure(array);
-    if (!converted) throw py::error_already_set();
+    if (!converted) {
+        PyErr_Clear();
+        fail("{} must hold float64 values, got dtype {} (convert it with .astype(numpy.float64) if that is exact "
+             "enough)", name, py::str(array.attr("dtype")).cast<std::string>());
+    }
     vector |= domain == Domain::unit_vector;
     check_shape(converted, name, vector);
     if (check) check_values(converted, name, domain, vector);

@@ -112,6 +112,9 @@ py::dict render_scene(py::handle scene_path, std::optional<int> spp, py::handle 
     require_thread_count(threads, "threads");
     if (seed && *seed < 0) fail("seed must be >= 0, got {}", *seed);
     const std::string path = path_string(scene_path, "scene");
+    // A scene's text where its path belongs would otherwise be quoted whole as a file that does not exist.
+    if (path.find_first_of("<\n") != std::string::npos)
+        fail("scene must be the path of an .xml file, got XML text '{}' (write it to a file)", printable(path, 40));
     const auto defines = scene_defines(params);
     std::unique_ptr<render::Scene> scene;
     {

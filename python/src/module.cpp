@@ -36,7 +36,15 @@ int max_threads() {
 }  // namespace
 
 void bind_core(py::module_& m) {
-    py::register_exception<Error>(m, "Error", PyExc_ValueError);
+    static py::exception<Error> error_type(m, "Error", PyExc_ValueError);
+    // The message through printable(), as the CLI prints it: one line, whatever bytes it quotes.
+    py::register_exception_translator([](std::exception_ptr error) {
+        try {
+            if (error) std::rethrow_exception(error);
+        } catch (const Error& e) {
+            PyErr_SetString(error_type.ptr(), printable(e.what(), kShownMessageChars).c_str());
+        }
+    });
     m.attr("Error").attr("__module__") = "surfscatter";
     m.attr("Error").attr("__doc__") =
         "Bad input to a surfscatter function: a ValueError whose message is the library's one line naming the bad "

@@ -79,6 +79,66 @@ void write(const std::string& name, const std::string& bytes) {
     fs::rename(partial, dir() / name);
 }
 
+// Issue 26, rules 4 and 7 (docs/RELIABILITY.md "Rules on conflicts, unchecked objects, domains and messages"): the
+// files of their rows (kRuleCases below).
+void write_rule_files() {
+    // Conflicts name both places.
+    std::string two_integrators = scene("", "", "  <integrator type=\"path\"/>\n  <integrator type=\"direct\"/>\n");
+    write("integrator_twice.xml", two_integrators);
+    std::string defaults = scene();
+    defaults.replace(defaults.find("  <sensor"), 0, "  <default name=\"size\" value=\"16\"/>\n");
+    write("default_conflict.xml", defaults);
+    std::string same_default = scene();
+    same_default.replace(same_default.find("  <sensor"), 0, "  <default name=\"size\" value=\"8\"/>\n");
+    write("default_repeated.xml", same_default);
+    std::string samplers = scene();
+    samplers.replace(samplers.find("  </sensor>"), 0, "    <sampler type=\"independent\"/>\n");
+    write("sampler_twice.xml", samplers);
+    write("shape_two_bsdfs.xml", scene("", "<bsdf type=\"diffuse\"/>\n    <bsdf type=\"conductor\"/>"));
+    std::string gsf = "Gwyddion Simple Field 1.0\nXRes = 2\nYRes = 2\nXRes = 3\nXYUnits = m\nZUnits = m\n";
+    gsf.append(4 - gsf.size() % 4, '\0');
+    gsf.append(16, '\0');
+    write("xres_twice.gsf", gsf);
+    write("study_key_twice.json", "{\"models\": [{\"name\": \"a\", \"model\": \"ggx\", \"alpha\": 0.1}],\n"
+                                  " \"wavelengths\": [500],\n \"albedo\": {\"theta_i\": [0]},\n"
+                                  " \"wavelengths\": [600]}\n");
+    write("study_model_key_twice.json", "{\"models\": [{\"name\": \"a\", \"model\": \"ggx\",\n  \"model\": \"ghs\"}],\n"
+                                        " \"wavelengths\": [500], \"albedo\": {\"theta_i\": [0]}}\n");
+    fs::create_directories(dir() / "manifest_twice");
+    write("manifest_twice/study.json", "{\"models\": [{\"name\": \"a\", \"model\": \"ggx\", \"alpha\": 0.1}],\n"
+                                       " \"wavelengths\": [500], \"albedo\": {\"theta_i\": [0]}}\n");
+    write("manifest_twice/manifest.json", "{\"format\": \"surfscatter study manifest 1\",\n \"jobs\": [],\n \"jobs\": []}\n");
+    write("data_twice.yml", "DATA:\n  - type: tabulated nk\n    data: |\n        0.4 1 2\n        0.7 1 2\n"
+                            "DATA:\n  - type: formula 1\n    wavelength_range: 0.3 1.0\n    coefficients: 0 1 0.1\n");
+    // Every parsed object is checked, referenced or not.
+    write("unreferenced_foobar.xml", scene("", "", "  <bsdf type=\"foobar\" id=\"unused\"/>\n"));
+    write("unreferenced_bad_parameter.xml",
+          scene("", "", "  <texture type=\"checkerboard\" id=\"unused\"><float name=\"colour0\" value=\"1\"/></texture>\n"));
+    // Values out of the physical domain.
+    write("spectrum_wavelength_negative.xml",
+          scene("", "<emitter type=\"area\"><spectrum name=\"radiance\" value=\"-5:1, 500:1\"/></emitter>"));
+    write("zero_wavelength.spd", "0 1\n500 1\n");
+    write("spd_wavelength_zero.xml",
+          scene("", "<emitter type=\"area\"><spectrum name=\"radiance\" filename=\"zero_wavelength.spd\"/></emitter>"));
+    write("negative_n.yml", "DATA:\n  - type: tabulated nk\n    data: |\n        0.4 1 2\n        0.7 -1 2\n");
+    write("negative_k_only.yml", "DATA:\n  - type: tabulated n\n    data: |\n        0.4 1\n        0.7 1\n"
+                                 "  - type: tabulated k\n    data: |\n        0.4 2\n        0.7 -2\n");
+    write("negative_n.csv", "wavelength_nm,n,k\n400,1,2\n700,-0.5,2\n");
+    write("subnormal_wavelength.yml", "DATA:\n  - type: tabulated nk\n    data: |\n        1e-320 1 2\n        0.7 1 2\n");
+    write("study_number_1e400.json", "{\"models\": [{\"name\": \"a\", \"model\": \"ggx\", \"alpha\": 0.1}],\n"
+                                     " \"wavelengths\": [1e400], \"albedo\": {\"theta_i\": [0]}}\n");
+    // Messages: a --surface map the model refuses (white noise has no KC fit).
+    std::vector<double> noise(64 * 64);
+    std::uint64_t state = 777;
+    for (double& h : noise) {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        h = static_cast<double>(state >> 11) * 0x1.0p-53 - 0.5;
+    }
+    const fs::path noise_partial = dir() / ("noise.partial." + std::to_string(getpid()) + ".gsf");
+    surfscatter::surface::write_gsf(surfscatter::surface::HeightMap(64, 64, 0.1, 0.1, noise), noise_partial);
+    fs::rename(noise_partial, dir() / "white_noise.gsf");
+}
+
 struct HostileCase {
     std::string name;               // test name
     std::vector<std::string> args;  // "@D@" = scratch directory
@@ -334,6 +394,7 @@ public:
               R"({"models": [{"name": "a", "model": "ghs"}], "scene": "ok.xml", "views": [1],
                   "render": {"crop": {"focus": [1e300, 0, 0], "radius": 1}}})");
         write("study_nested.json", R"({"models": )" + nested("[", "]", "", 100000) + "}");
+        write_rule_files();
     }
 };
 
@@ -614,8 +675,70 @@ const std::vector<HostileCase> kCases = {
     {"SceneIsAFifo", render("fifo.xml"), 2, "@D@/fifo.xml is a FIFO (named pipe), not a file"},
 };
 
-TEST_P(Hostile, KeepsThePromise) {
-    const HostileCase& c = GetParam();
+// Issue 26, rules 4 and 7: a row per class. Exit 2 cases of this block print exactly one line (no info line before
+// the error either).
+const std::vector<HostileCase> kRuleCases = {
+    // Conflicts are errors naming both places.
+    {"IntegratorTwice", render("integrator_twice.xml"), 2,
+     "integrator_twice.xml:14: <integrator> is given twice (the first at @D@/integrator_twice.xml:13)"},
+    {"DefaultTwiceDifferentValues", render("default_conflict.xml"), 2,
+     "default_conflict.xml:4: <default name=\"size\"> is given twice with different values ('16' here, '8' at "
+     "@D@/default_conflict.xml:2)"},
+    {"DefaultTwiceSameValue", render("default_repeated.xml", {"--spp", "1"}), 0, ""},
+    {"SamplerTwice", render("sampler_twice.xml"), 2,
+     "sampler_twice.xml:9: a sensor's <sampler> is given twice (the first at @D@/sampler_twice.xml:8)"},
+    {"ShapeTwoBsdfs", render("shape_two_bsdfs.xml"), 2,
+     "shape_two_bsdfs.xml:11: a shape's <bsdf> is given twice (the first at @D@/shape_two_bsdfs.xml:10)"},
+    {"GsfKeyTwice", {"surface", "info", "@D@/xres_twice.gsf"}, 2,
+     "xres_twice.gsf:4: header field 'XRes' is given twice (first at line 2)"},
+    {"StudyKeyTwice", {"study", "@D@/study_key_twice.json"}, 2,
+     "study_key_twice.json:4: key 'wavelengths' is given twice in one object (first at line 2)"},
+    {"StudyNestedKeyTwice", {"study", "@D@/study_model_key_twice.json"}, 2,
+     "study_model_key_twice.json:2: key 'model' is given twice in one object (first at line 1)"},
+    {"ManifestKeyTwice", {"study", "@D@/manifest_twice/study.json"}, 2,
+     "manifest.json:3: key 'jobs' is given twice in one object (first at line 2); move it away"},
+    {"YamlKeyTwice", {"ior", "--material", "@D@/data_twice.yml", "--wavelength", "500"}, 2,
+     "data_twice.yml:6: key 'DATA' is given twice in one mapping (first at line 1)"},
+    // Every parsed object is checked, referenced or not.
+    {"UnreferencedUnknownBsdf", render("unreferenced_foobar.xml"), 2, "unreferenced_foobar.xml:13: unknown bsdf plugin 'foobar'"},
+    {"UnreferencedTextureBadParameter", render("unreferenced_bad_parameter.xml"), 2,
+     "unreferenced_bad_parameter.xml:13: unknown parameter 'colour0' of texture 'checkerboard'"},
+    // Values out of the physical domain are refused.
+    {"SpectrumWavelengthNegative", render("spectrum_wavelength_negative.xml"), 2,
+     "spectrum_wavelength_negative.xml:10: spectrum wavelength -5 nm is not positive"},
+    {"SpdWavelengthZero", render("spd_wavelength_zero.xml"), 2,
+     "spd_wavelength_zero.xml:10: spectrum wavelength 0 nm is not positive"},
+    {"YamlNegativeN", {"ior", "--material", "@D@/negative_n.yml", "--wavelength", "500"}, 2,
+     "negative_n.yml:5: n = -1 is negative"},
+    {"YamlTabulatedKNegative", {"ior", "--material", "@D@/negative_k_only.yml", "--wavelength", "500"}, 2,
+     "negative_k_only.yml:9: k = -2 is negative"},
+    {"CsvNegativeN", {"ior", "--material", "@D@/negative_n.csv", "--wavelength", "500"}, 2,
+     "negative_n.csv:3: n = -0.5 is negative"},
+    {"YamlSubnormalWavelength", {"ior", "--material", "@D@/subnormal_wavelength.yml", "--wavelength", "500"}, 2,
+     "subnormal_wavelength.yml:4: '1e-320' is too small (subnormal"},
+    {"StudyNumber1e400", {"study", "@D@/study_number_1e400.json"}, 2,
+     "study_number_1e400.json:2: number '1e400' is beyond the range of a double"},
+    {"SeedBeyondInt64", render("ok.xml", {"--seed", "99999999999999999999"}), 2,
+     "--seed: '99999999999999999999' is beyond the 64-bit integer range"},
+    {"SppBeyondInt64", render("ok.xml", {"--spp", "-99999999999999999999"}), 2,
+     "--spp: '-99999999999999999999' is beyond the 64-bit integer range"},
+    {"CountBeyondInt64", join({"brdf", "sample", "--model", "ggx", "--alpha", "0.1", "--count", "99999999999999999999"}, kBrdf),
+     2, "--count: '99999999999999999999' is beyond the 64-bit integer range"},
+    {"CountHexBeyondInt64", join({"brdf", "sample", "--model", "ggx", "--alpha", "0.1", "--count", "0x1ffffffffffffffff"}, kBrdf),
+     2, "--count: '0x1ffffffffffffffff' is beyond the 64-bit integer range"},
+    // Messages: one line, names escaped, library failures named.
+    {"BrdfSurfaceFailsInOneLine", join({"brdf", "eval", "--model", "ghs", "--surface", "@D@/white_noise.gsf", "--theta-o", "0"}, kBrdf),
+     2, "KC fit:"},
+    {"NameWithLineBreak", {"ior", "--material", "@D@/two\nlines.yml", "--wavelength", "500"}, 2,
+     "refractive index file not found: @D@/two\\x0alines.yml"},
+    {"ColorcorrectSimplexOnNoise", {"colorcorrect", "@D@/noise.png", "--chart-corners", "0,0,63,0,63,47,0,47", "-o",
+                                    "@D@/cc.png", "--ccm", "@D@/cc.json"},
+     2, "--chart-corners: the colour fit failed on the patches within the corners (0, 0) (63, 0) (63, 47) (0, 47) (OpenCV: "},
+    {"NameWithEscapeBytes", render("colour\x1b[31m.xml"), 2, "scene file not found: @D@/colour\\x1b[31m.xml"},
+};
+
+// The promise for one case; `one_line`: an exit 2 case prints its error line alone.
+void expect_promise_kept(const HostileCase& c, bool one_line) {
     std::vector<std::string> args;
     for (const std::string& a : c.args) args.push_back(expand(a));
     const CliResult r = run_cli(args, 120, expand(c.shell_prefix), expand(c.stdout_path));
@@ -649,6 +772,9 @@ TEST_P(Hostile, KeepsThePromise) {
                 EXPECT_EQ(entry.path().filename().string().rfind(absent.filename().string(), 0), std::string::npos)
                     << entry.path() << " was left behind";
         }
+        if (one_line) {
+            EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+        }
     } else {
         std::string lower = r.out;
         std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char ch) { return std::tolower(ch); });
@@ -656,6 +782,12 @@ TEST_P(Hostile, KeepsThePromise) {
         EXPECT_EQ(lower.find("inf"), std::string::npos) << r.out;
     }
 }
+
+TEST_P(Hostile, KeepsThePromise) { expect_promise_kept(GetParam(), false); }
+
+class HostileRules : public Hostile {};
+
+TEST_P(HostileRules, KeepsThePromise) { expect_promise_kept(GetParam(), true); }
 
 // Ctrl-C and SIGTERM stop a render that would take hours within a second, and the image of what was rendered is
 // written (every pixel a mean of its own samples; the exit status says the job did not finish: 128 + signal).
@@ -720,6 +852,8 @@ TEST(HostileInterrupt, CtrlCWritesTheImageWithinASecond) { expect_interrupt_writ
 TEST(HostileInterrupt, SigtermWritesTheImageWithinASecond) { expect_interrupt_writes_image(SIGTERM); }
 
 INSTANTIATE_TEST_SUITE_P(Table, Hostile, testing::ValuesIn(kCases),
+                         [](const testing::TestParamInfo<HostileCase>& param) { return param.param.name; });
+INSTANTIATE_TEST_SUITE_P(Table, HostileRules, testing::ValuesIn(kRuleCases),
                          [](const testing::TestParamInfo<HostileCase>& param) { return param.param.name; });
 
 }  // namespace

@@ -142,6 +142,28 @@ TEST(RefractiveIndexInfo, MalformedFilesNameTheProblem) {
                   .find("no n"), std::string::npos);
 }
 
+TEST(RefractiveIndexInfo, ConflictsAndValuesOutsideThePhysicalDomainAreErrors) {
+    // A key given twice in any mapping names both lines (yaml-cpp would find the first and ignore the second).
+    const std::string twice = load_error("DATA:\n  - type: tabulated nk\n    type: tabulated n\n    data: |\n"
+                                         "        0.4 1 2\n        0.5 1 2\n", ".yml");
+    EXPECT_NE(twice.find(".yml:3: key 'type' is given twice in one mapping (first at line 2)"), std::string::npos) << twice;
+    // n and k of every tabulated kind are >= 0: 'tabulated k' was not checked at all.
+    const std::string n = load_error("DATA:\n  - type: tabulated n\n    data: |\n        0.4 1\n        0.5 -1\n", ".yml");
+    EXPECT_NE(n.find(".yml:5: n = -1 is negative"), std::string::npos) << n;
+    const std::string k = load_error("DATA:\n  - type: formula 2\n    wavelength_range: 0.3 1.0\n    coefficients: 1.0\n"
+                                     "  - type: tabulated k\n    data: |\n        0.4 -0.1\n        0.8 0.3\n", ".yml");
+    EXPECT_NE(k.find(".yml:7: k = -0.1 is negative"), std::string::npos) << k;
+    // A subnormal number is named as what it is.
+    const std::string tiny = load_error("DATA:\n  - type: tabulated nk\n    data: |\n        4e-320 1 2\n        0.5 1 2\n",
+                                        ".yml");
+    EXPECT_NE(tiny.find(".yml:4: '4e-320' is too small (subnormal, below 2.22507e-308)"), std::string::npos) << tiny;
+    // Equal keys in different mappings are no conflict.
+    const std::string path = write_temp_file("DATA:\n  - type: tabulated n\n    data: |\n        0.4 1\n        0.5 1\n"
+                                             "  - type: tabulated k\n    data: |\n        0.4 2\n        0.5 2\n", ".yml");
+    EXPECT_NEAR(sm::load_refractive_index(path)->at(450).imag(), 2.0, 1e-14);
+    std::remove(path.c_str());
+}
+
 TEST(CsvIndex, ReadsCommentsHeaderAndRows) {
     const std::string path = write_temp_file("# comment\nwavelength_nm,n,k\n400,1.0,2.0\n\n500,1.2,3.0E+00\n", ".csv");
     const auto ior = sm::load_refractive_index(path);
@@ -173,7 +195,9 @@ TEST(CsvIndex, MalformedFilesNameFileAndLine) {
     EXPECT_NE(load_error("wavelength_nm,n,k\n400,1,2\n500,1,abc\n", ".csv").find(".csv:3:"), std::string::npos);
     EXPECT_NE(load_error("400,1,2\n500,1\n", ".csv").find(".csv:2:"), std::string::npos);
     EXPECT_NE(load_error("400,1,2\n300,1,2\n", ".csv").find("does not increase"), std::string::npos);
-    EXPECT_NE(load_error("400,1,2\n500,1,-2\n", ".csv").find("k >= 0"), std::string::npos);
+    EXPECT_NE(load_error("400,1,2\n500,1,-2\n", ".csv").find(".csv:2: k = -2 is negative (N = n + i k needs n >= 0 and k >= 0)"),
+              std::string::npos);
+    EXPECT_NE(load_error("400,1,2\n500,-1,2\n", ".csv").find(".csv:2: n = -1 is negative"), std::string::npos);
     EXPECT_NE(load_error("400,1,2\n500,nan,2\n", ".csv").find(".csv:2:"), std::string::npos);
     EXPECT_NE(load_error("400,1,2\n", ".csv").find("at least two rows"), std::string::npos);
     EXPECT_NE(load_error("-400,1,2\n500,1,2\n", ".csv").find("not positive"), std::string::npos);

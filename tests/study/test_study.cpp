@@ -117,6 +117,23 @@ TEST(StudyFile, ErrorsNameTheFileAndTheEntry) {
     EXPECT_NE(error_of("{\"models\": [").find("s.json: not valid JSON"), std::string::npos);
 }
 
+TEST(StudyFile, AKeyGivenTwiceIsAnErrorNamingBothLines) {
+    const std::string twice = "{\"models\": [{\"name\": \"a\", \"model\": \"ggx\"}],\n\"albedo\": {\"theta_i\": [0],\n"
+                              "  \"phi_i\": 0, \"theta_i\": [30]}, \"wavelengths\": [500]}";
+    EXPECT_EQ(error_of(twice), "s.json:3: key 'theta_i' is given twice in one object (first at line 2)") << error_of(twice);
+    // The same key in different objects (every entry of a list has a "name") is no conflict.
+    const std::string apart = "{\"models\": [{\"name\": \"a\", \"model\": \"ggx\", \"alpha\": 0.1},\n"
+                              "  {\"name\": \"b\", \"model\": \"ggx\", \"alpha\": 0.2}],\n"
+                              " \"albedo\": {\"theta_i\": [0]}, \"wavelengths\": [500]}";
+    EXPECT_EQ(parse_study(apart, ".", "s.json").models.size(), 2u);
+}
+
+TEST(StudyFile, ANumberBeyondTheDoubleRangeIsNamedWithItsLine) {
+    const std::string huge = "{\"models\": [{\"name\": \"a\", \"model\": \"ggx\"}],\n\"wavelengths\": [500, -1e400],\n"
+                             "\"albedo\": {\"theta_i\": [0]}}";
+    EXPECT_EQ(error_of(huge), "s.json:2: number '-1e400' is beyond the range of a double (+-1.8e308)") << error_of(huge);
+}
+
 TEST(StudyFile, WritesWhatItReads) {
     const Study s = parse_study(study_text(), "/base", "s.json");
     const Study again = parse_study(to_json(s), "/elsewhere", "copy.json");
@@ -418,6 +435,9 @@ TEST(StudyRun, FingerprintsAreFnv1aOfTheBytes) {
     EXPECT_EQ(f->bytes, 1u);
     EXPECT_EQ(f->fnv1a, "af63dc4c8601ec8c");  // FNV-1a 64 of "a" (the published test vector)
     EXPECT_FALSE(fingerprint(file.parent_path() / "absent"));
+    // Only regular files: a hand-edited manifest naming a device or a folder makes its job out of date, no more.
+    EXPECT_FALSE(fingerprint("/dev/zero"));
+    EXPECT_FALSE(fingerprint(file.parent_path()));
 }
 
 }  // namespace

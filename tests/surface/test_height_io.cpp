@@ -141,6 +141,9 @@ TEST(HeightIo, MalformedGsfNamesFileAndProblem) {
     EXPECT_NE(message_for(hand_made_gsf("XRes = 8\nYRes = 8\ngarbage\nXYUnits = m\nZUnits = m\n", data))
                   .find("name = value"),
               std::string::npos);
+    // A field given twice names both lines (the first was kept silently).
+    const std::string twice = message_for(hand_made_gsf("XRes = 8\nYRes = 8\nXYUnits = m\nXYUnits = mm\nZUnits = m\n", data));
+    EXPECT_NE(twice.find("bad.gsf:5: header field 'XYUnits' is given twice (first at line 4)"), std::string::npos) << twice;
     data[10] = std::numeric_limits<float>::infinity();
     const std::string inf_message = message_for(hand_made_gsf(good, data));
     EXPECT_NE(inf_message.find("column 2, row 1 is inf"), std::string::npos) << inf_message;

@@ -36,9 +36,9 @@ std::string error_message(const std::exception_ptr& error) {
     try {
         std::rethrow_exception(error);
     } catch (const Error& e) {
-        return e.what();
+        return printable(e.what(), kShownMessageChars);
     } catch (const std::exception& e) {
-        return std::string("internal error: ") + e.what();
+        return "internal error: " + printable(e.what(), kShownMessageChars);
     } catch (...) {
         return "internal error: unknown exception";
     }

@@ -21,8 +21,8 @@ template <typename... Args>
     throw Error(fmt::format(format, std::forward<Args>(args)...));
 }
 
-// The one-line message of an exception for reports: an Error's message as it is, anything else prefixed with
-// "internal error: ".
+// The one-line message of an exception for reports: an Error's message (printable, kShownMessageChars), anything
+// else prefixed with "internal error: ".
 std::string error_message(const std::exception_ptr& error);
 
 // Checks a user-supplied value; `what` names it as the user wrote it ("--sigma", "scene.xml:12 alpha").
@@ -33,5 +33,14 @@ void require_non_negative(double value, const char* what);
 // Text from a user's file or argument, fit to be quoted in a one-line message: bytes outside printable ASCII
 // become \xNN (a binary file never reaches the terminal raw) and text longer than `max_chars` is cut with "...".
 std::string printable(std::string_view text, std::size_t max_chars = 60);
+
+// How much of a file name a message shows (printable(path, kShownPathChars)): any real path, not a document
+// passed where a path belongs.
+inline constexpr std::size_t kShownPathChars = 240;
+
+// How much of a whole message the front ends show: error_message, the CLI and the Python exceptions pass every
+// message through printable(message, kShownMessageChars), so that whatever a message quotes, it reaches the
+// terminal as one printable line.
+inline constexpr std::size_t kShownMessageChars = 2000;
 
 }  // namespace surfscatter

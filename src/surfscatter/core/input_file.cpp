@@ -13,19 +13,25 @@ namespace surfscatter {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+std::string shown(const fs::path& path) { return printable(path.string(), kShownPathChars); }
+
+}  // namespace
+
 void require_readable_file(const fs::path& path, const char* what) {
     std::error_code ec;
     const fs::file_status status = fs::status(path, ec);
     if (ec) {
-        if (ec == std::errc::no_such_file_or_directory) fail("{} not found: {}", what, path.string());
-        fail("{} {}: {}", what, path.string(), ec.message());
+        if (ec == std::errc::no_such_file_or_directory) fail("{} not found: {}", what, shown(path));
+        fail("{} {}: {}", what, shown(path), ec.message());
     }
     switch (status.type()) {
         case fs::file_type::regular: return;
         // A FIFO blocks the open until something writes to it, maybe forever.
-        case fs::file_type::fifo: fail("{} {} is a FIFO (named pipe), not a file", what, path.string());
-        case fs::file_type::directory: fail("{} {} is a directory, not a file", what, path.string());
-        default: fail("{} {} is not a regular file (a device or socket)", what, path.string());
+        case fs::file_type::fifo: fail("{} {} is a FIFO (named pipe), not a file", what, shown(path));
+        case fs::file_type::directory: fail("{} {} is a directory, not a file", what, shown(path));
+        default: fail("{} {} is not a regular file (a device or socket)", what, shown(path));
     }
 }
 
@@ -34,25 +40,25 @@ std::string read_input_file(const fs::path& path, const char* what, std::uint64_
     std::error_code ec;
     if (const std::uintmax_t size = fs::file_size(path, ec); !ec) {  // a regular file: its size is known up front
         if (size > max_bytes)
-            fail("{} {} is larger than the {} this reads (docs/RELIABILITY.md)", what, path.string(),
+            fail("{} {} is larger than the {} this reads (docs/RELIABILITY.md)", what, shown(path),
                  format_bytes(static_cast<double>(max_bytes)));
-        require_memory(static_cast<double>(size), fmt::format("reading {} {}", what, path.string()));
+        require_memory(static_cast<double>(size), fmt::format("reading {} {}", what, shown(path)));
     }
     const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
-    if (!file) fail("cannot open {} {}: {}", what, path.string(), std::strerror(errno));
+    if (!file) fail("cannot open {} {}: {}", what, shown(path), std::strerror(errno));
     std::string bytes;
     char buffer[1 << 16];
     while (true) {
         const std::size_t n = std::fread(buffer, 1, sizeof buffer, file.get());
         if (n > 0) {
             if (bytes.size() + n > max_bytes)
-                fail("{} {} is larger than the {} this reads (docs/RELIABILITY.md)", what, path.string(),
+                fail("{} {} is larger than the {} this reads (docs/RELIABILITY.md)", what, shown(path),
                      format_bytes(static_cast<double>(max_bytes)));
             bytes.append(buffer, n);
         }
         if (n < sizeof buffer) break;
     }
-    if (std::ferror(file.get())) fail("read error on {} {}: {}", what, path.string(), std::strerror(errno));
+    if (std::ferror(file.get())) fail("read error on {} {}: {}", what, shown(path), std::strerror(errno));
     return bytes;
 }
 

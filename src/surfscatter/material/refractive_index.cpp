@@ -23,7 +23,7 @@ std::shared_ptr<const RefractiveIndex> load_refractive_index(const std::string& 
     if (extension == ".yml" || extension == ".yaml") return load_refractiveindex_info_yaml(name_or_path);
     if (extension == ".csv") return load_csv_refractive_index(name_or_path);
     fail("unknown material '{}' (built-in: {}; or a refractiveindex.info .yml or a wavelength_nm,n,k .csv file)",
-         name_or_path, fmt::join(builtin_metal_names(), ", "));
+         printable(name_or_path, kShownPathChars), fmt::join(builtin_metal_names(), ", "));
 }
 
 }  // namespace surfscatter::material

@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <functional>
+#include <limits>
+#include <map>
 #include <optional>
 #include <sstream>
 
@@ -138,22 +140,21 @@ std::vector<double> parse_numbers(const std::string& text, const std::string& wh
     std::istringstream in(text);
     std::vector<double> values;
     for (std::string word; in >> word;) {
-        std::size_t used = 0;
-        double v = 0;
-        try {
-            v = std::stod(word, &used);
-        } catch (const std::exception&) {
-            used = 0;
-        }
-        if (used != word.size() || !std::isfinite(v)) fail("{}: '{}' is not a number", where, printable(word));
-        values.push_back(v);
+        const std::optional<double> v = to_double(word.front() == '+' ? std::string_view(word).substr(1) : word);
+        if (!v || !std::isfinite(*v)) fail("{}: '{}' is not a number", where, printable(word));
+        // A subnormal number is a number, but no wavelength, index or coefficient of a real material.
+        if (*v != 0 && std::abs(*v) < std::numeric_limits<double>::min())
+            fail("{}: '{}' is too small (subnormal, below {:g})", where, printable(word), std::numeric_limits<double>::min());
+        values.push_back(*v);
     }
     return values;
 }
 
-// Rows of a `data: |` block with `columns` numbers each (wavelength in um first).
-std::vector<std::vector<double>> parse_rows(const YAML::Node& data, std::size_t columns, const std::string& path) {
+// Rows of a `data: |` block: the wavelength in um, then the quantities `names` ("n", "k") in that order.
+std::vector<std::vector<double>> parse_rows(const YAML::Node& data, std::initializer_list<const char*> names,
+                                            const std::string& path) {
     if (!data || !data.IsScalar()) fail("{}: a tabulated DATA entry needs a 'data' block", path);
+    const std::size_t columns = names.size() + 1;
     std::istringstream in(data.Scalar());
     std::vector<std::vector<double>> rows;
     // A block scalar starts on the line after its 'data: |' key (yaml-cpp's marks are 0-based).
@@ -165,12 +166,38 @@ std::vector<std::vector<double>> parse_rows(const YAML::Node& data, std::size_t 
         if (row.empty()) continue;
         if (row.size() != columns) fail("{}: expected {} numbers per row, got {}", where, columns, row.size());
         if (!(row[0] > 0)) fail("{}: wavelength {} um is not positive", where, row[0]);
-        for (std::size_t c = 2; c < row.size(); ++c)
-            if (row[c] < 0) fail("{}: k = {} is negative", where, row[c]);
+        std::size_t column = 1;
+        for (const char* name : names) check_index_value(row[column++], name, where);
         rows.push_back(std::move(row));
     }
     if (rows.size() < 2) fail("{}: a tabulated DATA entry needs at least two rows, found {}", path, rows.size());
     return rows;
+}
+
+// yaml-cpp keeps both of two equal keys and finds the first: a key given twice in any mapping of the file is an
+// error naming both lines. Walked without recursion, and at most twice as many nodes as the text has bytes: aliases
+// share nodes, and a file of nested aliases would otherwise be walked an exponential number of times.
+void refuse_duplicate_keys(const YAML::Node& root, const std::string& path, std::size_t text_bytes) {
+    std::vector<YAML::Node> pending = {root};
+    for (std::size_t visited = 0; !pending.empty(); ++visited) {
+        if (visited > 2 * text_bytes + 64) fail("{}: its aliases expand to more nodes than the file has bytes", path);
+        const YAML::Node node = pending.back();
+        pending.pop_back();
+        if (node.IsSequence()) {
+            for (const YAML::Node& item : node) pending.push_back(item);
+        } else if (node.IsMap()) {
+            std::map<std::string, int> lines;
+            for (const auto& item : node) {
+                if (item.first.IsScalar()) {
+                    const auto [it, first] = lines.emplace(item.first.Scalar(), item.first.Mark().line + 1);
+                    if (!first)
+                        fail("{}:{}: key '{}' is given twice in one mapping (first at line {})", path,
+                             item.first.Mark().line + 1, printable(item.first.Scalar()), it->second);
+                }
+                pending.push_back(item.second);
+            }
+        }
+    }
 }
 
 Curve table_curve(const std::vector<std::vector<double>>& rows, std::size_t column, const std::string& source) {
@@ -217,6 +244,7 @@ std::shared_ptr<const RefractiveIndex> parse_refractiveindex_info_yaml(const std
     } catch (const YAML::Exception& e) {
         fail("{}:{}: malformed YAML: {}", path, e.mark.line + 1, printable(e.msg));
     }
+    refuse_duplicate_keys(root, path, text.size());
     const YAML::Node data = root.IsMap() ? root["DATA"] : YAML::Node();
     if (!data || !data.IsSequence() || data.size() == 0)
         fail("{}: no DATA list (not a refractiveindex.info material file)", path);
@@ -232,13 +260,13 @@ std::shared_ptr<const RefractiveIndex> parse_refractiveindex_info_yaml(const std
             slot = std::move(curve);
         };
         if (type == "tabulated nk") {
-            const auto rows = parse_rows(entry["data"], 3, path);
+            const auto rows = parse_rows(entry["data"], {"n", "k"}, path);
             set(n, table_curve(rows, 1, path), "n");
             set(k, table_curve(rows, 2, path), "k");
         } else if (type == "tabulated n") {
-            set(n, table_curve(parse_rows(entry["data"], 2, path), 1, path), "n");
+            set(n, table_curve(parse_rows(entry["data"], {"n"}, path), 1, path), "n");
         } else if (type == "tabulated k") {
-            set(k, table_curve(parse_rows(entry["data"], 2, path), 1, path), "k");
+            set(k, table_curve(parse_rows(entry["data"], {"k"}, path), 1, path), "k");
         } else if (type.rfind("formula ", 0) == 0) {
             int formula = 0;
             try {

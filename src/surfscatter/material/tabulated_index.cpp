@@ -30,12 +30,19 @@ double LinearTable::operator()(double x) const {
     return y_[i - 1] + t * (y_[i] - y_[i - 1]);
 }
 
+void check_index_value(double value, const char* name, const std::string& where) {
+    if (!std::isfinite(value)) fail("{}: {} = {} is not a finite number", where, name, value);
+    if (value < 0) fail("{}: {} = {} is negative (N = n + i k needs n >= 0 and k >= 0)", where, name, value);
+}
+
 TabulatedIndex::TabulatedIndex(std::string name, std::vector<double> lambda_nm, std::vector<double> n,
                                std::vector<double> k)
     : name_(std::move(name)) {
     for (std::size_t i = 0; i < lambda_nm.size(); ++i) {
         if (!(lambda_nm[i] > 0)) fail("{}: row {}: wavelength {} nm is not positive", name_, i + 1, lambda_nm[i]);
-        if (i < k.size() && k[i] < 0) fail("{}: row {}: k = {} is negative (N = n + i k needs k >= 0)", name_, i + 1, k[i]);
+        const std::string row = fmt::format("{}: row {}", name_, i + 1);
+        if (i < n.size()) check_index_value(n[i], "n", row);
+        if (i < k.size()) check_index_value(k[i], "k", row);
     }
     n_ = LinearTable(lambda_nm, std::move(n), name_);
     k_ = LinearTable(std::move(lambda_nm), std::move(k), name_);
@@ -96,8 +103,9 @@ std::shared_ptr<const RefractiveIndex> parse_csv_refractive_index(const std::str
         header_allowed = false;
         if (!(values[0] > 0) || !std::isfinite(values[0]))
             fail("{}:{}: wavelength {} nm is not positive", path, line_number, values[0]);
-        if (!std::isfinite(values[1]) || !std::isfinite(values[2]) || values[2] < 0)
-            fail("{}:{}: n = {}, k = {} (need finite values and k >= 0)", path, line_number, values[1], values[2]);
+        const std::string where = fmt::format("{}:{}", path, line_number);
+        check_index_value(values[1], "n", where);
+        check_index_value(values[2], "k", where);
         if (!lambda.empty() && !(values[0] > lambda.back()))
             fail("{}:{}: wavelength {} nm does not increase (previous row {} nm)", path, line_number, values[0],
                  lambda.back());

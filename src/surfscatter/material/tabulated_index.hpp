@@ -25,9 +25,13 @@ private:
     std::vector<double> x_, y_;
 };
 
+// The one check of a tabulated n or k (CSV rows, refractiveindex.info tables, built-in tables): finite and >= 0, as
+// N = n + i k of a passive medium is (docs/CONVENTIONS.md). `name` is "n" or "k", `where` names the row.
+void check_index_value(double value, const char* name, const std::string& where);
+
 class TabulatedIndex final : public RefractiveIndex {
 public:
-    // `name` is used in error messages (a file path or a material name). k must be >= 0.
+    // `name` is used in error messages (a file path or a material name). n and k must be >= 0.
     TabulatedIndex(std::string name, std::vector<double> lambda_nm, std::vector<double> n, std::vector<double> k);
     std::complex<double> at(double lambda_nm) const override;
     double min_wavelength_nm() const override { return n_.min_x(); }

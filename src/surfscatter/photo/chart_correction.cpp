@@ -86,8 +86,18 @@ ChartCorrection correct_with_chart(const Photo& image, const Photo* flat_field, 
         out.chosen_by = "auto: the simplest family within the tolerance of the best fit to the neutral row";
     }
     const auto constraint = options.preserve_white ? CcmConstraint::PreserveWhite : CcmConstraint::None;
-    out.fit = fit_colour_correction(codes, reference, choice.family, constraint, options.objective,
-                                    flat_codes ? &*flat_codes : nullptr);
+    // OpenCV's simplex asserts when the mean CIEDE2000 it minimises is not finite, as it can be for patches that
+    // are no chart: its exception becomes one line naming the corners the patches were taken from.
+    try {
+        out.fit = fit_colour_correction(codes, reference, choice.family, constraint, options.objective,
+                                        flat_codes ? &*flat_codes : nullptr);
+    } catch (const cv::Exception& e) {
+        std::string corners;
+        for (const auto& c : out.chart_corners) corners += fmt::format("{}({}, {})", corners.empty() ? "" : " ", c.x, c.y);
+        fail("{}: the colour fit failed on the patches within the corners {} (OpenCV: {}); are they the chart's?",
+             options.chart_corners ? options.chart_corners_option : std::string("the chart found in the photo"),
+             corners, printable(e.err, 120));
+    }
     const cv::Matx33d& ccm = out.fit.ccm;
     // The fit sees the chart linearised (and evened by the flat field); "before" is the photo as it would be shown,
     // its codes taken as sRGB.

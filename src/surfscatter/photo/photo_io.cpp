@@ -185,6 +185,10 @@ Photo read_photo(const std::filesystem::path& path, Encoding encoding) {
 }
 
 void write_photo(const std::filesystem::path& path, const cv::Mat& linear_rgb, Encoding encoding) {
+    // An empty image has no type to assert on (OpenCV's assertion was an "internal error"): bad input, named.
+    if (linear_rgb.empty())
+        fail("cannot write '{}': the image is empty ({}x{} pixels)", printable(path.string(), kShownPathChars),
+             linear_rgb.cols, linear_rgb.rows);
     CV_Assert(linear_rgb.type() == CV_32FC3);
     const std::string ext = lower_extension(path);
     if (is_exr(ext)) {

@@ -112,6 +112,8 @@ SpectrumPtr make_constant_spectrum(double value) {
 SpectrumPtr make_tabulated_spectrum(std::vector<double> lambda_nm, std::vector<double> values) {
     if (lambda_nm.size() < 2 || lambda_nm.size() != values.size()) fail("a spectrum table needs at least two lambda:value pairs");
     for (std::size_t i = 0; i < lambda_nm.size(); ++i) {
+        // Checked here for every source of a table (value lists, .spd files): a wavelength is positive.
+        if (!(lambda_nm[i] > 0)) fail("spectrum wavelength {} nm is not positive", lambda_nm[i]);
         if (i > 0 && !(lambda_nm[i] > lambda_nm[i - 1])) fail("spectrum wavelengths must increase, got {} after {}", lambda_nm[i], lambda_nm[i - 1]);
         if (!(values[i] >= 0 && values[i] <= kMaxSpectrumValue))
             fail("spectrum value at {} nm must be between 0 and {:g}, got {}", lambda_nm[i], kMaxSpectrumValue, values[i]);

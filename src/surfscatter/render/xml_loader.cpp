@@ -33,6 +33,9 @@ struct Source {
     std::vector<std::size_t> line_starts;
     pugi::xml_document document;
 
+    // The file name as messages show it (printable: a name may hold any byte).
+    std::string shown_path() const { return printable(path.string(), kShownPathChars); }
+
     int line_of(std::ptrdiff_t offset) const {
         if (offset < 0) return 0;
         const auto it = std::upper_bound(line_starts.begin(), line_starts.end(), static_cast<std::size_t>(offset));
@@ -50,7 +53,7 @@ struct Node {
         // Text is located at its first visible character, not at the line break before it.
         for (const char* c = xml.value(); xml.type() == pugi::node_pcdata && std::isspace(static_cast<unsigned char>(*c)); ++c)
             if (offset >= 0) ++offset;
-        return fmt::format("{}:{}", source->path.string(), source->line_of(offset));
+        return fmt::format("{}:{}", source->shown_path(), source->line_of(offset));
     }
     std::string tag() const { return xml.name(); }
 };
@@ -67,6 +70,33 @@ std::string shown_text(const pugi::xml_node& text) {
 template <typename... Args>
 [[noreturn]] void fail_at(const Node& node, fmt::format_string<Args...> format, Args&&... args) {
     throw SceneError(node.where() + ": " + fmt::format(format, std::forward<Args>(args)...));
+}
+
+// A plugin that Mitsuba 3 has and surfscatter does not (a volume texture, the hair BSDF): an error like any other,
+// except in an object that nothing references, which the loader reports as a note instead (Mitsuba's lego scene
+// defines a volume-textured BSDF it never uses).
+class UnsupportedPlugin : public SceneError {
+public:
+    using SceneError::SceneError;
+};
+
+// An unknown plugin type of `kind` ("bsdf", "texture"), with the known ones listed in `known`.
+[[noreturn]] void unknown_plugin(const Node& node, const std::string& kind, const std::string& type,
+                                 const std::string& known) {
+    static const std::map<std::string, std::set<std::string>> mitsuba_only = {
+        {"bsdf", {"hair", "measured", "measured_polarized", "pplastic", "principled", "principledthin", "polarizer",
+                  "retarder", "circular"}},
+        {"texture", {"mesh_attribute", "volume"}}};
+    const auto it = mitsuba_only.find(kind);
+    if (it != mitsuba_only.end() && it->second.count(type))
+        throw UnsupportedPlugin(fmt::format("{}: unknown {} plugin '{}' ({})", node.where(), kind, type, known));
+    fail_at(node, "unknown {} plugin '{}' ({})", kind, printable(type), known);
+}
+
+// Mitsuba refuses a second integrator, film, sampler or filter, a shape's second BSDF or emitter: so does this,
+// naming both elements.
+[[noreturn]] void refuse_second(const Node& first, const Node& second, const std::string& what) {
+    fail_at(second, "{} is given twice (the first at {})", what, first.where());
 }
 
 // Runs `build`; a library Error without a location is reported at `node`, prefixed by `context` ("bsdf 'ghs': ").
@@ -130,7 +160,8 @@ public:
         const Node scene_node = root_of(root);
         check_version(scene_node);
         load_children(scene_node);
-        if (!has_sensor_) fail_at(scene_node, "the scene has no <sensor>");
+        build_unreferenced();
+        if (!sensor_) fail_at(scene_node, "the scene has no <sensor>");
         located(scene_node, "", [&] { scene_->commit(); });
         if (used_parameters) {
             used_parameters->insert(used_defines_.begin(), used_defines_.end());
@@ -138,7 +169,7 @@ public:
             for (const auto& [name, value] : command_line_defines_)
                 if (!used_defines_.count(name))
                     fail("{}={}: the scene {} never uses ${} (a misspelt parameter would be silently ignored)",
-                         given(name), printable(value), root.path.string(), name);
+                         given(name), printable(value), root.shown_path(), name);
         }
         return std::move(scene_);
     }
@@ -257,7 +288,7 @@ private:
                 const std::string name = child.attribute("name") ? loader.substitute(node, child.attribute("name").value()) : "";
                 // Nested objects may carry names (Mitsuba ignores them); they are taken by kind. A named <ref> to
                 // anything but a texture (<ref id="mat" name="bsdf"/>) is a nested BSDF.
-                if (name.empty() || node.tag() == "bsdf" || (node.tag() == "ref" && !loader.names_texture(node))) {
+                if (name.empty() || loader.is_bsdf(node)) {
                     unnamed_.push_back({node});
                     continue;
                 }
@@ -373,9 +404,7 @@ private:
             std::vector<MaterialPtr> out;
             for (Property& p : unnamed_) {
                 if (p.used) continue;
-                // A <ref> that names no texture is taken as a BSDF (an undefined id is then reported).
-                const bool bsdf_ref = p.node.tag() == "ref" && !loader_.names_texture(p.node);
-                if (p.node.tag() == "bsdf" || bsdf_ref) {
+                if (loader_.is_bsdf(p.node)) {
                     p.used = true;
                     out.push_back(loader_.build_bsdf(p.node));
                 }
@@ -397,6 +426,15 @@ private:
         bool has(const std::string& name) const override { return named_.count(name) != 0; }
         void share_height_map(bsdf::SurfaceOptions& surface) override { loader_.share_height_map(surface); }
         void add_note(const std::string& note) override { loader_.scene_->notes.push_back(owner_.where() + ": " + note); }
+
+        // The nested BSDFs not taken yet, as take_bsdfs will find them.
+        std::vector<Node> bsdf_nodes() {
+            std::vector<Node> out;
+            for (const Property& p : unnamed_)
+                if (!p.used && loader_.is_bsdf(p.node))
+                    out.push_back(p.node);
+            return out;
+        }
 
         // Unnamed nested objects of a kind (<emitter>, <film>, ...).
         std::vector<Node> take_unnamed(const char* tag) {
@@ -566,7 +604,7 @@ private:
                     i = j;
                 }
                 if (words.empty()) continue;  // blank or comment line
-                const std::string where = fmt::format("{}:{}", path.string(), number);
+                const std::string where = fmt::format("{}:{}", printable(path.string(), kShownPathChars), number);
                 if (words.size() != 2) fail_at(node, "{}: expected 'wavelength value', got '{}'", where, printable(line));
                 lambdas.push_back(parse_double(node, words[0], where + ": wavelength"));
                 values.push_back(parse_double(node, words[1], where + ": value"));
@@ -601,7 +639,7 @@ private:
         static const std::map<std::string, Factory> factories = {{"bitmap", plugins::bitmap},
                                                                   {"checkerboard", plugins::checkerboard}};
         const auto it = factories.find(type);
-        if (it == factories.end()) fail_at(node, "unknown texture plugin '{}' (bitmap, checkerboard)", printable(type));
+        if (it == factories.end()) unknown_plugin(node, "texture", type, "bitmap, checkerboard");
         ElementProperties props(*this, node);
         TexturePtr texture = build(node, "texture '" + type + "'", [&] { return it->second(props); });
         props.check_all_used("texture '" + type + "'");
@@ -647,9 +685,9 @@ private:
         std::optional<bsdf::ModelKind> model;
         if (it == factories.end()) model = bsdf::find_model(type, (node.where() + ": bsdf type").c_str());
         if (!model && it == factories.end())
-            fail_at(node, "unknown bsdf plugin '{}' (diffuse, conductor, roughconductor, dielectric, thindielectric, "
-                          "roughdielectric, plastic, roughplastic, twosided, blendbsdf, mask, bumpmap, normalmap, "
-                          "{})", printable(type), bsdf::choices("model"));
+            unknown_plugin(node, "bsdf", type, "diffuse, conductor, roughconductor, dielectric, thindielectric, "
+                                               "roughdielectric, plastic, roughplastic, twosided, blendbsdf, mask, "
+                                               "bumpmap, normalmap, " + bsdf::choices("model"));
         const std::string plugin = model ? bsdf::to_string(*model) : type;
         ElementProperties props(*this, node);
         MaterialPtr material = build(node, "bsdf '" + plugin + "'", [&] {
@@ -676,11 +714,12 @@ private:
                     printable(type));
         register_name(node);
         ElementProperties props(*this, node);
+        if (const std::vector<Node> nodes = props.bsdf_nodes(); nodes.size() > 1)
+            refuse_second(nodes[0], nodes[1], "a shape's <bsdf>");
         std::vector<MaterialPtr> bsdfs = props.take_bsdfs();
-        if (bsdfs.size() > 1) fail_at(node, "a shape takes one <bsdf>, got {}", bsdfs.size());
         SpectrumPtr radiance;
         const std::vector<Node> emitters = props.take_unnamed("emitter");
-        if (emitters.size() > 1) fail_at(node, "a shape takes one <emitter>, got {}", emitters.size());
+        if (emitters.size() > 1) refuse_second(emitters[0], emitters[1], "a shape's <emitter>");
         if (!emitters.empty()) {
             const Node& e = emitters[0];
             check_attributes(e, {"type", "id", "name"});
@@ -723,16 +762,16 @@ private:
         const std::string type = attribute(node, "type");
         if (type != "perspective" && type != "thinlens")
             fail_at(node, "unknown sensor plugin '{}' (perspective, thinlens)", printable(type));
-        if (has_sensor_) fail_at(node, "only one <sensor> is supported");
-        has_sensor_ = true;
+        if (sensor_) fail_at(node, "only one <sensor> is supported (the first is at {})", sensor_->where());
+        sensor_ = node;
         register_name(node);
         ElementProperties props(*this, node);
         // The film first: its size sets the field of view's axes.
         const std::vector<Node> films = props.take_unnamed("film");
-        if (films.size() > 1) fail_at(films[1], "a sensor takes one <film>");
+        if (films.size() > 1) refuse_second(films[0], films[1], "a sensor's <film>");
         if (!films.empty()) build_film(films[0]);
         const std::vector<Node> samplers = props.take_unnamed("sampler");
-        if (samplers.size() > 1) fail_at(samplers[1], "a sensor takes one <sampler>");
+        if (samplers.size() > 1) refuse_second(samplers[0], samplers[1], "a sensor's <sampler>");
         if (!samplers.empty()) build_sampler(samplers[0]);
         const int w = scene_->film.width, h = scene_->film.height;
         scene_->camera = build(node, "sensor '" + type + "'", [&] {
@@ -748,7 +787,7 @@ private:
         ElementProperties props(*this, node);
         FilterPtr filter = make_gaussian_filter();
         const std::vector<Node> filters = props.take_unnamed("rfilter");
-        if (filters.size() > 1) fail_at(filters[1], "a film takes one <rfilter>");
+        if (filters.size() > 1) refuse_second(filters[0], filters[1], "a film's <rfilter>");
         if (!filters.empty()) filter = build_filter(filters[0]);
         scene_->film = build(node, "film 'hdrfilm'", [&] { return plugins::hdrfilm(props, filter); });
         props.check_all_used("film 'hdrfilm'");
@@ -789,6 +828,8 @@ private:
         if (type == "aov")
             fail_at(node, "integrator 'aov' is not supported: surfscatter renders radiance only (use path or direct)");
         if (type != "path" && type != "direct") fail_at(node, "unknown integrator plugin '{}' (path, direct)", printable(type));
+        if (integrator_) refuse_second(*integrator_, node, "<integrator>");
+        integrator_ = node;
         ElementProperties props(*this, node);
         scene_->integrator = build(node, "integrator '" + type + "'", [&] {
             return type == "path" ? plugins::path(props) : plugins::direct(props);
@@ -808,7 +849,13 @@ private:
                 const std::string name = node.xml.attribute("name").value();
                 if (name.empty()) fail_at(node, "<default> needs a name");
                 if (!node.xml.attribute("value")) fail_at(node, "<default> needs a value");
-                defines_.emplace(name, node.xml.attribute("value").value());  // -D values win
+                const std::string value = node.xml.attribute("value").value();
+                const auto [first, added] = defaults_.emplace(name, node);
+                if (!added && first->second.xml.attribute("value").value() != value)
+                    fail_at(node, "<default name=\"{}\"> is given twice with different values ('{}' here, '{}' at {})",
+                            printable(name), printable(value), printable(first->second.xml.attribute("value").value()),
+                            first->second.where());
+                defines_.emplace(name, value);  // -D values win
             } else if (tag == "include") {
                 check_leaf(node, {"filename"});
                 const fs::path path = resolve_include(node);
@@ -828,12 +875,13 @@ private:
             } else if (tag == "emitter") {
                 build_emitter(node);
             } else if (tag == "bsdf" || tag == "texture") {
-                // Built when first referenced: one that nothing uses has no effect on the image (Mitsuba's lego
-                // scene defines a volume-textured BSDF it never uses).
+                // Built when first referenced (it may refer to objects defined after it); those that nothing
+                // references are built after the whole scene is read (build_unreferenced).
                 if (!node.xml.attribute("id")) fail_at(node, "a top-level <{}> needs an id", tag);
                 const std::string id = attribute(node, "id");
                 if (objects_.count(id) || names_.count(id) || !pending_.emplace(id, node).second)
                     fail_at(node, "duplicate id '{}'", printable(id));
+                pending_order_.push_back(id);
             } else {
                 fail_at(node, "unknown element <{}> in <scene>", printable(tag));
             }
@@ -853,7 +901,7 @@ private:
             if (c.tag() != "scene") fail_at(c, "the root element must be <scene>, got <{}>", printable(c.tag()));
             root.xml = child;
         }
-        if (!root.xml) fail("{}:1: the file has no <scene> element", source.path.string());
+        if (!root.xml) fail("{}:1: the file has no <scene> element", source.shown_path());
         check_no_text(root);
         return root;
     }
@@ -920,6 +968,28 @@ private:
         pending_.erase(id);
     }
 
+    // Every object is checked whether referenced or not: the top-level BSDFs and textures that nothing referenced
+    // are built now, in file order, and their errors are errors. Only a plugin that Mitsuba has and surfscatter
+    // lacks is let pass in them, with a note (it cannot affect the image).
+    void build_unreferenced() {
+        for (const std::string& id : pending_order_) {
+            const auto it = pending_.find(id);
+            if (it == pending_.end()) continue;  // built when referenced
+            const Node node = it->second;
+            try {
+                build_pending(node, id);
+            } catch (const UnsupportedPlugin& e) {
+                scene_->notes.push_back(fmt::format("{}: <{} id=\"{}\"> is referenced by nothing and not built: {}",
+                                                    node.where(), node.tag(), printable(id), e.what()));
+                building_.clear();
+                pending_.erase(id);
+            }
+        }
+    }
+
+    // A <bsdf>, or a <ref> that names no texture (an undefined id is then reported where it is built).
+    bool is_bsdf(const Node& node) { return node.tag() == "bsdf" || (node.tag() == "ref" && !names_texture(node)); }
+
     bool names_texture(const Node& ref) {
         const std::string id = attribute(ref, "id");
         const auto pending = pending_.find(id);
@@ -972,7 +1042,7 @@ public:
             source->document.load_buffer(source->text.data(), source->text.size(),
                                          pugi::parse_default | pugi::parse_comments | pugi::parse_fragment);
         if (!result)
-            fail("{}:{}: XML syntax error: {}", source->path.string(), source->line_of(result.offset), result.description());
+            fail("{}:{}: XML syntax error: {}", source->shown_path(), source->line_of(result.offset), result.description());
         check_depth(*source);
         sources_.push_back(std::move(source));
         return *sources_.back();
@@ -1007,10 +1077,12 @@ private:
     std::map<std::string, Object> objects_;
     std::set<std::string> names_;
     std::map<std::string, Node> pending_;  // top-level BSDFs and textures not referenced yet
+    std::vector<std::string> pending_order_;  // their ids in file order
+    std::map<std::string, Node> defaults_;  // <default> elements by name
+    std::optional<Node> sensor_, integrator_;
     std::set<std::string> building_;
     std::map<std::string, std::string> command_line_defines_;
     std::set<std::string> used_defines_;
-    bool has_sensor_ = false;
     ParameterSyntax syntax_;
     int include_depth_ = 0;
     int include_count_ = 0;

@@ -31,6 +31,10 @@ std::string utc_now() {
 }  // namespace
 
 std::optional<Fingerprint> fingerprint(const std::filesystem::path& file) {
+    // Only a regular file has one: a manifest naming /dev/zero or a FIFO (a hand-edited "path") is out of date, not
+    // read forever.
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(file, ec)) return std::nullopt;
     std::ifstream in(file, std::ios::binary);
     if (!in) return std::nullopt;
     std::uint64_t h = 14695981039346656037ULL;
@@ -54,13 +58,14 @@ Manifest::Manifest(std::filesystem::path file, const std::vector<Job>& jobs, con
     const std::string text = read_input_file(file_, "study manifest");
     json document;
     try {
-        document = parse_json_input(text, file_.string());
+        document = parse_json_input(text, printable(file_.string(), kShownPathChars));
     } catch (const Error& e) {
         fail("{}; move it away to start the study afresh", e.what());
     }
     if (!document.is_object() || !document.contains("format") || document["format"] != kFormat ||
         !document.contains("jobs") || !document["jobs"].is_array())
-        fail("{}: not a surfscatter study manifest; move it away to start the study afresh", file_.string());
+        fail("{}: not a surfscatter study manifest; move it away to start the study afresh",
+             printable(file_.string(), kShownPathChars));
     std::map<std::string, json> recorded;
     for (const json& entry : document["jobs"])
         if (entry.is_object() && entry.contains("id") && entry["id"].is_string()) recorded[entry["id"]] = entry;

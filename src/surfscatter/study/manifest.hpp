@@ -23,7 +23,7 @@ struct Fingerprint {
     std::uintmax_t bytes = 0;
     std::string fnv1a;  // 16 hex digits
 };
-std::optional<Fingerprint> fingerprint(const std::filesystem::path& file);  // nullopt if it does not exist
+std::optional<Fingerprint> fingerprint(const std::filesystem::path& file);  // nullopt unless a regular file
 
 class Manifest {
 public:

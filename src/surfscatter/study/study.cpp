@@ -243,7 +243,7 @@ Study parse_study(const std::string& text, const std::filesystem::path& base, co
 Study read_study(const std::filesystem::path& file) {
     const std::string text = read_input_file(file, "study file");
     const std::filesystem::path folder = file.parent_path().empty() ? std::filesystem::path(".") : file.parent_path();
-    return parse_study(text, folder, file.string());
+    return parse_study(text, folder, printable(file.string(), kShownPathChars));
 }
 
 std::string to_json(const Study& s) {

@@ -83,20 +83,8 @@ HeightMap read_gsf(const std::filesystem::path& file) {
     for (std::size_t i = nul; i < std::min(data_start, bytes.size()); ++i)
         if (bytes[i] != '\0') fail("{}: GSF header padding at byte {} is not NUL", path, i);
 
-    std::map<std::string, std::string> header;
-    const std::string_view text(bytes.data() + kGsfMagic.size(), nul - kGsfMagic.size());
-    std::size_t line_start = 0;
-    for (int line_number = 2; line_start < text.size(); ++line_number) {
-        std::size_t line_end = text.find('\n', line_start);
-        if (line_end == std::string_view::npos) line_end = text.size();
-        const std::string_view line = parse::trim(text.substr(line_start, line_end - line_start));
-        line_start = line_end + 1;
-        if (line.empty()) continue;
-        const std::size_t equals = line.find('=');
-        if (equals == std::string_view::npos)
-            fail("{}:{}: GSF header line '{}' is not of the form 'name = value'", path, line_number, printable(line));
-        header.emplace(std::string(parse::trim(line.substr(0, equals))), std::string(parse::trim(line.substr(equals + 1))));
-    }
+    const std::map<std::string, std::string> header =
+        parse::header_fields(std::string_view(bytes).substr(kGsfMagic.size(), nul - kGsfMagic.size()), 2, path);
 
     const std::size_t nx = parse_resolution(path, header, "XRes");
     const std::size_t ny = parse_resolution(path, header, "YRes");

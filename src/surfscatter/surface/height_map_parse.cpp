@@ -1,6 +1,5 @@
 #include "surfscatter/surface/height_map_parse.hpp"
 
-
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/input_file.hpp"
 
@@ -20,6 +19,28 @@ std::optional<double> length_unit_in_um(std::string_view unit) {
     if (unit == "nm") return 1e-3;
     if (unit == "pm") return 1e-6;
     return std::nullopt;
+}
+
+std::map<std::string, std::string> header_fields(std::string_view text, int first_line, const std::string& path) {
+    std::map<std::string, std::string> fields;
+    std::map<std::string, int> lines;
+    std::size_t line_start = 0;
+    for (int line_number = first_line; line_start < text.size(); ++line_number) {
+        std::size_t line_end = text.find('\n', line_start);
+        if (line_end == std::string_view::npos) line_end = text.size();
+        const std::string_view line = trim(text.substr(line_start, line_end - line_start));
+        line_start = line_end + 1;
+        if (line.empty()) continue;
+        const std::size_t equals = line.find('=');
+        if (equals == std::string_view::npos)
+            fail("{}:{}: header line '{}' is not of the form 'name = value'", path, line_number, printable(line));
+        std::string name(trim(line.substr(0, equals)));
+        if (const auto [it, first] = lines.emplace(name, line_number); !first)
+            fail("{}:{}: header field '{}' is given twice (first at line {})", path, line_number, printable(name),
+                 it->second);
+        fields.emplace(std::move(name), std::string(trim(line.substr(equals + 1))));
+    }
+    return fields;
 }
 
 std::string file_bytes(const std::string& path) {
