@@ -1,5 +1,5 @@
 #pragma once
-// Directional albedo by a quadrature written for the tests (not the library's integrate_visible_disc, which K itself
+// Directional albedo by a quadrature written for the tests (not the library's integrate_disc_adaptive, which K itself
 // uses): int f cos dw = int f d^2 o_xy over the disc of projected directions, in polar coordinates (q, phi) about the
 // specular point, q = |i_xy + o_xy|. q: 8-node Gauss-Legendre panels, geometric (ratio 1.25) from q = 1e-12, with edges
 // at the given radii (a lobe's jumps, e.g. zeta_c / k) and at 1 - s, graded geometrically (24 levels) toward the

@@ -9,16 +9,14 @@
 namespace surfscatter::bsdf::test {
 
 inline double lobe_distance(const Bsdf& a, const Bsdf& b, double lambda) {
-    const double theta = 30 * kDegree, s = std::sin(theta);
-    const Vec3 wi(s, 0, std::cos(theta));
+    const double theta = 30 * kDegree, s = std::sin(theta), c = std::cos(theta);
+    const Vec3 wi(s, 0, c);
     auto integral = [&](bool difference) {
-        return integrate_visible_disc(s, 1e-7, [&](double q, double phi) {
-            const double ox = q * std::cos(phi) - s, oy = q * std::sin(phi), z2 = 1 - ox * ox - oy * oy;
-            if (z2 <= 0) return 0.0;
-            const Vec3 wo(ox, oy, std::sqrt(z2));
+        return integrate_disc_adaptive(s, c, [&](double q, double phi, double cos2_theta_o) {
+            const Vec3 wo(q * std::cos(phi) - s, q * std::sin(phi), std::sqrt(cos2_theta_o));
             const double fb = b.eval(wi, wo, lambda);
             return difference ? std::abs(a.eval(wi, wo, lambda) - fb) : fb;
-        });
+        }, 1e-5).value;
     };
     return integral(true) / integral(false);
 }

@@ -32,18 +32,9 @@ std::optional<Vec3> wedge_direction(const Vec3& wi, double q, double u);
 // (rad/um)^2, already divided by the mass of its truncation to the disc): k^2 cos(theta_o) pi density / phi_max.
 double wedge_pdf(double k, double cos_theta_o, double density_2d, double phi_max);
 
-// Integral over the visible disc {|q - i_xy| <= 1} of f(q, phi) d^2q, q = zeta/k in polar coordinates about 0 and
-// phi measured from the azimuth of i, for integrands symmetric in phi (isotropic lobes): composite Gauss-Legendre in
-// q on panels spaced in log(q) from q_lo and graded geometrically toward the circles q = 1 - s and q = 1 + s, where
-// the wedge half-angle has square-root kinks; azimuth phi = phi_max (1 - (1 - t)^2), which absorbs the
-// square-root behaviour of cos(theta_o) at the wedge edge. The disc q < q_lo counts as pi q_lo^2 f(0, 0). A panel
-// edge at q_jump > 0 (a circle where f jumps, e.g. a sharp high-pass cut) keeps the rule accurate there.
-// Relative accuracy ~1e-6 for lobes wider than a few q_lo (tested through the white furnace).
-double integrate_visible_disc(double sin_theta_i, double q_lo, const std::function<double(double q, double phi)>& f,
-                              double q_jump = 0.0);
-
-// The same integral by adaptive cubature that follows a lobe centred on the specular point (q = 0), however narrow,
-// and returns its error estimate: q over four pieces, each in the logarithm of the distance to its end where the
+// Integral over the visible disc {|q - i_xy| <= 1} of f d^2q, q = zeta/k in polar coordinates about 0 and phi measured
+// from the azimuth of i, for integrands symmetric in phi (isotropic lobes), by adaptive cubature that follows a lobe
+// centred on the specular point (q = 0), however narrow, with its error estimate: q over four pieces, each in the logarithm of the distance to its end where the
 // integrand is narrow or has a square-root kink: [0, q_in/2] in ln q (the lobe, down to q = 1e-12 cos^2 theta_i, the
 // disc below counted as pi q^2 f(0, 0)), [q_in/2, q_in] and [q_in, 1] in ln|q - q_in| (q_in = 1 - sin theta_i, where
 // the arc of radius q first meets the horizon: at grazing incidence a narrow lobe lies across it), [1, 1 + s] in
