@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <memory>
 #include <optional>
@@ -97,6 +98,20 @@ void print_value(const char* name, double value) { std::printf("%s = %s\n", name
 
 void write_measured_plot(const InfoArgs& args, const surface::HeightMap& map, surface::Form form);
 
+// The rings of a radial PSD as CSV for psd_fit.py: zeta, psd, count, a model's value (column `model_column`), whether
+// the ring is in the band used, and its independent samples.
+void write_ring_csv(const surface::RadialPsd& r, const char* model_column, const std::function<double(double)>& model,
+                    const std::function<bool(double)>& in_band, const std::string& path, const char* option) {
+    std::ofstream out(path);
+    if (!out) fail("{}: cannot open '{}' for writing", option, path);
+    out << "zeta,psd,count," << model_column << ",in_band,independent_samples\n";
+    for (std::size_t i = 0; i < r.zeta.size(); ++i)
+        out << format_number(r.zeta[i]) << ',' << format_number(r.psd[i]) << ',' << format_number(r.count[i]) << ','
+            << format_number(model(r.zeta[i])) << ',' << (in_band(r.zeta[i]) ? 1 : 0) << ','
+            << format_number(surface::effective_samples(r.window, r.count[i], r.valid_weight)) << '\n';
+    if (!out) fail("{}: write error on '{}'", option, path);
+}
+
 void info(const InfoArgs& args) {
     surface::Form form = surface::Form::plane;
     const surface::HeightMap map = read_map(args, form);
@@ -144,17 +159,8 @@ void write_measured_plot(const InfoArgs& args, const surface::HeightMap& map, su
     print_value("measured_band_max_zeta", stats.nyquist());
     std::printf("measured_window = %s\n", stats.periodic() ? "rectangular (periodic map)" : "hann");
     const std::string csv = std::filesystem::path(args.plot).replace_extension(".csv").string();
-    {
-        std::ofstream out(csv);
-        if (!out) fail("--plot: cannot open '{}' for writing", csv);
-        out << "zeta,psd,count,model_psd,in_band,independent_samples\n";
-        const auto& r = stats.rings();
-        for (std::size_t i = 0; i < r.zeta.size(); ++i)
-            out << format_number(r.zeta[i]) << ',' << format_number(r.psd[i]) << ',' << format_number(r.count[i])
-                << ',' << format_number(stats.psd(r.zeta[i])) << ",1,"
-                << format_number(surface::effective_samples(r.window, r.count[i], r.valid_weight)) << '\n';
-        if (!out) fail("--plot: write error on '{}'", csv);
-    }
+    write_ring_csv(stats.rings(), "model_psd", [&](double z) { return stats.psd(z); }, [](double) { return true; },
+                   csv, "--plot");
     run_plot_script("psd_fit.py",
                     {csv, args.plot,
                      fmt::format("{}: PSD that --psd measured uses, band {:.3g}-{:.3g} rad/um, sigma {:.4g} um (+-{:.2g} %)",
@@ -165,17 +171,8 @@ void write_measured_plot(const InfoArgs& args, const surface::HeightMap& map, su
 
 void write_psd_csv(const surface::SurfaceFit& fit, const std::string& path) {
     const surface::KCorrelation model(fit.kc.sigma_h_um, fit.kc.corr_length_um, fit.kc.gamma);
-    std::ofstream out(path);
-    if (!out) fail("--csv: cannot open '{}' for writing", path);
-    out << "zeta,psd,count,kc_fit,in_band,independent_samples\n";
-    const auto& r = fit.radial;
-    for (std::size_t i = 0; i < r.zeta.size(); ++i) {
-        const bool in_band = r.zeta[i] >= fit.kc.zeta_min && r.zeta[i] <= fit.kc.zeta_max;
-        out << format_number(r.zeta[i]) << ',' << format_number(r.psd[i]) << ',' << format_number(r.count[i]) << ','
-            << format_number(model.psd(r.zeta[i])) << ',' << (in_band ? 1 : 0) << ','
-            << format_number(surface::effective_samples(r.window, r.count[i], r.valid_weight)) << '\n';
-    }
-    if (!out) fail("--csv: write error on '{}'", path);
+    write_ring_csv(fit.radial, "kc_fit", [&](double z) { return model.psd(z); },
+                   [&](double z) { return z >= fit.kc.zeta_min && z <= fit.kc.zeta_max; }, path, "--csv");
 }
 
 // The 2-D PSD over the full zeta-plane, centred (zeta = 0 in the middle), averaged over blocks of

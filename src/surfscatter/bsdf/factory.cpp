@@ -86,13 +86,10 @@ public:
                 statistics_ = std::make_shared<surface::GaussianAcv>(options_.sigma, options_.corr_length);
                 break;
             case PsdKind::measured: {
-                if (options_.measured_psd) {  // estimated already (Python's measured_statistics)
-                    check_measured_uncertainty(*options_.measured_psd, notes);
-                    if (notes) notes->push_back(measured_note(*options_.measured_psd));
-                    statistics_ = options_.measured_psd;
-                    break;
-                }
-                auto measured = std::make_shared<surface::MapStatistics>(*map(), options_.form);
+                // Estimated already (Python's measured_statistics), or from the map.
+                auto measured = options_.measured_psd
+                                    ? options_.measured_psd
+                                    : std::make_shared<const surface::MapStatistics>(*map(), options_.form);
                 check_measured_uncertainty(*measured, notes);
                 if (notes) notes->push_back(measured_note(*measured));
                 statistics_ = std::move(measured);
@@ -104,6 +101,9 @@ public:
     }
 
 private:
+    // " of <file>" for the notes, or nothing for statistics given without a file.
+    std::string of_file() const { return options_.surface_file.empty() ? "" : " of " + options_.surface_file; }
+
     // A map whose variance sits in its few longest periods gives a sigma (and so g) no better than those few samples:
     // refused above kMaxMeasuredSigmaError, a warning above kWarnMeasuredSigmaError (surface::MapStatistics::
     // sigma_relative_error()).
@@ -112,7 +112,7 @@ private:
         const std::string what = fmt::format(
             "the measured PSD{} rests on a few long periods: the standard error of its sigma is {:.2g} % (rings "
             "1-3, {:.3g} .. {:.3g} um periods, hold {:.2g} % of the variance)",
-            options_.surface_file.empty() ? "" : " of " + options_.surface_file, 100.0 * error, kTwoPi / (3 * s.ring_width()), kTwoPi / s.first_ring(),
+            of_file(), 100.0 * error, kTwoPi / (3 * s.ring_width()), kTwoPi / s.first_ring(),
             100.0 * s.radial_cdf(3.5 * s.ring_width()));
         if (error > kMaxMeasuredSigmaError)
             fail("{}, more than the {:.0f} % the models accept: remove more form (--form poly2 .. poly4) or measure a "
@@ -126,19 +126,20 @@ private:
     std::string measured_note(const surface::MapStatistics& s) const {
         const double dz = s.ring_width();
         return fmt::format(
-            "measured PSD{} ({}{}): band zeta {:.3g} .. {:.3g} rad/um (lateral periods {:.3g} .. {:.3g} um), "
-            "rolled off as zeta^-200 beyond ({:.2g} % of sigma^2 there); model sigma {:.6g} um against the map's rms {:.6g} um ({:.2g} % of sigma^2 below the "
-            "first ring, continued linearly from the DC value; standard error of sigma {:.2g} %); rings 1-3 rest on {:.3g}, {:.3g}, {:.3g} independent samples; lobes "
-            "draw on periods longer than a third of the map (> {:.3g} um) where |zeta| < {:.3g} rad/um, within about "
-            "{:.2g} deg of the specular direction at 550 nm; lobes reach beyond the band at wavelengths "
-            "below {:.0f} nm (below {:.0f} nm at normal incidence)",
-            options_.surface_file.empty() ? "" : " of " + options_.surface_file, s.periodic() ? "periodic map, rectangular window" : "Hann window",
+            "measured PSD{} ({}{}): band zeta {:.3g} .. {:.3g} rad/um (lateral periods {:.3g} .. {:.3g} um), rolled "
+            "off as zeta^-200 beyond ({:.2g} % of sigma^2 there); model sigma {:.6g} um against the map's rms {:.6g} "
+            "um ({:.2g} % of sigma^2 below the first ring, continued linearly from the DC value; standard error of "
+            "sigma {:.2g} %); rings 1-3 rest on {:.3g}, {:.3g}, {:.3g} independent samples; lobes draw on periods "
+            "longer than a third of the map (> {:.3g} um) where |zeta| < {:.3g} rad/um, within about {:.2g} deg of "
+            "the specular direction at 550 nm; lobes reach beyond the band at wavelengths below {:.0f} nm (below "
+            "{:.0f} nm at normal incidence)",
+            of_file(), s.periodic() ? "periodic map, rectangular window" : "Hann window",
             s.skipped_rings() ? fmt::format(", {} non-positive rings skipped", s.skipped_rings()) : "", s.first_ring(),
             s.nyquist(), kTwoPi / s.nyquist(), kTwoPi / s.first_ring(), 100.0 * s.above_band_fraction(), s.sigma_h(),
-            s.map_rms(),
-            100.0 * s.below_band_fraction(), 100.0 * s.sigma_relative_error(), s.ring_samples(dz), s.ring_samples(2 * dz), s.ring_samples(3 * dz),
-            kTwoPi / (3 * dz), 3 * dz, std::asin(std::min(1.0, 3 * dz / (kTwoPi / 0.55))) * 180.0 / kPi,
-            2e3 * kTwoPi / s.nyquist(), 1e3 * kTwoPi / s.nyquist());
+            s.map_rms(), 100.0 * s.below_band_fraction(), 100.0 * s.sigma_relative_error(), s.ring_samples(dz),
+            s.ring_samples(2 * dz), s.ring_samples(3 * dz), kTwoPi / (3 * dz), 3 * dz,
+            std::asin(std::min(1.0, 3 * dz / (kTwoPi / 0.55))) * 180.0 / kPi, 2e3 * kTwoPi / s.nyquist(),
+            1e3 * kTwoPi / s.nyquist());
     }
 
     SurfaceOptions options_;

@@ -53,12 +53,12 @@ private:
     double nyquist_, dc_, first_ = 0, edge_ = 0, spacing_ = 1;
 };
 
-double wrap_jump_ratio(const HeightMap& flat) {
-    const std::size_t nx = flat.nx(), ny = flat.ny();
+double wrap_jump_ratio(const HeightMap& map) {
+    const std::size_t nx = map.nx(), ny = map.ny();
     double ratio = 0.0;
     for (int axis = 0; axis < 2; ++axis) {
         const std::size_t n = axis == 0 ? nx : ny, m = axis == 0 ? ny : nx;
-        auto h = [&](std::size_t i, std::size_t j) { return axis == 0 ? flat(i, j) : flat(j, i); };
+        auto h = [&](std::size_t i, std::size_t j) { return axis == 0 ? map(i, j) : map(j, i); };
         double jump = 0.0, step = 0.0;
         for (std::size_t j = 0; j < m; ++j) {
             const double d = h(0, j) - h(n - 1, j);
@@ -78,37 +78,37 @@ double wrap_jump_ratio(const HeightMap& flat) {
 MapStatistics::MapStatistics(const HeightMap& map, Form form) {
     require_valid_fraction(map, kMinFitValidFraction, "measured statistics");
     const HeightMap flat = remove_form(map, form);
-    // Periodicity is the data's (its mean removed only): a form fitted to a periodic map is noise that would break it.
-    periodic_ = !map.has_invalid() && wrap_jump_ratio(remove_form(map, Form::none)) <= kPeriodicJumpRatio;
+    // Periodicity is the data's, before any form removal: a form fitted to a periodic map is noise that would break it.
+    periodic_ = !map.has_invalid() && wrap_jump_ratio(map) <= kPeriodicJumpRatio;
     map_rms_ = rms_height(flat, Form::none);
     if (!(map_rms_ > 0.0))
         fail("{}: no roughness is left after removing the form ({}): rms height 0", map.origin(), to_string(form));
     spectrum_ = estimate_psd(flat, periodic_ ? Window::rectangular : Window::hann, Form::none);
     radial_ = radial_average(spectrum_);
+    // P(0): the periodogram's own DC value, 0 for the rectangular window (the mean is removed), with the Hann window
+    // the power its main lobe moved there from the first rings.
+    double dc = std::max(0.0, spectrum_.values[0]);
+    // The rings used and the lattice's sum over them and DC (each ring's mean times its points): what the map holds
+    // in the band (Parseval).
     std::vector<double> zeta, psd;
+    double lattice_sum = dc;
     for (std::size_t i = 0; i < radial_.zeta.size(); ++i) {
         if (radial_.psd[i] > 0.0 && std::isfinite(radial_.psd[i])) {
             zeta.push_back(radial_.zeta[i]);
             psd.push_back(radial_.psd[i]);
+            lattice_sum += radial_.psd[i] * radial_.count[i];
         } else {
             ++skipped_rings_;
         }
     }
+    lattice_sum *= spectrum_.dzeta_x * spectrum_.dzeta_y;
     if (zeta.size() < 4)
         fail("{}: only {} rings of its spectrum are positive; a measured PSD needs at least 4", map.origin(), zeta.size());
     const double nyquist = kPi / std::max(flat.spacing_x(), flat.spacing_y());
-    // P(0): the periodogram's own DC value, 0 for the rectangular window (the mean is removed), with the Hann window
-    // the power its main lobe moved there from the first rings.
-    double dc = std::max(0.0, spectrum_.values[0]);
-    // Parseval over the band: the lattice's sum (DC and the rings used, each mean times its points) is what the
-    // map holds there. The continuous reading of the ring means integrates to a little less or more (the lowest
-    // rings hold more lattice points than their annuli's area: -0.3 to -1 % measured), which would put sigma_rel, and
-    // with it the scattered fraction 1 - e^{-g0}, off by as much: the ring means are scaled by the one factor that
-    // makes the two equal (band_scale()).
-    double lattice_sum = dc;
-    for (std::size_t i = 0; i < radial_.zeta.size(); ++i)
-        if (radial_.psd[i] > 0.0 && std::isfinite(radial_.psd[i])) lattice_sum += radial_.psd[i] * radial_.count[i];
-    lattice_sum *= spectrum_.dzeta_x * spectrum_.dzeta_y;
+    // The continuous reading of the ring means integrates over the band to a little less or more than the lattice's
+    // sum (the lowest rings hold more lattice points than their annuli's area: -0.3 to -1 % measured), which would put
+    // sigma_rel, and with it the scattered fraction 1 - e^{-g0}, off by as much: the ring means are scaled by the one
+    // factor that makes the two equal (band_scale()).
     const auto in_band = [&](const MapRingPsd& p) { return p.sigma_h() * p.sigma_h() * p.radial_cdf(nyquist); };
     band_scale_ = lattice_sum / in_band(MapRingPsd(dc, zeta, psd, nyquist, "unscaled"));
     dc *= band_scale_;
@@ -116,15 +116,21 @@ MapStatistics::MapStatistics(const HeightMap& map, Form form) {
     std::string key = fmt::format("map({};{};{:.17g};", periodic_ ? "rect" : "hann", nyquist, dc);
     for (std::size_t i = 0; i < zeta.size(); ++i) key += fmt::format("{:.17g}:{:.17g};", zeta[i], psd[i]);
     rings_psd_ = std::make_shared<MapRingPsd>(dc, std::move(zeta), std::move(psd), nyquist, key + ")");
-    band_ = rings_psd_;
-    inverse_variance_ = 1.0 / (band_->sigma_h() * band_->sigma_h());
+    inverse_variance_ = 1.0 / (rings_psd_->sigma_h() * rings_psd_->sigma_h());
     nyquist_ = nyquist;
 }
 
+// The ring PSD answers for the statistics; psd_unit reads it without the virtual call.
+double MapStatistics::sigma_h() const { return rings_psd_->sigma_h(); }
+double MapStatistics::acv_normalized(double r) const { return rings_psd_->acv_normalized(r); }
+double MapStatistics::radial_cdf(double zeta) const { return rings_psd_->radial_cdf(zeta); }
+double MapStatistics::correlation_length() const { return rings_psd_->correlation_length(); }
+std::string MapStatistics::cache_key() const { return rings_psd_->cache_key(); }
+
 double MapStatistics::psd_unit(double zeta) const {
-    // = band_->psd_unit(zeta) inside the band, without its virtual call (this is on the lobe's evaluation path).
+    // = rings_psd_->psd_unit(zeta) inside the band, without its virtual call (this is on the lobe's evaluation path).
     if (zeta >= 0.0 && zeta <= nyquist_) return rings_psd_->value_in_band(zeta) * inverse_variance_;
-    return band_->psd_unit(zeta);
+    return rings_psd_->psd_unit(zeta);
 }
 
 double MapStatistics::ring_samples(double zeta) const {

@@ -52,12 +52,12 @@ public:
     // Error if fewer than kMinFitValidFraction of the points are valid or the form leaves no roughness.
     MapStatistics(const HeightMap& map, Form form);
 
-    double sigma_h() const override { return band_->sigma_h(); }
+    double sigma_h() const override;
     double psd_unit(double zeta) const override;
-    double acv_normalized(double r) const override { return band_->acv_normalized(r); }
-    double radial_cdf(double zeta) const override { return band_->radial_cdf(zeta); }
-    double correlation_length() const override { return band_->correlation_length(); }
-    std::string cache_key() const override { return band_->cache_key(); }
+    double acv_normalized(double r) const override;
+    double radial_cdf(double zeta) const override;
+    double correlation_length() const override;
+    std::string cache_key() const override;
 
     // What the estimate rests on, for reports.
     bool periodic() const { return periodic_; }               // rectangular window (see above)
@@ -84,15 +84,14 @@ private:
     std::size_t skipped_rings_ = 0;
     Psd2d spectrum_;
     RadialPsd radial_;
-    std::shared_ptr<const MapRingPsd> rings_psd_;   // the ring means as a PSD
-    std::shared_ptr<const RadialStatistics> band_;  // the same, as the statistics the models use
+    std::shared_ptr<const MapRingPsd> rings_psd_;   // the ring means as a PSD, rolled off beyond the band
     double inverse_variance_ = 0, nyquist_ = 0;
 };
 
 // Mean square jump across opposite edges over mean square neighbour step, the larger of the two axes (see
-// kPeriodicJumpRatio), of a map without invalid points. Taken with only the mean removed: a plane fitted to a
-// periodic map raises it (measured 0.84 -> 2.3, poly2 4.0 on a 1024^2 Gaussian-ACV map 55 l wide); the real
+// kPeriodicJumpRatio), of a map without invalid points, as measured (differences do not see its mean): a plane fitted
+// to a periodic map raises it (measured 0.84 -> 2.3, poly2 4.0 on a 1024^2 Gaussian-ACV map 55 l wide); the real
 // instrument files give 50 to 10^4.
-double wrap_jump_ratio(const HeightMap& flat);
+double wrap_jump_ratio(const HeightMap& map);
 
 }  // namespace surfscatter::surface
