@@ -62,6 +62,19 @@ std::string read_input_file(const fs::path& path, const char* what, std::uint64_
     return bytes;
 }
 
+void for_each_data_line(std::string_view text, const std::function<void(std::string_view line, int number)>& f) {
+    int number = 0;
+    while (!text.empty()) {
+        const std::size_t end = std::min(text.find('\n'), text.size());
+        std::string_view line = text.substr(0, end);
+        text.remove_prefix(std::min(end + 1, text.size()));
+        ++number;
+        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+        const std::size_t first = line.find_first_not_of(" \t");
+        if (first != std::string_view::npos && line[first] != '#') f(line, number);
+    }
+}
+
 std::optional<double> to_double(std::string_view text) {
     double value = 0.0;
     const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);

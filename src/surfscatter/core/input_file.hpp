@@ -4,6 +4,7 @@
 // standard library, a hang or an exhausted memory.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -21,6 +22,10 @@ std::string read_input_file(const std::filesystem::path& path, const char* what,
 
 // Throws Error unless `path` names something that can be read as a file ("<what> <path>: is a directory").
 void require_readable_file(const std::filesystem::path& path, const char* what);
+
+// Calls f(line, number) for every line of `text` that holds data, numbered from 1: a trailing '\r' removed, blank
+// lines and lines whose first non-blank character is '#' skipped (the rule of the project's CSV inputs).
+void for_each_data_line(std::string_view text, const std::function<void(std::string_view line, int number)>& f);
 
 // The whole of `text` (no spaces, no trailing characters) as a number, or nullopt; "nan" and "inf" in any case are
 // numbers: the caller decides whether they are allowed.

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 #include <string_view>
 
 #include "surfscatter/core/error.hpp"
@@ -83,12 +82,7 @@ std::shared_ptr<const RefractiveIndex> load_csv_refractive_index(const std::stri
 std::shared_ptr<const RefractiveIndex> parse_csv_refractive_index(const std::string& text, const std::string& path) {
     std::vector<double> lambda, n, k;
     bool header_allowed = true;
-    int line_number = 0;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);) {
-        ++line_number;
-        if (!line.empty() && line.back() == '\r') line.pop_back();
-        if (line.find_first_not_of(" \t") == std::string::npos || line[line.find_first_not_of(" \t")] == '#') continue;
+    for_each_data_line(text, [&](std::string_view line, int line_number) {
         const auto fields = split_commas(line);
         double values[3];
         const bool numeric = fields.size() == 3 && parse_double(fields[0], values[0]) &&
@@ -96,7 +90,7 @@ std::shared_ptr<const RefractiveIndex> parse_csv_refractive_index(const std::str
         if (!numeric) {
             if (header_allowed && fields.size() == 3 && !parse_double(fields[0], values[0])) {
                 header_allowed = false;
-                continue;
+                return;
             }
             fail("{}:{}: expected 'wavelength_nm,n,k' with three numbers, got '{}'", path, line_number, printable(line));
         }
@@ -112,7 +106,7 @@ std::shared_ptr<const RefractiveIndex> parse_csv_refractive_index(const std::str
         lambda.push_back(values[0]);
         n.push_back(values[1]);
         k.push_back(values[2]);
-    }
+    });
     if (lambda.size() < 2) fail("{}: needs at least two rows 'wavelength_nm,n,k', found {}", path, lambda.size());
     return std::make_shared<TabulatedIndex>(path, std::move(lambda), std::move(n), std::move(k));
 }

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
-#include <sstream>
 #include <string_view>
 
 #include <fmt/format.h>
@@ -33,22 +32,16 @@ Profile read_profile_csv(const std::string& path) {
 Profile parse_profile_csv(const std::string& text, const std::string& path) {
     std::vector<double> x, h;
     bool header_seen = false;
-    int line_number = 0;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);) {
-        ++line_number;
-        if (!line.empty() && line.back() == '\r') line.pop_back();
-        const auto first = line.find_first_not_of(" \t");
-        if (first == std::string::npos || line[first] == '#') continue;
+    for_each_data_line(text, [&](std::string_view line, int line_number) {
         if (!header_seen) {
             if (line != "x_um,h_um")
                 fail("{}:{}: expected the header 'x_um,h_um', got '{}'", path, line_number, printable(line));
             header_seen = true;
-            continue;
+            return;
         }
         const auto comma = line.find(',');
-        const auto xv = comma == std::string::npos ? std::nullopt : to_double(std::string_view(line).substr(0, comma));
-        const auto hv = comma == std::string::npos ? std::nullopt : to_double(std::string_view(line).substr(comma + 1));
+        const auto xv = comma == std::string_view::npos ? std::nullopt : to_double(line.substr(0, comma));
+        const auto hv = comma == std::string_view::npos ? std::nullopt : to_double(line.substr(comma + 1));
         if (!xv || !hv) fail("{}:{}: expected 'x_um,h_um' with two numbers, got '{}'", path, line_number, printable(line));
         if (!std::isfinite(*xv) || !(std::abs(*hv) <= kMaxProfileHeightUm))
             fail("{}:{}: x = {} um, h = {} um (need finite x and |h| <= {:g} um)", path, line_number, *xv, *hv,
@@ -63,7 +56,7 @@ Profile parse_profile_csv(const std::string& text, const std::string& path) {
         }
         x.push_back(*xv);
         h.push_back(*hv);
-    }
+    });
     if (!header_seen) fail("{}: no header 'x_um,h_um'", path);
     if (x.size() < kMinProfileSamples)
         fail("{}: needs at least {} rows 'x_um,h_um', found {}", path, kMinProfileSamples, x.size());
