@@ -15,6 +15,7 @@
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/surface/height_map_io.hpp"
 #include "surfscatter/surface/height_map_slope.hpp"
+#include "surfscatter/surface/elliptical_statistics.hpp"
 #include "surfscatter/surface/kc_fit.hpp"
 #include "surfscatter/surface/map_statistics.hpp"
 #include "surfscatter/surface/psd_split.hpp"
@@ -30,16 +31,23 @@ bool needs_surface(const ModelOptions& o) {
     return o.model != ModelKind::ggx || o.alpha_from != AlphaFrom::none;
 }
 
+void validate_lay(const SurfaceOptions& s) {
+    if (s.corr_length_v != 0) surface::require_surface_length(s.corr_length_v, "corr_length_v");
+    if (!std::isfinite(s.lay_angle)) fail("lay_angle must be finite (degrees), got {}", s.lay_angle);
+}
+
 void validate_surface(const SurfaceOptions& s) {
     switch (s.psd) {
         case PsdKind::kc:
             surface::require_surface_length(s.sigma, "sigma");
             surface::require_surface_length(s.corr_length, "corr_length");
             surface::require_kc_gamma(s.gamma, "gamma");
+            validate_lay(s);
             break;
         case PsdKind::gaussian:
             surface::require_surface_length(s.sigma, "sigma");
             surface::require_surface_length(s.corr_length, "corr_length");
+            validate_lay(s);
             break;
         case PsdKind::measured:
             if (s.measured_psd) break;
@@ -98,6 +106,15 @@ public:
             default: statistics_ = std::make_shared<surface::KCorrelation>(kc()); break;
         }
         return statistics_;
+    }
+
+    // The elliptical statistics (model_options.hpp: corr_length_v, lay_angle), or null for an isotropic surface
+    // (corr_length_v 0 or equal to corr_length): every isotropic result stays exactly what it was.
+    std::shared_ptr<const surface::EllipticalStatistics> elliptical(std::vector<std::string>* notes) {
+        const double lv = options_.corr_length_v;
+        if (lv == 0 || lv == options_.corr_length) return nullptr;
+        return std::make_shared<const surface::EllipticalStatistics>(statistics(notes), lv,
+                                                                     options_.lay_angle * kDegree);
     }
 
 private:
@@ -221,6 +238,9 @@ std::unique_ptr<Bsdf> make_bsdf(const ModelOptions& o, std::vector<std::string>*
     validate(o);
     auto material = material::Conductor::from_name(o.material);
     SurfaceSource surface(needs_surface(o) ? o.surface : SurfaceOptions{});
+    if (surface.elliptical(notes))
+        fail("model {} does not take elliptical statistics yet (corr_length_v {} um differs from corr_length {} um)",
+             to_string(o.model), o.surface.corr_length_v, o.surface.corr_length);
     switch (o.model) {
         case ModelKind::ggx: return std::make_unique<GgxBsdf>(std::move(material), ggx_alpha(o, surface, notes));
         case ModelKind::ghs_ssa:

@@ -140,11 +140,13 @@ std::string inapplicable_option(const ModelOptions& o, std::string_view name) {
     if (name == "smoothing") return unless(ggx && o.alpha_from == AlphaFrom::smoothed, "used with alpha_from smoothed only");
     if (name == "cutoff_wavelengths" || name == "macro_ndf") return unless(m == ModelKind::two_scale, "used by model two_scale only");
     if (name == "psd" || name == "sigma" || name == "corr_length" || name == "gamma" || name == "surface_file" ||
-        name == "form") {
+        name == "form" || name == "corr_length_v" || name == "lay_angle") {
         if (!with_surface) return "model ggx_stats with alpha_from none takes no surface";
         if (name == "sigma" || name == "corr_length")
             return unless(!from_map, "a height map gives its own statistics (psd file or measured)");
         if (name == "gamma") return unless(psd == PsdKind::kc, "used with psd kc only");
+        if (name == "corr_length_v" || name == "lay_angle")
+            return unless(!from_map, "used with psd kc or gaussian only (a height map gives its own statistics)");
         if (name == "surface_file" || name == "form")
             return unless(from_map, "used with a height map (psd file or measured) only");
     }

@@ -32,6 +32,11 @@ struct SurfaceOptions {
     double sigma = 0;         // rms height, um (kc, gaussian)
     double corr_length = 0;   // um: KC L, or Gaussian l in C = sigma^2 exp(-r^2/l^2)
     double gamma = 0;         // KC exponent, > 1
+    // Elliptical statistics (psd kc or gaussian; surface::EllipticalStatistics): corr_length is LU along the lay
+    // direction u, corr_length_v LV across it (0: LV = LU, isotropic), lay_angle A in degrees from x (phi = 0)
+    // towards y in the local frame.
+    double corr_length_v = 0;
+    double lay_angle = 0;
     std::string surface_file; // height map (psd = file or measured): any format read_height_map reads
     surface::Form form = surface::Form::plane;  // removed from the height map before its statistics
     // The map read from surface_file when the caller has read it already (to report on it, load_height_map());
