@@ -16,6 +16,7 @@
 #include "surfscatter/math/vec.hpp"
 #include "surfscatter/surface/height_map_fft.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
+#include "surfscatter/surface/synthesis.hpp"
 
 using namespace surfscatter;
 using namespace surfscatter::bsdf;
@@ -150,4 +151,30 @@ TEST(MeasuredReference, GhsMatchesEquationsOneAndTwoOnTheMapsOwnPeriodogram) {
             }
     }
     RecordProperty("worst_relative_error", std::to_string(worst_all));
+}
+
+// A map whose roughness grows toward one edge is not periodic (Hann window) and its centre is smoother than the whole:
+// the models say so; the same map without the growth does not warn.
+TEST(MeasuredReference, NonStationaryMapIsNamedInTheNotes) {
+    const std::size_t n = 256;
+    const double dx = 0.1;
+    const surface::KCorrelation truth(0.05, 0.5, 4.0);
+    const surface::HeightMap base = surface::synthesize_surface(truth, {n, n, dx}, 7);
+    std::vector<double> grown = base.heights();
+    for (std::size_t y = 0; y < n; ++y)
+        for (std::size_t x = 0; x < n; ++x) grown[y * n + x] *= 1.0 + 4.0 * std::pow(double(x) / double(n - 1), 4);
+    auto notes_of = [&](std::vector<double> heights) {
+        ModelOptions o;
+        o.model = ModelKind::ghs_ssa;
+        o.surface.psd = PsdKind::measured;
+        o.surface.surface_file = "map";
+        o.surface.height_map = std::make_shared<const surface::HeightMap>(n, n, dx, dx, std::move(heights), "map");
+        std::vector<std::string> notes;
+        make_bsdf(o, &notes);
+        std::string all;
+        for (const auto& note : notes) all += note + "\n";
+        return all;
+    };
+    EXPECT_NE(notes_of(grown).find("the map is not stationary"), std::string::npos) << notes_of(grown);
+    EXPECT_EQ(notes_of(base.heights()).find("not stationary"), std::string::npos) << notes_of(base.heights());
 }

@@ -296,6 +296,9 @@ TEST(CliHeightmap, RealFilesFitOrSayWhyWithAPlotAndGiveAFiniteMeasuredBrdf) {
                                    "0,29,30.5,45", "--phi-o", "180"});
         ASSERT_EQ(brdf.exit_code, 0) << name << ": " << brdf.err;
         EXPECT_NE(brdf.err.find("note: measured PSD of"), std::string::npos) << brdf.err;
+        // The Zygo map's edges are rougher than its centre, which the Hann window weighs (sigma 0.66 of its rms).
+        EXPECT_EQ(brdf.err.find("the map is not stationary") != std::string::npos, std::string(name) == "metropro-1.dat")
+            << name << ": " << brdf.err;
         double largest = 0.0;
         for (const std::string& line : brdf.out_lines()) {
             if (line.empty() || !std::isdigit(static_cast<unsigned char>(line[0]))) continue;
