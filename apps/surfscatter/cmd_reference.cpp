@@ -1,6 +1,8 @@
 // surfscatter reference exact-1d: the rigorous scattering of a tapered beam by a 1-D profile (docs/REFERENCE.md),
 // written as CSV theta_o_deg,intensity_per_rad; with --psd, averaged over random profiles (coherent and incoherent
 // parts and their standard errors in further columns).
+// surfscatter reference kirchhoff: the Kirchhoff BRDF of a height map on its sub-areas' direction lattice, CSV
+// theta_o_deg,phi_o_deg,brdf_per_sr,standard_error_per_sr,coherent_per_sr, with a PNG (docs/REFERENCE.md).
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -19,7 +21,10 @@
 #include "surfscatter/core/resources.hpp"
 #include "surfscatter/reference/exact_1d.hpp"
 #include "surfscatter/reference/exact_1d_statistics.hpp"
+#include "surfscatter/reference/kirchhoff_map.hpp"
 #include "surfscatter/reference/profile.hpp"
+#include "surfscatter/surface/height_map_form.hpp"
+#include "surfscatter/surface/height_map_io.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
 
 namespace surfscatter::cli {
@@ -112,6 +117,91 @@ void run_exact_1d(const Exact1dArgs& a) {
     if (result.realizations > 0) write_file_atomically(a.output, statistics_csv(result));
 }
 
+struct KirchhoffArgs {
+    std::string surface_file, form = "plane", material, output, plot;
+    double wavelength = 0, theta_i = 0, phi_i = 0, max_theta_o = 85;
+    std::optional<double> subarea;
+    int threads = 0;
+};
+
+std::string kirchhoff_csv(const reference::KirchhoffResult& r) {
+    std::string out = "theta_o_deg,phi_o_deg,brdf_per_sr,standard_error_per_sr,coherent_per_sr\n";
+    for (std::size_t d = 0; d < r.brdf.size(); ++d) {
+        const double sin_o = std::hypot(r.o_x[d], r.o_y[d]);
+        double phi = std::atan2(r.o_y[d], r.o_x[d]) / kDegree;
+        if (phi < 0) phi += 360;
+        out += fmt::format("{},{},{},{},{}\n", format_number(std::asin(std::min(1.0, sin_o)) / kDegree),
+                           format_number(phi), format_number(r.brdf[d]), format_number(r.standard_error[d]),
+                           format_number(r.coherent[d]));
+    }
+    return out;
+}
+
+void run_kirchhoff(const KirchhoffArgs& a) {
+    require_finite(a.theta_i, "--theta-i");
+    if (a.theta_i < 0 || a.theta_i >= 90) fail("--theta-i must be in [0, 90) degrees, got {}", a.theta_i);
+    require_finite(a.phi_i, "--phi-i");
+    require_positive(a.wavelength, "--wavelength");
+    require_finite(a.max_theta_o, "--max-theta-o");
+    if (a.max_theta_o <= 0 || a.max_theta_o >= 90) fail("--max-theta-o must be in (0, 90) degrees, got {}", a.max_theta_o);
+    if (a.subarea) require_positive(*a.subarea, "--subarea-um");
+    require_thread_count(a.threads, "--threads");
+    const surface::Form form = surface::parse_form(a.form, "--form");
+    const auto conductor = material::Conductor::from_name(a.material);
+    const surface::HeightMap map = surface::remove_form(surface::read_height_map(a.surface_file, {}, {}), form);
+    for (const std::string& warning : map.source.warnings)
+        std::fprintf(stderr, "surfscatter: warning: %s: %s\n", a.surface_file.c_str(), warning.c_str());
+    reference::KirchhoffOptions o;
+    o.lambda_nm = a.wavelength;
+    o.theta_i_rad = a.theta_i * kDegree;
+    o.phi_i_rad = a.phi_i * kDegree;
+    // Default: a quarter of the shorter side, 16 sub-areas.
+    o.subarea_um = a.subarea ? *a.subarea : 0.25 * std::min(map.width(), map.height());
+    o.max_theta_o_rad = a.max_theta_o * kDegree;
+    o.threads = a.threads;
+    o.progress = true;
+    install_interrupt_handler();
+    const auto r = reference::kirchhoff_brdf(map, conductor, o);
+    for (const std::string& warning : r.warnings) std::fprintf(stderr, "surfscatter: warning: %s\n", warning.c_str());
+    if (r.subareas_done < r.subareas)
+        std::fprintf(stderr, "surfscatter: interrupted: %s holds %zu of %zu sub-areas\n", a.output.c_str(),
+                     r.subareas_done, r.subareas);
+    if (r.subareas_done == 0) return;
+    write_file_atomically(a.output, kirchhoff_csv(r));
+    std::printf("subareas = %zu\nsubarea_px = %zu x %zu\n", r.subareas_done, r.subarea_nx, r.subarea_ny);
+    std::printf("lattice_step = %s x %s\n", format_number(r.step_x).c_str(), format_number(r.step_y).c_str());
+    std::printf("ffts_per_subarea = %zu\n", r.fft_count);
+    std::printf("albedo = %s\nalbedo_standard_error = %s\ncoherent_albedo = %s\naliased_fraction = %s\n",
+                format_number(r.albedo).c_str(), format_number(r.albedo_standard_error).c_str(),
+                format_number(r.coherent_albedo).c_str(), format_number(r.aliased_fraction).c_str());
+    if (!a.plot.empty())
+        run_plot_script("kirchhoff_map.py", {a.output, a.plot, format_number(a.theta_i), format_number(a.phi_i),
+                                             format_number(r.step_x), format_number(r.step_y),
+                                             fmt::format("{} nm, {}", format_number(a.wavelength), a.material)});
+}
+
+void add_kirchhoff(CLI::App* reference_cmd) {
+    auto a = std::make_shared<KirchhoffArgs>();
+    auto* sub = reference_cmd->add_subcommand(
+        "kirchhoff", "Kirchhoff (tangent-plane) BRDF of a height map by FFT over Hann-windowed sub-areas: CSV "
+                     "theta_o_deg,phi_o_deg,brdf_per_sr,standard_error_per_sr,coherent_per_sr");
+    sub->add_option("--surface", a->surface_file, "height map (any format `surface info` reads)")->required();
+    sub->add_option("--form", a->form, "form removed first: none (mean) | plane (default) | poly2 | poly3 | poly4");
+    sub->add_option("--material", a->material,
+                    "perfect, a built-in metal (Ag, Au, Al, Cu, ...) or a .yml/.csv refractive index file")
+        ->required();
+    sub->add_option("--wavelength", a->wavelength, "wavelength in nm")->required();
+    sub->add_option("--theta-i", a->theta_i, "angle of incidence in degrees")->required();
+    sub->add_option("--phi-i", a->phi_i, "azimuth of incidence in the map's frame (x = 0 deg), degrees (default 0)");
+    sub->add_option("--subarea-um", a->subarea, "side of the square sub-areas averaged over (um; default a quarter of "
+                                                "the map's shorter side): angular resolution lambda / side");
+    sub->add_option("--max-theta-o", a->max_theta_o, "largest theta_o written, degrees (default 85)");
+    sub->add_option("--threads", a->threads, "sub-areas evaluated at once, 0 = all cores (default)");
+    sub->add_option("-o", a->output, "output CSV")->required();
+    sub->add_option("--plot", a->plot, "PNG: the BRDF over the direction cosines and the in-plane slice");
+    sub->callback([a] { run_kirchhoff(*a); });
+}
+
 const Command command("reference", [](CLI::App& app) {
     auto* cmd = app.add_subcommand("reference", "Rigorous scattering solutions the models are checked against");
     cmd->require_subcommand(1);
@@ -143,6 +233,7 @@ const Command command("reference", [](CLI::App& app) {
     sub->add_option("--seed", a->seed, "seed of the first profile; profile r uses seed + r (default 1)");
     sub->add_option("--threads", a->threads, "realizations solved at once, 0 = all cores (default)");
     sub->callback([a] { run_exact_1d(*a); });
+    add_kirchhoff(cmd);
 });
 
 }  // namespace
