@@ -1,13 +1,16 @@
 // The exact 1-D solver: one solve of a KC profile (sigma 0.05 um, L 2 um, gamma 3) at 550 nm, 10 points per
 // wavelength, against profile length, for the perfect conductor (s, p) and silver (s, p); and the statistical mode's
-// realizations on 1 and 2 threads. CPU and wall time are reported separately (docs/PERFORMANCE.md).
+// realizations on 1 and 2 threads. The Kirchhoff BRDF of a KC map (sigma 0.1 or 0.5 um, L 2 um, gamma 4, 0.1 um
+// pixels) of 512^2 and 1024^2 points at 550 nm, theta_i 30 deg, gold, 16 sub-areas, on 1 and 2 threads. CPU and wall time are reported separately (docs/PERFORMANCE.md).
 #include <benchmark/benchmark.h>
 
 #include "surfscatter/material/conductor.hpp"
 #include "surfscatter/math/vec.hpp"
 #include "surfscatter/reference/exact_1d.hpp"
 #include "surfscatter/reference/exact_1d_statistics.hpp"
+#include "surfscatter/reference/kirchhoff_map.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
+#include "surfscatter/surface/synthesis.hpp"
 
 namespace {
 
@@ -56,5 +59,33 @@ void BM_Exact1dStatistics(benchmark::State& state) {
         benchmark::DoNotOptimize(sr::solve_exact_1d_statistics(kc, surfscatter::material::Conductor::perfect(), o, st));
 }
 BENCHMARK(BM_Exact1dStatistics)->Arg(1)->Arg(2)->Iterations(1)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
+
+// range(0): map side in pixels; range(1): threads; range(2): sigma in nm.
+void BM_KirchhoffMap(benchmark::State& state) {
+    const auto n = static_cast<std::size_t>(state.range(0));
+    const surfscatter::surface::KCorrelation kc(static_cast<double>(state.range(2)) * 1e-3, 2.0, 4.0);
+    const auto map = surfscatter::surface::synthesize_surface(kc, {n, n, 0.1}, 1);
+    sr::KirchhoffOptions o;
+    o.lambda_nm = 550;
+    o.theta_i_rad = 30 * surfscatter::kDegree;
+    o.subarea_um = 0.25 * map.width();
+    o.threads = static_cast<int>(state.range(1));
+    const auto gold = surfscatter::material::Conductor::from_name("Au");
+    std::size_t ffts = 0, directions = 0;
+    for (auto _ : state) {
+        const auto r = sr::kirchhoff_brdf(map, gold, o);
+        ffts = r.fft_count;
+        directions = r.brdf.size();
+        benchmark::DoNotOptimize(r.albedo);
+    }
+    state.counters["ffts_per_subarea"] = static_cast<double>(ffts);
+    state.counters["directions"] = static_cast<double>(directions);
+}
+BENCHMARK(BM_KirchhoffMap)
+    ->ArgsProduct({{512, 1024}, {1, 2}, {100, 500}})
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
 
 }  // namespace

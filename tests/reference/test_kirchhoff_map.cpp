@@ -226,7 +226,7 @@ TEST(KirchhoffMap, AgreesWithGhsNearNormalIncidence) {
         }
         EXPECT_GT(compared, 5) << "sigma " << sigma;
         EXPECT_LT(worst, 0.1) << "sigma " << sigma << ", rings compared " << compared;
-        EXPECT_NEAR(r.albedo, 1.0, 0.01) << "sigma " << sigma;
+        EXPECT_NEAR(r.albedo, 1.0, 1e-3) << "sigma " << sigma;  // 1 + 2e-5 and 1 + 9e-5
         EXPECT_LT(r.albedo_standard_error, 0.01);
     }
 }
