@@ -73,10 +73,15 @@ std::string far_field_csv(const reference::FarField& far_field) {
     return out;
 }
 
+// --theta-i in [0, 90) degrees and --wavelength > 0, as both references take them.
+void require_incidence(double theta_i, double wavelength) {
+    require_finite(theta_i, "--theta-i");
+    if (theta_i < 0 || theta_i >= 90) fail("--theta-i must be in [0, 90) degrees, got {}", theta_i);
+    require_positive(wavelength, "--wavelength");
+}
+
 void run_exact_1d(const Exact1dArgs& a) {
-    require_finite(a.theta_i, "--theta-i");
-    if (a.theta_i < 0 || a.theta_i >= 90) fail("--theta-i must be in [0, 90) degrees, got {}", a.theta_i);
-    require_positive(a.wavelength, "--wavelength");
+    require_incidence(a.theta_i, a.wavelength);
     require_positive(a.beam_width, "--beam-width");
     const auto conductor = material::Conductor::from_name(a.material);
     reference::Exact1dOptions options;
@@ -138,10 +143,8 @@ std::string kirchhoff_csv(const reference::KirchhoffResult& r) {
 }
 
 void run_kirchhoff(const KirchhoffArgs& a) {
-    require_finite(a.theta_i, "--theta-i");
-    if (a.theta_i < 0 || a.theta_i >= 90) fail("--theta-i must be in [0, 90) degrees, got {}", a.theta_i);
+    require_incidence(a.theta_i, a.wavelength);
     require_finite(a.phi_i, "--phi-i");
-    require_positive(a.wavelength, "--wavelength");
     require_finite(a.max_theta_o, "--max-theta-o");
     if (a.max_theta_o <= 0 || a.max_theta_o >= 90) fail("--max-theta-o must be in (0, 90) degrees, got {}", a.max_theta_o);
     if (a.subarea) require_positive(*a.subarea, "--subarea-um");

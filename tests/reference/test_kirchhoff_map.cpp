@@ -12,6 +12,7 @@
 
 #include "surfscatter/bsdf/factory.hpp"
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/progress.hpp"
 #include "surfscatter/material/conductor.hpp"
 #include "surfscatter/math/vec.hpp"
 #include "surfscatter/reference/kirchhoff_map.hpp"
@@ -276,6 +277,17 @@ TEST(KirchhoffMap, RefusesUntrustworthyInput) {
     EXPECT_THROW(sr::kirchhoff_brdf(map, Conductor::perfect(), options(400, 0, 2.0)), surfscatter::Error);   // 10 px
     EXPECT_THROW(sr::kirchhoff_brdf(map, Conductor::perfect(), options(400, 0, 25.6)), surfscatter::Error);  // 1 tile
     EXPECT_THROW(sr::kirchhoff_brdf(map, Conductor::perfect(), options(400, 90, 12.8)), surfscatter::Error);
+}
+
+// An interrupted run returns what it has: here nothing, since the request comes before the first sub-area.
+TEST(KirchhoffMap, InterruptReturnsTheSubareasDone) {
+    const ss::HeightMap flat(64, 64, 0.1, 0.1, std::vector<double>(64 * 64, 0.0), "flat");
+    surfscatter::request_interrupt();
+    const auto r = sr::kirchhoff_brdf(flat, Conductor::perfect(), options(550, 0, 3.2));
+    surfscatter::clear_interrupt();
+    EXPECT_EQ(r.subareas, 4u);
+    EXPECT_EQ(r.subareas_done, 0u);
+    EXPECT_EQ(r.albedo, 0.0);
 }
 
 }  // namespace
