@@ -3,7 +3,10 @@
 // and a grating's orders against the Jacobi-Anger (Bessel) closed form.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <string>
 #include <complex>
 #include <functional>
 #include <map>
@@ -277,6 +280,30 @@ TEST(KirchhoffMap, RefusesUntrustworthyInput) {
     EXPECT_THROW(sr::kirchhoff_brdf(map, Conductor::perfect(), options(400, 0, 2.0)), surfscatter::Error);   // 10 px
     EXPECT_THROW(sr::kirchhoff_brdf(map, Conductor::perfect(), options(400, 0, 25.6)), surfscatter::Error);  // 1 tile
     EXPECT_THROW(sr::kirchhoff_brdf(map, Conductor::perfect(), options(400, 90, 12.8)), surfscatter::Error);
+}
+
+bool has_warning(const sr::KirchhoffResult& r, const std::string& text) {
+    return std::any_of(r.warnings.begin(), r.warnings.end(),
+                       [&](const std::string& w) { return w.find(text) != std::string::npos; });
+}
+
+// Sub-areas far smaller than the correlation length leave the diffuse part inside the window's lobe; sub-areas with
+// an invalid point are skipped; both said.
+TEST(KirchhoffMap, WarnsAboutUnresolvedLobesAndSkippedSubareas) {
+    const ss::GaussianAcv wide(0.05, 10.0);
+    const ss::HeightMap map = ss::synthesize_surface(wide, {256, 256, 0.1}, 2);
+    const auto coarse = sr::kirchhoff_brdf(map, Conductor::perfect(), options(550, 10, 3.2));
+    EXPECT_TRUE(has_warning(coarse, "too small to resolve it")) << coarse.warnings.size();
+    std::vector<std::uint8_t> validity(256 * 256, 1);
+    validity[3] = 0;  // in the first of the 64 sub-areas
+    const ss::HeightMap holed(256, 256, 0.1, 0.1, map.heights(), validity, "holed");
+    const auto skipped = sr::kirchhoff_brdf(holed, Conductor::perfect(), options(550, 10, 3.2));
+    EXPECT_EQ(skipped.subareas, 63u);
+    EXPECT_TRUE(has_warning(skipped, "1 of 64 sub-areas hold invalid points"));
+    const ss::GaussianAcv narrow(0.05, 1.0);  // lobe ~ lambda / (pi l) = 0.18: 8 steps of 25.6 um sub-areas
+    const ss::HeightMap resolved = ss::synthesize_surface(narrow, {512, 512, 0.1}, 2);
+    const auto fine = sr::kirchhoff_brdf(resolved, Conductor::perfect(), options(550, 10, 25.6));
+    EXPECT_TRUE(fine.warnings.empty()) << fine.warnings.front();
 }
 
 // An interrupted run returns what it has: here nothing, since the request comes before the first sub-area.

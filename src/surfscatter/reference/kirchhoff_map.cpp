@@ -279,6 +279,10 @@ void reduce(const Geometry& g, const std::vector<std::vector<Complex>>& amplitud
     const std::size_t m = g.directions.size();
     out.o_x.resize(m);
     out.o_y.resize(m);
+    for (std::size_t d = 0; d < m; ++d) {
+        out.o_x[d] = g.directions[d].ox;
+        out.o_y[d] = g.directions[d].oy;
+    }
     out.brdf.assign(m, 0.0);
     out.standard_error.assign(m, 0.0);
     out.coherent.assign(m, 0.0);
@@ -287,10 +291,7 @@ void reduce(const Geometry& g, const std::vector<std::vector<Complex>>& amplitud
     const double cell = out.step_x * out.step_y;
     std::vector<double> tile_albedo(completed.size(), 0.0);
     for (std::size_t d = 0; d < m; ++d) {
-        const Direction& dir = g.directions[d];
-        out.o_x[d] = dir.ox;
-        out.o_y[d] = dir.oy;
-        const double scale = dir.prefactor / g.window_area;
+        const double scale = g.directions[d].prefactor / g.window_area;
         Complex mean = 0.0;
         double sum = 0.0, sum2 = 0.0;
         for (std::size_t t = 0; t < completed.size(); ++t) {
