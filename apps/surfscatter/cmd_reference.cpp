@@ -173,7 +173,7 @@ void run_kirchhoff(const KirchhoffArgs& a) {
     write_file_atomically(a.output, kirchhoff_csv(r));
     std::printf("subareas = %zu\nsubarea_px = %zu x %zu\n", r.subareas_done, r.subarea_nx, r.subarea_ny);
     std::printf("lattice_step = %s x %s\n", format_number(r.step_x).c_str(), format_number(r.step_y).c_str());
-    std::printf("ffts_per_subarea = %zu\n", r.fft_count);
+    std::printf("qz_bands = %zu\nffts_per_subarea = %zu\n", r.band_count, r.fft_count);
     std::printf("albedo = %s\nalbedo_standard_error = %s\ncoherent_albedo = %s\naliased_fraction = %s\n",
                 format_number(r.albedo).c_str(), format_number(r.albedo_standard_error).c_str(),
                 format_number(r.coherent_albedo).c_str(), format_number(r.aliased_fraction).c_str());

@@ -25,7 +25,7 @@ namespace {
 using Complex = std::complex<double>;
 
 constexpr double kRemainderTolerance = 1e-10;  // of sum W dx dy, per direction (header)
-constexpr double kMaxBandPhase = 2.0;          // delta r: 19 terms per band, the fewest FFTs per unit of q_z range
+constexpr double kMaxBandPhase = 4.0;          // delta r: the terms then sum to at most e^4 = 55 times the result
 constexpr std::size_t kMinSubareaPixels = 16;
 constexpr double kMaxAliasedFraction = 1e-3;
 constexpr double kMinLobeSteps = 3.0;
@@ -110,7 +110,7 @@ struct Geometry {
 
 // The amplitudes I(q) of every direction for one sub-area (header: bands of q_z, Taylor terms within a band).
 std::vector<Complex> tile_amplitudes(const surface::HeightMap& map, const Tile& tile, const Geometry& g, TileFft& fft,
-                                     std::size_t& fft_count) {
+                                     std::size_t& fft_count, std::size_t& band_count) {
     const std::size_t n = g.nx * g.ny;
     std::vector<double> u(n);
     double mean = 0;
@@ -125,11 +125,20 @@ std::vector<Complex> tile_amplitudes(const surface::HeightMap& map, const Tile& 
             reach = std::max(reach, std::abs(v));
         }
     const double range = g.qz_max - g.qz_min;
-    std::size_t bands = 1;
-    if (reach > 0 && range * reach > 2 * kMaxBandPhase)
-        bands = static_cast<std::size_t>(std::ceil(range * reach / (2 * kMaxBandPhase)));
+    // The band count with the fewest FFTs (bands x terms) among those with delta r <= kMaxBandPhase.
+    const double spread = range * reach / 2;  // delta r of a single band
+    std::size_t bands = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(spread / kMaxBandPhase)));
+    for (std::size_t b = bands + 1, cost = bands * (taylor_order(spread / static_cast<double>(bands)) + 1);
+         b < 4 * bands + 4; ++b) {
+        const std::size_t c = b * (taylor_order(spread / static_cast<double>(b)) + 1);
+        if (c < cost) {
+            cost = c;
+            bands = b;
+        }
+    }
     const double half_width = range / (2 * static_cast<double>(bands));
     const std::size_t order = taylor_order(half_width * reach);
+    band_count = bands;
 
     std::vector<std::vector<std::size_t>> members(bands);
     for (std::size_t d = 0; d < g.directions.size(); ++d) {
@@ -382,7 +391,7 @@ KirchhoffResult kirchhoff_brdf(const surface::HeightMap& map, const material::Co
         std::min(tiles.size(), static_cast<std::size_t>(o.threads == 0 ? hardware : static_cast<unsigned>(o.threads)));
     std::vector<std::vector<Complex>> amplitudes(tiles.size());
     std::vector<char> done(tiles.size(), 0);
-    std::vector<std::size_t> ffts(tiles.size(), 0);
+    std::vector<std::size_t> ffts(tiles.size(), 0), bands(tiles.size(), 0);
     std::atomic<std::size_t> next{0};
     std::exception_ptr error;
     std::mutex error_mutex;
@@ -397,7 +406,7 @@ KirchhoffResult kirchhoff_brdf(const surface::HeightMap& map, const material::Co
                     std::lock_guard<std::mutex> lock(error_mutex);
                     if (error) return;
                 }
-                amplitudes[t] = tile_amplitudes(map, tiles[t], g, fft, ffts[t]);
+                amplitudes[t] = tile_amplitudes(map, tiles[t], g, fft, ffts[t], bands[t]);
                 done[t] = 1;
                 progress.advance();
             }
@@ -415,6 +424,7 @@ KirchhoffResult kirchhoff_brdf(const surface::HeightMap& map, const material::Co
     if (error) std::rethrow_exception(error);
     progress.finish();
     out.fft_count = *std::max_element(ffts.begin(), ffts.end());
+    out.band_count = *std::max_element(bands.begin(), bands.end());
     reduce(g, amplitudes, done, o, out);
     return out;
 }

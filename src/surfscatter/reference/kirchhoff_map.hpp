@@ -16,8 +16,9 @@
 // the DFT lattice of a sub-area of n_x x n_y pixels: o_xy = q_xy / k - i_xy with q = 2 pi (m_x / (n_x dx),
 // m_y / (n_y dy)), |m| < n / 2, lattice steps lambda / (n dx) in direction cosines (the angular resolution; the
 // window's main lobe is 2 steps wide each side), up to the Nyquist |q_x| < pi / dx (the largest scattering angle the
-// pixel resolves). q_z = k (cos i + cos o) varies with the direction, so the directions are grouped into bands of
-// q_z of half-width delta <= 2 / r (r = max |h - mean| over the sub-area) and, within a band centred at q_c,
+// pixel resolves). q_z = k (cos i + cos o) varies with the direction, so the directions are grouped into equal bands
+// of q_z of half-width delta <= 4 / r (r = max |h - mean| over the sub-area; the count that needs the fewest FFTs)
+// and, within a band centred at q_c,
 //   exp(i q_z u) = exp(i q_c u) sum_{n=0..N} (i (q_z - q_c) u)^n / n!   (u = h - mean),
 // one FFT per term, N chosen so that the remainder e^(delta r) (delta r)^(N+1) / (N+1)! <= 1e-10: every direction's
 // amplitude is its exact DFT to 1e-10 of sum W dx dy (the flat mirror's amplitude), measured against a direct sum in
@@ -67,7 +68,8 @@ struct KirchhoffResult {
     std::size_t subarea_nx = 0, subarea_ny = 0;  // pixels
     std::size_t subareas = 0;                // usable sub-areas
     std::size_t subareas_done = 0;           // evaluated (fewer when interrupted)
-    std::size_t fft_count = 0;               // FFTs per sub-area (bands x terms)
+    std::size_t fft_count = 0;               // FFTs per sub-area (bands x terms), the most any sub-area took
+    std::size_t band_count = 0;              // q_z bands, the most any sub-area took
     std::vector<std::string> warnings;       // one line each
 };
 
