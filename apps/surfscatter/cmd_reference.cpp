@@ -146,7 +146,8 @@ void run_kirchhoff(const KirchhoffArgs& a) {
     require_incidence(a.theta_i, a.wavelength);
     require_finite(a.phi_i, "--phi-i");
     require_finite(a.max_theta_o, "--max-theta-o");
-    if (a.max_theta_o <= 0 || a.max_theta_o >= 90) fail("--max-theta-o must be in (0, 90) degrees, got {}", a.max_theta_o);
+    if (a.max_theta_o <= 0 || a.max_theta_o >= 90)
+        fail("--max-theta-o must be in (0, 90) degrees, got {}", a.max_theta_o);
     if (a.subarea) require_positive(*a.subarea, "--subarea-um");
     require_thread_count(a.threads, "--threads");
     const surface::Form form = surface::parse_form(a.form, "--form");

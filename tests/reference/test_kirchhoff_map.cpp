@@ -90,7 +90,8 @@ TEST(KirchhoffMap, BandExpansionMatchesDirectSum) {
     double window_area = 0;
     for (std::size_t y = 0; y < n; ++y)
         for (std::size_t x = 0; x < n; ++x) window_area += std::pow(hann(x, n) * hann(y, n), 2) * dx * dx;
-    const double ix = std::sin(o.theta_i_rad) * std::cos(o.phi_i_rad), iy = std::sin(o.theta_i_rad) * std::sin(o.phi_i_rad);
+    const double ix = std::sin(o.theta_i_rad) * std::cos(o.phi_i_rad);
+    const double iy = std::sin(o.theta_i_rad) * std::sin(o.phi_i_rad);
     double worst = 0, peak = 0;
     for (std::size_t d = 0; d < result.brdf.size(); ++d) {
         const double ox = result.o_x[d], oy = result.o_y[d];
@@ -249,7 +250,8 @@ TEST(KirchhoffMap, GratingOrdersFollowTheGratingEquation) {
     const std::size_t nx = 640, ny = 320;
     std::vector<double> h(nx * ny);
     for (std::size_t y = 0; y < ny; ++y)
-        for (std::size_t x = 0; x < nx; ++x) h[y * nx + x] = a * std::cos(2 * kPi * dx * static_cast<double>(x) / period);
+        for (std::size_t x = 0; x < nx; ++x)
+            h[y * nx + x] = a * std::cos(2 * kPi * dx * static_cast<double>(x) / period);
     const ss::HeightMap grating(nx, ny, dx, dx, h, "grating");
     const auto r = sr::kirchhoff_brdf(grating, Conductor::perfect(), options(lambda, 10, 16));
     ASSERT_EQ(r.subareas, 2u);
@@ -259,7 +261,8 @@ TEST(KirchhoffMap, GratingOrdersFollowTheGratingEquation) {
     for (std::size_t d = 0; d < r.brdf.size(); ++d) {
         const double flux = r.brdf[d] * r.step_x * r.step_y;
         total += flux;
-        const double m = (r.o_x[d] + std::sin(theta_i)) * period / 0.5;  // order number where the grating equation holds
+        // The order number for which the grating equation holds at this direction.
+        const double m = (r.o_x[d] + std::sin(theta_i)) * period / 0.5;
         const long nearest = std::lround(m);
         const bool in_lobe = std::abs(m - static_cast<double>(nearest)) * 0.5 / period <= 1.01 * r.step_x &&
                              std::abs(r.o_y[d]) <= 1.01 * r.step_y;

@@ -1,18 +1,13 @@
 #include "surfscatter/reference/exact_1d_statistics.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <complex>
-#include <exception>
-#include <mutex>
-#include <thread>
 
 #include <fmt/format.h>
 
 #include "surfscatter/core/error.hpp"
-#include "surfscatter/core/progress.hpp"
-#include "surfscatter/core/resources.hpp"
+#include "surfscatter/reference/parallel_jobs.hpp"
 #include "surfscatter/surface/synthesis.hpp"
 
 namespace surfscatter::reference {
@@ -36,45 +31,16 @@ StatisticalResult solve_exact_1d_statistics(const surface::RadialStatistics& sta
                                             const material::Conductor& conductor, const Exact1dOptions& options,
                                             const StatisticalOptions& st) {
     if (st.realizations < 2) fail("realizations must be at least 2 (for a standard error), got {}", st.realizations);
-    require_thread_count(st.threads, "threads");
-    const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
-    const auto threads = static_cast<std::size_t>(st.threads == 0 ? hardware : static_cast<unsigned>(st.threads));
     // The first profile is made before any thread starts, so that bad statistics or lengths fail at once.
     const Profile first = random_profile(statistics, options, st.length_um, st.seed);
-
     std::vector<FarField> fields(st.realizations);
-    std::vector<char> done(st.realizations, 0);
-    std::atomic<std::size_t> next{0};
-    std::exception_ptr error;
-    std::mutex error_mutex;
-    Progress progress("exact-1d realizations", st.realizations, st.progress);
-    const auto work = [&] {
-        for (;;) {
-            const std::size_t r = next.fetch_add(1);
-            if (r >= st.realizations || interrupt_requested()) return;
-            {
-                std::lock_guard<std::mutex> lock(error_mutex);
-                if (error) return;
-            }
-            try {
+    const std::vector<char> done =
+        run_parallel_jobs(st.realizations, st.threads, "exact-1d realizations", st.progress, [&] {
+            return [&](std::size_t r) {
                 const Profile profile = r == 0 ? first : random_profile(statistics, options, st.length_um, st.seed + r);
                 fields[r] = solve_exact_1d(profile, conductor, options);
-                done[r] = 1;
-                progress.advance();
-            } catch (...) {
-                std::lock_guard<std::mutex> lock(error_mutex);
-                if (!error) error = std::current_exception();
-            }
-        }
-    };
-    {
-        std::vector<std::thread> pool;
-        for (std::size_t t = 1; t < std::min(threads, st.realizations); ++t) pool.emplace_back(work);
-        work();
-        for (auto& thread : pool) thread.join();
-    }
-    if (error) std::rethrow_exception(error);
-    progress.finish();
+            };
+        });
 
     StatisticalResult out;
     std::vector<const FarField*> completed;

@@ -3,19 +3,16 @@
 #include <fftw3.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <exception>
 #include <memory>
 #include <mutex>
-#include <thread>
 
 #include <fmt/format.h>
 
 #include "surfscatter/core/error.hpp"
-#include "surfscatter/core/progress.hpp"
 #include "surfscatter/core/resources.hpp"
 #include "surfscatter/math/vec.hpp"
+#include "surfscatter/reference/parallel_jobs.hpp"
 #include "surfscatter/surface/fftw_planner.hpp"
 
 namespace surfscatter::reference {
@@ -386,43 +383,15 @@ KirchhoffResult kirchhoff_brdf(const surface::HeightMap& map, const material::Co
     require_memory(static_cast<double>(tiles.size()) * static_cast<double>(g.directions.size()) * sizeof(Complex),
                    "the Kirchhoff amplitudes");
 
-    const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
-    const std::size_t threads =
-        std::min(tiles.size(), static_cast<std::size_t>(o.threads == 0 ? hardware : static_cast<unsigned>(o.threads)));
     std::vector<std::vector<Complex>> amplitudes(tiles.size());
-    std::vector<char> done(tiles.size(), 0);
     std::vector<std::size_t> ffts(tiles.size(), 0), bands(tiles.size(), 0);
-    std::atomic<std::size_t> next{0};
-    std::exception_ptr error;
-    std::mutex error_mutex;
-    Progress progress("kirchhoff sub-areas", tiles.size(), o.progress);
-    const auto work = [&] {
-        try {
-            TileFft fft(g.nx, g.ny);
-            for (;;) {
-                const std::size_t t = next.fetch_add(1);
-                if (t >= tiles.size() || interrupt_requested()) return;
-                {
-                    std::lock_guard<std::mutex> lock(error_mutex);
-                    if (error) return;
-                }
-                amplitudes[t] = tile_amplitudes(map, tiles[t], g, fft, ffts[t], bands[t]);
-                done[t] = 1;
-                progress.advance();
-            }
-        } catch (...) {
-            std::lock_guard<std::mutex> lock(error_mutex);
-            if (!error) error = std::current_exception();
-        }
-    };
-    {
-        std::vector<std::thread> pool;
-        for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(work);
-        work();
-        for (auto& thread : pool) thread.join();
-    }
-    if (error) std::rethrow_exception(error);
-    progress.finish();
+    const std::vector<char> done =
+        run_parallel_jobs(tiles.size(), o.threads, "kirchhoff sub-areas", o.progress, [&] {
+            auto fft = std::make_shared<TileFft>(g.nx, g.ny);  // one plan per thread
+            return [&, fft](std::size_t t) {
+                amplitudes[t] = tile_amplitudes(map, tiles[t], g, *fft, ffts[t], bands[t]);
+            };
+        });
     out.fft_count = *std::max_element(ffts.begin(), ffts.end());
     out.band_count = *std::max_element(bands.begin(), bands.end());
     reduce(g, amplitudes, done, o, out);
