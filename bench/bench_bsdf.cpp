@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "surfscatter/bsdf/factory.hpp"
+#include "surfscatter/bsdf/profile_lobes.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
 #include "surfscatter/surface/synthesis.hpp"
 
@@ -199,3 +200,25 @@ void packet_models(benchmark::internal::Benchmark* b) {
 }
 BENCHMARK(BM_eval_packet<true>)->Name("BM_eval_packet")->Apply(packet_models);
 BENCHMARK(BM_eval_packet<false>)->Name("BM_eval_packet_loop")->Apply(packet_models);
+
+// The 1-D forms (bsdf/profile_lobes.hpp): one lobe on exact-1d's 1801-angle grid, its K included, for a KC profile
+// (sigma 0.05 um, gamma 3) of correlation length range(1) / 2 um at 550 nm, theta_i 30 deg, perfect conductor, s;
+// range(0): 0 ghs, 1 ghs_ssa, 2 kirchhoff.
+namespace {
+void BM_profile_lobe(benchmark::State& state) {
+    namespace sb = surfscatter::bsdf;
+    sb::ProfileModelOptions options;
+    options.model = static_cast<sb::ProfileModel>(state.range(0));
+    const surfscatter::surface::KCorrelation kc(0.05, 0.5 * static_cast<double>(state.range(1)), 3.0);
+    const auto grid = sb::uniform_theta_grid(1800);
+    for (auto _ : state)
+        benchmark::DoNotOptimize(sb::profile_lobe(kc, surfscatter::material::Conductor::perfect(), 550,
+                                                  30 * surfscatter::kDegree, sb::ProfilePolarisation::s, options, grid));
+}
+}  // namespace
+BENCHMARK(BM_profile_lobe)
+    ->ArgsProduct({{0, 1, 2}, {1, 4, 16}})
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime()
+    ->Iterations(3);

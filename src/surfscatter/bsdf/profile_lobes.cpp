@@ -1,0 +1,249 @@
+#include "surfscatter/bsdf/profile_lobes.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "surfscatter/core/error.hpp"
+#include "surfscatter/math/quadrature.hpp"
+#include "surfscatter/surface/relevant_roughness.hpp"
+#include "surfscatter/surface/synthesis.hpp"
+
+namespace surfscatter::bsdf {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kIntegralTolerance = 1e-10;
+constexpr double kGrading = 2.0;  // ratio of the panels toward x = 0
+constexpr double kMaxPanels = 1e6;  // 16e6 nodes, 256 MB: a correlation length ~1e5 wavelengths
+constexpr double kMinWavelengthNm = 0.1, kMaxWavelengthNm = 1e8;  // as the 2-D models (GhsBsdf)
+
+// int_lo^hi f for an f peaked at `peak` with width ~`width`: adaptive Gauss-Kronrod on pieces peak +- width 10^j, so
+// that the bisection starts at the peak's scale however narrow it is.
+double integrate_peaked(const std::function<double(double)>& f, double lo, double hi, double peak, double width) {
+    peak = std::clamp(peak, lo, hi);
+    // Far pieces hold values at the round-off of the peak's: an absolute floor keeps the bisection off that noise.
+    const double floor = 1e-13 * std::abs(f(peak)) * width;
+    double total = 0;
+    for (const double side : {-1.0, 1.0}) {
+        const double end = side > 0 ? hi : lo;
+        double from = peak;
+        for (double w = width; side * (end - from) > 0; w *= 10) {
+            const double to = side > 0 ? std::min(end, peak + w) : std::max(end, peak - w);
+            total += math::integrate_adaptive(f, std::min(from, to), std::max(from, to), kIntegralTolerance, floor);
+            from = to;
+        }
+    }
+    return total;
+}
+
+double polarised_reflectance(const material::Conductor& conductor, double cos_theta, double lambda_nm,
+                             ProfilePolarisation polarisation) {
+    if (conductor.is_perfect()) return 1.0;
+    const auto r = conductor.reflectance_sp(std::min(1.0, cos_theta), lambda_nm);
+    return polarisation == ProfilePolarisation::s ? r.rs : r.rp;
+}
+
+// |Q_ss|^2 or |Q_pp|^2 of Rayleigh-Rice in the plane of incidence (rayleigh_rice.hpp's Q with the azimuth 0 or pi;
+// sin theta_o signed, positive on the specular side). Equal to |r|^2 at the specular direction.
+double rayleigh_rice_in_plane(const material::Conductor& conductor, double lambda_nm, ProfilePolarisation polarisation,
+                              double theta_i, double theta_o) {
+    const double si = std::sin(theta_i), ci = std::cos(theta_i), so = std::sin(theta_o), co = std::cos(theta_o);
+    if (conductor.is_perfect()) {  // eps -> infinity
+        if (polarisation == ProfilePolarisation::s) return 1.0;
+        const double q = (1.0 - si * so) / (ci * co);
+        return q * q;
+    }
+    const std::complex<double> n = conductor.ior(lambda_nm), eps = n * n;
+    const std::complex<double> ri = std::sqrt(eps - si * si), ro = std::sqrt(eps - so * so);
+    if (polarisation == ProfilePolarisation::s) return std::norm((eps - 1.0) / ((ci + ri) * (co + ro)));
+    return std::norm((eps - 1.0) * (ri * ro - eps * si * so) / ((eps * ci + ri) * (eps * co + ro)));
+}
+
+double fresnel_factor(const material::Conductor& conductor, double lambda_nm, ProfilePolarisation polarisation,
+                      FresnelMode mode, double theta_i, double theta_o) {
+    switch (mode) {
+        case FresnelMode::incident: return polarised_reflectance(conductor, std::cos(theta_i), lambda_nm, polarisation);
+        case FresnelMode::half:
+            return polarised_reflectance(conductor, std::cos(0.5 * std::abs(theta_i + theta_o)), lambda_nm,
+                                         polarisation);
+        case FresnelMode::rr: return rayleigh_rice_in_plane(conductor, lambda_nm, polarisation, theta_i, theta_o);
+    }
+    return 1.0;
+}
+
+}  // namespace
+
+ProfileModel parse_profile_model(std::string_view text, const char* what) {
+    if (text == "ghs") return ProfileModel::ghs;
+    if (text == "ghs_ssa") return ProfileModel::ghs_ssa;
+    if (text == "kirchhoff") return ProfileModel::kirchhoff;
+    fail("{} must be one of ghs | ghs_ssa | kirchhoff, got '{}'", what, text);
+}
+
+std::string to_string(ProfileModel model) {
+    switch (model) {
+        case ProfileModel::ghs: return "ghs";
+        case ProfileModel::ghs_ssa: return "ghs_ssa";
+        case ProfileModel::kirchhoff: return "kirchhoff";
+    }
+    return "?";
+}
+
+ProfilePolarisation parse_profile_polarisation(std::string_view text, const char* what) {
+    if (text == "s") return ProfilePolarisation::s;
+    if (text == "p") return ProfilePolarisation::p;
+    fail("{} must be s or p, got '{}'", what, text);
+}
+
+std::string inapplicable_profile_option(const std::vector<ProfileModel>& models, std::string_view option) {
+    const auto chosen = [&](ProfileModel m) { return std::find(models.begin(), models.end(), m) != models.end(); };
+    if (option == "fresnel" && !chosen(ProfileModel::ghs) && !chosen(ProfileModel::ghs_ssa))
+        return "not used by kirchhoff (the tangent plane's |r(theta_d)|^2)";
+    if (option == "renormalization" && !chosen(ProfileModel::ghs)) return "used by ghs only";
+    if (option == "ssa_form" && !chosen(ProfileModel::ghs_ssa)) return "used by ghs_ssa only";
+    return {};
+}
+
+ProfileAcvTransform::ProfileAcvTransform(const surface::RadialStatistics& statistics, double zeta_max) {
+    require_positive(zeta_max, "largest profile frequency");
+    const double length = statistics.correlation_length();
+    // The ACV's reach: beyond rho < 1e-17 the integrand (at most g e^{-g} rho <= rho / e) no longer counts.
+    double x_max = length;
+    while (statistics.acv_normalized(x_max) >= 1e-17) {
+        x_max *= 2;
+        if (x_max > 1e6 * length)
+            fail("the profile ACV of {} does not decay below 1e-17 within 1e6 correlation lengths",
+                 statistics.cache_key());
+    }
+    const double panel = std::min(0.5 * length, 2.0 * kPi / zeta_max);  // one period of the fastest cosine at most
+    static const math::GaussLegendreRule rule(16);
+    const auto add_panel = [&](double a, double b) {
+        for (std::size_t j = 0; j < rule.nodes.size(); ++j) {
+            const double x = 0.5 * (a + b) + 0.5 * (b - a) * rule.nodes[j];
+            x_.push_back(x);
+            weight_.push_back(0.5 * (b - a) * rule.weights[j]);
+            rho_.push_back(statistics.acv_normalized(x));
+        }
+    };
+    // Graded toward x = 0, where 1 - rho has its cusp (KC, gamma < 3) and e^{-g (1 - rho)} its width for large g.
+    for (double b = panel; b > 1e-24 * length; b /= kGrading) add_panel(b / kGrading, b);
+    const double count = std::ceil((x_max - panel) / panel);
+    if (count > kMaxPanels)
+        fail("the profile lobe of {} at zeta up to {} rad/um needs {:.3g} quadrature panels, more than {:.0e}",
+             statistics.cache_key(), zeta_max, count, kMaxPanels);
+    const double width = (x_max - panel) / count;
+    for (double i = 0; i < count; ++i) add_panel(panel + i * width, panel + (i + 1) * width);
+}
+
+template <typename F>
+double ProfileAcvTransform::transform(F&& f, double zeta) const {
+    double sum = 0;
+    for (std::size_t j = 0; j < x_.size(); ++j) sum += weight_[j] * f(rho_[j]) * std::cos(zeta * x_[j]);
+    return sum / kPi;  // (2 pi)^-1 int over the whole line of an even function
+}
+
+double ProfileAcvTransform::lobe(double g, double zeta) const {
+    const double e_g = std::exp(-g);
+    // e^{-g} (e^{g rho} - 1) without overflow for large g nor cancellation for small g rho.
+    return transform(
+        [&](double rho) { return g * rho > 1 ? std::exp(-g * (1 - rho)) - e_g : e_g * std::expm1(g * rho); }, zeta);
+}
+
+double ProfileAcvTransform::order(int m, double zeta) const {
+    if (m < 1) fail("self-convolution order must be >= 1, got {}", m);
+    return transform([&](double rho) { return std::pow(rho, m); }, zeta);
+}
+
+double profile_relevant_roughness(const surface::RadialStatistics& statistics, double theta_i_rad, double lambda_nm) {
+    const double k = surface::wavenumber_per_um(lambda_nm), s = std::sin(theta_i_rad);
+    const auto psd = [&](double zeta) { return surface::profile_psd(statistics, zeta); };
+    return std::sqrt(integrate_peaked(psd, -k * (1 + s), k * (1 - s), 0.0, 1.0 / statistics.correlation_length()));
+}
+
+std::vector<double> uniform_theta_grid(int steps) {
+    if (steps < 1) fail("theta grid needs at least 1 step, got {}", steps);
+    std::vector<double> grid;
+    for (int j = 0; j <= steps; ++j) grid.push_back((-90.0 + 180.0 * j / steps) * (kPi / 180));
+    return grid;
+}
+
+ProfileLobe profile_lobe(const surface::RadialStatistics& statistics, const material::Conductor& conductor,
+                         double lambda_nm, double theta_i_rad, ProfilePolarisation polarisation,
+                         const ProfileModelOptions& options, const std::vector<double>& theta_o_rad) {
+    require_finite(lambda_nm, "wavelength (nm)");
+    if (lambda_nm < kMinWavelengthNm || lambda_nm > kMaxWavelengthNm)
+        fail("wavelength must be between {} and {} nm, got {}", kMinWavelengthNm, kMaxWavelengthNm, lambda_nm);
+    require_finite(theta_i_rad, "theta_i");
+    if (theta_i_rad < 0 || theta_i_rad >= kPi / 2)
+        fail("theta_i must be in [0, 90) degrees, got {}", theta_i_rad * 180 / kPi);
+    for (const double t : theta_o_rad)
+        if (!(std::abs(t) <= kPi / 2)) fail("theta_o must be in [-90, 90] degrees, got {}", t * 180 / kPi);
+    const double k = surface::wavenumber_per_um(lambda_nm);
+    const double si = std::sin(theta_i_rad), ci = std::cos(theta_i_rad);
+    const double sigma_h = statistics.sigma_h(), variance = sigma_h * sigma_h;
+
+    // sigma_rel in g and the albedo normalisation go together, as in the 2-D models.
+    const bool renormalised = (options.model == ProfileModel::ghs && options.renormalization) ||
+                              (options.model == ProfileModel::ghs_ssa && options.ssa_form == SsaForm::energy);
+    ProfileLobe out;
+    out.sigma_um = renormalised ? profile_relevant_roughness(statistics, theta_i_rad, lambda_nm) : sigma_h;
+    const auto g_of = [&](double cos_o) {
+        const double a = k * out.sigma_um * (ci + cos_o);
+        return a * a;
+    };
+    const double g0 = g_of(ci);
+    out.coherent = polarised_reflectance(conductor, ci, lambda_nm, polarisation) * std::exp(-g0);
+
+    // The core lobe over u = sin theta_o (so that cos theta_o d theta_o = du) and its normalisation to 1 - e^{-g0}.
+    std::optional<ProfileAcvTransform> acv;  // S_g for ghs and kirchhoff (SSA reads the profile PSD)
+    if (options.model != ProfileModel::ghs_ssa) acv.emplace(statistics, k * (1 + si));
+    const auto unit_psd = [&](double zeta) { return surface::profile_psd(statistics, zeta) / variance; };
+    const auto density = [&](double cos_o, double zeta) {  // per unit u: the lobe's zeta-density times k
+        switch (options.model) {
+            case ProfileModel::ghs:
+            case ProfileModel::kirchhoff: return k * acv->lobe(g_of(cos_o), zeta);
+            case ProfileModel::ghs_ssa: {
+                const double g = g_of(cos_o);
+                return k * unit_psd(zeta) * (options.ssa_form == SsaForm::energy ? -std::expm1(-g) : g);
+            }
+        }
+        return 0.0;
+    };
+    if (renormalised) {
+        const auto integrand = [&](double u) { return density(std::sqrt(std::max(0.0, 1 - u * u)), k * (u - si)); };
+        const double width = std::min(1.0, 1.0 / (k * statistics.correlation_length()));
+        const double mass = integrate_peaked(integrand, -1.0, 1.0, si, width);
+        if (!(mass > 0))
+            fail("the {} lobe of {} has no mass over the visible directions at {} nm, theta_i {} deg",
+                 to_string(options.model), statistics.cache_key(), lambda_nm, theta_i_rad * 180 / kPi);
+        out.normalization = -std::expm1(-g0) / mass;
+    }
+
+    out.intensity_per_rad.reserve(theta_o_rad.size());
+    for (const double theta_o : theta_o_rad) {
+        const double co = std::max(0.0, std::cos(theta_o));
+        const double zeta = k * (std::sin(theta_o) - si);
+        double value;
+        if (options.model == ProfileModel::kirchhoff) {
+            const double obliquity = (1 + std::cos(theta_i_rad + theta_o)) / (ci + co);
+            value = fresnel_factor(conductor, lambda_nm, polarisation, FresnelMode::half, theta_i_rad, theta_o) *
+                    density(co, zeta) * obliquity * obliquity / ci;
+        } else {
+            value = co > 0 ? fresnel_factor(conductor, lambda_nm, polarisation, options.fresnel, theta_i_rad, theta_o) *
+                                 out.normalization * co * density(co, zeta)
+                           : 0.0;
+        }
+        if (!std::isfinite(value))
+            fail("{} lobe is not finite at theta_o {} deg (theta_i {} deg, {} nm)", to_string(options.model),
+                 theta_o * 180 / kPi, theta_i_rad * 180 / kPi, lambda_nm);
+        out.intensity_per_rad.push_back(std::max(0.0, value));  // the quadrature's round-off below zero
+    }
+    return out;
+}
+
+}  // namespace surfscatter::bsdf

@@ -1,0 +1,93 @@
+#pragma once
+// One-dimensional forms of the GHS, SSA and Kirchhoff models (docs/MODELS.md "One-dimensional forms", THEORY 7.3):
+// the scattering of a plane wave by a random profile z = h(x), a cut through isotropic statistics, in the geometry
+// of `reference exact-1d` (light in the x-z plane arriving from negative x, specular at theta_o = +theta_i), as the
+// power per radian of scattering angle over the incident power, so that each theory can be compared with the exact
+// solution on the same surface, wavelength and polarisation.
+//
+// With zeta = k (sin theta_o - sin theta_i), g = (k sigma (cos i + cos o))^2 and rho(x) = C(|x|) / sigma_h^2 the
+// profile's normalised ACV (the isotropic C read along the cut):
+//   S_g(zeta) = (2 pi)^-1 int e^{-g} (e^{g rho(x)} - 1) e^{-i zeta x} dx = e^{-g} sum_{m>=1} g^m/m! P1^{*m}(zeta)
+//   GHS:       I = F K cos(o) k S_g(zeta),                      coherent R(i) e^{-g0}
+//   SSA:       energy I = F K1 (1 - e^{-g}) cos(o) k P1-hat(zeta); strict I = F cos(o) k g_h P1-hat(zeta)
+//   Kirchhoff: I = R(theta_d) k S_g(zeta) (1 + cos(i + o))^2 / (cos(i) (cos i + cos o)^2), sigma_h, coherent R e^{-g0}
+// with K, K1 making the albedo exactly R(theta_i) (`renormalization`; sigma the 1-D relevant roughness, the profile
+// PSD's mass over the visible interval zeta in [-k (1 + sin i), k (1 - sin i)]) and F the Fresnel factor of the chosen
+// polarisation (incident |r(theta_i)|^2, half |r(theta_d)|^2 with theta_d = |theta_i + theta_o| / 2, rr |Q_ss|^2 or
+// |Q_pp|^2 in the plane of incidence). P1-hat = surface::profile_psd / sigma_h^2.
+//
+// Accuracy: S_g by composite 16-point Gauss-Legendre quadrature of the ACV integral (panels graded by 2 toward x = 0
+// from 1e-24 L, then at most min(L / 2, 2 pi / zeta_max) wide out to where rho < 1e-17): within 1e-9 of S_g(0) over
+// |zeta| <= zeta_max for g from 0.05 to 3000 (measured 1.8e-13, KC gamma 1.5 and 3, Gaussian ACV;
+// ProfileLobes.LobeMatchesAdaptiveQuadrature); its first order is the closed 1-D KC PSD to 1e-13 of the peak plus
+// 1e-8 relative (ProfileLobes.FirstOrderIsTheKcProfilePsd). K, K1 and sigma_rel by adaptive Gauss-Kronrod to 1e-10:
+// coherent + integral of I = R(theta_i) within 1e-8 (measured 1.2e-12, ProfileLobes.GhsConservesEnergy). Values below
+// zero from the quadrature's round-off (|I| < 1e-12 of the peak) are returned as 0; a non-finite value throws.
+// Cost (bench_bsdf BM_profile_lobe, docs/PERFORMANCE.md): one S_g is ~(1300 + 16 x 40 L / min(L / 2, 2 pi / zeta_max))
+// exponentials and cosines; a 1801-angle GHS lobe with its K at 550 nm 0.10 / 0.22 / 0.84 CPU s for KC L = 0.5 / 2 /
+// 8 um (Kirchhoff 0.07-0.53, SSA 0.01), growing as L / lambda.
+// Bad input throws Error: a wavelength outside [0.1, 1e8] nm, theta_i outside [0, 90) deg, theta_o outside
+// [-90, 90] deg, statistics whose ACV does not decay, a correlation length needing more than 1e6 panels (~1e5
+// wavelengths), a renormalised lobe with no mass over the visible directions.
+#include <string_view>
+#include <vector>
+
+#include "surfscatter/bsdf/model_options.hpp"
+#include "surfscatter/material/conductor.hpp"
+#include "surfscatter/surface/radial_statistics.hpp"
+
+namespace surfscatter::bsdf {
+
+enum class ProfileModel { ghs, ghs_ssa, kirchhoff };
+enum class ProfilePolarisation { s, p };  // s: E along y (TE); p: H along y (TM), as in reference exact-1d
+
+ProfileModel parse_profile_model(std::string_view text, const char* what = "model");
+std::string to_string(ProfileModel model);
+ProfilePolarisation parse_profile_polarisation(std::string_view text, const char* what = "polarisation");
+
+struct ProfileModelOptions {
+    ProfileModel model = ProfileModel::ghs;
+    FresnelMode fresnel = FresnelMode::incident;  // ghs, ghs_ssa (Kirchhoff: the facet's |r(theta_d)|^2)
+    bool renormalization = true;                  // ghs: sigma_rel and K; false: sigma_h and K = 1
+    SsaForm ssa_form = SsaForm::energy;           // ghs_ssa
+};
+
+// Why `option` (snake_case: "fresnel", "renormalization", "ssa_form") has no effect for any of `models`, or empty if
+// one of them uses it: the CLI and Python refuse such an option rather than ignore it.
+std::string inapplicable_profile_option(const std::vector<ProfileModel>& models, std::string_view option);
+
+struct ProfileLobe {
+    std::vector<double> intensity_per_rad;  // the incoherent part at each theta_o
+    double coherent = 0;                    // the specular (coherent) fraction of the incident power
+    double sigma_um = 0;                    // sigma in g: sigma_rel or sigma_h
+    double normalization = 1;               // K (ghs), K1 (ghs_ssa energy), 1 otherwise
+};
+
+// (2 pi)^-1 int f(rho(x)) e^{-i zeta x} dx for the profile ACV rho of `statistics`, by the fixed rule above, for
+// |zeta| <= zeta_max (rad/um).
+class ProfileAcvTransform {
+public:
+    ProfileAcvTransform(const surface::RadialStatistics& statistics, double zeta_max);
+    double lobe(double g, double zeta) const;  // S_g(zeta), um
+    double order(int m, double zeta) const;    // P1-hat^{*m}(zeta), um; m >= 1
+    std::size_t nodes() const { return x_.size(); }
+
+private:
+    template <typename F>
+    double transform(F&& f, double zeta) const;
+    std::vector<double> x_, weight_, rho_;
+};
+
+// The 1-D relevant roughness: sigma_rel^2 = int P1 over zeta in [-k (1 + sin i), k (1 - sin i)], um.
+double profile_relevant_roughness(const surface::RadialStatistics& statistics, double theta_i_rad, double lambda_nm);
+
+// theta_o = -90 + 180 j / steps degrees, j = 0..steps, in radians: with steps = reference::kFarFieldSteps, the grid
+// of exact-1d's far field, value for value.
+std::vector<double> uniform_theta_grid(int steps);
+
+// The lobe at each theta_o_rad (in [-pi/2, pi/2]).
+ProfileLobe profile_lobe(const surface::RadialStatistics& statistics, const material::Conductor& conductor,
+                         double lambda_nm, double theta_i_rad, ProfilePolarisation polarisation,
+                         const ProfileModelOptions& options, const std::vector<double>& theta_o_rad);
+
+}  // namespace surfscatter::bsdf
