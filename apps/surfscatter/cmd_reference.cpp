@@ -3,16 +3,22 @@
 // parts and their standard errors in further columns).
 // surfscatter reference kirchhoff: the Kirchhoff BRDF of a height map on its sub-areas' direction lattice, CSV
 // theta_o_deg,phi_o_deg,brdf_per_sr,standard_error_per_sr,coherent_per_sr, with a PNG (docs/REFERENCE.md).
+// surfscatter reference models-1d: the models' 1-D forms on exact-1d's grid (docs/REFERENCE.md).
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <vector>
 #include <optional>
 #include <utility>
 #include <memory>
 #include <string>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "command.hpp"
+#include "surfscatter/bsdf/model_options.hpp"
+#include "surfscatter/bsdf/profile_lobes.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/paths.hpp"
 #include "surfscatter/material/conductor.hpp"
@@ -31,17 +37,31 @@ namespace surfscatter::cli {
 
 namespace {
 
+// The options --psd kc|gaussian --sigma --corr-length [--gamma] of exact-1d's statistical mode and of models-1d.
+struct SurfaceArgs {
+    std::optional<std::string> psd;
+    std::optional<double> sigma, corr_length, gamma;
+    void add_to(CLI::App* sub, const char* psd_help);
+};
+
+void SurfaceArgs::add_to(CLI::App* sub, const char* psd_help) {
+    sub->add_option("--psd", psd, psd_help)->check(CLI::IsMember({"kc", "gaussian"}));
+    sub->add_option("--sigma", sigma, "rms height sigma_h (um), with --psd");
+    sub->add_option("--corr-length", corr_length, "correlation length (um), with --psd");
+    sub->add_option("--gamma", gamma, "KC exponent gamma > 1, with --psd kc");
+}
+
 struct Exact1dArgs {
     std::string profile, material, polarisation, output;
     double wavelength = 0, theta_i = 0, beam_width = 0, points_per_wavelength = 10;
     // Statistical mode.
-    std::optional<std::string> psd;
-    std::optional<double> sigma, corr_length, gamma, length;
+    SurfaceArgs surface;
+    std::optional<double> length;
     long long realizations = 0, seed = 1;
     int threads = 0;
 };
 
-std::unique_ptr<surface::RadialStatistics> statistics_from(const Exact1dArgs& a) {
+std::unique_ptr<surface::RadialStatistics> statistics_from(const SurfaceArgs& a) {
     if (!a.sigma || !a.corr_length) fail("--psd {} needs --sigma and --corr-length", *a.psd);
     surface::require_surface_length(*a.sigma, "--sigma");
     surface::require_surface_length(*a.corr_length, "--corr-length");
@@ -52,6 +72,19 @@ std::unique_ptr<surface::RadialStatistics> statistics_from(const Exact1dArgs& a)
     }
     if (a.gamma) fail("--gamma applies to --psd kc only");
     return std::make_unique<surface::GaussianAcv>(*a.sigma, *a.corr_length);
+}
+
+// --material, --wavelength, --theta-i and --polarisation, as exact-1d and models-1d spell them.
+void add_incidence_options(CLI::App* sub, std::string& material, double& wavelength, double& theta_i,
+                           std::string& polarisation) {
+    sub->add_option("--material", material,
+                    "perfect, a built-in metal (Ag, Au, Al, Cu, ...) or a .yml/.csv refractive index file")
+        ->required();
+    sub->add_option("--wavelength", wavelength, "wavelength in nm")->required();
+    sub->add_option("--theta-i", theta_i, "angle of incidence in degrees, light arriving from negative x")->required();
+    sub->add_option("--polarisation", polarisation, "s (TE, E along y) or p (TM, H along y)")
+        ->required()
+        ->check(CLI::IsMember({"s", "p"}));
 }
 
 std::string statistics_csv(const reference::StatisticalResult& r) {
@@ -73,7 +106,7 @@ std::string far_field_csv(const reference::FarField& far_field) {
     return out;
 }
 
-// --theta-i in [0, 90) degrees and --wavelength > 0, as both references take them.
+// --theta-i in [0, 90) degrees and --wavelength > 0, as every reference command takes them.
 void require_incidence(double theta_i, double wavelength) {
     require_finite(theta_i, "--theta-i");
     if (theta_i < 0 || theta_i >= 90) fail("--theta-i must be in [0, 90) degrees, got {}", theta_i);
@@ -90,11 +123,11 @@ void run_exact_1d(const Exact1dArgs& a) {
     options.polarisation = a.polarisation == "s" ? reference::Polarisation::s : reference::Polarisation::p;
     options.beam_width_um = a.beam_width;
     options.points_per_wavelength = a.points_per_wavelength;
-    if (!a.psd) {
+    if (!a.surface.psd) {
         for (const auto& [given, name] : {std::pair{a.length.has_value(), "--length-um"},
-                                         std::pair{a.sigma.has_value(), "--sigma"},
-                                         std::pair{a.corr_length.has_value(), "--corr-length"},
-                                         std::pair{a.gamma.has_value(), "--gamma"},
+                                         std::pair{a.surface.sigma.has_value(), "--sigma"},
+                                         std::pair{a.surface.corr_length.has_value(), "--corr-length"},
+                                         std::pair{a.surface.gamma.has_value(), "--gamma"},
                                          std::pair{a.realizations != 0, "--realizations"}})
             if (given) fail("{} applies to the statistical mode (--psd) only", name);
         if (a.profile.empty()) fail("give --profile FILE.csv or the statistical mode --psd kc|gaussian");
@@ -103,7 +136,7 @@ void run_exact_1d(const Exact1dArgs& a) {
         return;
     }
     if (!a.profile.empty()) fail("--profile and --psd exclude each other: one profile or random ones");
-    const auto statistics = statistics_from(a);
+    const auto statistics = statistics_from(a.surface);
     if (!a.length) fail("--psd needs --length-um (the random profiles' length)");
     if (a.realizations < 2) fail("--realizations must be at least 2, got {}", a.realizations);
     if (a.seed < 0) fail("--seed must be >= 0, got {}", a.seed);
@@ -206,6 +239,96 @@ void add_kirchhoff(CLI::App* reference_cmd) {
     sub->callback([a] { run_kirchhoff(*a); });
 }
 
+// surfscatter reference models-1d: the 1-D forms of the models (bsdf/profile_lobes.hpp) on exact-1d's theta_o grid.
+struct Models1dArgs {
+    SurfaceArgs surface;
+    std::string material, polarisation, output, model = "all", fresnel = "incident", ssa_form = "energy";
+    double wavelength = 0, theta_i = 0;
+    bool no_renormalization = false;
+};
+
+std::vector<bsdf::ProfileModel> chosen_models(const Models1dArgs& a, const CLI::App& sub) {
+    const std::vector<bsdf::ProfileModel> models =
+        a.model == "all" ? std::vector{bsdf::ProfileModel::ghs, bsdf::ProfileModel::ghs_ssa, bsdf::ProfileModel::kirchhoff}
+                         : std::vector{bsdf::parse_profile_model(a.model, "--model")};
+    // An option none of the chosen models uses is an error, never ignored (as in brdf).
+    for (const auto& [flag, option] : {std::pair{"--fresnel", "fresnel"}, std::pair{"--ssa-form", "ssa_form"},
+                                       std::pair{"--no-renormalization", "renormalization"}}) {
+        const auto why = bsdf::inapplicable_profile_option(models, option);
+        if (sub.count(flag) > 0 && !why.empty()) fail("{} is {}", flag, why);
+    }
+    return models;
+}
+
+void run_models_1d(const Models1dArgs& a, const CLI::App& sub) {
+    require_incidence(a.theta_i, a.wavelength);
+    if (!a.surface.psd) fail("models-1d needs the surface: --psd kc|gaussian --sigma --corr-length [--gamma]");
+    const auto statistics = statistics_from(a.surface);
+    const auto conductor = material::Conductor::from_name(a.material);
+    const auto models = chosen_models(a, sub);
+    bsdf::ProfileModelOptions options;
+    options.fresnel = bsdf::parse_fresnel(a.fresnel, "--fresnel");
+    options.ssa_form = bsdf::parse_ssa_form(a.ssa_form, "--ssa-form");
+    options.renormalization = !a.no_renormalization;
+    const auto polarisation = bsdf::parse_profile_polarisation(a.polarisation, "--polarisation");
+    const auto theta_o = bsdf::uniform_theta_grid(reference::kFarFieldSteps);
+
+    std::string header = "theta_o_deg";
+    std::vector<bsdf::ProfileLobe> lobes;
+    nlohmann::json json;
+    json["theta_i_deg"] = a.theta_i;
+    json["wavelength_nm"] = a.wavelength;
+    json["polarisation"] = a.polarisation;
+    json["material"] = conductor.name();
+    json["surface"] = statistics->cache_key();
+    json["sigma_h_um"] = statistics->sigma_h();
+    for (const auto model : models) {
+        options.model = model;
+        lobes.push_back(bsdf::profile_lobe(*statistics, conductor, a.wavelength, a.theta_i * kDegree, polarisation,
+                                           options, theta_o));
+        const auto name = bsdf::to_string(model);
+        header += fmt::format(",{}_per_rad", name);
+        json["models"][name] = {{"coherent", lobes.back().coherent},
+                                {"sigma_um", lobes.back().sigma_um},
+                                {"normalization", lobes.back().normalization}};
+        std::printf("%s: coherent fraction %s (sigma %s um, normalisation %s)\n", name.c_str(),
+                    format_number(lobes.back().coherent).c_str(), format_number(lobes.back().sigma_um).c_str(),
+                    format_number(lobes.back().normalization).c_str());
+    }
+    std::string csv = header + "\n";
+    for (std::size_t j = 0; j < theta_o.size(); ++j) {
+        csv += format_number(theta_o[j] / kDegree);
+        for (const auto& lobe : lobes) csv += fmt::format(",{}", format_number(lobe.intensity_per_rad[j]));
+        csv += "\n";
+    }
+    const std::filesystem::path out(a.output);
+    const auto json_path = std::filesystem::path(out).replace_extension(".json");
+    const auto png_path = std::filesystem::path(out).replace_extension(".png");
+    write_file_atomically(out, csv);
+    write_file_atomically(json_path, json.dump(2) + "\n");
+    run_plot_script("models_1d.py",
+                    {out.string(), json_path.string(), png_path.string(),
+                     fmt::format("{}, {} nm, theta_i {} deg, {}", conductor.name(), format_number(a.wavelength),
+                                 format_number(a.theta_i), a.polarisation)});
+    std::printf("wrote %s, %s and %s\n", out.c_str(), json_path.c_str(), png_path.c_str());
+}
+
+void add_models_1d(CLI::App* cmd) {
+    auto a = std::make_shared<Models1dArgs>();
+    auto* sub = cmd->add_subcommand(
+        "models-1d", "The 1-D forms of GHS, SSA and Kirchhoff for a profile with the statistical mode's surface, on "
+                     "exact-1d's theta_o grid: CSV theta_o_deg,<model>_per_rad (incoherent part), JSON with the "
+                     "coherent fractions, PNG plot");
+    a->surface.add_to(sub, "kc or gaussian PSD of the isotropic surface the profile is a cut through");
+    add_incidence_options(sub, a->material, a->wavelength, a->theta_i, a->polarisation);
+    sub->add_option("--model", a->model, "ghs | ghs_ssa | kirchhoff | all (default)");
+    sub->add_option("--fresnel", a->fresnel, "ghs, ghs_ssa: incident (|r(theta_i)|^2, default) | half | rr");
+    sub->add_option("--ssa-form", a->ssa_form, "ghs_ssa: energy (default) | strict");
+    sub->add_flag("--no-renormalization", a->no_renormalization, "ghs: sigma_h instead of sigma_rel and K = 1");
+    sub->add_option("-o", a->output, "output CSV (the JSON and PNG are written beside it)")->required();
+    sub->callback([a, sub] { run_models_1d(*a, *sub); });
+}
+
 const Command command("reference", [](CLI::App& app) {
     auto* cmd = app.add_subcommand("reference", "Rigorous scattering solutions the models are checked against");
     cmd->require_subcommand(1);
@@ -214,30 +337,20 @@ const Command command("reference", [](CLI::App& app) {
         "exact-1d", "Boundary-integral solution for a 1-D profile z = h(x) under a Thorsos-tapered beam: CSV "
                     "theta_o_deg,intensity_per_rad (scattered power per radian over the incident power)");
     sub->add_option("--profile", a->profile, "profile CSV with header x_um,h_um, uniformly spaced, beam centred at x = 0");
-    sub->add_option("--material", a->material,
-                    "perfect, a built-in metal (Ag, Au, Al, Cu, ...) or a .yml/.csv refractive index file")
-        ->required();
-    sub->add_option("--wavelength", a->wavelength, "wavelength in nm")->required();
-    sub->add_option("--theta-i", a->theta_i, "angle of incidence in degrees, light arriving from negative x")->required();
-    sub->add_option("--polarisation", a->polarisation, "s (TE, E along y) or p (TM, H along y)")
-        ->required()
-        ->check(CLI::IsMember({"s", "p"}));
+    add_incidence_options(sub, a->material, a->wavelength, a->theta_i, a->polarisation);
     sub->add_option("--beam-width", a->beam_width, "Thorsos taper width g along x in um")->required();
     sub->add_option("--points-per-wavelength", a->points_per_wavelength,
                     "solver nodes per wavelength along x, 4..1000 (default 10)");
     sub->add_option("-o", a->output, "output CSV")->required();
-    sub->add_option("--psd", a->psd, "statistical mode: random profiles with a kc or gaussian PSD (a cut through the "
-                                     "isotropic surface)")
-        ->check(CLI::IsMember({"kc", "gaussian"}));
-    sub->add_option("--sigma", a->sigma, "rms height sigma_h (um), with --psd");
-    sub->add_option("--corr-length", a->corr_length, "correlation length (um), with --psd");
-    sub->add_option("--gamma", a->gamma, "KC exponent gamma > 1, with --psd kc");
+    a->surface.add_to(sub, "statistical mode: random profiles with a kc or gaussian PSD (a cut through the isotropic "
+                           "surface)");
     sub->add_option("--length-um", a->length, "length of each random profile (um), centred on x = 0");
     sub->add_option("--realizations", a->realizations, "number of random profiles (>= 2)");
     sub->add_option("--seed", a->seed, "seed of the first profile; profile r uses seed + r (default 1)");
     sub->add_option("--threads", a->threads, "realizations solved at once, 0 = all cores (default)");
     sub->callback([a] { run_exact_1d(*a); });
     add_kirchhoff(cmd);
+    add_models_1d(cmd);
 });
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -119,4 +120,50 @@ TEST(CliReference, BadInputIsOneLine) {
     expect_bad_input(with({"--profile", profile, "--theta-i", "10", "--beam-width", "5", "--points-per-wavelength",
                            "2"}),
                      "points per wavelength (--points-per-wavelength) must be between 4 and 1000");
+}
+
+// reference models-1d: the CSV on exact-1d's grid (GHS's coherent fraction plus its lobe is 1 for a perfect
+// conductor), the JSON with the coherent fractions, the PNG, and options the chosen model does not use refused.
+TEST(CliReference, Models1dWritesTheModelsOnTheExactGrid) {
+    const auto out = (scratch_directory("surfscatter_cli_reference") / "models.csv").string();
+    const auto r = run_cli({"reference", "models-1d", "--psd", "kc", "--sigma", "0.05", "--corr-length", "2",
+                            "--gamma", "3", "--material", "perfect", "--wavelength", "550", "--theta-i", "30",
+                            "--polarisation", "s", "-o", out});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::string csv = read_whole_file(out);
+    EXPECT_EQ(csv.substr(0, csv.find('\n')), "theta_o_deg,ghs_per_rad,ghs_ssa_per_rad,kirchhoff_per_rad");
+    std::size_t rows = 0;
+    const double lobe = integrate(csv, rows);  // the first model's column
+    EXPECT_EQ(rows, 1801u);
+    const std::string json = read_whole_file(out.substr(0, out.size() - 4) + ".json");
+    const auto at = json.find("\"coherent\":", json.find("\"ghs\""));
+    ASSERT_NE(at, std::string::npos) << json;
+    const double coherent = std::stod(json.substr(at + 11));
+    const auto sigma_at = json.find("\"sigma_um\":", at);
+    ASSERT_NE(sigma_at, std::string::npos) << json;
+    const double sigma_rel = std::stod(json.substr(sigma_at + 11)), k = 2 * M_PI / 0.55;
+    EXPECT_LT(sigma_rel, 0.05);  // the 1-D relevant roughness: part of the PSD lies beyond the visible interval
+    EXPECT_NEAR(coherent, std::exp(-std::pow(2 * k * sigma_rel * std::cos(M_PI / 6), 2)), 1e-12);
+    EXPECT_NEAR(coherent + lobe, 1.0, 1e-4);
+    EXPECT_NE(r.out.find("ghs: coherent fraction"), std::string::npos) << r.out;
+    EXPECT_GT(std::filesystem::file_size(out.substr(0, out.size() - 4) + ".png"), 1000u);
+
+    const std::vector<std::string> surface{"reference", "models-1d", "--psd", "gaussian", "--sigma", "0.05",
+                                           "--corr-length", "2", "--material", "perfect", "--wavelength", "550",
+                                           "--polarisation", "s", "-o", out};
+    const auto with = [&](std::vector<std::string> extra) {
+        auto args = surface;
+        args.insert(args.end(), extra.begin(), extra.end());
+        return args;
+    };
+    expect_bad_input(with({"--theta-i", "90"}), "--theta-i must be in [0, 90) degrees, got 90");
+    expect_bad_input(with({"--theta-i", "10", "--model", "kirchhoff", "--fresnel", "rr"}),
+                     "--fresnel is not used by kirchhoff");
+    expect_bad_input(with({"--theta-i", "10", "--model", "ghs", "--ssa-form", "strict"}),
+                     "--ssa-form is used by ghs_ssa only");
+    expect_bad_input(with({"--theta-i", "10", "--model", "ggx"}), "--model must be one of ghs | ghs_ssa | kirchhoff");
+    expect_bad_input(with({"--theta-i", "10", "--gamma", "3"}), "--gamma applies to --psd kc only");
+    expect_bad_input({"reference", "models-1d", "--material", "perfect", "--wavelength", "550", "--theta-i", "10",
+                      "--polarisation", "s", "-o", out},
+                     "models-1d needs the surface");
 }
