@@ -14,14 +14,12 @@
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/math/vec.hpp"
 #include "surfscatter/surface/height_map_slope.hpp"
+#include "surfscatter/surface/map_statistics.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
 
 namespace surfscatter::surface {
 
 namespace {
-
-// Search box in (ln L, ln(gamma - 1)); a fit that ends on its boundary did not resolve the parameter.
-constexpr double kGammaMinusOneMin = 0.02, kGammaMinusOneMax = 14.0;
 
 struct RingData {
     std::vector<double> zeta, log_psd, weight, log_bias;
@@ -33,7 +31,7 @@ double profiled_residuals(const RingData& data, double log_l, double log_gm1, Ei
     residuals.resize(static_cast<Eigen::Index>(n));
     // Levenberg-Marquardt may step far outside the search box; there the cost is held at the box's edge (slightly
     // beyond it, so the bound test below reports such a fit) instead of building an invalid KC model.
-    const double lo = std::log(kGammaMinusOneMin) - 0.5, hi = std::log(kGammaMinusOneMax) + 0.5;
+    const double lo = std::log(kKcGammaMinusOneMin) - 0.5, hi = std::log(kKcGammaMinusOneMax) + 0.5;
     const KCorrelation model(1.0, std::exp(std::clamp(log_l, -200.0, 200.0)), 1.0 + std::exp(std::clamp(log_gm1, lo, hi)));
     double sum_w = 0.0, sum_wd = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
@@ -68,6 +66,12 @@ struct LogResidualFunctor {
 
 }  // namespace
 
+const char* search_box_end(double value, double lo, double hi) {
+    if (value < lo + 0.02 * (hi - lo)) return "lower";
+    if (value > hi - 0.02 * (hi - lo)) return "upper";
+    return nullptr;
+}
+
 double nyquist_zeta(const HeightMap& map) { return kPi / std::max(map.spacing_x(), map.spacing_y()); }
 
 KcFit fit_kc(const RadialPsd& radial, double nyquist, const KcFitOptions& options) {
@@ -96,7 +100,7 @@ KcFit fit_kc(const RadialPsd& radial, double nyquist, const KcFitOptions& option
 
     // The knee 1/L must be resolvable: search L from 1/(4 zeta_max) to 4/zeta_min.
     const double log_l_min = std::log(0.25 / fit.zeta_max), log_l_max = std::log(4.0 / fit.zeta_min);
-    const double log_g_min = std::log(kGammaMinusOneMin), log_g_max = std::log(kGammaMinusOneMax);
+    const double log_g_min = std::log(kKcGammaMinusOneMin), log_g_max = std::log(kKcGammaMinusOneMax);
     Eigen::VectorXd residuals;
     Eigen::VectorXd best(2);
     double best_cost = std::numeric_limits<double>::infinity();
@@ -137,27 +141,22 @@ KcFit fit_kc(const RadialPsd& radial, double nyquist, const KcFitOptions& option
     fit.log_residual_rms = std::sqrt(residuals.squaredNorm() / sum_w);
     fit.statistical_floor = std::sqrt(static_cast<double>(fit.rings) / sum_w);
 
-    auto end_of = [](double v, double lo, double hi) -> const char* {
-        if (v < lo + 0.02 * (hi - lo)) return "lower";
-        if (v > hi - 0.02 * (hi - lo)) return "upper";
-        return nullptr;
-    };
     const std::string band = fmt::format("the PSD between {:.4g} and {:.4g} rad/um ({} rings)", fit.zeta_min,
                                          fit.zeta_max, fit.rings);
     const std::string misfit = fmt::format("misfit log_residual_rms {:.3g} against a statistical floor of {:.3g}",
                                            fit.log_residual_rms, fit.statistical_floor);
-    if (const char* end = end_of(best[0], log_l_min, log_l_max))
+    if (const char* end = search_box_end(best[0], log_l_min, log_l_max))
         fit.failure = fmt::format(
             "KC fit: no KC correlation length fits {}: L_c was searched from {:.4g} to {:.4g} um (1/(4 zeta_max) to "
             "4/zeta_min) and the best attempt lies at the {} end (L_c = {:.4g} um, gamma = {:.4g}, {}): the PSD has "
             "no KC knee inside the band; use --psd measured for the map's own spectrum",
             band, std::exp(log_l_min), std::exp(log_l_max), end, l, gamma, misfit);
-    else if (const char* end = end_of(best[1], log_g_min, log_g_max))
+    else if (const char* end = search_box_end(best[1], log_g_min, log_g_max))
         fit.failure = fmt::format(
             "KC fit: gamma is not resolved by {}: gamma was searched from {:.4g} to {:.4g} and the best attempt lies "
             "at the {} end (gamma = {:.4g}, L_c = {:.4g} um, {}; a PSD falling faster than any power law, e.g. "
             "Gaussian, has no KC gamma); use --psd measured for the map's own spectrum",
-            band, 1.0 + kGammaMinusOneMin, 1.0 + kGammaMinusOneMax, end, gamma, l, misfit);
+            band, 1.0 + kKcGammaMinusOneMin, 1.0 + kKcGammaMinusOneMax, end, gamma, l, misfit);
     return fit;
 }
 
@@ -173,6 +172,8 @@ SurfaceFit fit_surface(const HeightMap& map, const KcFitOptions& options) {
     const Psd2d& psd = result.psd;
     result.radial = radial_average(psd);
     result.kc = fit_kc(result.radial, nyquist_zeta(map), options);
+    result.spectrum = is_periodic(map) ? estimate_psd(flat, Window::rectangular, Form::none) : psd;
+    result.elliptical = fit_elliptical_kc(result.spectrum, result.kc);
     result.acv = acv_measures(flat);
     result.rms_height_um = height_moments(flat).rms;
     result.rms_slope = rms_slope(flat, Form::none);

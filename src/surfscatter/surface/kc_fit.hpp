@@ -22,6 +22,7 @@
 // reported as an Error rather than returned.
 #include <cstddef>
 
+#include "surfscatter/surface/elliptical_fit.hpp"
 #include "surfscatter/surface/height_map.hpp"
 #include "surfscatter/surface/height_map_acv.hpp"
 #include "surfscatter/surface/height_map_form.hpp"
@@ -48,6 +49,13 @@ struct KcFit {
     std::string failure;
 };
 
+// The search box of gamma - 1 (both KC fits, elliptical_fit.hpp); a fit that ends on its boundary did not resolve it.
+inline constexpr double kKcGammaMinusOneMin = 0.02, kKcGammaMinusOneMax = 14.0;
+
+// "lower" or "upper" when `value` lies within 2 % of the range [lo, hi] of that end (a search that ended there did
+// not resolve the parameter), else nullptr.
+const char* search_box_end(double value, double lo, double hi);
+
 // A fit is poor when its misfit exceeds this many times its statistical floor.
 inline constexpr double kPoorFitFactor = 2.0;
 
@@ -65,9 +73,13 @@ struct SurfaceFit {
     Psd2d psd;                         // the 2-D PSD of the form-removed map
     RadialPsd radial;                  // its rings: the data that were fitted
     AcvMeasures acv;                   // Str and the lay direction (height_map_acv.hpp): anisotropy the fit ignores
+    // The elliptical KC fit (elliptical_fit.hpp) and the periodogram it fitted: MapStatistics' window rule
+    // (is_periodic(): rectangular for a periodic map), so not always `psd`.
+    EllipticalKcFit elliptical;
+    Psd2d spectrum;
 };
 
-// Removes options.form once, then PSD, fit, rms and slopes over the valid points. Error if fewer than
+// Removes options.form once, then PSD, both fits, rms and slopes over the valid points. Error if fewer than
 // kMinFitValidFraction of the points are valid.
 SurfaceFit fit_surface(const HeightMap& map, const KcFitOptions& options = {});
 

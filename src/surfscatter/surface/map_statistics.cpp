@@ -75,11 +75,12 @@ double wrap_jump_ratio(const HeightMap& map) {
     return ratio;
 }
 
+bool is_periodic(const HeightMap& map) { return !map.has_invalid() && wrap_jump_ratio(map) <= kPeriodicJumpRatio; }
+
 MapStatistics::MapStatistics(const HeightMap& map, Form form) {
     require_valid_fraction(map, kMinFitValidFraction, "measured statistics");
     const HeightMap flat = remove_form(map, form);
-    // Periodicity is the data's, before any form removal: a form fitted to a periodic map is noise that would break it.
-    periodic_ = !map.has_invalid() && wrap_jump_ratio(map) <= kPeriodicJumpRatio;
+    periodic_ = is_periodic(map);
     map_rms_ = rms_height(flat, Form::none);
     if (!(map_rms_ > 0.0))
         fail("{}: no roughness is left after removing the form ({}): rms height 0", map.origin(), to_string(form));

@@ -94,4 +94,8 @@ private:
 // instrument files give 50 to 10^4.
 double wrap_jump_ratio(const HeightMap& map);
 
+// Whether a map gets the rectangular window (no invalid points, wrap_jump_ratio() <= kPeriodicJumpRatio), judged on
+// the data before any form removal: a form fitted to a periodic map is noise that would break it.
+bool is_periodic(const HeightMap& map);
+
 }  // namespace surfscatter::surface

@@ -30,9 +30,10 @@ std::vector<double> white_noise(std::size_t n, std::uint64_t seed) {
     }
     return noise;
 }
-}  // namespace
 
-HeightMap synthesize_surface(const RadialStatistics& statistics, const SynthesisGrid& grid, std::uint64_t seed) {
+// The spectral synthesis of a map whose PSD (um^4) at (zeta_x, zeta_y) is `psd`.
+template <class Psd>
+HeightMap synthesize_from_psd(const Psd& psd, const SynthesisGrid& grid, std::uint64_t seed) {
     if (grid.nx < kMinHeightMapSize || grid.ny < kMinHeightMapSize)
         fail("surface size must be at least {} samples per side, got {} x {}", kMinHeightMapSize, grid.nx, grid.ny);
     require_valid_spacing(grid.spacing_um, "pixel spacing");
@@ -51,12 +52,23 @@ HeightMap synthesize_surface(const RadialStatistics& statistics, const Synthesis
         const double zy = static_cast<double>(signed_frequency_index(ky, ny)) * dzy;
         for (std::size_t kx = 0; kx < half; ++kx) {
             const double zx = static_cast<double>(kx) * dzx;
-            const double p = (kx == 0 && ky == 0) ? 0.0 : statistics.psd(std::hypot(zx, zy));
+            const double p = (kx == 0 && ky == 0) ? 0.0 : psd(zx, zy);
             spectrum[ky * half + kx] *= scale * std::sqrt(p);
         }
     }
     return HeightMap(nx, ny, grid.spacing_um, grid.spacing_um, inverse_fft_2d(std::move(spectrum), nx, ny),
                      "synthesized surface");
+}
+}  // namespace
+
+HeightMap synthesize_surface(const RadialStatistics& statistics, const SynthesisGrid& grid, std::uint64_t seed) {
+    return synthesize_from_psd([&](double zx, double zy) { return statistics.psd(std::hypot(zx, zy)); }, grid, seed);
+}
+
+HeightMap synthesize_surface(const EllipticalStatistics& statistics, const SynthesisGrid& grid, std::uint64_t seed) {
+    const double variance = statistics.sigma_h() * statistics.sigma_h();
+    return synthesize_from_psd([&](double zx, double zy) { return variance * statistics.psd_unit({zx, zy}); }, grid,
+                               seed);
 }
 
 double profile_psd(const RadialStatistics& statistics, double zeta_x) {
