@@ -1,6 +1,7 @@
 // surfscatter surface synth | info | fit: random KC height maps (.gsf, .gwy), statistics of measured height maps
 // (any format read_height_map reads), and KC fits.
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -15,6 +16,9 @@
 #include "statistics_options.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/paths.hpp"
+#include "surfscatter/math/vec.hpp"
+#include "surfscatter/surface/elliptical_fit.hpp"
+#include "surfscatter/surface/elliptical_statistics.hpp"
 #include "surfscatter/surface/height_map_acv.hpp"
 #include "surfscatter/surface/height_map_fft.hpp"
 #include "surfscatter/surface/height_map_form.hpp"
@@ -31,6 +35,8 @@ namespace {
 
 struct SynthArgs {
     StatisticsOptions statistics;
+    std::optional<double> corr_length_v;  // elliptical statistics (issue 24's convention); LU = --corr-length
+    double lay_angle = 0;                 // degrees
     double spacing = 0;
     long long size = 0;
     long long seed = 1;
@@ -57,17 +63,29 @@ struct FitArgs : MapArgs {
 };
 
 void synth(const SynthArgs& args) {
-    const auto model = args.statistics.make();
+    const std::shared_ptr<const surface::RadialStatistics> model = args.statistics.make();
     if (args.seed < 0) fail("--seed must be >= 0, got {}", args.seed);
     surface::require_valid_spacing(args.spacing, "--spacing");
     surface::require_height_map_extension(args.output, "-o");
     if (args.size < static_cast<long long>(surface::kMinHeightMapSize))
         fail("--size must be at least {} samples, got {}", surface::kMinHeightMapSize, args.size);
+    if (args.corr_length_v) surface::require_surface_length(*args.corr_length_v, "--corr-length-v");
+    if (!std::isfinite(args.lay_angle)) fail("--lay-angle must be finite, got {}", args.lay_angle);
     const auto n = static_cast<std::size_t>(args.size);
-    surface::HeightMap map = surface::synthesize_surface(*model, {n, n, args.spacing}, args.seed);
+    const surface::SynthesisGrid grid{n, n, args.spacing};
+    const bool anisotropic = args.corr_length_v || args.lay_angle != 0.0;
+    surface::HeightMap map =
+        anisotropic ? surface::synthesize_surface(
+                          surface::EllipticalStatistics(model, args.corr_length_v.value_or(model->correlation_length()),
+                                                        args.lay_angle * kPi / 180.0),
+                          grid, args.seed)
+                    : surface::synthesize_surface(*model, grid, args.seed);
     const StatisticsOptions& s = args.statistics;
     map.title = args.title.empty()
-                    ? fmt::format("{} sigma_h={} um L_c={} um{} seed={}", s.model, s.sigma, s.corr_length,
+                    ? fmt::format("{} sigma_h={} um L_c={} um{}{} seed={}", s.model, s.sigma, s.corr_length,
+                                  anisotropic ? fmt::format(" L_v={} um lay_angle={} deg",
+                                                            args.corr_length_v.value_or(s.corr_length), args.lay_angle)
+                                              : "",
                                   s.gamma ? fmt::format(" gamma={}", *s.gamma) : "", args.seed)
                     : args.title;
     surface::write_height_map(map, args.output);
@@ -100,15 +118,27 @@ void write_measured_plot(const InfoArgs& args, const surface::HeightMap& map, su
 
 // The rings of a radial PSD as CSV for psd_fit.py: zeta, psd, count, a model's value (column `model_column`), whether
 // the ring is in the band used, and its independent samples.
+// `extra` columns (a name and one value per ring) follow.
+struct RingColumn {
+    std::string name;
+    std::vector<double> values;
+};
+
 void write_ring_csv(const surface::RadialPsd& r, const char* model_column, const std::function<double(double)>& model,
-                    const std::function<bool(double)>& in_band, const std::string& path, const char* option) {
+                    const std::function<bool(double)>& in_band, const std::string& path, const char* option,
+                    const std::vector<RingColumn>& extra = {}) {
     std::ofstream out(path);
     if (!out) fail("{}: cannot open '{}' for writing", option, path);
-    out << "zeta,psd,count," << model_column << ",in_band,independent_samples\n";
-    for (std::size_t i = 0; i < r.zeta.size(); ++i)
+    out << "zeta,psd,count," << model_column << ",in_band,independent_samples";
+    for (const RingColumn& column : extra) out << ',' << column.name;
+    out << '\n';
+    for (std::size_t i = 0; i < r.zeta.size(); ++i) {
         out << format_number(r.zeta[i]) << ',' << format_number(r.psd[i]) << ',' << format_number(r.count[i]) << ','
             << format_number(model(r.zeta[i])) << ',' << (in_band(r.zeta[i]) ? 1 : 0) << ','
-            << format_number(surface::effective_samples(r.window, r.count[i], r.valid_weight)) << '\n';
+            << format_number(surface::effective_samples(r.window, r.count[i], r.valid_weight));
+        for (const RingColumn& column : extra) out << ',' << format_number(column.values[i]);
+        out << '\n';
+    }
     if (!out) fail("{}: write error on '{}'", option, path);
 }
 
@@ -169,10 +199,13 @@ void write_measured_plot(const InfoArgs& args, const surface::HeightMap& map, su
     std::printf("plot = %s\ncsv = %s\n", args.plot.c_str(), csv.c_str());
 }
 
+// The elliptical fit's ring means sit on the rings of the fitted (Hann) periodogram: the same lattice.
 void write_psd_csv(const surface::SurfaceFit& fit, const std::string& path) {
     const surface::KCorrelation model(fit.kc.sigma_h_um, fit.kc.corr_length_um, fit.kc.gamma);
+    const surface::RadialPsd elliptical = surface::radial_average(surface::fitted_psd(fit.elliptical, fit.psd));
     write_ring_csv(fit.radial, "kc_fit", [&](double z) { return model.psd(z); },
-                   [&](double z) { return z >= fit.kc.zeta_min && z <= fit.kc.zeta_max; }, path, "--csv");
+                   [&](double z) { return z >= fit.kc.zeta_min && z <= fit.kc.zeta_max; }, path, "--csv",
+                   {{"elliptical_fit", elliptical.psd}});
 }
 
 // The 2-D PSD over the full zeta-plane, centred (zeta = 0 in the middle), averaged over blocks of
@@ -218,6 +251,47 @@ double psd_image_edge(std::size_t n, double dzeta) { return -(static_cast<double
 void write_fit_plot(const FitArgs& args, const surface::HeightMap& map, const surface::SurfaceFit& result,
                     const std::string& csv);
 
+// The elliptical fit under the names of the model options (--corr-length, --corr-length-v, --lay-angle), prefixed,
+// and as options to paste; an unresolved one as a warning (the isotropic fit stands).
+void print_elliptical(const surface::EllipticalKcFit& e) {
+    if (!e.failure.empty()) {
+        std::printf("warning = %s\n", e.failure.c_str());
+        return;
+    }
+    print_value("elliptical_sigma_h", e.sigma_h_um);
+    print_value("elliptical_sigma_h_error", e.sigma_h_error_um);
+    print_value("elliptical_corr_length", e.corr_length_u_um);
+    print_value("elliptical_corr_length_error", e.corr_length_u_error_um);
+    print_value("elliptical_corr_length_v", e.corr_length_v_um);
+    print_value("elliptical_corr_length_v_error", e.corr_length_v_error_um);
+    print_value("elliptical_lay_angle", e.lay_angle_deg);
+    print_value("elliptical_lay_angle_error", e.lay_angle_error_deg);
+    print_value("elliptical_gamma", e.gamma);
+    print_value("elliptical_gamma_error", e.gamma_error);
+    print_value("elliptical_axis_ratio", e.axis_ratio());
+    print_value("elliptical_axis_ratio_error", e.axis_ratio_error);
+    print_value("elliptical_log_residual_rms", e.log_residual_rms);
+    print_value("elliptical_statistical_floor", e.statistical_floor);
+    print_value("elliptical_cells", static_cast<double>(e.cells));
+    std::printf("elliptical_window = %s\n", e.window == surface::Window::rectangular ? "rectangular (periodic map)"
+                                                                                     : "hann");
+    print_value("anisotropy_chi2", e.anisotropy_chi2);
+    std::printf("anisotropy = %s\n", e.anisotropic() ? "significant" : "not significant");
+    std::printf("elliptical_options = --sigma %s --corr-length %s --corr-length-v %s --lay-angle %s --gamma %s\n",
+                format_number(e.sigma_h_um).c_str(), format_number(e.corr_length_u_um).c_str(),
+                format_number(e.corr_length_v_um).c_str(), format_number(e.lay_angle_deg).c_str(),
+                format_number(e.gamma).c_str());
+    if (!e.anisotropic())
+        std::printf("warning = the anisotropy is not significant against the periodogram's scatter (LV / LU %.3g +- "
+                    "%.2g, chi-square %.3g <= %.3g): the isotropic fit describes this map and the lay angle is "
+                    "undetermined\n",
+                    e.axis_ratio(), e.axis_ratio_error, e.anisotropy_chi2, surface::kAnisotropyChi2);
+    if (e.log_residual_rms > surface::kPoorFitFactor * e.statistical_floor)
+        std::printf("warning = the elliptical KC model fits this 2-D PSD poorly (elliptical_log_residual_rms %.3g, %.1f "
+                    "times its statistical floor)\n",
+                    e.log_residual_rms, e.log_residual_rms / e.statistical_floor);
+}
+
 void fit(const FitArgs& args) {
     if (args.smoothing) require_positive(*args.smoothing, "--smoothing");  // before reading the map
     surface::KcFitOptions options;
@@ -254,6 +328,7 @@ void fit(const FitArgs& args) {
     std::printf("texture_aspect_ratio = %s\n", format_number(result.acv.texture_aspect_ratio).c_str());
     std::printf("lay_direction_deg = %s\n", format_number(result.acv.slowest_direction_deg).c_str());
     print_value("valid_fraction", map.valid_fraction());
+    print_elliptical(result.elliptical);
     if (result.kc.log_residual_rms > surface::kPoorFitFactor * result.kc.statistical_floor)
         std::printf("warning = the KC model fits this PSD poorly (log_residual_rms %.3g, %.1f times its statistical "
                     "floor): use --psd measured for the map's own spectrum\n",
@@ -266,6 +341,31 @@ void fit(const FitArgs& args) {
     write_outputs();
 }
 
+// The 2-D periodogram the elliptical fit used beside the fitted PSD and their ratio: <plot>_elliptical.png.
+void write_elliptical_plot(const FitArgs& args, const surface::SurfaceFit& result, std::size_t block) {
+    std::filesystem::path stem = args.plot;
+    stem.replace_extension();
+    const std::string data = stem.string() + "_spectrum.npy", model = stem.string() + "_elliptical.npy";
+    const std::string png = stem.string() + "_elliptical.png";
+    const surface::Psd2d& psd = result.spectrum;
+    const surface::EllipticalKcFit& e = result.elliptical;
+    write_psd_image(psd, block, data);
+    write_psd_image(surface::fitted_psd(e, psd), block, model);
+    const double left = psd_image_edge(psd.nx, psd.dzeta_x), bottom = psd_image_edge(psd.ny, psd.dzeta_y);
+    run_plot_script(
+        "psd2d_fit.py",
+        {data, model, png,
+         fmt::format("{}: {}elliptical KC --corr-length {:.4g} --corr-length-v {:.4g} --lay-angle {:.4g} --gamma "
+                     "{:.4g} (anisotropy {}), misfit {:.3g} / floor {:.3g}",
+                     std::filesystem::path(args.input).filename().string(), e.failure.empty() ? "" : "NO FIT, best attempt: ",
+                     e.corr_length_u_um, e.corr_length_v_um, e.lay_angle_deg, e.gamma,
+                     e.anisotropic() ? "significant" : "not significant", e.log_residual_rms, e.statistical_floor),
+         format_number(left), format_number(left + psd.dzeta_x * static_cast<double>(block * (psd.nx / block))),
+         format_number(bottom), format_number(bottom + psd.dzeta_y * static_cast<double>(block * (psd.ny / block))),
+         format_number(e.zeta_min), format_number(e.zeta_max), format_number(e.lay_angle_deg)});
+    std::printf("elliptical_plot = %s\n", png.c_str());
+}
+
 void write_fit_plot(const FitArgs& args, const surface::HeightMap& map, const surface::SurfaceFit& result,
                     const std::string& csv) {
     // The 2-D PSD beside the radial fit: a directional texture shows as a streak through the origin.
@@ -274,6 +374,7 @@ void write_fit_plot(const FitArgs& args, const surface::HeightMap& map, const su
     image += "_psd2d.npy";
     const std::size_t block = std::max<std::size_t>(1, (std::max(map.nx(), map.ny()) + 255) / 256);
     write_psd_image(result.psd, block, image.string());
+    write_elliptical_plot(args, result, block);
     run_plot_script("psd_fit.py",
                     {csv, args.plot,
                      fmt::format("{}: {} sigma_h = {:.4g} um, L_c = {:.4g} um, gamma = {:.4g}; band {:.3g}-{:.3g} "
@@ -299,6 +400,10 @@ const Command command("surface", [](CLI::App& app) {
     s->statistics.add_to(*synth_cmd);
     synth_cmd->add_option("--size", s->size, "samples per side N (N x N map)")->required();
     synth_cmd->add_option("--spacing", s->spacing, "pixel spacing (um)")->required();
+    synth_cmd->add_option("--corr-length-v", s->corr_length_v,
+                          "correlation length across the lay (um; default --corr-length: isotropic)");
+    synth_cmd->add_option("--lay-angle", s->lay_angle,
+                          "lay angle A (deg, from +x towards +y): --corr-length runs along it (docs/SURFACE.md)");
     synth_cmd->add_option("--seed", s->seed, "random seed (same seed, same surface)");
     synth_cmd->add_option("-o,--output", s->output, "output height map (.gsf, or .gwy through Gwyddion)")->required();
     synth_cmd->add_option("--title", s->title, "Title stored in the .gsf header");
@@ -316,14 +421,16 @@ const Command command("surface", [](CLI::App& app) {
 
     auto f = std::make_shared<FitArgs>();
     CLI::App* fit_cmd = surface_cmd->add_subcommand(
-        "fit", "Fit KC (sigma_h, L_c, gamma) to a height map; print name = value lines");
+        "fit", "Fit KC (sigma_h, L_c, gamma) and elliptical KC (LU, LV, lay angle) to a height map; print name = "
+               "value lines");
     add_map_options(fit_cmd, *f);
     fit_cmd->add_option("--smoothing", f->smoothing, "also print the rms slope after Gaussian smoothing (std, um)");
     fit_cmd->add_option("--min-ring", f->min_ring, "lowest PSD ring fitted (default 4)");
     fit_cmd->add_option("--max-zeta-fraction", f->max_zeta_fraction,
                         "highest fitted frequency as a fraction of Nyquist (default 0.5)");
     fit_cmd->add_option("--plot", f->plot,
-                        "write the radial PSD with the fit and the 2-D PSD as PNG (CSV and _psd2d.npy beside it)");
+                        "write the radial PSD with the fit and the 2-D PSD as PNG (CSV and _psd2d.npy beside it), and "
+                        "<name>_elliptical.png: the 2-D PSD beside the elliptical fit's and their ratio");
     fit_cmd->add_option("--csv", f->csv, "write the radial PSD and the fit as CSV");
     fit_cmd->callback([f] { fit(*f); });
 });

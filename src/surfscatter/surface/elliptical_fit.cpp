@@ -366,4 +366,14 @@ void require_resolved(const EllipticalKcFit& fit) {
     if (!fit.failure.empty()) fail("{}", fit.failure);
 }
 
+Psd2d fitted_psd(const EllipticalKcFit& fit, const Psd2d& like) {
+    const EllipticalStatistics model = fit.statistics();
+    const double variance = fit.sigma_h_um * fit.sigma_h_um;
+    Psd2d out = like;
+    for (std::size_t ky = 0; ky < like.ny; ++ky)
+        for (std::size_t kx = 0; kx < like.half_nx(); ++kx)
+            out.values[ky * like.half_nx() + kx] = variance * model.psd_unit({like.zeta_x(kx), like.zeta_y(ky)});
+    return out;
+}
+
 }  // namespace surfscatter::surface

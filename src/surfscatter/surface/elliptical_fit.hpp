@@ -79,4 +79,8 @@ struct EllipticalKcFit {
 EllipticalKcFit fit_elliptical_kc(const Psd2d& psd, const KcFit& isotropic);
 void require_resolved(const EllipticalKcFit& fit);
 
+// The fitted PSD P(zeta) (um^4) on the lattice of `like` (its values replaced; window and grid kept): for pictures of
+// data / model and for the fit's ring means (radial_average()).
+Psd2d fitted_psd(const EllipticalKcFit& fit, const Psd2d& like);
+
 }  // namespace surfscatter::surface
