@@ -20,6 +20,7 @@
 #include "surfscatter/surface/height_map_form.hpp"
 #include "surfscatter/surface/height_map_io.hpp"
 #include "surfscatter/surface/height_map_slope.hpp"
+#include "surfscatter/surface/elliptical_fit.hpp"
 #include "surfscatter/surface/kc_fit.hpp"
 #include "surfscatter/surface/psd_estimate.hpp"
 #include "surfscatter/surface/map_statistics.hpp"
@@ -481,18 +482,90 @@ void bind_height_maps(py::module_& m) {
                                "the rings that were fitted: {'zeta' (rad/um), 'psd' (um^4), 'count', 'dzeta'}")
         .def_property_readonly("psd2d", [](const SurfaceFit& f) { return psd2d_dict(f.psd); },
                                "the 2-D periodogram: {'values' (ny, nx//2 + 1), 'zeta_x', 'zeta_y'}")
+        .def_property_readonly(
+            "elliptical",
+            [](const SurfaceFit& f) -> py::object {
+                if (!f.elliptical.failure.empty()) return py::none();
+                return py::cast(f.elliptical);
+            },
+            "the elliptical KC fit (an EllipticalFit), None where it does not resolve (fit_elliptical says why)")
+        .def_property_readonly(
+            "corr_length_v",
+            [](const SurfaceFit& f) -> py::object {
+                if (!f.elliptical.failure.empty()) return py::none();
+                return py::float_(f.elliptical.corr_length_v_um);
+            },
+            "the elliptical fit's LV (um; its corr_length is elliptical.corr_length), None where it does not resolve")
+        .def_property_readonly(
+            "lay_angle_deg",
+            [](const SurfaceFit& f) -> py::object {
+                if (!f.elliptical.failure.empty()) return py::none();
+                return py::float_(f.elliptical.lay_angle_deg);
+            },
+            "the elliptical fit's lay angle (deg), None where it does not resolve")
         .def("__repr__", [](const SurfaceFit& f) {
             return fmt::format("surfscatter.SurfaceFit(sigma_h={}, corr_length={}, gamma={})", f.kc.sigma_h_um,
                                f.kc.corr_length_um, f.kc.gamma);
         });
 
+    py::class_<EllipticalKcFit>(
+        m, "EllipticalFit",
+        "An elliptical KC fit to a height map's 2-D periodogram (elliptical_fit.hpp; issue 24's convention: corr_length "
+        "LU along the lay angle, corr_length_v LV across it, LU >= LV, lay_angle_deg in [0, 180) from +x towards +y), "
+        "with standard errors; the names of `surfscatter surface fit`'s elliptical_* lines.")
+        .def_readonly("sigma_h", &EllipticalKcFit::sigma_h_um, "fitted sigma_h (um)")
+        .def_readonly("corr_length", &EllipticalKcFit::corr_length_u_um, "LU (um), along the lay")
+        .def_readonly("corr_length_v", &EllipticalKcFit::corr_length_v_um, "LV (um), across the lay")
+        .def_readonly("gamma", &EllipticalKcFit::gamma, "fitted gamma")
+        .def_readonly("lay_angle_deg", &EllipticalKcFit::lay_angle_deg, "lay angle A (deg, [0, 180))")
+        .def_readonly("sigma_h_error", &EllipticalKcFit::sigma_h_error_um, "standard error (um)")
+        .def_readonly("corr_length_error", &EllipticalKcFit::corr_length_u_error_um, "standard error (um)")
+        .def_readonly("corr_length_v_error", &EllipticalKcFit::corr_length_v_error_um, "standard error (um)")
+        .def_readonly("gamma_error", &EllipticalKcFit::gamma_error, "standard error")
+        .def_readonly("lay_angle_error_deg", &EllipticalKcFit::lay_angle_error_deg,
+                      "standard error (deg; 90 = undetermined)")
+        .def_property_readonly("axis_ratio", &EllipticalKcFit::axis_ratio, "LV / LU")
+        .def_readonly("axis_ratio_error", &EllipticalKcFit::axis_ratio_error, "standard error of LV / LU")
+        .def_readonly("anisotropy_chi2", &EllipticalKcFit::anisotropy_chi2, "Wald statistic against isotropy (2 dof)")
+        .def_property_readonly("anisotropic", &EllipticalKcFit::anisotropic,
+                               "whether the anisotropy is significant (anisotropy_chi2 > 13.8)")
+        .def_readonly("misfit", &EllipticalKcFit::log_residual_rms, "weighted rms of ln(data / model) over the cells")
+        .def_readonly("statistical_floor", &EllipticalKcFit::statistical_floor,
+                      "what misfit is for an elliptical KC surface")
+        .def_readonly("cells", &EllipticalKcFit::cells, "polar cells fitted")
+        .def("__repr__", [](const EllipticalKcFit& f) {
+            return fmt::format("surfscatter.EllipticalFit(sigma_h={}, corr_length={}, corr_length_v={}, gamma={}, "
+                               "lay_angle_deg={})",
+                               f.sigma_h_um, f.corr_length_u_um, f.corr_length_v_um, f.gamma, f.lay_angle_deg);
+        });
+
+    const auto fit_options = [](const std::string& form, std::size_t min_ring, double max_zeta_fraction) {
+        KcFitOptions options;
+        options.form = parse_form(form, "form");
+        options.min_ring = min_ring;
+        options.max_nyquist_fraction = max_zeta_fraction;
+        return options;
+    };
+
+    m.def(
+        "fit_elliptical",
+        [fit_options](const HeightMap& map, const std::string& form, std::size_t min_ring, double max_zeta_fraction) {
+            const KcFitOptions options = fit_options(form, min_ring, max_zeta_fraction);
+            py::gil_scoped_release release;
+            EllipticalKcFit fit = fit_surface(map, options).elliptical;
+            require_resolved(fit);
+            return fit;
+        },
+        py::arg("height_map"), py::arg("form") = "plane", py::arg("min_ring") = KcFitOptions{}.min_ring,
+        py::arg("max_zeta_fraction") = KcFitOptions{}.max_nyquist_fraction,
+        "Fits an elliptical K-correlation PSD to a HeightMap's 2-D periodogram in the band of fit_surface (started "
+        "from its fit, resolved or not): an EllipticalFit. Error if the elliptical fit does not resolve LU, LV or "
+        "gamma.");
+
     m.def(
         "fit_surface",
-        [](const HeightMap& map, const std::string& form, std::size_t min_ring, double max_zeta_fraction) {
-            KcFitOptions options;
-            options.form = parse_form(form, "form");
-            options.min_ring = min_ring;
-            options.max_nyquist_fraction = max_zeta_fraction;
+        [fit_options](const HeightMap& map, const std::string& form, std::size_t min_ring, double max_zeta_fraction) {
+            const KcFitOptions options = fit_options(form, min_ring, max_zeta_fraction);
             py::gil_scoped_release release;
             SurfaceFit fit = fit_surface(map, options);
             require_resolved(fit.kc);

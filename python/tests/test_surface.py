@@ -235,3 +235,32 @@ def test_height_map_round_trip_through_gsf_with_invalid_points(tmp_path):
 def test_bad_input_raises_error_naming_it(make, message):
     with pytest.raises(ss.Error, match=message):
         make()
+
+
+def test_elliptical_fit_recovers_the_lay_and_equals_the_cli(tmp_path):
+    gsf = str(tmp_path / "brushed.gsf")
+    run_cli("surface", "synth", "--sigma", 0.05, "--corr-length", 8, "--corr-length-v", 2, "--lay-angle", 30,
+            "--gamma", 2.5, "--size", 256, "--spacing", 1, "--seed", 4, "-o", gsf)
+    cli = cli_values("surface", "fit", gsf)
+    h = ss.read_height_map(gsf)
+    e = ss.fit_elliptical(h)
+    for name, line in (("sigma_h", "elliptical_sigma_h"), ("corr_length", "elliptical_corr_length"),
+                       ("corr_length_v", "elliptical_corr_length_v"), ("gamma", "elliptical_gamma"),
+                       ("lay_angle_deg", "elliptical_lay_angle"), ("misfit", "elliptical_log_residual_rms"),
+                       ("statistical_floor", "elliptical_statistical_floor")):
+        assert getattr(e, name) == pytest.approx(cli[line], rel=CLI_RTOL), name
+    assert e.anisotropic
+    # The truth within 4 standard errors.
+    assert abs(e.corr_length - 8) < 4 * e.corr_length_error
+    assert abs(e.corr_length_v - 2) < 4 * e.corr_length_v_error
+    assert abs(e.lay_angle_deg - 30) < 4 * e.lay_angle_error_deg
+    fit = ss.fit_surface(h)
+    assert fit.corr_length_v == e.corr_length_v and fit.lay_angle_deg == e.lay_angle_deg
+    assert fit.elliptical.gamma == e.gamma
+
+
+def test_elliptical_fit_refuses_a_map_without_a_knee():
+    # KC with L far beyond the map: no knee in the band along either axis.
+    h = ss.synthesize(ss.KCorrelation(0.1, 500.0, 2.5), 64, spacing_um=1.0)
+    with pytest.raises(ss.Error, match="elliptical KC fit"):
+        ss.fit_elliptical(h)

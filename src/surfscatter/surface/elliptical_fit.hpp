@@ -65,7 +65,8 @@ struct EllipticalKcFit {
     std::size_t skipped_cells = 0;  // cells whose mean is not positive (masked estimates)
     double log_residual_rms = 0.0;  // weighted rms of ln(data / model) over the cells
     double statistical_floor = 0.0; // sqrt(cells / sum nu)
-    // Empty when resolved; otherwise why not, and the values above are the best attempt inside the box.
+    // Empty when resolved; otherwise why not, and the values above are the best attempt (held within e^0.5 of the
+    // box's edge, as fit_kc holds its own).
     std::string failure;
 
     bool anisotropic() const { return anisotropy_chi2 > kAnisotropyChi2; }
