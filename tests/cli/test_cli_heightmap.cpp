@@ -1,6 +1,7 @@
 // End-to-end: `surfscatter surface synth` and `surfscatter surface fit` through the binary.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -63,7 +64,50 @@ TEST(CliHeightmap, SynthThenFitRecoversParameters) {
     std::ifstream in(csv);
     std::string header;
     std::getline(in, header);
-    EXPECT_EQ(header, "zeta,psd,count,kc_fit,in_band,independent_samples");
+    EXPECT_EQ(header, "zeta,psd,count,kc_fit,in_band,independent_samples,elliptical_fit");
+}
+
+// A brushed map (LV / LU = 0.25 at 120 deg) through synth and fit: the elliptical lines, their CSV column, the
+// picture, and the isotropic lines unchanged beside them.
+TEST(CliHeightmap, EllipticalFitOfABrushedMap) {
+    const std::string gsf = (temp_dir() / "brushed.gsf").string();
+    const auto synth = run_cli({"surface", "synth", "--sigma", "0.05", "--corr-length", "8", "--corr-length-v", "2",
+                                "--lay-angle", "120", "--gamma", "2.5", "--size", "256", "--spacing", "1", "--seed",
+                                "6", "-o", gsf});
+    ASSERT_EQ(synth.exit_code, 0) << synth.err;
+    const std::string png = (temp_dir() / "brushed.png").string(), csv = (temp_dir() / "brushed.csv").string();
+    const std::string picture = (temp_dir() / "brushed_elliptical.png").string();
+    fs::remove(picture);
+    const auto fit = run_cli({"surface", "fit", gsf, "--plot", png, "--csv", csv});
+    ASSERT_EQ(fit.exit_code, 0) << fit.err;
+    const auto values = parse_values(fit);
+    for (const char* name : {"sigma_h", "corr_length", "gamma", "elliptical_corr_length", "elliptical_corr_length_v",
+                             "elliptical_lay_angle", "elliptical_gamma", "elliptical_sigma_h",
+                             "elliptical_log_residual_rms", "elliptical_statistical_floor", "anisotropy_chi2"})
+        ASSERT_TRUE(values.count(name)) << "missing line '" << name << " = ...' in\n" << fit.out;
+    EXPECT_LT(std::abs(values.at("elliptical_corr_length") - 8.0), 4.0 * values.at("elliptical_corr_length_error"));
+    EXPECT_LT(std::abs(values.at("elliptical_corr_length_v") - 2.0),
+              4.0 * values.at("elliptical_corr_length_v_error"));
+    EXPECT_LT(std::abs(values.at("elliptical_lay_angle") - 120.0), 4.0 * values.at("elliptical_lay_angle_error"));
+    EXPECT_NE(fit.out.find("anisotropy = significant\n"), std::string::npos) << fit.out;
+    EXPECT_NE(fit.out.find("elliptical_options = --sigma "), std::string::npos) << fit.out;
+    EXPECT_TRUE(fs::exists(picture));
+    std::ifstream in(csv);
+    std::string header, first;
+    std::getline(in, header);
+    std::getline(in, first);
+    EXPECT_EQ(header, "zeta,psd,count,kc_fit,in_band,independent_samples,elliptical_fit");
+    EXPECT_EQ(std::count(first.begin(), first.end(), ','), 6) << first;
+
+    // An isotropic map: the verdict says so.
+    const std::string iso = (temp_dir() / "iso.gsf").string();
+    ASSERT_EQ(run_cli({"surface", "synth", "--sigma", "0.05", "--corr-length", "4", "--gamma", "2.5", "--size", "256",
+                       "--spacing", "1", "--seed", "6", "-o", iso})
+                  .exit_code,
+              0);
+    const auto iso_fit = run_cli({"surface", "fit", iso});
+    ASSERT_EQ(iso_fit.exit_code, 0) << iso_fit.err;
+    EXPECT_NE(iso_fit.out.find("anisotropy = not significant\n"), std::string::npos) << iso_fit.out;
 }
 
 TEST(CliHeightmap, SameSeedSameFile) {
@@ -143,6 +187,12 @@ TEST(CliHeightmap, BadInputExitsWithStatus2AndOneLine) {
              {{"surface", "synth", "--model", "fractal", "--sigma", "0.1", "--corr-length", "2", "--size", "64",
                "--spacing", "1", "-o", out},
               "--model"},
+             {{"surface", "synth", "--sigma", "0.1", "--corr-length", "2", "--gamma", "3", "--corr-length-v", "-1", "--size", "64",
+               "--spacing", "1", "-o", out},
+              "--corr-length-v"},
+             {{"surface", "synth", "--sigma", "0.1", "--corr-length", "2", "--gamma", "3", "--lay-angle", "nan", "--size", "64",
+               "--spacing", "1", "-o", out},
+              "--lay-angle"},
              {{"surface", "fit", truncated}, "truncated"},
              {{"surface", "fit", inf_csv, "--spacing", "1"}, "inf.csv:5: column 3: height is inf"},
              {{"surface", "info", garbage}, "unknown height map format"},
