@@ -39,11 +39,12 @@ def main():
     extent = [float(v) for v in sys.argv[5:9]]
     zeta_min, zeta_max, lay = (float(v) for v in sys.argv[9:12])
     positive = data[data > 0]
-    # Masked estimates can dip below zero where the PSD is far below their scatter: shown at the floor.
-    floor = positive.min() if positive.size else 1.0
-    log_data = np.log10(np.maximum(data, floor))
-    log_fit = np.log10(np.maximum(fit, floor))
-    low, high = np.percentile(log_data, 1), log_data.max()
+    # The colour scale starts at the 1st percentile of the positive bins: the DC bin (the mean, removed) and masked
+    # estimates that dip below zero where the PSD is far below their scatter are shown at that floor.
+    low = np.percentile(np.log10(positive), 1) if positive.size else 0.0
+    log_data = np.log10(np.maximum(data, 10.0**low))
+    log_fit = np.log10(np.maximum(fit, 10.0**low))
+    high = log_data.max()
     fig, axes = plt.subplots(1, 3, figsize=(16, 5.6))
     for ax, image, name in ((axes[0], log_data, "2-D periodogram (log scale)"),
                             (axes[1], log_fit, "elliptical KC fit (log scale)")):

@@ -200,24 +200,38 @@ TEST(ExampleData, BoardPhotosAreRemadeByTheCommandsOfTheirReadme) {
               read_whole_file((kExampleData / "photos" / "views.json").string()));
 }
 
-// The example height map is what the README's synth command makes (heights within float rounding: the .gsf holds
+// The example height maps are what the README's synth commands make (heights within float rounding: the .gsf holds
 // 32-bit floats, and another CPU's FFT code may round differently).
-TEST(ExampleData, TheHeightMapIsRemadeByTheCommandOfItsReadme) {
+void expect_remade(const std::vector<std::string>& options, const std::string& name) {
     const fs::path dir = scratch_directory("surfscatter_example_photos");
-    const auto r = run_cli({"surface", "synth", "--model", "kc", "--sigma", "0.05", "--corr-length", "2", "--gamma",
-                            "3", "--size", "128", "--spacing", "0.5", "--seed", "1", "--title",
-                            "surfscatter example: KC sigma 0.05 um, L 2 um, gamma 3", "-o",
-                            (dir / "kc_surface.gsf").string()});
+    std::vector<std::string> args{"surface", "synth"};
+    args.insert(args.end(), options.begin(), options.end());
+    args.push_back("-o");
+    args.push_back((dir / name).string());
+    const auto r = run_cli(args);
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    const surface::HeightMap made = surface::read_gsf(dir / "kc_surface.gsf");
-    const surface::HeightMap committed = surface::read_gsf(kExampleData / "kc_surface.gsf");
+    const surface::HeightMap made = surface::read_gsf(dir / name);
+    const surface::HeightMap committed = surface::read_gsf(kExampleData / name);
     ASSERT_EQ(made.nx(), committed.nx());
     ASSERT_EQ(made.ny(), committed.ny());
     EXPECT_EQ(made.spacing_x(), committed.spacing_x());
     double largest = 0.0;
     for (std::size_t i = 0; i < made.size(); ++i)
         largest = std::max(largest, std::abs(made.heights()[i] - committed.heights()[i]));
-    EXPECT_LT(largest, 1e-6);  // um; the heights are about 0.05 um
+    EXPECT_LT(largest, 1e-6) << name;  // um; the heights are about 0.05 um
+}
+
+TEST(ExampleData, TheHeightMapIsRemadeByTheCommandOfItsReadme) {
+    expect_remade({"--model", "kc", "--sigma", "0.05", "--corr-length", "2", "--gamma", "3", "--size", "128",
+                   "--spacing", "0.5", "--seed", "1", "--title", "surfscatter example: KC sigma 0.05 um, L 2 um, gamma 3"},
+                  "kc_surface.gsf");
+}
+
+TEST(ExampleData, TheBrushedHeightMapIsRemadeByTheCommandOfItsReadme) {
+    expect_remade({"--model", "kc", "--sigma", "0.05", "--corr-length", "4", "--corr-length-v", "1", "--lay-angle",
+                   "30", "--gamma", "3", "--size", "128", "--spacing", "0.5", "--seed", "1", "--title",
+                   "surfscatter example: brushed, KC sigma 0.05 um, LU 4 um, LV 1 um, lay angle 30 deg, gamma 3"},
+                  "brushed_surface.gsf");
 }
 
 TEST(ExampleData, CalibrateAndPoseOnTheExamplePhotosRecoverTheTrueCamera) {
