@@ -15,6 +15,7 @@
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/math/vec.hpp"
 #include "surfscatter/surface/kc_fit.hpp"
+#include "surfscatter/surface/least_squares_functor.hpp"
 
 namespace surfscatter::surface {
 
@@ -122,13 +123,7 @@ double cell_residuals(const CellData& data, const Box& box, const Eigen::Vector4
     return log_variance;
 }
 
-struct CellResidualFunctor {
-    using Scalar = double;
-    enum { InputsAtCompileTime = Eigen::Dynamic, ValuesAtCompileTime = Eigen::Dynamic };
-    using InputType = Eigen::VectorXd;
-    using ValueType = Eigen::VectorXd;
-    using JacobianType = Eigen::MatrixXd;
-
+struct CellResidualFunctor : DynamicLeastSquaresFunctor {
     const CellData* data;
     const Box* box;
     int inputs() const { return 4; }
@@ -257,7 +252,7 @@ EllipticalKcFit fit_elliptical_kc(const Psd2d& psd, const KcFit& isotropic) {
     const Box box{std::log(0.25 / fit.zeta_max), std::log(4.0 / fit.zeta_min), std::log(kKcGammaMinusOneMin),
                   std::log(kKcGammaMinusOneMax)};
 
-    CellResidualFunctor functor{&data, &box};
+    CellResidualFunctor functor{{}, &data, &box};
     Eigen::VectorXd residuals;
     const Eigen::Vector2d moments = moment_start(psd, fit.zeta_min, fit.zeta_max);
     Eigen::Vector4d best;

@@ -14,6 +14,7 @@
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/math/vec.hpp"
 #include "surfscatter/surface/height_map_slope.hpp"
+#include "surfscatter/surface/least_squares_functor.hpp"
 #include "surfscatter/surface/map_statistics.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
 
@@ -48,13 +49,7 @@ double profiled_residuals(const RingData& data, double log_l, double log_gm1, Ei
     return log_variance;
 }
 
-struct LogResidualFunctor {
-    using Scalar = double;
-    enum { InputsAtCompileTime = Eigen::Dynamic, ValuesAtCompileTime = Eigen::Dynamic };
-    using InputType = Eigen::VectorXd;
-    using ValueType = Eigen::VectorXd;
-    using JacobianType = Eigen::MatrixXd;
-
+struct LogResidualFunctor : DynamicLeastSquaresFunctor {
     const RingData* data;
     int inputs() const { return 2; }
     int values() const { return static_cast<int>(data->zeta.size()); }
@@ -117,7 +112,7 @@ KcFit fit_kc(const RadialPsd& radial, double nyquist, const KcFitOptions& option
             }
         }
 
-    LogResidualFunctor functor{&data};
+    LogResidualFunctor functor{{}, &data};
     Eigen::NumericalDiff<LogResidualFunctor, Eigen::Central> numerical(functor);
     Eigen::LevenbergMarquardt<Eigen::NumericalDiff<LogResidualFunctor, Eigen::Central>> solver(numerical);
     solver.parameters.xtol = 1e-12;
