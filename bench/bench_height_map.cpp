@@ -15,6 +15,7 @@
 #include "surfscatter/surface/height_map_form.hpp"
 #include "surfscatter/surface/height_map_io.hpp"
 #include "surfscatter/surface/height_map_slope.hpp"
+#include "surfscatter/surface/elliptical_fit.hpp"
 #include "surfscatter/surface/kc_fit.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
 #include "surfscatter/surface/synthesis.hpp"
@@ -58,6 +59,13 @@ static void BM_FitSurface1024(benchmark::State& state) {
     for (auto _ : state) benchmark::DoNotOptimize(ss::fit_surface(map_1024()));
 }
 BENCHMARK(BM_FitSurface1024)->Unit(benchmark::kMillisecond);
+
+// The elliptical KC fit alone (part of fit_surface), on the periodogram and isotropic fit it starts from.
+static void BM_EllipticalFit1024(benchmark::State& state) {
+    const ss::SurfaceFit fit = ss::fit_surface(map_1024());
+    for (auto _ : state) benchmark::DoNotOptimize(ss::fit_elliptical_kc(fit.spectrum, fit.kc));
+}
+BENCHMARK(BM_EllipticalFit1024)->Unit(benchmark::kMillisecond);
 
 static void BM_SmoothedSlope1024(benchmark::State& state) {
     for (auto _ : state) benchmark::DoNotOptimize(ss::rms_slope_smoothed(map_1024(), 2.0));
