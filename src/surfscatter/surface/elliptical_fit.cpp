@@ -25,7 +25,9 @@ namespace {
 struct CellData {
     std::vector<double> zx, zy, multiplicity;  // bins
     std::vector<std::size_t> cell;             // of each bin
-    std::vector<double> log_psd, weight, log_bias, points;  // cells: ln mean P, nu, b, full-plane points
+    // Cells: ln mean P, full-plane points, independent samples if the PSD were flat over the cell, and the weight nu
+    // and log bias b of the fit (set_weights()).
+    std::vector<double> log_psd, points, samples, weight, log_bias;
 };
 
 // Parameters x = (a, e1, e2, g): a = ln sqrt(LU LV), (e1, e2) = ln(LU / LV) (cos 2A, sin 2A), g = ln(gamma - 1).
@@ -62,8 +64,10 @@ Eigen::Vector4d held_in_box(Eigen::Vector4d x, const Box& box) {
 
 // ln of the model's cell means, ln(norm S_c / points_c) with S_c = sum_k m_k (1 + q_k)^p, and (if `gradient`) its
 // derivatives with respect to x (cells x 4), analytic: the fit and its covariance need them at every step.
+// With `sums` and `sum_squares`, also S_c and sum_k m_k (1 + q_k)^(2p) per cell (see set_weights()).
 void log_cell_model(const CellData& data, const Eigen::Vector4d& x, Eigen::VectorXd& log_model,
-                    Eigen::MatrixXd* gradient) {
+                    Eigen::MatrixXd* gradient, std::vector<double>* sums = nullptr,
+                    std::vector<double>* sum_squares = nullptr) {
     // LU^2 zeta_u^2 + LV^2 zeta_v^2 = zeta^T M zeta, M = exp(2a) (cosh d I + sinh d / d [[e1, e2], [e2, -e1]]).
     const double e1 = x[1], e2 = x[2], delta = std::hypot(e1, e2);
     const double sinhc = delta > 1e-4 ? std::sinh(delta) / delta : 1.0 + delta * delta / 6.0;
@@ -81,11 +85,13 @@ void log_cell_model(const CellData& data, const Eigen::Vector4d& x, Eigen::Vecto
     const std::size_t cells = data.log_psd.size();
     std::vector<double> sum(cells, 0.0);
     std::vector<Eigen::Vector4d> sum_gradient(gradient ? cells : 0, Eigen::Vector4d::Zero());
+    if (sum_squares) sum_squares->assign(cells, 0.0);
     for (std::size_t k = 0; k < data.zx.size(); ++k) {
         const double zx = data.zx[k], zy = data.zy[k];
         const double q = mxx * zx * zx + 2.0 * mxy * zx * zy + myy * zy * zy, log1pq = std::log1p(q);
         const double value = data.multiplicity[k] * std::exp(exponent * log1pq);
         sum[data.cell[k]] += value;
+        if (sum_squares) (*sum_squares)[data.cell[k]] += value * value / data.multiplicity[k];
         if (!gradient) continue;
         const double dq = value * exponent / (1.0 + q);
         sum_gradient[data.cell[k]] += Eigen::Vector4d(dq * 2.0 * q,
@@ -93,6 +99,7 @@ void log_cell_model(const CellData& data, const Eigen::Vector4d& x, Eigen::Vecto
                                                       dq * (bxx * zx * zx + 2.0 * bxy * zx * zy + byy * zy * zy),
                                                       value * log1pq * -0.5 * gm1);
     }
+    if (sums) *sums = sum;
     const double log_norm = std::log(gm1 * scale / (2.0 * kPi));  // (gamma - 1) LU LV / (2 pi)
     log_model.resize(static_cast<Eigen::Index>(cells));
     if (gradient) gradient->resize(static_cast<Eigen::Index>(cells), 4);
@@ -138,6 +145,26 @@ struct CellResidualFunctor : DynamicLeastSquaresFunctor {
         return 0;
     }
 };
+
+// A cell mean of exponential variables with unequal means mu_k has the relative variance sum mu_k^2 / (sum mu_k)^2, not
+// 1 / n: where the model varies across a cell (a strongly anisotropic PSD in a wide low-ring sector) it holds fewer
+// independent samples. nu_c = samples_c (sum mu)^2 / (n sum mu^2) under the model x (flat if null), and its log bias.
+void set_weights(CellData& data, const Eigen::Vector4d* x) {
+    const std::size_t cells = data.log_psd.size();
+    std::vector<double> concentration(cells, 1.0);
+    if (x) {
+        Eigen::VectorXd log_model;
+        std::vector<double> sums, sum_squares;
+        log_cell_model(data, *x, log_model, nullptr, &sums, &sum_squares);
+        for (std::size_t c = 0; c < cells; ++c)
+            concentration[c] = sums[c] * sums[c] / (data.points[c] * sum_squares[c]);
+    }
+    for (std::size_t c = 0; c < cells; ++c) {
+        const double nu = data.samples[c] * concentration[c];
+        data.weight[c] = nu;
+        data.log_bias[c] = -1.0 / (2.0 * nu) - 1.0 / (12.0 * nu * nu);
+    }
+}
 
 CellData pool_cells(const Psd2d& psd, double zeta_min, double zeta_max, std::size_t& skipped) {
     const double ring_width = std::max(psd.dzeta_x, psd.dzeta_y);
@@ -187,11 +214,9 @@ CellData pool_cells(const Psd2d& psd, double zeta_min, double zeta_max, std::siz
             ++skipped;
             continue;
         }
-        const double nu = effective_samples(psd.window, points[c], psd.valid_weight);
         index[c] = data.log_psd.size();
         data.log_psd.push_back(std::log(sum_psd[c] / points[c]));
-        data.weight.push_back(nu);
-        data.log_bias.push_back(-1.0 / (2.0 * nu) - 1.0 / (12.0 * nu * nu));
+        data.samples.push_back(effective_samples(psd.window, points[c], psd.valid_weight));
         data.points.push_back(points[c]);
     }
     std::size_t kept = 0;
@@ -206,6 +231,9 @@ CellData pool_cells(const Psd2d& psd, double zeta_min, double zeta_max, std::siz
     data.zx.resize(kept);
     data.zy.resize(kept);
     data.multiplicity.resize(kept);
+    data.weight.resize(data.log_psd.size());
+    data.log_bias.resize(data.log_psd.size());
+    set_weights(data, nullptr);
     return data;
 }
 
@@ -243,7 +271,7 @@ EllipticalKcFit fit_elliptical_kc(const Psd2d& psd, const KcFit& isotropic) {
     fit.window = psd.window;
     fit.zeta_min = isotropic.zeta_min;
     fit.zeta_max = isotropic.zeta_max;
-    const CellData data = pool_cells(psd, fit.zeta_min, fit.zeta_max, fit.skipped_cells);
+    CellData data = pool_cells(psd, fit.zeta_min, fit.zeta_max, fit.skipped_cells);
     fit.cells = data.log_psd.size();
     if (fit.cells < 16)
         fail("elliptical KC fit: only {} cells of the 2-D PSD between {} and {} rad/um; the map is too small to fit "
@@ -253,6 +281,15 @@ EllipticalKcFit fit_elliptical_kc(const Psd2d& psd, const KcFit& isotropic) {
                   std::log(kKcGammaMinusOneMax)};
 
     CellResidualFunctor functor{{}, &data, &box};
+    // Levenberg-Marquardt from x; false if it left the finite numbers.
+    const auto minimise = [&functor](Eigen::VectorXd& x) {
+        Eigen::LevenbergMarquardt<CellResidualFunctor> solver(functor);
+        solver.parameters.xtol = 1e-10;
+        solver.parameters.ftol = 1e-12;
+        solver.parameters.maxfev = 2000;
+        solver.minimize(x);
+        return x.allFinite();
+    };
     Eigen::VectorXd residuals;
     const Eigen::Vector2d moments = moment_start(psd, fit.zeta_min, fit.zeta_max);
     Eigen::Vector4d best;
@@ -261,12 +298,7 @@ EllipticalKcFit fit_elliptical_kc(const Psd2d& psd, const KcFit& isotropic) {
     for (const Eigen::Vector2d& e : {moments, Eigen::Vector2d(0.0, 0.0)}) {
         Eigen::VectorXd x(4);
         x << std::log(isotropic.corr_length_um), e.x(), e.y(), std::log(isotropic.gamma - 1.0);
-        Eigen::LevenbergMarquardt<CellResidualFunctor> solver(functor);
-        solver.parameters.xtol = 1e-10;
-        solver.parameters.ftol = 1e-12;
-        solver.parameters.maxfev = 2000;
-        solver.minimize(x);
-        if (!x.allFinite()) continue;
+        if (!minimise(x)) continue;
         const Eigen::Vector4d held = held_in_box(Eigen::Vector4d(x), box);
         cell_residuals(data, box, held, residuals);
         if (residuals.squaredNorm() < best_cost) {
@@ -275,6 +307,9 @@ EllipticalKcFit fit_elliptical_kc(const Psd2d& psd, const KcFit& isotropic) {
         }
     }
     if (!std::isfinite(best_cost)) fail("elliptical KC fit: the 2-D PSD gives no finite misfit anywhere");
+    // Reweighted once by the fitted model's spread over each cell (set_weights()) and polished from there.
+    set_weights(data, &best);
+    if (Eigen::VectorXd x = best; minimise(x)) best = held_in_box(Eigen::Vector4d(x), box);
 
     const double log_variance = cell_residuals(data, box, best, residuals);
     double sum_w = 0.0;
