@@ -213,3 +213,13 @@ TEST(EllipticalFit, RealFilesResolveOrSayWhy) {
         EXPECT_TRUE(std::isfinite(fit.anisotropy_chi2));
     }
 }
+
+TEST(EllipticalFit, TooSmallAMapIsRefusedWithoutFailingTheIsotropicFit) {
+    // 48^2: the isotropic fit has its 8 rings (4 to 12), the 2-D fit fewer than 16 cells; fit_surface still returns.
+    const ss::KCorrelation kc(kSigma, 1.0, kGamma);
+    const ss::SurfaceFit fit = ss::fit_surface(ss::synthesize_surface(kc, {48, 48, 0.25}, 3));
+    EXPECT_GE(fit.kc.rings, 8u);
+    EXPECT_NE(fit.elliptical.failure.find("too small"), std::string::npos) << fit.elliptical.failure;
+    EXPECT_EQ(fit.elliptical.corr_length_u_um, fit.kc.corr_length_um);
+    EXPECT_THROW(ss::require_resolved(fit.elliptical), surfscatter::Error);
+}

@@ -273,10 +273,17 @@ EllipticalKcFit fit_elliptical_kc(const Psd2d& psd, const KcFit& isotropic) {
     fit.zeta_max = isotropic.zeta_max;
     CellData data = pool_cells(psd, fit.zeta_min, fit.zeta_max, fit.skipped_cells);
     fit.cells = data.log_psd.size();
-    if (fit.cells < 16)
-        fail("elliptical KC fit: only {} cells of the 2-D PSD between {} and {} rad/um; the map is too small to fit "
-             "(need >= 16)",
-             fit.cells, fit.zeta_min, fit.zeta_max);
+    if (fit.cells < 16) {
+        // Too small a map for the 2-D fit (the isotropic one may still stand): the isotropic fit is the best attempt.
+        fit.sigma_h_um = isotropic.sigma_h_um;
+        fit.corr_length_u_um = fit.corr_length_v_um = isotropic.corr_length_um;
+        fit.gamma = isotropic.gamma;
+        fit.lay_angle_error_deg = 90.0;
+        fit.failure = fmt::format("elliptical KC fit: only {} cells of the 2-D PSD between {:.4g} and {:.4g} rad/um; "
+                                  "the map is too small to fit (need >= 16)",
+                                  fit.cells, fit.zeta_min, fit.zeta_max);
+        return fit;
+    }
     const Box box{std::log(0.25 / fit.zeta_max), std::log(4.0 / fit.zeta_min), std::log(kKcGammaMinusOneMin),
                   std::log(kKcGammaMinusOneMax)};
 

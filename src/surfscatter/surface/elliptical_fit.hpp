@@ -80,7 +80,7 @@ struct EllipticalKcFit {
 };
 
 // Fits the elliptical KC to `psd` in the band of `isotropic` (fit_kc on the same map), started from its L and gamma.
-// Throws Error if the band holds fewer than 16 cells; an unresolved fit sets `failure`.
+// An unresolved fit, or a band of fewer than 16 cells (then the isotropic fit is the best attempt), sets `failure`.
 EllipticalKcFit fit_elliptical_kc(const Psd2d& psd, const KcFit& isotropic);
 void require_resolved(const EllipticalKcFit& fit);
 
