@@ -90,6 +90,8 @@ TEST(CliHeightmap, EllipticalFitOfABrushedMap) {
               4.0 * values.at("elliptical_corr_length_v_error"));
     EXPECT_LT(std::abs(values.at("elliptical_lay_angle") - 120.0), 4.0 * values.at("elliptical_lay_angle_error"));
     EXPECT_NE(fit.out.find("anisotropy = significant\n"), std::string::npos) << fit.out;
+    // The ACF's slowest-decay direction (lay_direction_deg, Str's) is the same lay.
+    EXPECT_LT(std::abs(std::remainder(values.at("lay_direction_deg") - values.at("elliptical_lay_angle"), 180.0)), 5.0);
     EXPECT_NE(fit.out.find("elliptical_options = --sigma "), std::string::npos) << fit.out;
     EXPECT_TRUE(fs::exists(picture));
     std::ifstream in(csv);
