@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "surfscatter/bsdf/anisotropic_ghs.hpp"
 #include "surfscatter/bsdf/ggx.hpp"
 #include "surfscatter/bsdf/microfacet.hpp"
 #include "surfscatter/bsdf/ghs.hpp"
@@ -256,12 +257,15 @@ std::unique_ptr<Bsdf> make_bsdf(const ModelOptions& o, std::vector<std::string>*
     validate(o);
     auto material = material::Conductor::from_name(o.material);
     SurfaceSource surface(needs_surface(o) ? o.surface : SurfaceOptions{});
-    if (surface.elliptical(notes))
+    // Elliptical statistics (null for an isotropic surface): the GHS family takes them through AnisotropicGhsBsdf.
+    const auto elliptical = surface.elliptical(notes);
+    if (elliptical && (o.model == ModelKind::ggx || o.model == ModelKind::two_scale))
         fail("model {} does not take elliptical statistics yet (corr_length_v {} um differs from corr_length {} um)",
              to_string(o.model), o.surface.corr_length_v, o.surface.corr_length);
     switch (o.model) {
         case ModelKind::ggx: return std::make_unique<GgxBsdf>(std::move(material), ggx_alpha(o, surface, notes));
         case ModelKind::ghs_ssa:
+            if (elliptical) return make_ghs_ssa(elliptical, std::move(material), o.ssa_form, o.fresnel);
             return make_ghs_ssa(surface.statistics(notes), std::move(material), o.ssa_form, o.fresnel);
         case ModelKind::ghs: {
             auto stats = surface.statistics(notes);
@@ -273,6 +277,9 @@ std::unique_ptr<Bsdf> make_bsdf(const ModelOptions& o, std::vector<std::string>*
                 const double x = surface::refit_self_convolutions(kc, kRefitOrders).exponent_x;
                 core = std::make_shared<RefitScatterCore>(kc, x, o.truncation, o.epsilon);
             }
+            if (elliptical)
+                return std::make_unique<AnisotropicGhsBsdf>(elliptical, std::move(core), std::move(material),
+                                                            ghs_settings(o));
             return std::make_unique<GhsBsdf>(std::move(stats), std::move(core), std::move(material), ghs_settings(o));
         }
         case ModelKind::two_scale: {

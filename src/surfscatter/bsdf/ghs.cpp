@@ -3,77 +3,22 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstring>
 #include <limits>
-#include <type_traits>
 
 #include <fmt/format.h>
 
-#include "surfscatter/bsdf/node_axis.hpp"
-#include "surfscatter/bsdf/rayleigh_rice.hpp"
+#include "surfscatter/bsdf/incidence_tables.hpp"
 #include "surfscatter/bsdf/wedge_sampling.hpp"
 #include "surfscatter/core/error.hpp"
-#include "surfscatter/core/table_cache.hpp"
 #include "surfscatter/math/fast_math.hpp"
-#include "surfscatter/math/simd_pair.hpp"
 #include "surfscatter/surface/relevant_roughness.hpp"
 
 namespace surfscatter::bsdf {
 
 namespace {
 
-// Incidence nodes, in cos(theta_i): theta_j = 90 deg (1 - (1 - j / (kThetaNodes - 1))^3), dense toward grazing where
-// sigma_rel and K vary fastest, the last one at cos theta_i = 1e-6 instead of 0 (NodeAxis needs positive nodes);
-// wavelength nodes 2 % apart over [kMinWavelength, kMaxWavelength]. NodeAxis moves them to its cell edges (by at most
-// 0.2 %).
-constexpr double kMinCosine = 1e-6;
-NodeAxis incidence_axis() {
-    std::vector<double> cosines;
-    for (int j = GhsBsdf::kThetaNodes - 1; j >= 0; --j) {
-        const double u = double(j) / (GhsBsdf::kThetaNodes - 1);
-        const double theta = 90.0 * kDegree * (1.0 - (1.0 - u) * (1.0 - u) * (1.0 - u));
-        cosines.push_back(j == 0 ? 1.0 : std::max(kMinCosine, std::cos(theta)));
-    }
-    return NodeAxis(cosines);
-}
-
-// Cubic through (x[0], y[0]) .. (x[3], y[3]) as coefficients of d = x - a over [a, b] (a < b inside the nodes): from
-// its values at t = (x - a) / (b - a) = 0, 1/3, 2/3, 1 (Lagrange), the monomial form in t, then c_n / (b - a)^n.
-std::array<double, 4> interval_cubic(const double* x, const double* y, double a, double b) {
-    std::array<double, 4> v{};
-    for (int m = 0; m < 4; ++m) {
-        const double at = a + (b - a) * m / 3.0;
-        for (int i = 0; i < 4; ++i) {
-            double w = y[i];
-            for (int j = 0; j < 4; ++j)
-                if (j != i) w *= (at - x[j]) / (x[i] - x[j]);
-            v[m] += w;
-        }
-    }
-    // p(t) = c0 + c1 t + c2 t^2 + c3 t^3 through v at t = 0, 1/3, 2/3, 1.
-    const double h = b - a;
-    return {v[0], (-11.0 * v[0] + 18.0 * v[1] - 9.0 * v[2] + 2.0 * v[3]) / (2.0 * h),
-            (18.0 * v[0] - 45.0 * v[1] + 36.0 * v[2] - 9.0 * v[3]) / (2.0 * h * h),
-            (-9.0 * v[0] + 27.0 * v[1] - 27.0 * v[2] + 9.0 * v[3]) / (2.0 * h * h * h)};
-}
-// Estrin's form in d: two independent multiply-adds, then one. Horner in t (three dependent ones after the multiply
-// that makes t) made exact-GHS eval 5 % slower than the bilinear lookup before the cubic; this is as fast.
-template <class Interval>
-math::Pair estrin(const Interval& in, math::Pair d) {
-    using math::load_pair;
-    return (load_pair(in.c[0]) + load_pair(in.c[1]) * d) + (load_pair(in.c[2]) + load_pair(in.c[3]) * d) * (d * d);
-}
-NodeAxis wavelength_axis() {
-    std::vector<double> lambdas{GhsBsdf::kMinWavelength};
-    while (lambdas.back() < GhsBsdf::kMaxWavelength) lambdas.push_back(lambdas.back() * std::exp(0.02));
-    return NodeAxis(lambdas);
-}
-[[noreturn, gnu::cold, gnu::noinline]] void wavelength_out_of_range(double lambda_nm) {
-    fail("wavelength {} nm outside [{}, {}] nm", lambda_nm, GhsBsdf::kMinWavelength, GhsBsdf::kMaxWavelength);
-}
-
-const NodeAxis kIncidenceAxis = incidence_axis();
-const NodeAxis kWavelengthAxis = wavelength_axis();
+const NodeAxis kIncidenceAxis = ghs_incidence_axis();
+const NodeAxis kWavelengthAxis = ghs_wavelength_axis();
 
 }  // namespace
 
@@ -82,14 +27,11 @@ GhsBsdf::GhsBsdf(std::shared_ptr<const surface::RadialStatistics> stats, std::sh
     : stats_(std::move(stats)), core_(std::move(core)), material_(std::move(material)),
       settings_(std::move(settings)), exact_(dynamic_cast<const ExactScatterCore*>(core_.get())),
       log_native_(exact_ && stats_->psd_jump_radius() == 0.0 ? &exact_->table() : nullptr),
-      tables_(std::size_t(kWavelengthAxis.size())) {
-    if (kIncidenceAxis.size() != kThetaNodes)
-        fail("internal: {} incidence nodes, expected {}", kIncidenceAxis.size(), kThetaNodes);
-}
+      tables_(std::size_t(kWavelengthAxis.size())) {}
 
 [[gnu::always_inline]] inline GhsBsdf::Incidence GhsBsdf::lookup(double cos_theta_i, double lambda_nm,
                                                                   double k) const {
-    if (!(lambda_nm >= kMinWavelength && lambda_nm <= kMaxWavelength)) wavelength_out_of_range(lambda_nm);
+    if (!(lambda_nm >= kMinWavelength && lambda_nm <= kMaxWavelength)) ghs_wavelength_out_of_range(lambda_nm);
     const NodeAxis::Position l = kWavelengthAxis.position(lambda_nm);
     const double cosine = std::clamp(cos_theta_i, kIncidenceAxis.node(0), 1.0);
     const int c = kIncidenceAxis.position(cosine).interval;
@@ -134,24 +76,7 @@ double GhsBsdf::specular_exponent(const Incidence& in, double cos_theta_i) {
 }
 
 inline double GhsBsdf::fresnel(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
-    return settings_.fresnel == FresnelMode::incident ? material_.reflectance(std::min(1.0, wi.z), lambda_nm)
-                                                      : outgoing_fresnel(wi, wo, lambda_nm);
-}
-
-double GhsBsdf::outgoing_fresnel(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
-    switch (settings_.fresnel) {
-        case FresnelMode::incident: break;
-        case FresnelMode::half: {
-            const Vec3 h = normalize(wi + wo);
-            return material_.reflectance(std::clamp(dot(wi, h), 0.0, 1.0), lambda_nm);
-        }
-        case FresnelMode::rr: {
-            if (material_.is_perfect()) return rayleigh_rice_q_perfect(wi, wo);
-            const std::complex<double> n = material_.ior(lambda_nm);
-            return rayleigh_rice_q(wi, wo, n * n);
-        }
-    }
-    return 0.0;
+    return lobe_fresnel(material_, settings_.fresnel, wi, wo, lambda_nm);
 }
 
 double GhsBsdf::eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
@@ -251,23 +176,12 @@ std::optional<BsdfSample> GhsBsdf::sample(const Vec3& wi, double lambda_nm, doub
 // A table takes 64 visible-disc integrals to build (~30 ms; a render touches ~45 wavelength nodes), so it is kept on
 // disk beside the lobe tables, under a key naming everything direct() depends on.
 GhsBsdf::Table GhsBsdf::cached_table(double lambda_nm) const {
-    constexpr std::uint32_t kVersion = 3;  // of build_table's construction and Interval's layout
-    static_assert(std::is_trivially_copyable_v<Table> && sizeof(Table) % sizeof(double) == 0);
+    constexpr std::uint32_t kVersion = 3;  // of build_table's construction and CubicPairInterval's layout
     const std::string key =
         fmt::format("ghs-incidence:{}:sigma_h={:.17g}:{}:normalization={}:relevant={}:lambda={:.17g}:nodes={}",
                     stats_->cache_key(), stats_->sigma_h(), core_->cache_key(), int(settings_.normalization),
                     settings_.relevant_roughness, lambda_nm, kThetaNodes);
-    const auto file = table_cache_file("ghs-incidence", kVersion, key);
-    Table t;
-    if (const auto saved = load_cached_table(file, kVersion, key); saved && saved->size() * sizeof(double) == sizeof t) {
-        std::memcpy(&t, saved->data(), sizeof t);
-        return t;
-    }
-    t = build_table(lambda_nm);
-    std::vector<double> payload(sizeof t / sizeof(double));
-    std::memcpy(payload.data(), &t, sizeof t);
-    save_cached_table(file, kVersion, key, payload);
-    return t;
+    return cached_incidence_table<Table>("ghs-incidence", kVersion, key, [&] { return build_table(lambda_nm); });
 }
 
 GhsBsdf::Table GhsBsdf::build_table(double lambda_nm) const {
@@ -279,14 +193,7 @@ GhsBsdf::Table GhsBsdf::build_table(double lambda_nm) const {
         log_sigma[j] = std::log(std::max(d.sigma, std::numeric_limits<double>::min()));
         log_norm[j] = std::log(std::max(d.norm / norm_power(x[j]), std::numeric_limits<double>::min()));
     }
-    Table t;
-    for (int j = 0; j + 1 < kThetaNodes; ++j) {
-        const int first = std::clamp(j - 1, 0, kThetaNodes - 4);  // the 4 nodes around the interval (one-sided at ends)
-        const auto s = interval_cubic(&x[first], &log_sigma[first], x[j], x[j + 1]);
-        const auto n = interval_cubic(&x[first], &log_norm[first], x[j], x[j + 1]);
-        for (int p = 0; p < 4; ++p) t[j].c[p][0] = s[p], t[j].c[p][1] = n[p];
-    }
-    return t;
+    return fit_incidence_table(x, log_sigma, log_norm);
 }
 
 GhsBsdf::Direct GhsBsdf::direct(double theta_i, double lambda_nm) const {

@@ -27,6 +27,7 @@
 #include <string>
 
 #include "surfscatter/bsdf/bsdf.hpp"
+#include "surfscatter/bsdf/incidence_tables.hpp"
 #include "surfscatter/bsdf/lazy_slots.hpp"
 #include "surfscatter/bsdf/model_options.hpp"
 #include "surfscatter/bsdf/scatter_core.hpp"
@@ -46,9 +47,9 @@ struct GhsSettings {
 
 class GhsBsdf final : public Bsdf {
 public:
-    static constexpr double kMinWavelength = 0.1;  // nm
-    static constexpr double kMaxWavelength = 1e8;  // nm
-    static constexpr int kThetaNodes = 64;         // incidence nodes of the sigma / N tables
+    static constexpr double kMinWavelength = kGhsMinWavelength;  // nm
+    static constexpr double kMaxWavelength = kGhsMaxWavelength;  // nm
+    static constexpr int kThetaNodes = kGhsThetaNodes;           // incidence nodes of the sigma / N tables
 
     GhsBsdf(std::shared_ptr<const surface::RadialStatistics> stats, std::shared_ptr<const ScatterCore> core,
             material::Conductor material, GhsSettings settings);
@@ -82,10 +83,8 @@ public:
     double core_lobe(const Vec3& wi, const Vec3& wo, double lambda_nm, double sigma_um) const;
 
 private:
-    // Cubic coefficients (in d = cos theta_i - the interval's first node) of ln sigma and ln(N/cos^p), the two
-    // side by side for one SSE2 pair per power of d.
-    struct Interval { double c[4][2]; };
-    using Table = std::array<Interval, kThetaNodes - 1>;  // over cos theta_i
+    using Interval = CubicPairInterval;  // ln sigma and ln(N / cos^p)
+    using Table = IncidenceTable;
     struct Incidence { double k, log_sigma, log_norm; };  // k in rad/um; log_norm = ln(N / cos^p theta_i)
     Incidence lookup(double cos_theta_i, double lambda_nm) const;
     Incidence lookup(double cos_theta_i, double lambda_nm, double k) const;  // k = wavenumber(lambda_nm), given
@@ -111,7 +110,6 @@ private:
     Table build_table(double lambda_nm) const;
     double scatter_mass(double theta_i, double lambda_nm, double sigma_um) const;  // integral of density over disc
     double fresnel(const Vec3& wi, const Vec3& wo, double lambda_nm) const;
-    double outgoing_fresnel(const Vec3& wi, const Vec3& wo, double lambda_nm) const;  // the half and rr modes
 
     std::shared_ptr<const surface::RadialStatistics> stats_;
     std::shared_ptr<const ScatterCore> core_;

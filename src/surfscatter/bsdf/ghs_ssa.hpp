@@ -7,14 +7,18 @@
 //    HP17 renormaliser); the plain 1/M_disc form exceeds albedo 1 at grazing incidence (g(theta_o) > g0 there).
 //  strict form: f_r = F (4 pi^2 / lambda^4)(cos theta_i + cos theta_o)^2 PSD_f(f) = F k^2 g_h P-hat(zeta),
 //    g_h with sigma_h, no renormalisation: the textbook first-order term, which is not energy bounded for large g.
-// F follows --fresnel exactly as in the full GHS.
+// F follows --fresnel exactly as in the full GHS. On elliptical statistics the same lobe through AnisotropicGhsBsdf.
 #include <memory>
 
 #include "surfscatter/bsdf/ghs.hpp"
+#include "surfscatter/surface/elliptical_statistics.hpp"
 
 namespace surfscatter::bsdf {
 
 std::unique_ptr<GhsBsdf> make_ghs_ssa(std::shared_ptr<const surface::RadialStatistics> stats,
                                       material::Conductor material, SsaForm form, FresnelMode fresnel);
+class AnisotropicGhsBsdf;
+std::unique_ptr<AnisotropicGhsBsdf> make_ghs_ssa(std::shared_ptr<const surface::EllipticalStatistics> stats,
+                                                 material::Conductor material, SsaForm form, FresnelMode fresnel);
 
 }  // namespace surfscatter::bsdf

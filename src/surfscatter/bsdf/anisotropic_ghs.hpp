@@ -1,0 +1,96 @@
+#pragma once
+// The GHS family (GhsBsdf: full GHS exact or refit, SSA) on elliptical statistics (surface/elliptical_statistics.hpp,
+// THEORY 7.1, docs/MODELS.md "Anisotropic models"): any isotropic ScatterCore built on the radial statistics serves,
+// read at the stretched radius (Fourier scaling: P-hat^{*m}(zeta) = s P-hat_radial^{*m}(|(zeta_u, s zeta_v)|) for
+// every order m, so S_g(zeta) = s S_g,radial(|(zeta_u, s zeta_v)|), s = LV / LU):
+//   f_r(i, o) = F(i, o) N(i, lambda) k^2 s core.density(g, |(zeta_u, s zeta_v)|),  zeta = k (i_xy + o_xy),
+//   g = (k sigma (cos theta_i + cos theta_o))^2, plus the coherent delta R e^{-g0}, g0 = (2 k sigma cos theta_i)^2.
+// sigma (sigma_rel^2 = sigma_h^2 times the mass of P-hat over the visible disc, the disc of radius k about k i_xy in
+// the zeta plane; P-hat is even, so the disc about -k i_xy holds the same) and N (GhsBsdf's normalisations) now
+// depend on the incidence azimuth relative to the lay, phi_r = phi_i - A, through c = cos 2 phi_r only: the surface is
+// symmetric under phi_r -> -phi_r and phi_r -> phi_r + pi, and an even pi-periodic smooth function of phi_r is a
+// smooth function of cos 2 phi_r. Per wavelength node (GhsBsdf's) and per azimuth node (kAzimuthNodes, uniform in c
+// over [-1, 1]) ln sigma and ln(N / cos^p theta_i) are GhsBsdf's cubics over cos theta_i; between azimuth nodes the
+// 4-point Lagrange cubic in c, between wavelength nodes linear. A table is 64 x 9 pairs of visible-disc integrals
+// (adaptive cubature to 1e-7, both halves of the disc: the integrand is not symmetric about the incidence plane), built
+// lazily and kept in the disk cache under a key naming the elliptical statistics (LV and A included), the core and
+// the settings. Accuracy (AnisotropicGhs.TablesMatchDirectQuadrature, against 2-D quadrature in the test): sigma
+// within 1e-3 and N within 3e-3 of their direct values at off-node (theta_i, phi_r) for s = 0.25 .. 4.
+// Sampling: the delta with probability e^{-g0}; otherwise the core's radius at g* = g0 in the stretched plane
+// (|w| <= k (1 + sin theta_i) max(1, s), w = (zeta_u, s zeta_v)), a uniform azimuth there, mapped back to zeta; a draw
+// outside the visible disc is a failed sample (nothing returned), so the pdf is the exact sub-probability density
+//   pdf(o) = (1 - e^{-g0}) s k^2 cos theta_o p_core(|w|).
+// The core's PSD must not jump (KC, Gaussian: those the factory makes elliptical).
+#include <array>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "surfscatter/bsdf/bsdf.hpp"
+#include "surfscatter/bsdf/ghs.hpp"
+#include "surfscatter/bsdf/incidence_tables.hpp"
+#include "surfscatter/bsdf/lazy_slots.hpp"
+#include "surfscatter/bsdf/scatter_core.hpp"
+#include "surfscatter/material/conductor.hpp"
+#include "surfscatter/surface/elliptical_statistics.hpp"
+
+namespace surfscatter::bsdf {
+
+class AnisotropicGhsBsdf final : public Bsdf {
+public:
+    static constexpr int kAzimuthNodes = 9;  // in cos 2 phi_r over [-1, 1]
+
+    // `core` made on stats->radial_ptr() (ExactScatterCore, RefitScatterCore or FirstOrderCore).
+    AnisotropicGhsBsdf(std::shared_ptr<const surface::EllipticalStatistics> stats,
+                       std::shared_ptr<const ScatterCore> core, material::Conductor material, GhsSettings settings);
+
+    double eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const override;
+    std::optional<BsdfSample> sample(const Vec3& wi, double lambda_nm, double u_lobe, Vec2 u) const override;
+    double pdf(const Vec3& wi, const Vec3& wo, double lambda_nm) const override;
+    WavelengthValues eval_packet(const Vec3& wi, const Vec3& wo, const WavelengthValues& lambda_nm,
+                                 WavelengthValues* pdf) const override;
+    double delta_reflectance(const Vec3& wi, double lambda_nm) const override;
+    double delta_probability(const Vec3& wi, double lambda_nm) const override;
+    std::string name() const override { return settings_.name; }
+
+    const surface::EllipticalStatistics& statistics() const { return *stats_; }
+    // The roughness used in g (um) and the lobe normalisation N for incidence wi (local frame), as tabulated.
+    double sigma(const Vec3& wi, double lambda_nm) const { return std::exp(lookup(wi, lambda_nm).log_sigma); }
+    double normalization(const Vec3& wi, double lambda_nm) const {
+        return std::exp(lookup(wi, lambda_nm).log_norm) * norm_power(wi.z);
+    }
+    // Both computed directly for incidence wi (visible-disc integrals, ~1 ms): the reference of the tabulation.
+    GhsBsdf::Direct direct(const Vec3& wi, double lambda_nm) const;
+
+private:
+    using AzimuthTables = std::array<IncidenceTable, kAzimuthNodes>;
+    struct Incidence { double k, log_sigma, log_norm; };
+    Incidence lookup(const Vec3& wi, double lambda_nm) const;
+    Incidence lookup(const Vec3& wi, double lambda_nm, double k) const;
+    double norm_power(double cos_theta_i) const {
+        return settings_.normalization == LobeNormalization::albedo ? cos_theta_i * cos_theta_i : 1.0;
+    }
+    // |(zeta_u, s zeta_v)| / k for q = i_xy + o_xy.
+    double stretched(double qx, double qy) const {
+        const Vec2 uv = stats_->to_lay({qx, qy});
+        return std::sqrt(uv.x * uv.x + stretch2_ * uv.y * uv.y);
+    }
+    double eval(const Vec3& wi, const Vec3& wo, double lambda_nm, const Incidence& in, double log_cosine_sum,
+                double log_stretched2) const;
+    double pdf(const Vec3& wi, const Vec3& wo, const Incidence& in) const;
+    double stretched_zeta_max(const Vec3& wi, double k) const;
+    AzimuthTables cached_tables(double lambda_nm) const;
+    AzimuthTables build_tables(double lambda_nm) const;
+    // Integral over the visible disc of f(q_x, q_y, cos theta_o) d^2 q (q = i_xy + o_xy), both halves.
+    double disc_integral(const Vec3& wi, const std::function<double(double, double, double)>& f) const;
+
+    std::shared_ptr<const surface::EllipticalStatistics> stats_;
+    std::shared_ptr<const ScatterCore> core_;
+    material::Conductor material_;
+    GhsSettings settings_;
+    double stretch_, stretch2_;
+    const surface::ScatterLobeTable* log_native_;  // the exact core's log-valued table, else null
+    LazySlots<AzimuthTables> tables_;               // one per wavelength node
+};
+
+}  // namespace surfscatter::bsdf
