@@ -9,6 +9,7 @@
 #include "surfscatter/bsdf/wedge_sampling.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/math/fast_math.hpp"
+#include "surfscatter/math/quadrature.hpp"
 
 namespace surfscatter::bsdf {
 
@@ -205,30 +206,50 @@ AnisotropicGhsBsdf::AzimuthTables AnisotropicGhsBsdf::build_tables(double lambda
     return tables;
 }
 
-double AnisotropicGhsBsdf::disc_integral(const Vec3& wi, const std::function<double(double, double, double)>& f) const {
-    const double s = sin_theta(wi), phi_i = s > 0 ? std::atan2(wi.y, wi.x) : 0.0;
+double AnisotropicGhsBsdf::disc_integral(const Vec3& wi, const std::function<double(Vec2, double)>& f) const {
+    const double s = sin_theta(wi);
+    // The lay components of q = q (cos(phi_i + phi), sin(phi_i + phi)) and of its mirror image phi -> -phi, from
+    // cos phi and sin phi alone.
+    const Vec2 along = s > 0 ? stats_->to_lay({wi.x / s, wi.y / s}) : stats_->to_lay({1.0, 0.0});
     return integrate_disc_adaptive(s, wi.z, [&](double q, double phi, double cos2_theta_o) {
-        const double a = phi_i + phi, b = phi_i - phi;  // the two halves of the disc
-        return 0.5 * (f(q * std::cos(a), q * std::sin(a), cos2_theta_o) +
-                      f(q * std::cos(b), q * std::sin(b), cos2_theta_o));
-    }, 1e-7).value;
+        const double c = q * std::cos(phi), t = q * std::sin(phi);
+        const double uc = along.x * c, us = along.x * t, vc = along.y * c, vs = along.y * t;
+        return 0.5 * (f({uc - vs, vc + us}, cos2_theta_o) + f({uc + vs, vc - us}, cos2_theta_o));
+    }, 1e-4).value;
+}
+
+// Along rays zeta = t e from the specular point (|e| = 1, at azimuth phi from the incidence plane): the ray leaves the
+// visible disc at t = k q_max, q_max = b + sqrt(b^2 + cos^2 theta_i), b = sin theta_i cos phi, and P-hat(t e) =
+// s P-hat_radial(a t), a = |(e_u, s e_v)|, so it carries s / (2 pi a^2) F(a k q_max), F the radial CDF (closed form for
+// KC and Gaussian): a 1-D integral over phi, split where b = 0 (at grazing incidence q_max falls from 2 to 0 there).
+double AnisotropicGhsBsdf::visible_disc_mass(const Vec3& wi, double k) const {
+    const double s = sin_theta(wi), c2 = wi.z * wi.z, phi_i = s > 0 ? std::atan2(wi.y, wi.x) : 0.0;
+    auto ray = [&](double phi) {
+        const double b = s * std::cos(phi), root = std::sqrt(b * b + c2);
+        const double q_max = b >= 0 ? b + root : c2 / (root - b);  // no cancellation for b < 0
+        const Vec2 uv = stats_->to_lay({std::cos(phi_i + phi), std::sin(phi_i + phi)});
+        const double a2 = uv.x * uv.x + stretch2_ * uv.y * uv.y;
+        return stretch_ / (kTwoPi * a2) * stats_->radial().radial_cdf(std::sqrt(a2) * k * q_max);
+    };
+    double mass = 0;
+    for (int quarter = 0; quarter < 4; ++quarter)
+        mass += math::integrate_adaptive(ray, 0.5 * kPi * quarter, 0.5 * kPi * (quarter + 1), 1e-10, 1e-14);
+    return std::clamp(mass, 0.0, 1.0);
 }
 
 GhsBsdf::Direct AnisotropicGhsBsdf::direct(const Vec3& wi, double lambda_nm) const {
     const double k = wavenumber(lambda_nm), ci = wi.z;
-    // sigma_rel^2 / sigma_h^2: the mass of P-hat over the visible disc (d^2 zeta = k^2 d^2 q).
-    const double disc_mass = std::clamp(
-        k * k * disc_integral(wi, [&](double qx, double qy, double) { return stats_->psd_unit({k * qx, k * qy}); }),
-        0.0, 1.0);
+    const bool needs_mass = settings_.relevant_roughness || settings_.normalization == LobeNormalization::disc_mass;
+    const double disc_mass = needs_mass ? visible_disc_mass(wi, k) : 1.0;
     const double sigma = settings_.relevant_roughness ? stats_->sigma_h() * std::sqrt(disc_mass) : stats_->sigma_h();
     switch (settings_.normalization) {
         case LobeNormalization::none: return {sigma, 1.0};
         case LobeNormalization::disc_mass: return {sigma, 1.0 / disc_mass};
         case LobeNormalization::albedo: {
             const double a = 2.0 * k * sigma * ci;
-            const double mass = k * k * stretch_ * disc_integral(wi, [&](double qx, double qy, double cos2_theta_o) {
+            const double mass = k * k * stretch_ * disc_integral(wi, [&](Vec2 uv, double cos2_theta_o) {
                 return core_->density_at_logs(2.0 * math::fast_log(k * sigma * (ci + std::sqrt(cos2_theta_o))),
-                                              math::fast_log(k * stretched(qx, qy)));
+                                              0.5 * math::fast_log(k * k * (uv.x * uv.x + stretch2_ * uv.y * uv.y)));
             });
             return {sigma, mass > 0 ? -std::expm1(-a * a) / mass : 1.0};
         }
