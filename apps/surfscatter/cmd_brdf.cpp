@@ -30,7 +30,7 @@ struct BrdfArgs {
     double epsilon = 1e-6, alpha = 0, smoothing = 0, cutoff_wavelengths = 100;
     bool no_renormalization = false;
     std::string psd, surface_file, form = "plane";
-    double sigma = 0, corr_length = 0, gamma = 0;
+    double sigma = 0, corr_length = 0, gamma = 0, corr_length_v = 0, lay_angle = 0;
     // The --surface map, read when first needed and shared by every model of the command.
     mutable std::shared_ptr<const surface::HeightMap> height_map;
     double wavelength = 0, phi_i = 0;
@@ -141,6 +141,8 @@ bsdf::ModelOptions model_options(const BrdfArgs& a, const std::string& spec) {
         o.surface.sigma = a.sigma;
         o.surface.corr_length = a.corr_length;
         o.surface.gamma = a.gamma;
+        o.surface.corr_length_v = a.corr_length_v;
+        o.surface.lay_angle = a.lay_angle;
     } else if (needs_surface) {
         fail("missing surface for --model {}: give --sigma S --corr-length L --gamma G (KC), "
              "--psd gaussian --sigma S --corr-length l, or --surface MAP{}", model,
@@ -211,7 +213,7 @@ void albedo(const BrdfArgs& a) {
     check_common(a);
     if (a.theta_i.size() != 1) fail("--theta-i takes one angle for brdf albedo, got {}", a.theta_i.size());
     const auto model = single_model(a);
-    const auto r = bsdf::directional_albedo(*model, a.theta_i[0] * kDegree, a.wavelength);
+    const auto r = bsdf::directional_albedo(*model, a.theta_i[0] * kDegree, a.wavelength, a.phi_i * kDegree);
     std::printf("albedo = %s\nspecular = %s\nerror = %s\n", format_number(r.total()).c_str(),
                 format_number(r.specular).c_str(), format_number(r.error).c_str());
 }
@@ -284,6 +286,10 @@ void add_model_options(CLI::App* cmd, BrdfArgs& a, bool several_thetas) {
     cmd->add_option("--sigma", a.sigma, "rms height (um); --sigma, --corr-length, --gamma alone mean --psd kc");
     cmd->add_option("--corr-length", a.corr_length, "correlation length (um): KC L, or Gaussian l");
     cmd->add_option("--gamma", a.gamma, "KC exponent gamma > 1");
+    cmd->add_option("--corr-length-v", a.corr_length_v, "elliptical surface: correlation length LV (um) across the "
+                                                        "lay, --corr-length being LU along it (default LV = LU)");
+    cmd->add_option("--lay-angle", a.lay_angle, "lay direction u (deg from phi = 0 towards phi = 90, default 0); "
+                                                "docs/SURFACE.md \"Anisotropy\"");
     cmd->add_option("--surface", a.surface_file, "height map (any format `surface info` reads): KC fitted to it "
                                                  "(--psd file, default) or its own PSD (--psd measured)");
     cmd->add_option("--form", a.form, "form removed from --surface: none | plane (default) | poly2 | poly3 | poly4");
@@ -292,7 +298,7 @@ void add_model_options(CLI::App* cmd, BrdfArgs& a, bool several_thetas) {
         add_number_list(cmd, "--theta-i", a.theta_i, "incidence angles (deg), comma separated")->required();
     else
         cmd->add_option("--theta-i", a.theta_i, "incidence angle (deg)")->required();
-    cmd->add_option("--phi-i", a.phi_i, "incidence azimuth (deg, default 0)");
+    cmd->add_option("--phi-i", a.phi_i, "incidence azimuth (deg, default 0; relative to the lay for an elliptical surface)");
 }
 
 const Command command("brdf", [](CLI::App& app) {

@@ -67,6 +67,8 @@ const std::map<std::string, Setter>& option_setters() {
         {"sigma", [](ModelOptions& o, py::handle v, const char* n) { o.surface.sigma = number_option(v, n); }},
         {"corr_length", [](ModelOptions& o, py::handle v, const char* n) { o.surface.corr_length = number_option(v, n); }},
         {"gamma", [](ModelOptions& o, py::handle v, const char* n) { o.surface.gamma = number_option(v, n); }},
+        {"corr_length_v", [](ModelOptions& o, py::handle v, const char* n) { o.surface.corr_length_v = number_option(v, n); }},
+        {"lay_angle_deg", [](ModelOptions& o, py::handle v, const char* n) { o.surface.lay_angle = number_option(v, n); }},
         {"surface_file", [](ModelOptions& o, py::handle v, const char* n) { o.surface.surface_file = path_string(v, n); }},
         {"form", [](ModelOptions& o, py::handle v, const char* n) { o.surface.form = surface::parse_form(text_option(v, n), n); }},
     };
@@ -75,6 +77,12 @@ const std::map<std::string, Setter>& option_setters() {
 
 // The surface= argument: statistics objects and height maps become the SurfaceOptions the XML would give. A height
 // map (object or file) is the surface of psd 'file' (KC fitted to it) unless psd 'measured' (its own PSD) was given.
+void set_lay(ModelOptions& o, py::handle statistics) {
+    const Lay lay = lay_of(statistics);
+    o.surface.corr_length_v = lay.corr_length_v;
+    o.surface.lay_angle = lay.lay_angle_deg;
+}
+
 void set_surface(ModelOptions& o, py::handle value, bool psd_given) {
     const bool statistics = py::isinstance<surface::KCorrelation>(value) || py::isinstance<surface::GaussianAcv>(value) ||
                             py::isinstance<surface::MapStatistics>(value);
@@ -86,6 +94,7 @@ void set_surface(ModelOptions& o, py::handle value, bool psd_given) {
         o.surface.sigma = kc.sigma_h();
         o.surface.corr_length = kc.correlation_length();
         o.surface.gamma = kc.gamma();
+        set_lay(o, value);
         return;
     }
     if (py::isinstance<surface::GaussianAcv>(value)) {
@@ -93,6 +102,7 @@ void set_surface(ModelOptions& o, py::handle value, bool psd_given) {
         o.surface.psd = bsdf::PsdKind::gaussian;
         o.surface.sigma = g.sigma_h();
         o.surface.corr_length = g.correlation_length();
+        set_lay(o, value);
         return;
     }
     if (py::isinstance<surface::MapStatistics>(value)) {  // measured_statistics(map): the map's own PSD
@@ -132,7 +142,8 @@ PyBsdf make(const std::string& model, py::handle surface_arg, py::handle materia
             fail("unknown option '{}' (options: model, surface, material, {})", name, known);
         }
         setter->second(o, value, setter->first.c_str());
-        parameter_keywords |= name == "sigma" || name == "corr_length" || name == "gamma" || name == "surface_file";
+        parameter_keywords |= name == "sigma" || name == "corr_length" || name == "gamma" || name == "surface_file" ||
+                              name == "corr_length_v" || name == "lay_angle_deg";
     }
     const bool psd_given = options.contains("psd");
     bsdf::imply_alpha_from(o, options.contains("alpha"), options.contains("alpha_from"));
@@ -152,7 +163,8 @@ PyBsdf make(const std::string& model, py::handle surface_arg, py::handle materia
     for (const auto& [key, value] : options) given.push_back(key.cast<std::string>());
     if (!surface_arg.is_none()) given.emplace_back("surface");
     for (const std::string& given_name : given)
-        if (const std::string why = bsdf::inapplicable_option(o, given_name == "surface" ? "psd" : given_name);
+        if (const std::string why = bsdf::inapplicable_option(
+                o, given_name == "surface" ? "psd" : given_name == "lay_angle_deg" ? "lay_angle" : given_name);
             !why.empty())
             fail("{} does not apply to model {}: {}", given_name, model_name, why);
     std::vector<std::string> notes;
@@ -175,6 +187,7 @@ py::dict options_dict(const ModelOptions& o) {
                     "cutoff_wavelengths"_a = o.cutoff_wavelengths, "macro_ndf"_a = to_string(o.macro_ndf),
                     "psd"_a = to_string(o.surface.psd), "sigma"_a = o.surface.sigma,
                     "corr_length"_a = o.surface.corr_length, "gamma"_a = o.surface.gamma,
+                    "corr_length_v"_a = o.surface.corr_length_v, "lay_angle_deg"_a = o.surface.lay_angle,
                     "surface_file"_a = o.surface.surface_file, "form"_a = surface::to_string(o.surface.form));
 }
 
@@ -233,13 +246,14 @@ py::tuple sample(const bsdf::Bsdf& model, py::handle wi, py::handle lambda_nm, p
     return py::make_tuple(wo, result(weight), result(pdf), result(delta));
 }
 
-py::tuple albedo(const bsdf::Bsdf& model, py::handle theta_i_deg, py::handle lambda_nm) {
-    const Batch batch({{theta_i_deg, "theta_i_deg", Domain::incidence_deg}, {lambda_nm, "lambda_nm", Domain::wavelength_nm}});
+py::tuple albedo(const bsdf::Bsdf& model, py::handle theta_i_deg, py::handle lambda_nm, py::handle phi_i_deg) {
+    const Batch batch({{theta_i_deg, "theta_i_deg", Domain::incidence_deg}, {lambda_nm, "lambda_nm", Domain::wavelength_nm},
+                       {phi_i_deg, "phi_i_deg", Domain::any}});
     auto total = batch.output<double>();
     auto specular = batch.output<double>();
     double *t = total.mutable_data(), *s = specular.mutable_data();
     batch.for_each([&](std::size_t i) {
-        const auto a = bsdf::directional_albedo(model, *batch.at(0, i) * kDegree, *batch.at(1, i));
+        const auto a = bsdf::directional_albedo(model, *batch.at(0, i) * kDegree, *batch.at(1, i), *batch.at(2, i) * kDegree);
         t[i] = a.total();
         s[i] = a.specular;
     });
@@ -251,10 +265,12 @@ constexpr const char* kBsdfDoc = R"(Builds a scattering model (docs/MODELS.md) f
 model: 'ghs' (full GHS), 'ghs_ssa' (smooth-surface approximation), 'ggx_stats' (GGX from the surface statistics,
     or of a given alpha), 'two_scale': the scene plugins' names (docs/CONVENTIONS.md; old spellings such as 'ggx'
     work with a DeprecationWarning).
-surface: the surface statistics: KCorrelation(sigma, corr_length, gamma), GaussianAcv(sigma, corr_length), a
+surface: the surface statistics: KCorrelation(sigma, corr_length, gamma), GaussianAcv(sigma, corr_length) (either
+    elliptical with corr_length_v= and lay_angle_deg=: models ghs and ghs_ssa), a
     MapStatistics (measured_statistics(height_map): psd 'measured'), a HeightMap or the path of a height map file
     (after removing `form`: KC fitted to it, or with psd='measured' its own radial PSD); or None and the XML's
-    keywords psd ('kc' | 'gaussian' | 'file' | 'measured'), sigma (um), corr_length (um), gamma, surface_file.
+    keywords psd ('kc' | 'gaussian' | 'file' | 'measured'), sigma (um), corr_length (um), gamma, corr_length_v (um),
+    lay_angle_deg, surface_file.
 material: 'perfect', a built-in metal (Au, Ag, Al, Cu, ...) or a refractive-index file (as Conductor).
 Keyword options, named and spelled as in the XML plugins and bsdf::ModelOptions:
     method 'exact' | 'refit' (GHS lobe), truncation 'three_sigma' | 'poisson_mass', epsilon,
@@ -324,14 +340,22 @@ void bind_bsdf(py::module_& m) {
             },
             py::arg("wi"), py::arg("lambda_nm"), "Probability that sample() chooses the delta lobe.")
         .def(
-            "albedo", [](const PyBsdf& b, py::handle theta_i_deg, py::handle lambda_nm) { return albedo(*b.model, theta_i_deg, lambda_nm); },
-            py::arg("theta_i_deg"), py::arg("lambda_nm"),
-            "Directional albedo at incidence theta_i_deg in [0, 90) degrees and wavelength lambda_nm (nm), "
+            "albedo",
+            [](const PyBsdf& b, py::handle theta_i_deg, py::handle lambda_nm, py::handle phi_i_deg) {
+                return albedo(*b.model, theta_i_deg, lambda_nm, phi_i_deg);
+            },
+            py::arg("theta_i_deg"), py::arg("lambda_nm"), py::arg("phi_i_deg") = 0.0,
+            "Directional albedo at incidence theta_i_deg in [0, 90) degrees, azimuth phi_i_deg (matters for an "
+            "elliptical surface only) and wavelength lambda_nm (nm), "
             "broadcast: (total, specular), total = integral of f cos(theta_o) over the hemisphere plus the delta "
             "lobe, specular = the delta lobe alone. As `brdf albedo`.")
         .def("__repr__", [](const PyBsdf& b) {
-            return fmt::format("<surfscatter.Bsdf {} material={} psd={}>", b.model->name(), b.options.material,
-                               to_string(b.options.surface.psd));
+            const auto& s = b.options.surface;
+            return fmt::format("<surfscatter.Bsdf {} material={} psd={}{}>", b.model->name(), b.options.material,
+                               to_string(s.psd),
+                               b.model->isotropic() ? ""
+                                                    : fmt::format(" corr_length={} corr_length_v={} lay_angle_deg={}",
+                                                                  s.corr_length, s.corr_length_v, s.lay_angle));
         });
 
     m.def("bsdf", &make, py::arg("model") = "ghs", py::arg("surface") = py::none(), py::arg("material") = "perfect",

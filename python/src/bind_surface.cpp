@@ -117,6 +117,74 @@ py::dict psd2d_dict(const Psd2d& p) {
     return py::dict("values"_a = values, "zeta_x"_a = to_array(zx), "zeta_y"_a = to_array(zy));
 }
 
+// Elliptical statistics (issue 24): KCorrelation and GaussianAcv take corr_length_v (LV, um; None: LV = corr_length)
+// and lay_angle_deg, kept on the Python object beside the radial statistics (bsdf(surface=...) reads them through
+// lay_of): the constructor is wrapped to take the two keywords after the radial ones.
+void set_lay(py::handle self, py::object corr_length_v, double lay_angle_deg) {
+    if (!corr_length_v.is_none()) require_surface_length(py::cast<double>(corr_length_v), "corr_length_v");
+    require_finite(lay_angle_deg, "lay_angle_deg");
+    py::dict attributes = self.attr("__dict__");
+    attributes["_corr_length_v"] = corr_length_v.is_none() ? corr_length_v : py::float_(py::cast<double>(corr_length_v));
+    attributes["_lay_angle_deg"] = py::float_(lay_angle_deg);
+}
+
+std::string lay_repr(py::handle self) {
+    const Lay lay = lay_of(self);
+    if (lay.corr_length_v == 0 && lay.lay_angle_deg == 0) return "";
+    return fmt::format(", corr_length_v={}, lay_angle_deg={}",
+                       lay.corr_length_v == 0 ? std::string("None") : fmt::format("{}", lay.corr_length_v),
+                       lay.lay_angle_deg);
+}
+
+template <class Class>
+void add_lay_keywords(Class& cls, int radial_arguments) {
+    const py::object radial_init = cls.attr("__init__");
+    if (radial_arguments == 3)
+        cls.attr("__init__") = py::cpp_function(
+            [radial_init](py::object self, py::object sigma, py::object corr_length, py::object gamma,
+                          py::object corr_length_v, double lay_angle_deg) {
+                radial_init(self, sigma, corr_length, gamma);
+                set_lay(self, corr_length_v, lay_angle_deg);
+            },
+            py::is_method(cls), py::arg("sigma"), py::arg("corr_length"), py::arg("gamma"),
+            py::arg("corr_length_v") = py::none(), py::arg("lay_angle_deg") = 0.0,
+            "sigma: rms height (um); corr_length: L (um, LU along the lay), both in [1e-9, 1e9]; gamma: exponent in "
+            "[1.01, 100]; corr_length_v: LV across the lay (um, None: LV = LU, isotropic); lay_angle_deg: the lay "
+            "direction u from phi = 0 towards phi = 90 deg.");
+    else
+        cls.attr("__init__") = py::cpp_function(
+            [radial_init](py::object self, py::object sigma, py::object corr_length, py::object corr_length_v,
+                          double lay_angle_deg) {
+                radial_init(self, sigma, corr_length);
+                set_lay(self, corr_length_v, lay_angle_deg);
+            },
+            py::is_method(cls), py::arg("sigma"), py::arg("corr_length"), py::arg("corr_length_v") = py::none(),
+            py::arg("lay_angle_deg") = 0.0,
+            "sigma: rms height (um); corr_length: l (um, along the lay), both in [1e-9, 1e9]; corr_length_v: across "
+            "the lay (um, None: isotropic); lay_angle_deg: the lay direction from phi = 0 towards phi = 90 deg.");
+    cls.def_property_readonly(
+        "corr_length_v", [](py::object self) -> py::object {
+            const Lay lay = lay_of(self);
+            return lay.corr_length_v == 0 ? py::object(py::none()) : py::object(py::float_(lay.corr_length_v));
+        }, "LV across the lay (um), None if not given (LV = corr_length)");
+    cls.def_property_readonly(
+        "lay_angle_deg", [](py::object self) { return lay_of(self).lay_angle_deg; }, "lay angle A (deg)");
+}
+
+}  // namespace
+
+Lay lay_of(py::handle statistics) {
+    Lay lay;
+    if (!py::hasattr(statistics, "__dict__")) return lay;
+    const py::dict attributes = statistics.attr("__dict__");
+    if (attributes.contains("_corr_length_v") && !attributes["_corr_length_v"].is_none())
+        lay.corr_length_v = py::cast<double>(attributes["_corr_length_v"]);
+    if (attributes.contains("_lay_angle_deg")) lay.lay_angle_deg = py::cast<double>(attributes["_lay_angle_deg"]);
+    return lay;
+}
+
+namespace {
+
 void bind_statistics(py::module_& m) {
     // The result types first, so that the signatures of the methods returning them name them in Python.
     py::class_<SelfConvolutionTable, std::shared_ptr<SelfConvolutionTable>>(
@@ -231,10 +299,13 @@ void bind_statistics(py::module_& m) {
             "The self-convolutions P-hat^{*m}, m = 1..max_order, of the unit-mass PSD (THEORY.md 1.2, 2.3), "
             "tabulated once and cached on disk: a SelfConvolution.");
 
-    py::class_<KCorrelation, RadialStatistics, std::shared_ptr<KCorrelation>>(
-        m, "KCorrelation",
+    py::class_<KCorrelation, RadialStatistics, std::shared_ptr<KCorrelation>> kc_class(
+        m, "KCorrelation", py::dynamic_attr(),
         "K-correlation (ABC) statistics, THEORY.md 2.1: P = sigma^2 (gamma - 1) L^2 / (2 pi) "
-        "(1 + L^2 zeta^2)^(-(gamma + 1)/2). Parameters named as in the XML and ModelOptions.")
+        "(1 + L^2 zeta^2)^(-(gamma + 1)/2). Parameters named as in the XML and ModelOptions. corr_length_v (um, "
+        "None: = corr_length) and lay_angle_deg make it elliptical for bsdf(surface=...) (docs/SURFACE.md "
+        "\"Anisotropy\"); the methods here are those of the radial statistics along the lay (corr_length).");
+    kc_class
         .def(py::init([](double sigma, double corr_length, double gamma) {
                  require_surface_length(sigma, "sigma");  // the user's ranges, as the CLI and the scenes check them
                  require_surface_length(corr_length, "corr_length");
@@ -270,13 +341,18 @@ void bind_statistics(py::module_& m) {
             py::arg("max_order"),
             "The supplemental's refit (THEORY.md 2.4): each self-convolution m = 1..max_order fitted by a KC of "
             "the same gamma, then L_m = L m^-x. A Refit; as `surfscatter selfconv`.")
-        .def("__repr__", [](const KCorrelation& s) {
-            return fmt::format("surfscatter.KCorrelation(sigma={}, corr_length={}, gamma={})", s.sigma_h(),
-                               s.correlation_length(), s.gamma());
+        .def("__repr__", [](py::object self) {
+            const auto& s = self.cast<const KCorrelation&>();
+            return fmt::format("surfscatter.KCorrelation(sigma={}, corr_length={}, gamma={}{})", s.sigma_h(),
+                               s.correlation_length(), s.gamma(), lay_repr(self));
         });
+    add_lay_keywords(kc_class, 3);
 
-    py::class_<GaussianAcv, RadialStatistics, std::shared_ptr<GaussianAcv>>(
-        m, "GaussianAcv", "Gaussian autocovariance C(r) = sigma^2 exp(-r^2 / corr_length^2).")
+    py::class_<GaussianAcv, RadialStatistics, std::shared_ptr<GaussianAcv>> gaussian_class(
+        m, "GaussianAcv", py::dynamic_attr(),
+        "Gaussian autocovariance C(r) = sigma^2 exp(-r^2 / corr_length^2); corr_length_v and lay_angle_deg as for "
+        "KCorrelation.");
+    gaussian_class
         .def(py::init([](double sigma, double corr_length) {
                  require_surface_length(sigma, "sigma");
                  require_surface_length(corr_length, "corr_length");
@@ -289,9 +365,12 @@ void bind_statistics(py::module_& m) {
                 return map_scalars({{u, "u", Domain::random_number}}, [&](double v) { return s.inverse_radial_cdf(v); });
             },
             py::arg("u"), "zeta (rad/um) with radial_cdf(zeta) = u, for u in [0, 1).")
-        .def("__repr__", [](const GaussianAcv& s) {
-            return fmt::format("surfscatter.GaussianAcv(sigma={}, corr_length={})", s.sigma_h(), s.correlation_length());
+        .def("__repr__", [](py::object self) {
+            const auto& s = self.cast<const GaussianAcv&>();
+            return fmt::format("surfscatter.GaussianAcv(sigma={}, corr_length={}{})", s.sigma_h(),
+                               s.correlation_length(), lay_repr(self));
         });
+    add_lay_keywords(gaussian_class, 2);
 
     py::class_<TabulatedPsd, RadialStatistics, std::shared_ptr<TabulatedPsd>>(
         m, "TabulatedPsd",

@@ -12,4 +12,11 @@ void bind_profile_lobes(pybind11::module_& m);
 void bind_render(pybind11::module_& m);
 void bind_photo(pybind11::module_& m);
 
+// The lay of a KCorrelation or GaussianAcv made with corr_length_v / lay_angle_deg (bind_surface.cpp): corr_length_v
+// 0 where not given (LV = corr_length), lay_angle_deg 0 by default.
+struct Lay {
+    double corr_length_v = 0, lay_angle_deg = 0;
+};
+Lay lay_of(pybind11::handle statistics);
+
 }  // namespace surfscatter::python

@@ -19,6 +19,8 @@ struct DirectionalAlbedo {
     double total() const { return scatter + specular; }
 };
 
-DirectionalAlbedo directional_albedo(const Bsdf& bsdf, double theta_i_rad, double lambda_nm);
+// At incidence (theta_i, phi_i); phi_i matters only for a BSDF that is not isotropic(), whose integrand is then the
+// mean of the two halves of the disc, phi and -phi about the incidence plane (the same cubature).
+DirectionalAlbedo directional_albedo(const Bsdf& bsdf, double theta_i_rad, double lambda_nm, double phi_i_rad = 0.0);
 
 }  // namespace surfscatter::bsdf

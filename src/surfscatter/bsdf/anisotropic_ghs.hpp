@@ -55,6 +55,7 @@ public:
     double delta_reflectance(const Vec3& wi, double lambda_nm) const override;
     double delta_probability(const Vec3& wi, double lambda_nm) const override;
     std::string name() const override { return settings_.name; }
+    bool isotropic() const override { return false; }
 
     const surface::EllipticalStatistics& statistics() const { return *stats_; }
     // The roughness used in g (um) and the lobe normalisation N for incidence wi (local frame), as tabulated.

@@ -63,6 +63,10 @@ public:
     // zeta_c / k), 0 if it has none: integrators put an edge there (albedo.hpp).
     virtual double jump_radius(double /*lambda_nm*/) const { return 0.0; }
 
+    // True if f depends on the azimuths only through their difference (and is even in it): false for a surface with a
+    // lay (AnisotropicGhsBsdf), whose albedo depends on the incidence azimuth.
+    virtual bool isotropic() const { return true; }
+
     // True if the model has no continuous part (a smooth mirror).
     virtual bool is_pure_delta() const { return false; }
 
