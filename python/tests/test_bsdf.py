@@ -249,3 +249,50 @@ def test_measured_statistics_is_a_surface_and_equals_psd_measured():
 
 def test_version_is_the_cli_version():
     assert ss.__version__ == run_cli("--version").split()[-1] and ss.__version__.count(".") == 2
+
+
+# Elliptical surfaces (docs/SURFACE.md "Anisotropy"): KCorrelation / GaussianAcv with corr_length_v and lay_angle_deg,
+# the same as the keyword form and as the CLI's --corr-length-v / --lay-angle.
+ELLIPTICAL = dict(sigma=0.03, corr_length=2.0, gamma=2.5, corr_length_v=0.6, lay_angle_deg=35.0)
+
+
+def test_elliptical_statistics_carry_their_lay_in_the_repr():
+    kc = ss.KCorrelation(**ELLIPTICAL)
+    assert (kc.corr_length_v, kc.lay_angle_deg) == (0.6, 35.0)
+    assert "corr_length_v=0.6, lay_angle_deg=35" in repr(kc)
+    assert ss.KCorrelation(0.03, 2.0, 2.5).corr_length_v is None
+    assert repr(ss.KCorrelation(0.03, 2.0, 2.5)) == "surfscatter.KCorrelation(sigma=0.03, corr_length=2, gamma=2.5)"
+    g = ss.GaussianAcv(0.03, 2.0, corr_length_v=1.0, lay_angle_deg=-20)
+    assert (g.corr_length_v, g.lay_angle_deg) == (1.0, -20.0)
+    model = ss.bsdf("ghs_ssa", surface=kc, material="Au", ssa_form="strict")
+    assert "corr_length_v=0.6 lay_angle_deg=35" in repr(model)
+
+
+def test_elliptical_surface_equals_keywords_and_cli():
+    wi = ss.direction(40.0, 10.0)
+    wo = ss.direction(np.array([10.0, 30.0, 60.0]), np.array([150.0, 200.0, 250.0]))
+    from_object = ss.bsdf("ghs_ssa", surface=ss.KCorrelation(**ELLIPTICAL), material="Au", ssa_form="strict")
+    from_keywords = ss.bsdf("ghs_ssa", material="Au", ssa_form="strict", **ELLIPTICAL)
+    np.testing.assert_array_equal(from_object.eval(wi, wo, 633.0), from_keywords.eval(wi, wo, 633.0))
+    isotropic = ss.bsdf("ghs_ssa", surface=ss.KCorrelation(0.03, 2.0, 2.5), material="Au", ssa_form="strict")
+    assert not np.allclose(isotropic.eval(wi, wo, 633.0), from_object.eval(wi, wo, 633.0), rtol=1e-3)
+    cli = cli_csv("brdf", "eval", "--model", "ghs_ssa", "--ssa-form", "strict", "--sigma", 0.03, "--corr-length", 2.0,
+                  "--gamma", 2.5, "--corr-length-v", 0.6, "--lay-angle", 35, "--material", "Au", "--wavelength", 633,
+                  "--theta-i", 40, "--phi-i", 10, "--theta-o", "10,30,60", "--phi-o", "150,200,250")
+    got = from_object.eval(wi, ss.direction(cli["theta_o"], cli["phi_o"]), 633.0)
+    np.testing.assert_allclose(got, cli["brdf"], rtol=CLI_RTOL)
+    # LV = LU is the isotropic model itself.
+    equal = ss.bsdf("ghs_ssa", surface=ss.KCorrelation(0.03, 2.0, 2.5, corr_length_v=2.0), material="Au",
+                    ssa_form="strict")
+    np.testing.assert_array_equal(equal.eval(wi, wo, 633.0), isotropic.eval(wi, wo, 633.0))
+
+
+def test_elliptical_bad_values_and_models():
+    with pytest.raises(ss.Error, match="corr_length_v must be between"):
+        ss.KCorrelation(0.03, 2.0, 2.5, corr_length_v=-1.0)
+    with pytest.raises(ss.Error, match="lay_angle_deg must be a finite number"):
+        ss.GaussianAcv(0.03, 2.0, lay_angle_deg=float("nan"))
+    with pytest.raises(ss.Error, match="does not take elliptical statistics"):
+        ss.bsdf("two_scale", surface=ss.KCorrelation(**ELLIPTICAL), material="Au")
+    with pytest.raises(ss.Error, match="give either surface= or"):
+        ss.bsdf("ghs", surface=ss.KCorrelation(0.03, 2.0, 2.5), corr_length_v=1.0, material="Au")

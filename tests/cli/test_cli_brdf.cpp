@@ -1,6 +1,7 @@
 // End-to-end tests of `surfscatter brdf eval | albedo | sample | slice` (exit codes, CSV headers, values).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -226,4 +227,50 @@ TEST(CliBrdf, DefaultsAreAskedForOrSaid) {
     const auto help = run_cli({"brdf", "eval", "--help"});
     EXPECT_NE(help.out.find("ghs | ghs_ssa | ggx_stats | two_scale"), std::string::npos) << help.out;
     EXPECT_NE(help.out.find("required: built-in metal"), std::string::npos) << help.out;
+}
+
+// Elliptical surfaces (--corr-length-v, --lay-angle; docs/SURFACE.md "Anisotropy"): LV = LU is the isotropic output
+// itself; a lay angle A with both azimuths turned by A is the lay angle 0; GHS keeps its albedo at any azimuth.
+TEST(CliBrdf, EllipticalSurfaceOptions) {
+    const std::vector<std::string> ssa = {"brdf", "eval", "--model", "ghs_ssa", "--ssa-form", "strict", "--sigma",
+                                          "0.03", "--corr-length", "2", "--gamma", "2.5", "--material", "Au",
+                                          "--wavelength", "633", "--theta-i", "40", "--theta-o", "10,30,60"};
+    auto with = [](std::vector<std::string> args, std::initializer_list<std::string> more) {
+        args.insert(args.end(), more);
+        return run_cli(args);
+    };
+    const auto isotropic = with(ssa, {});
+    const auto equal = with(ssa, {"--corr-length-v", "2"});
+    ASSERT_EQ(equal.exit_code, 0) << equal.err;
+    EXPECT_EQ(equal.out, isotropic.out);
+    const auto at_zero = with(ssa, {"--corr-length-v", "0.6", "--phi-o", "150,200"});
+    const auto turned = with(ssa, {"--corr-length-v", "0.6", "--lay-angle", "35", "--phi-i", "35", "--phi-o", "185,235"});
+    ASSERT_EQ(at_zero.exit_code, 0) << at_zero.err;
+    ASSERT_EQ(turned.exit_code, 0) << turned.err;
+    const auto a = at_zero.out_lines(), b = turned.out_lines();
+    ASSERT_EQ(a.size(), 7u);
+    ASSERT_EQ(b.size(), a.size());
+    for (std::size_t i = 1; i < a.size(); ++i) {
+        EXPECT_NEAR(field(b[i], 2), field(a[i], 2), 1e-6 * field(a[i], 2)) << a[i] << " / " << b[i];
+    }
+    const auto albedo = run_cli({"brdf", "albedo", "--model", "ghs", "--sigma", "0.08", "--corr-length", "2",
+                                 "--gamma", "2.5", "--corr-length-v", "0.7", "--lay-angle", "20", "--phi-i", "50",
+                                 "--material", "perfect", "--wavelength", "550", "--theta-i", "60"});
+    ASSERT_EQ(albedo.exit_code, 0) << albedo.err;
+    EXPECT_NEAR(std::stod(albedo.out_lines()[0].substr(9)), 1.0, 5e-3) << albedo.out;
+
+    const auto expect_bad = [&](std::initializer_list<std::string> more, const std::string& text) {
+        const auto r = with(ssa, more);
+        EXPECT_EQ(r.exit_code, 2) << text;
+        EXPECT_NE(r.err.find(text), std::string::npos) << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    };
+    expect_bad({"--corr-length-v", "-1"}, "corr_length_v must be between");
+    expect_bad({"--corr-length-v", "0.5", "--lay-angle", "nan"}, "lay_angle must be finite");
+    expect_bad({"--corr-length-v", "abc"}, "--corr-length-v");
+    const auto ggx = run_cli({"brdf", "eval", "--model", "ggx_stats", "--sigma", "0.03", "--corr-length", "2",
+                              "--gamma", "4", "--corr-length-v", "1", "--material", "Au", "--wavelength", "633",
+                              "--theta-i", "40", "--theta-o", "10"});
+    EXPECT_EQ(ggx.exit_code, 2);
+    EXPECT_NE(ggx.err.find("does not take elliptical statistics"), std::string::npos) << ggx.err;
 }
