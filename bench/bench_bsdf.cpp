@@ -2,7 +2,8 @@
 // L = 1 um, perfect conductor), and eval with varying incidence and wavelength; ghs_measured is exact GHS on the
 // measured route (`--psd measured`, map_statistics.hpp) of a 1024^2 map of that KC surface at 0.05 um, and
 // BM_measured_tables builds its tables from nothing (the disk cache pointed at an empty folder). The per-wavelength tables (sigma_rel,
-// K) are built before timing. BM_eval_packet: the renderer's four-wavelength call (f and the reverse pdf).
+// K) are built before timing. aniso_ghs_exact / aniso_ghs_ssa: the same surfaces made elliptical (LV = 0.4 LU, lay angle
+// 30 deg; AnisotropicGhsBsdf). BM_eval_packet: the renderer's four-wavelength call (f and the reverse pdf).
 // Run: build/bench/bench_bsdf --benchmark_min_time=0.2
 #include <benchmark/benchmark.h>
 
@@ -42,6 +43,12 @@ ModelOptions options_for(int model, double g) {
         case 2: o.model = ModelKind::ghs_ssa; break;
         case 3: o.model = ModelKind::ggx; o.alpha_from = AlphaFrom::smoothed; o.smoothing = 0.1; break;
         case 4: o.model = ModelKind::two_scale; o.cutoff_wavelengths = 50; break;
+        case 6:  // elliptical: LV = 0.4 LU, lay angle 30 deg (AnisotropicGhsBsdf)
+        case 7:
+            o.model = model == 6 ? ModelKind::ghs : ModelKind::ghs_ssa;
+            o.surface.corr_length_v = 0.4;
+            o.surface.lay_angle = 30.0;
+            break;
         default: {
             o.model = ModelKind::ghs;
             o.surface.psd = PsdKind::measured;
@@ -77,7 +84,8 @@ std::vector<Vec3> directions(const Bsdf& b, const Vec3& wi) {
     return out;
 }
 
-const char* kNames[] = {"ghs_exact", "ghs_refit", "ghs_ssa", "ggx", "two_scale", "ghs_measured"};
+const char* kNames[] = {"ghs_exact", "ghs_refit", "ghs_ssa", "ggx", "two_scale", "ghs_measured", "aniso_ghs_exact",
+                        "aniso_ghs_ssa"};
 
 void BM_eval(benchmark::State& state) {
     const Bsdf& b = model(int(state.range(0)), std::pow(10.0, double(state.range(1)) - 1));
@@ -162,7 +170,7 @@ void BM_eval_packet(benchmark::State& state) {
 
 // Arguments: model index, log10(g) + 1 (0 -> g = 0.1, 2 -> 10, 4 -> 1000).
 void models_and_g(benchmark::internal::Benchmark* b) {
-    for (int m = 0; m < 6; ++m)
+    for (int m = 0; m < 8; ++m)
         for (int lg : {0, 2, 4}) b->Args({m, lg});
 }
 
@@ -193,9 +201,9 @@ BENCHMARK(BM_eval)->Apply(models_and_g);
 BENCHMARK(BM_pdf)->Apply(models_and_g);
 BENCHMARK(BM_sample)->Apply(models_and_g);
 BENCHMARK(BM_measured_tables)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime()->Iterations(3);
-BENCHMARK(BM_eval_varying)->Args({0, 2})->Args({3, 2});
+BENCHMARK(BM_eval_varying)->Args({0, 2})->Args({3, 2})->Args({6, 2});
 void packet_models(benchmark::internal::Benchmark* b) {
-    for (int m : {0, 3})
+    for (int m : {0, 3, 6})
         for (int lg : {0, 2, 4}) b->Args({m, lg});
 }
 BENCHMARK(BM_eval_packet<true>)->Name("BM_eval_packet")->Apply(packet_models);
