@@ -123,6 +123,8 @@ py::dict psd2d_dict(const Psd2d& p) {
 void set_lay(py::handle self, py::object corr_length_v, double lay_angle_deg) {
     if (!corr_length_v.is_none()) require_surface_length(py::cast<double>(corr_length_v), "corr_length_v");
     require_finite(lay_angle_deg, "lay_angle_deg");
+    if (corr_length_v.is_none() && lay_angle_deg != 0)
+        fail("lay_angle_deg {} needs corr_length_v (without it the surface is isotropic)", lay_angle_deg);
     py::dict attributes = self.attr("__dict__");
     attributes["_corr_length_v"] = corr_length_v.is_none() ? corr_length_v : py::float_(py::cast<double>(corr_length_v));
     attributes["_lay_angle_deg"] = py::float_(lay_angle_deg);

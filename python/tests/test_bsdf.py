@@ -291,7 +291,11 @@ def test_elliptical_bad_values_and_models():
     with pytest.raises(ss.Error, match="corr_length_v must be between"):
         ss.KCorrelation(0.03, 2.0, 2.5, corr_length_v=-1.0)
     with pytest.raises(ss.Error, match="lay_angle_deg must be a finite number"):
-        ss.GaussianAcv(0.03, 2.0, lay_angle_deg=float("nan"))
+        ss.GaussianAcv(0.03, 2.0, corr_length_v=1.0, lay_angle_deg=float("nan"))
+    with pytest.raises(ss.Error, match="lay_angle_deg 30 needs corr_length_v"):
+        ss.KCorrelation(0.03, 2.0, 2.5, lay_angle_deg=30)
+    with pytest.raises(ss.Error, match="lay_angle_deg does not apply to model ghs: used with corr_length_v only"):
+        ss.bsdf("ghs", sigma=0.03, corr_length=2.0, gamma=2.5, lay_angle_deg=30, material="Au")
     with pytest.raises(ss.Error, match="does not take elliptical statistics"):
         ss.bsdf("two_scale", surface=ss.KCorrelation(**ELLIPTICAL), material="Au")
     with pytest.raises(ss.Error, match="give either surface= or"):

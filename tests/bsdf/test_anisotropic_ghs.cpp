@@ -283,3 +283,30 @@ TEST(AnisotropicGhs, RelabellingAndRotation) {
     EXPECT_LT(worst_swap, 5e-3);
     fmt::print("rotation {:.2g}, relabelling {:.2g} relative\n", worst_rotation, worst_swap);
 }
+
+// eval_packet is eval and the reverse pdf per wavelength; extreme directions and uniforms give finite values.
+TEST(AnisotropicGhs, EvalPacketAndExtremeInputs) {
+    const auto bsdf = make_bsdf(elliptical_kc(ModelKind::ghs, 0.05, 2.0, 0.5, 2.5, 20.0));
+    const WavelengthValues lambdas{500.0, 505.0, 510.0, 515.0};
+    for (const Vec3& wi : {direction_deg(0, 0), direction_deg(45, 60), direction_deg(89.99, 200)})
+        for (const Vec3& wo : {direction_deg(0, 0), direction_deg(30, 250), direction_deg(89.99, 10)}) {
+            WavelengthValues pdf{};
+            const WavelengthValues f = bsdf->eval_packet(wi, wo, lambdas, &pdf);
+            for (std::size_t j = 0; j < f.size(); ++j) {
+                EXPECT_NEAR(f[j], bsdf->eval(wi, wo, lambdas[j]), 1e-12 * bsdf->eval(wi, wo, lambdas[j]));
+                EXPECT_NEAR(pdf[j], bsdf->pdf(wo, wi, lambdas[j]), 1e-12 * bsdf->pdf(wo, wi, lambdas[j]));
+            }
+        }
+    const Vec3 below(0.3, 0.1, -0.9487);
+    EXPECT_EQ(bsdf->eval(below, direction_deg(30, 0), 500.0), 0.0);
+    EXPECT_EQ(bsdf->pdf(direction_deg(30, 0), below, 500.0), 0.0);
+    EXPECT_FALSE(bsdf->sample(below, 500.0, 0.5, Vec2(0.5, 0.5)));
+    for (double theta : {0.0, 60.0, 89.999})
+        for (double u : {0.0, 0.5, std::nextafter(1.0, 0.0)}) {
+            const Vec3 wi = direction_deg(theta, 130);
+            const auto s = bsdf->sample(wi, 500.0, u, Vec2(u, 1.0 - u));
+            if (!s) continue;
+            EXPECT_TRUE(std::isfinite(s->weight) && std::isfinite(s->pdf) && s->pdf > 0) << theta << " " << u;
+            EXPECT_TRUE(std::isfinite(bsdf->eval(wi, s->wo, 500.0)));
+        }
+}

@@ -268,6 +268,7 @@ TEST(CliBrdf, EllipticalSurfaceOptions) {
     expect_bad({"--corr-length-v", "-1"}, "corr_length_v must be between");
     expect_bad({"--corr-length-v", "0.5", "--lay-angle", "nan"}, "lay_angle must be finite");
     expect_bad({"--corr-length-v", "abc"}, "--corr-length-v");
+    expect_bad({"--lay-angle", "30"}, "--lay-angle does not apply to --model ghs_ssa: used with corr_length_v only");
     const auto ggx = run_cli({"brdf", "eval", "--model", "ggx_stats", "--sigma", "0.03", "--corr-length", "2",
                               "--gamma", "4", "--corr-length-v", "1", "--material", "Au", "--wavelength", "633",
                               "--theta-i", "40", "--theta-o", "10"});

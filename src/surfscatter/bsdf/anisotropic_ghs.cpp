@@ -152,14 +152,8 @@ std::optional<BsdfSample> AnisotropicGhsBsdf::sample(const Vec3& wi, double lamb
     const Incidence in = lookup(wi, lambda_nm);
     const double k = in.k, g0 = specular_exponent(k, in.log_sigma, wi.z);
     const double p_delta = std::exp(-g0);
+    if (u_lobe < p_delta) return coherent_delta_sample(material_, wi, lambda_nm, p_delta);
     BsdfSample out;
-    if (u_lobe < p_delta) {
-        out.wo = reflect_about_normal(wi);
-        out.pdf = p_delta;
-        out.weight = material_.reflectance(std::min(1.0, wi.z), lambda_nm);  // R e^{-g0} / e^{-g0}
-        out.delta = true;
-        return out;
-    }
     const double u_order = std::min((u_lobe - p_delta) / (1.0 - p_delta), std::nextafter(1.0, 0.0));
     const double radius = core_->sample_radius(g0, stretched_zeta_max(wi, k), u_order, u.x) / k;
     const double psi = kTwoPi * u.y;

@@ -1,7 +1,8 @@
 #pragma once
 // What the GHS family's per-wavelength incidence tables share (GhsBsdf over cos theta_i; AnisotropicGhsBsdf over
 // cos theta_i and the incidence azimuth relative to the lay): the node axes, the interval cubics in cos theta_i and
-// their evaluation, the lobe's Fresnel factor, and the disk cache of a table.
+// their evaluation, the lobe's Fresnel factor and coherent delta, and the disk cache of a table.
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <cstring>
@@ -9,6 +10,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "surfscatter/bsdf/bsdf.hpp"
 #include "surfscatter/bsdf/model_options.hpp"
 #include "surfscatter/bsdf/node_axis.hpp"
 #include "surfscatter/core/table_cache.hpp"
@@ -58,6 +60,17 @@ inline double lobe_fresnel(const material::Conductor& material, FresnelMode mode
                            double lambda_nm) {
     return mode == FresnelMode::incident ? material.reflectance(std::min(1.0, wi.z), lambda_nm)
                                          : outgoing_fresnel(material, mode, wi, wo, lambda_nm);
+}
+
+// The coherent delta, drawn with probability p_delta = e^{-g0}: the mirror direction, weight R e^{-g0} / e^{-g0}.
+inline BsdfSample coherent_delta_sample(const material::Conductor& material, const Vec3& wi, double lambda_nm,
+                                        double p_delta) {
+    BsdfSample out;
+    out.wo = reflect_about_normal(wi);
+    out.pdf = p_delta;
+    out.weight = material.reflectance(std::min(1.0, wi.z), lambda_nm);
+    out.delta = true;
+    return out;
 }
 
 // A trivially copyable table from the disk cache under `key` (naming everything it depends on), else build() and

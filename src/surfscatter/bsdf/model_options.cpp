@@ -146,7 +146,9 @@ std::string inapplicable_option(const ModelOptions& o, std::string_view name) {
             return unless(!from_map, "a height map gives its own statistics (psd file or measured)");
         if (name == "gamma") return unless(psd == PsdKind::kc, "used with psd kc only");
         if (name == "corr_length_v" || name == "lay_angle")
-            return unless(!from_map, "used with psd kc or gaussian only (a height map gives its own statistics)");
+            if (from_map) return "used with psd kc or gaussian only (a height map gives its own statistics)";
+        if (name == "lay_angle")
+            return unless(o.surface.corr_length_v != 0, "used with corr_length_v only (without it the surface is isotropic)");
         if (name == "surface_file" || name == "form")
             return unless(from_map, "used with a height map (psd file or measured) only");
     }
