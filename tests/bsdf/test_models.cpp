@@ -131,6 +131,70 @@ TEST(Ggx, AlphaFromSurfaceStatistics) {
     EXPECT_NEAR(dynamic_cast<const GgxBsdf&>(*make_bsdf(o)).alpha(200 * kPi), 1 / std::sqrt(401.0), 1e-12);
 }
 
+// ggx_stats on elliptical statistics: alpha_u, alpha_v = sqrt(2 <h_u^2>), sqrt(2 <h_v^2>) with <h_u^2> = sigma^2 /
+// ((gamma - 3) LU^2) and <h_v^2> = sigma^2 / ((gamma - 3) LV^2) for KC (THEORY 4.1, 7.1), the lay angle passed on.
+TEST(Ggx, EllipticalAlphaFromTheSlopeCovariance) {
+    ModelOptions o = test::kc_options(ModelKind::ggx, 0.2, 2.0, 4.0);
+    o.alpha_from = AlphaFrom::measured;
+    o.surface.corr_length_v = 0.5;
+    o.surface.lay_angle = 30;
+    const auto& bsdf = dynamic_cast<const GgxBsdf&>(*make_bsdf(o));
+    EXPECT_NEAR(bsdf.alpha_uv(500).x, std::sqrt(2 * 0.04 / 4.0), 1e-9);
+    EXPECT_NEAR(bsdf.alpha_uv(500).y, std::sqrt(2 * 0.04 / 0.25), 1e-9);
+    EXPECT_NEAR(bsdf.lay_angle(), 30 * kDegree, 1e-15);
+    o.alpha_from = AlphaFrom::kc_link;
+    const auto& linked = dynamic_cast<const GgxBsdf&>(*make_bsdf(o));
+    EXPECT_EQ(linked.alpha_uv(600).x, kc_link_alpha(2.0, 600));
+    EXPECT_EQ(linked.alpha_uv(600).y, kc_link_alpha(0.5, 600));
+    // Divergent slopes are refused as for the isotropic surface; two_scale does not take elliptical statistics.
+    o.alpha_from = AlphaFrom::measured;
+    o.surface.gamma = 2.5;
+    EXPECT_THROW(make_bsdf(o), Error);
+    ModelOptions two = test::kc_options(ModelKind::two_scale, 0.05, 2.0, 4.0);
+    two.surface.corr_length_v = 0.5;
+    EXPECT_THROW(make_bsdf(two), Error);
+}
+
+// LV = LU (to 1e-10) reproduces the isotropic ggx_stats to 1e-9 for every alpha_from, whatever the lay angle.
+TEST(Ggx, NearlyIsotropicEllipticalEqualsIsotropic) {
+    for (AlphaFrom from : {AlphaFrom::measured, AlphaFrom::smoothed, AlphaFrom::kc_link}) {
+        ModelOptions o = test::kc_options(ModelKind::ggx, 0.1, 1.5, 4.0);
+        o.alpha_from = from;
+        o.smoothing = 0.2;
+        o.material = "Au";
+        const auto iso = make_bsdf(o);
+        o.surface.corr_length_v = 1.5 * (1 + 1e-10);
+        o.surface.lay_angle = 70;
+        const auto ell = make_bsdf(o);
+        for (double ti : {0.0, 45.0, 80.0})
+            for (double po : {0.0, 1.3, 3.0}) {
+                const Vec3 wi = spherical_direction(ti * kDegree, 0.5), wo = spherical_direction(50 * kDegree, po);
+                const double f = iso->eval(wi, wo, 550), p = iso->pdf(wi, wo, 550);
+                EXPECT_NEAR(ell->eval(wi, wo, 550), f, 1e-9 * f) << to_string(from);
+                EXPECT_NEAR(ell->pdf(wi, wo, 550), p, 1e-9 * p) << to_string(from);
+            }
+    }
+}
+
+// kc_link along u and v: the first-order lobe of an elliptical KC(3) surface at normal incidence, k^2 P-hat(2 k h_xy)
+// with the elliptical KC PSD written here, is the anisotropic GGX D(h) of kc_link_alpha(LU), kc_link_alpha(LV) up to
+// one constant factor.
+TEST(Ggx, KcLinkIsTheEllipticalKcLobe) {
+    const double lu = 1.2, lv = 0.3, lambda = 550, k = kTwoPi / (lambda * 1e-3);
+    const GgxDistribution ggx(kc_link_alpha(lu, lambda), kc_link_alpha(lv, lambda));
+    const auto psd = [&](double zu, double zv) {
+        return lu * lv / kPi * std::pow(1 + lu * lu * zu * zu + lv * lv * zv * zv, -2.0);  // gamma 3, unit mass
+    };
+    double ratio0 = 0;
+    for (double t : {0.0, 5.0, 20.0, 50.0, 80.0})
+        for (double p : {0.0, 0.8, 1.6, 3.9}) {
+            const Vec3 h = spherical_direction(t * kDegree, p);
+            const double ratio = psd(2 * k * h.x, 2 * k * h.y) / ggx.D(h);
+            if (ratio0 == 0) ratio0 = ratio;
+            EXPECT_NEAR(ratio / ratio0, 1.0, 1e-12) << t << " " << p;
+        }
+}
+
 // No NaN or Inf leaves eval, sample or pdf, whatever the inputs.
 TEST(Models, ExtremeInputsStayFinite) {
     std::vector<ModelOptions> models;

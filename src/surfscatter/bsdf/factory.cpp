@@ -16,6 +16,7 @@
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/surface/height_map_io.hpp"
 #include "surfscatter/surface/height_map_slope.hpp"
+#include "surfscatter/surface/elliptical_slopes.hpp"
 #include "surfscatter/surface/elliptical_statistics.hpp"
 #include "surfscatter/surface/kc_fit.hpp"
 #include "surfscatter/surface/map_statistics.hpp"
@@ -182,13 +183,34 @@ private:
     std::shared_ptr<const surface::RadialStatistics> statistics_;
 };
 
+// The refusal of alpha_from measured / smoothed where the surface's rms slope diverges.
+[[noreturn]] void fail_divergent_slope(const ModelOptions& o) {
+    const bool kc = o.surface.psd == PsdKind::kc;
+    fail("alpha_from {}: the rms slope of {} diverges{}; use alpha_from kc_link (alpha from the correlation length and "
+         "the wavelength), alpha_from smoothed with smoothing S > 0 (um, the slope seen at that lateral resolution), a "
+         "height map, or alpha_from none with alpha A",
+         to_string(o.alpha_from), kc ? fmt::format("a KC surface with gamma = {}", o.surface.gamma) : "this PSD",
+         kc ? " (it is finite for gamma > 3 only)" : "");
+}
+
+// alpha_from measured / smoothed: `alpha` (the rms slope, or `what` of it) checked against GGX's range.
+double checked_slope_alpha(const ModelOptions& o, double smoothing, double alpha, const char* what) {
+    if (!(alpha >= kMinMicrofacetAlpha && alpha <= kMaxMicrofacetAlpha))
+        fail("alpha_from {} gives {} = {} (the surface's rms slope{}), outside GGX's range {} to {}",
+             to_string(o.alpha_from), what, alpha, smoothing > 0 ? fmt::format(" after smoothing {} um", smoothing) : "",
+             kMinMicrofacetAlpha, kMaxMicrofacetAlpha);
+    return alpha;
+}
+
+double slope_smoothing(const ModelOptions& o) { return o.alpha_from == AlphaFrom::smoothed ? o.smoothing : 0.0; }
+
 std::function<double(double)> ggx_alpha(const ModelOptions& o, SurfaceSource& surface, std::vector<std::string>* notes) {
     const auto constant = [](double a) { return std::function<double(double)>([a](double) { return a; }); };
     switch (o.alpha_from) {
         case AlphaFrom::none: return constant(o.alpha);
         case AlphaFrom::measured:
         case AlphaFrom::smoothed: {
-            const double smoothing = o.alpha_from == AlphaFrom::smoothed ? o.smoothing : 0.0;
+            const double smoothing = slope_smoothing(o);
             double alpha = 0;  // alpha_GGX = alpha_Beckmann = rms slope (THEORY 4.2)
             if (const surface::HeightMap* map = surface.map()) {  // its own slopes, whether the PSD is fitted or measured
                 alpha = smoothing > 0 ? surface::rms_slope_smoothed(*map, smoothing, surface.form())
@@ -196,22 +218,10 @@ std::function<double(double)> ggx_alpha(const ModelOptions& o, SurfaceSource& su
             } else {
                 const double no_cutoff = std::numeric_limits<double>::infinity();
                 const double slope2 = surface.statistics(notes)->mean_square_slope(smoothing, no_cutoff);
-                if (!std::isfinite(slope2)) {
-                    const bool kc = o.surface.psd == PsdKind::kc;
-                    fail("alpha_from {}: the rms slope of {} diverges{}; use alpha_from kc_link (alpha from the "
-                         "correlation length and the wavelength), alpha_from smoothed with smoothing S > 0 (um, the "
-                         "slope seen at that lateral resolution), a height map, or alpha_from none with alpha A",
-                         to_string(o.alpha_from),
-                         kc ? fmt::format("a KC surface with gamma = {}", o.surface.gamma) : "this PSD",
-                         kc ? " (it is finite for gamma > 3 only)" : "");
-                }
+                if (!std::isfinite(slope2)) fail_divergent_slope(o);
                 alpha = std::sqrt(slope2);
             }
-            if (!(alpha >= kMinMicrofacetAlpha && alpha <= kMaxMicrofacetAlpha))
-                fail("alpha_from {} gives alpha = {} (the surface's rms slope{}), outside GGX's range {} to {}",
-                     to_string(o.alpha_from), alpha, smoothing > 0 ? fmt::format(" after smoothing {} um", smoothing) : "",
-                     kMinMicrofacetAlpha, kMaxMicrofacetAlpha);
-            return constant(alpha);
+            return constant(checked_slope_alpha(o, smoothing, alpha, "alpha"));
         }
         case AlphaFrom::kc_link: {
             const double length = surface.kc().correlation_length();
@@ -219,6 +229,31 @@ std::function<double(double)> ggx_alpha(const ModelOptions& o, SurfaceSource& su
         }
     }
     return constant(o.alpha);
+}
+
+// ggx_stats on elliptical statistics (docs/MODELS.md, "Anisotropic GGX"). measured / smoothed: per lay axis the
+// Beckmann convention of THEORY 4.2, alpha = sqrt(2 <h_axis^2>) (a Beckmann slope density has the per-axis variance
+// alpha^2 / 2), so that LV = LU gives alpha_u = alpha_v = sqrt(<|grad h|^2>), the isotropic alpha = rms slope;
+// smoothed uses the isotropic Gaussian smoothing's covariance (surface/elliptical_slopes.hpp). kc_link: the
+// elliptical KC(3) lobe is the anisotropic GGX of kc_link_alpha(LU) along u and kc_link_alpha(LV) along v (ggx.hpp).
+std::unique_ptr<Bsdf> elliptical_ggx(const ModelOptions& o, SurfaceSource& surface,
+                                     const surface::EllipticalStatistics& elliptical, material::Conductor material) {
+    const double lay = elliptical.lay_angle();
+    if (o.alpha_from == AlphaFrom::kc_link) {
+        const double lu = elliptical.corr_length_u(), lv = elliptical.corr_length_v();
+        surface.kc();  // kc_link needs a KC surface, as for the isotropic one
+        return std::make_unique<GgxBsdf>(
+            std::move(material),
+            [lu, lv](double lambda_nm) { return Vec2(kc_link_alpha(lu, lambda_nm), kc_link_alpha(lv, lambda_nm)); },
+            lay);
+    }
+    if (surface.map()) fail("corr_length_v and lay_angle need psd kc or gaussian: a height map gives its own statistics");
+    const double smoothing = slope_smoothing(o);
+    const Vec2 variances = surface::smoothed_slope_variances_lay(elliptical, smoothing);
+    if (!std::isfinite(variances.x) || !std::isfinite(variances.y)) fail_divergent_slope(o);
+    const Vec2 alpha(checked_slope_alpha(o, smoothing, std::sqrt(2 * variances.x), "alpha_u"),
+                     checked_slope_alpha(o, smoothing, std::sqrt(2 * variances.y), "alpha_v"));
+    return std::make_unique<GgxBsdf>(std::move(material), alpha, lay);
 }
 
 GhsSettings ghs_settings(const ModelOptions& o) {
@@ -257,11 +292,14 @@ std::unique_ptr<Bsdf> make_bsdf(const ModelOptions& o, std::vector<std::string>*
     validate(o);
     auto material = material::Conductor::from_name(o.material);
     SurfaceSource surface(needs_surface(o) ? o.surface : SurfaceOptions{});
-    // Elliptical statistics (null for an isotropic surface): the GHS family takes them through AnisotropicGhsBsdf.
+    // Elliptical statistics (null for an isotropic surface): the GHS family takes them through AnisotropicGhsBsdf,
+    // ggx_stats through its anisotropic GGX; two_scale not yet.
     const auto elliptical = surface.elliptical(notes);
-    if (elliptical && (o.model == ModelKind::ggx || o.model == ModelKind::two_scale))
+    if (elliptical && o.model == ModelKind::ggx) return elliptical_ggx(o, surface, *elliptical, std::move(material));
+    if (elliptical && o.model == ModelKind::two_scale) {
         fail("model {} does not take elliptical statistics yet (corr_length_v {} um differs from corr_length {} um)",
              to_string(o.model), o.surface.corr_length_v, o.surface.corr_length);
+    }
     switch (o.model) {
         case ModelKind::ggx: return std::make_unique<GgxBsdf>(std::move(material), ggx_alpha(o, surface, notes));
         case ModelKind::ghs_ssa:

@@ -7,45 +7,66 @@
 
 namespace surfscatter::bsdf {
 
+namespace {
+
+GgxDistribution distribution(Vec2 alpha_uv) { return GgxDistribution(alpha_uv.x, alpha_uv.y); }
+
+}  // namespace
+
 GgxBsdf::GgxBsdf(material::Conductor material, std::function<double(double)> alpha)
-    : material_(std::move(material)), alpha_(std::move(alpha)) {}
+    : material_(std::move(material)), alpha_([alpha = std::move(alpha)](double lambda_nm) {
+          const double a = alpha(lambda_nm);
+          return Vec2(a, a);
+      }) {}
 
 GgxBsdf::GgxBsdf(material::Conductor material, double alpha)
-    : GgxBsdf(std::move(material), [alpha](double) { return alpha; }) {
+    : material_(std::move(material)), alpha_([alpha](double) { return Vec2(alpha, alpha); }), alpha_constant_(true) {}
+
+GgxBsdf::GgxBsdf(material::Conductor material, std::function<Vec2(double)> alpha_uv, double lay_angle_rad)
+    : material_(std::move(material)), alpha_(std::move(alpha_uv)), lay_angle_(lay_angle_rad),
+      cos_a_(std::cos(lay_angle_rad)), sin_a_(std::sin(lay_angle_rad)), rotated_(lay_angle_rad != 0) {
+    if (!std::isfinite(lay_angle_rad)) fail("lay_angle must be finite, got {}", lay_angle_rad);
+}
+
+GgxBsdf::GgxBsdf(material::Conductor material, Vec2 alpha_uv, double lay_angle_rad)
+    : GgxBsdf(std::move(material), [alpha_uv](double) { return alpha_uv; }, lay_angle_rad) {
     alpha_constant_ = true;
 }
 
-double GgxBsdf::eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
-    if (wi.z <= 0 || wo.z <= 0) return 0.0;
+double GgxBsdf::eval(const Vec3& wi_local, const Vec3& wo_local, double lambda_nm) const {
+    if (wi_local.z <= 0 || wo_local.z <= 0) return 0.0;
+    const Vec3 wi = to_lay(wi_local), wo = to_lay(wo_local);
     const Vec3 sum = wi + wo;
     if (sum.length_squared() == 0) return 0.0;
     const Vec3 h = normalize(sum);
-    const GgxDistribution ggx(alpha_(lambda_nm));
+    const GgxDistribution ggx = distribution(alpha_(lambda_nm));
     const double F = material_.reflectance(std::clamp(dot(wi, h), 0.0, 1.0), lambda_nm);
     return ggx.D(h) * ggx.G2(wi, wo) * F / (4.0 * wi.z * wo.z);
 }
 
-double GgxBsdf::pdf(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
-    if (wi.z <= 0 || wo.z <= 0) return 0.0;
+double GgxBsdf::pdf(const Vec3& wi_local, const Vec3& wo_local, double lambda_nm) const {
+    if (wi_local.z <= 0 || wo_local.z <= 0) return 0.0;
+    const Vec3 wi = to_lay(wi_local), wo = to_lay(wo_local);
     const Vec3 sum = wi + wo;
     if (sum.length_squared() == 0) return 0.0;
     const Vec3 h = normalize(sum);
-    const GgxDistribution ggx(alpha_(lambda_nm));
+    const GgxDistribution ggx = distribution(alpha_(lambda_nm));
     return ggx.visible_density(wi, h) * reflection_jacobian(wo, h);
 }
 
-WavelengthValues GgxBsdf::eval_packet(const Vec3& wi, const Vec3& wo, const WavelengthValues& lambda_nm,
+WavelengthValues GgxBsdf::eval_packet(const Vec3& wi_local, const Vec3& wo_local, const WavelengthValues& lambda_nm,
                                       WavelengthValues* pdf) const {
     WavelengthValues f{};
     if (pdf) pdf->fill(0.0);
-    if (wi.z <= 0 || wo.z <= 0) return f;
+    if (wi_local.z <= 0 || wo_local.z <= 0) return f;
+    const Vec3 wi = to_lay(wi_local), wo = to_lay(wo_local);
     const Vec3 sum = wi + wo;
     if (sum.length_squared() == 0) return f;
     const Vec3 h = normalize(sum);
     const double cos_d = std::clamp(dot(wi, h), 0.0, 1.0);
     double d_g = 0, density = 0;  // D G2 / (4 cos_i cos_o) and pdf(wo, wi) for one alpha
-    const auto geometry = [&](double alpha) {
-        const GgxDistribution ggx(alpha);
+    const auto geometry = [&](Vec2 alpha) {
+        const GgxDistribution ggx = distribution(alpha);
         d_g = ggx.D(h) * ggx.G2(wi, wo) / (4.0 * wi.z * wo.z);
         if (pdf) density = ggx.visible_density(wo, h) * reflection_jacobian(wi, h);
     };
@@ -58,9 +79,10 @@ WavelengthValues GgxBsdf::eval_packet(const Vec3& wi, const Vec3& wo, const Wave
     return f;
 }
 
-std::optional<BsdfSample> GgxBsdf::sample(const Vec3& wi, double lambda_nm, double /*u_lobe*/, Vec2 u) const {
-    if (wi.z <= 0) return std::nullopt;
-    const GgxDistribution ggx(alpha_(lambda_nm));
+std::optional<BsdfSample> GgxBsdf::sample(const Vec3& wi_local, double lambda_nm, double /*u_lobe*/, Vec2 u) const {
+    if (wi_local.z <= 0) return std::nullopt;
+    const Vec3 wi = to_lay(wi_local);
+    const GgxDistribution ggx = distribution(alpha_(lambda_nm));
     const Vec3 h = ggx.sample_visible(wi, u);
     const Vec3 wo = reflect(wi, h);
     if (wo.z <= 0) return std::nullopt;
@@ -69,7 +91,7 @@ std::optional<BsdfSample> GgxBsdf::sample(const Vec3& wi, double lambda_nm, doub
     // f cos / pdf = F G2 / G1(wi), independent of D.
     const double F = material_.reflectance(std::clamp(dot(wi, h), 0.0, 1.0), lambda_nm);
     BsdfSample s;
-    s.wo = wo;
+    s.wo = from_lay(wo);
     s.pdf = p;
     s.weight = F * ggx.G2(wi, wo) / ggx.G1(wi);
     return s;

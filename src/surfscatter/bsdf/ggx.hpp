@@ -1,11 +1,14 @@
 #pragma once
 // GGX (Trowbridge-Reitz) microfacet conductor: height-correlated Smith masking-shadowing, visible-normal sampling
 // (Heitz 2018), exact conductor Fresnel at the microfacet normal. The roughness may depend on the wavelength
-// (alpha_from = kc_link, THEORY 4.3), so it is a function of lambda.
+// (alpha_from = kc_link, THEORY 4.3), so it is a function of lambda. Anisotropic: alpha_u along the lay direction u,
+// alpha_v across it, the lay at angle A from x towards y (surface::EllipticalStatistics' convention); directions are
+// rotated into the (u, v) frame and evaluated with the axis-aligned anisotropic GgxDistribution (microfacet.hpp).
 #include <functional>
 
 #include "surfscatter/bsdf/bsdf.hpp"
 #include "surfscatter/material/conductor.hpp"
+#include "surfscatter/math/vec.hpp"
 
 namespace surfscatter::bsdf {
 
@@ -13,6 +16,9 @@ class GgxBsdf final : public Bsdf {
 public:
     GgxBsdf(material::Conductor material, std::function<double(double lambda_nm)> alpha);
     GgxBsdf(material::Conductor material, double alpha);
+    // Anisotropic: (alpha_u, alpha_v) at a wavelength, and the lay angle A in radians.
+    GgxBsdf(material::Conductor material, std::function<Vec2(double lambda_nm)> alpha_uv, double lay_angle_rad);
+    GgxBsdf(material::Conductor material, Vec2 alpha_uv, double lay_angle_rad);
 
     double eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const override;
     std::optional<BsdfSample> sample(const Vec3& wi, double lambda_nm, double u_lobe, Vec2 u) const override;
@@ -22,16 +28,32 @@ public:
                                  WavelengthValues* pdf) const override;
     std::string name() const override { return "ggx_stats"; }  // the model's one name (model_options)
 
-    double alpha(double lambda_nm) const { return alpha_(lambda_nm); }
+    double alpha(double lambda_nm) const { return alpha_(lambda_nm).x; }  // alpha_u
+    Vec2 alpha_uv(double lambda_nm) const { return alpha_(lambda_nm); }
+    double lay_angle() const { return lay_angle_; }  // radians
 
 private:
+    // A local-frame direction in the lay frame (u, v, z): rotated by -A about z (identity for A = 0).
+    Vec3 to_lay(const Vec3& w) const {
+        if (!rotated_) return w;
+        return {cos_a_ * w.x + sin_a_ * w.y, -sin_a_ * w.x + cos_a_ * w.y, w.z};
+    }
+    Vec3 from_lay(const Vec3& w) const {
+        if (!rotated_) return w;
+        return {cos_a_ * w.x - sin_a_ * w.y, sin_a_ * w.x + cos_a_ * w.y, w.z};
+    }
+
     material::Conductor material_;
-    std::function<double(double)> alpha_;
+    std::function<Vec2(double)> alpha_;
     bool alpha_constant_ = false;
+    double lay_angle_ = 0, cos_a_ = 1, sin_a_ = 0;
+    bool rotated_ = false;
 };
 
 // GGX roughness of the KC(gamma = 3) first-order lobe at normal incidence (THEORY 4.3 with cos(theta_d) = 1):
-// alpha^2 = 1 / (1 + 4 k^2 L^2), k = 2 pi / lambda; L and lambda in the same unit.
+// alpha^2 = 1 / (1 + 4 k^2 L^2), k = 2 pi / lambda; L and lambda in the same unit. For an elliptical KC(3) surface
+// the lobe k^2 P-hat(2 k h_xy) ~ (h_z^2 + (1 + 4 k^2 LU^2) h_u^2 + (1 + 4 k^2 LV^2) h_v^2)^-2 is the anisotropic GGX
+// with alpha_u = kc_link_alpha(LU), alpha_v = kc_link_alpha(LV) exactly (docs/MODELS.md).
 double kc_link_alpha(double corr_length_um, double lambda_nm);
 
 }  // namespace surfscatter::bsdf
