@@ -114,7 +114,7 @@ TEST(MitsubaScenes, PluginsOutsideTheSubsetAreErrorsWithFileAndLine) {
         {R"(<shape type="cube"><bsdf type="principled"/></shape>)", "unknown bsdf plugin 'principled'"},
         {R"(<shape type="cube"><bsdf type="diffuse"><texture name="reflectance" type="mesh_attribute"/></bsdf></shape>)",
          "unknown texture plugin 'mesh_attribute'"},
-        {R"(<shape type="cube"><bsdf type="roughconductor"><float name="alpha_u" value="0.1"/><float name="alpha_v" value="0.3"/></bsdf></shape>)",
+        {R"(<shape type="cube"><bsdf type="roughplastic"><float name="alpha_u" value="0.1"/><float name="alpha_v" value="0.3"/></bsdf></shape>)",
          "anisotropic roughness"},
         {R"(<emitter type="spot"><texture name="texture" type="checkerboard"/></emitter>)", "projected texture is not supported"},
         {R"(<emitter type="envmap"><string name="filename" value="sky.exr"/><boolean name="mis_compensation" value="true"/></emitter>)",

@@ -191,3 +191,64 @@ TEST(Shapes, BigEndianPlyAndSmoothNormals) {
         EXPECT_EQ(hit->ns == hit->ng, faceted);
     }
 }
+
+// The shading frame's tangent s (docs/RENDERER.md, "Tangent frames"), which orients anisotropic materials: dp/du of
+// each shape, continuous over the shape (across the triangles of a mesh, with or without a uv map).
+TEST(Shapes, TangentFramesFollowEachShapesParametrisation) {
+    const auto tangent = [](const std::string& shape, const Vec3& origin, const Vec3& direction = {0, 0, -1}) {
+        const auto hit = hit_shape(shape, origin, direction);
+        EXPECT_TRUE(hit) << shape;
+        return hit ? hit->shading_frame().s : Vec3();
+    };
+    const auto expect_along = [](const Vec3& s, const Vec3& expected, const std::string& what) {
+        const Vec3 e = normalize(expected);
+        EXPECT_NEAR(s.x, e.x, 1e-9) << what;
+        EXPECT_NEAR(s.y, e.y, 1e-9) << what;
+        EXPECT_NEAR(s.z, e.z, 1e-9) << what;
+    };
+    // rectangle: s = to_world's x axis, the same on both triangles (either side of the diagonal x = y).
+    const std::string rectangle = R"(<shape type="rectangle"><transform name="to_world"><rotate z="1" angle="30"/></transform></shape>)";
+    const Vec3 rect_s(std::cos(30 * kDegree), std::sin(30 * kDegree), 0);
+    expect_along(tangent(rectangle, {0.3, -0.2, 2}), rect_s, "rectangle, one triangle");
+    expect_along(tangent(rectangle, {-0.2, 0.3, 2}), rect_s, "rectangle, the other");
+    // cube: each face's s is Frame(face normal).s; the +z face's is x.
+    expect_along(tangent(R"(<shape type="cube"/>)", {0.4, -0.3, 3}), {1, 0, 0}, "cube +z face");
+    expect_along(tangent(R"(<shape type="cube"/>)", {-0.4, 0.3, 3}), {1, 0, 0}, "cube +z face, other triangle");
+    // disk: radial; sphere and cylinder: along their circles of latitude (counter-clockwise about their +z).
+    expect_along(tangent(R"(<shape type="disk"/>)", {0.3, 0.4, 2}), {0.3, 0.4, 0}, "disk");
+    expect_along(tangent(R"(<shape type="sphere"/>)", {0.3, 0.4, 2}), {-0.4, 0.3, 0}, "sphere");
+    expect_along(tangent(R"(<shape type="cylinder"/>)", {3, 0.3, 0.5}, {-1, 0, 0}), {-0.3, std::sqrt(1 - 0.09), 0},
+                 "cylinder");
+    // Meshes: a square of two triangles whose first edges differ. With a uv map, s = dp/du (here u runs along y);
+    // without, Frame(n).s (x for n = +z) on both triangles.
+    const fs::path dir = temp_dir("tangent_frames");
+    const std::string vertices = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n";
+    std::ofstream(dir / "plain.obj") << vertices << "f 1 2 3\nf 3 4 1\n";
+    std::ofstream(dir / "uv.obj") << vertices << "vt 0 0\nvt 0 1\nvt 1 1\nvt 1 0\nf 1/1 2/2 3/3\nf 3/3 4/4 1/1\n";
+    const auto obj = [&](const char* name) {
+        return fmt::format(R"(<shape type="obj"><string name="filename" value="{}"/></shape>)", (dir / name).string());
+    };
+    expect_along(tangent(obj("plain.obj"), {0.5, -0.5, 2}), {1, 0, 0}, "mesh without uv");
+    expect_along(tangent(obj("plain.obj"), {-0.5, 0.5, 2}), {1, 0, 0}, "mesh without uv, other triangle");
+    expect_along(tangent(obj("uv.obj"), {0.5, -0.5, 2}), {0, 1, 0}, "mesh with uv");
+    expect_along(tangent(obj("uv.obj"), {-0.5, 0.5, 2}), {0, 1, 0}, "mesh with uv, other triangle");
+}
+
+// The lay follows the shape's tangent frame: a brushed plate (ggx_stats, elliptical KC) turned by 90 deg about its
+// normal renders as the unturned plate with the lay angle 90 deg larger (the square covers itself), and unlike the
+// unturned plate at the same lay angle.
+TEST(Shapes, LayAngleFollowsTheTangentFrame) {
+    const auto plate = [](double turn_deg, double lay_deg) {
+        const std::string body = fmt::format(R"(
+            <shape type="rectangle"><transform name="to_world"><rotate z="1" angle="{}"/></transform>
+              <bsdf type="ggx_stats"><string name="material" value="Al"/><float name="sigma" value="0.1"/>
+                <float name="corr_length" value="2"/><float name="corr_length_v" value="0.4"/>
+                <float name="lay_angle" value="{}"/><float name="gamma" value="4"/></bsdf></shape>
+            <emitter type="point"><point name="position" x="1.5" y="0.7" z="1"/>
+              <spectrum name="intensity" value="360:5, 830:5"/></emitter>)", turn_deg, lay_deg);
+        return mean_y(render_string(scene_xml(body, "-1, -0.4, 1.2", "0, 0, 0", 60, 16), 16));
+    };
+    const MeanY turned = plate(90, 20), laid = plate(0, 110), unturned = plate(0, 20);
+    EXPECT_NEAR(turned.mean, laid.mean, 1e-6 * laid.mean);
+    EXPECT_GT(std::abs(unturned.mean - laid.mean), 0.05 * laid.mean);
+}

@@ -94,7 +94,7 @@ Vec3 BeckmannDistribution::sample_projected(Vec2 u) const {
         // D(h) cos(theta_h) is the slope density exp(-(sx^2/ax^2 + sy^2/ay^2)) / (pi ax ay): the unit Gaussian
         // (|s|^2 = r2 exponential, uniform azimuth) stretched by (ax, ay); h is the normal of that slope.
         const double r = std::sqrt(r2), phi = kTwoPi * u.y;
-        return normalize(Vec3(-alpha_x_ * r * std::cos(phi), -alpha_y_ * r * std::sin(phi), 1.0));
+        return normalize(Vec3(alpha_x_ * r * std::cos(phi), alpha_y_ * r * std::sin(phi), 1.0));
     }
     // D(h) cos(theta_h): tan^2 theta_h = -alpha^2 ln(1 - u1), uniform azimuth.
     const double t2 = alpha_x_ * alpha_x_ * r2;

@@ -37,6 +37,7 @@ struct Scene::Embree {
 };
 
 Frame Hit::shading_frame() const {
+    if (!tangent_from_uv) return Frame(ns);
     const Vec3 s = dpdu - ns * dot(ns, dpdu);
     const double length2 = s.length_squared();
     if (!(length2 > 1e-24 * dpdu.length_squared())) return Frame(ns);  // |s| <= 1e-12 |dp/du|: no tangent
@@ -271,9 +272,12 @@ std::optional<Hit> Scene::intersect(const Ray& ray) const {
             const Vec3 e1 = p1 - p0, e2 = p2 - p0;
             hit.dpdu = (e1 * d2.y - e2 * d1.y) * constants.inv_uv_det;
             hit.dpdv = (e2 * d1.x - e1 * d2.x) * constants.inv_uv_det;
+        } else {
+            hit.tangent_from_uv = false;
         }
     } else {
         hit.uv = {b1, b2};
+        hit.tangent_from_uv = false;
     }
     hit.t = (hit.p - ray.origin).length();
     return hit;

@@ -66,7 +66,12 @@ struct Hit {
     Vec2 uv;
     Vec3 dpdu, dpdv;  // world
     int shape = -1;
-    // Mitsuba's shading frame: n = ns, s = dp/du made orthogonal to n.
+    // False on a mesh triangle without a uv map (or with a degenerate one): dp/du is then the triangle's first edge,
+    // which turns from triangle to triangle.
+    bool tangent_from_uv = true;
+    // Mitsuba's shading frame: n = ns, s = dp/du made orthogonal to n. Without a uv tangent, s is Frame(ns)'s
+    // (continuous in ns except at ns = -z), so that anisotropic materials (alpha_u != alpha_v, a lay) keep one
+    // orientation across the triangles of a mesh; docs/RENDERER.md lists each shape's tangent.
     Frame shading_frame() const;
 };
 

@@ -105,29 +105,35 @@ ConductorIor read_conductor_ior(Properties& props) {
     }
 }
 
-Microfacet::Microfacet(bool beckmann, double alpha, bool sample_visible)
-    : beckmann_(beckmann), alpha_(alpha), visible_(sample_visible && !beckmann), ggx_(alpha),
-      beckmann_distribution_(alpha) {}
+Microfacet::Microfacet(bool beckmann, double alpha_u, double alpha_v, bool sample_visible)
+    : beckmann_(beckmann), visible_(sample_visible && !beckmann), ggx_(alpha_u, alpha_v),
+      beckmann_distribution_(alpha_u, alpha_v) {}
 
-Microfacet Microfacet::read(Properties& props) {
+Microfacet Microfacet::read(Properties& props, bool anisotropic) {
     const std::string distribution = props.get_string("distribution", "beckmann");
     if (distribution != "beckmann" && distribution != "ggx")
         props.fail_param("distribution", "distribution must be beckmann or ggx, got '{}'", distribution);
-    double alpha = 0.1;
+    double alpha_u = 0.1, alpha_v = 0.1;
     if (props.has("alpha_u") || props.has("alpha_v")) {
         if (props.has("alpha")) props.fail("give either alpha or alpha_u/alpha_v, not both");
-        const double u = props.get_float_required("alpha_u"), v = props.get_float_required("alpha_v");
-        if (u != v) props.fail_param("alpha_u", "anisotropic roughness (alpha_u {} != alpha_v {}) is not supported", u, v);
-        alpha = u;
+        alpha_u = props.get_float_required("alpha_u");
+        alpha_v = props.get_float_required("alpha_v");
+        if (!anisotropic && alpha_u != alpha_v)
+            props.fail_param("alpha_u", "anisotropic roughness (alpha_u {} != alpha_v {}) is not supported by this bsdf",
+                             alpha_u, alpha_v);
     } else {
-        alpha = props.get_float("alpha", 0.1);
+        alpha_u = alpha_v = props.get_float("alpha", 0.1);
     }
-    try {
-        bsdf::require_microfacet_alpha(alpha, "alpha");
-    } catch (const Error& e) {
-        props.fail("{}", e.what());
-    }
-    return Microfacet(distribution == "beckmann", alpha, props.get_bool("sample_visible", true));
+    const auto check = [&](double value, const char* name) {
+        try {
+            bsdf::require_microfacet_alpha(value, name);
+        } catch (const Error& e) {
+            props.fail("{}", e.what());
+        }
+    };
+    check(alpha_u, props.has("alpha_u") ? "alpha_u" : "alpha");
+    if (props.has("alpha_v")) check(alpha_v, "alpha_v");
+    return Microfacet(distribution == "beckmann", alpha_u, alpha_v, props.get_bool("sample_visible", true));
 }
 
 double Microfacet::D(const Vec3& m) const { return beckmann_ ? beckmann_distribution_.D(m) : ggx_.D(m); }
@@ -146,8 +152,15 @@ Vec3 Microfacet::sample(const Vec3& w, Vec2 u) const { return visible_ ? ggx_.sa
 
 Vec3 Microfacet::sample_projected(Vec2 u) const {
     if (beckmann_) return beckmann_distribution_.sample_projected(u);
+    if (!ggx_.isotropic()) {
+        // The unit-roughness slope distribution (tan^2 theta = u / (1 - u)) stretched by (alpha_u, alpha_v), as
+        // BeckmannDistribution::sample_projected.
+        const double r = std::sqrt(u.x / std::max(1 - u.x, 1e-300)), phi = kTwoPi * u.y;
+        return normalize(Vec3(ggx_.alpha_x() * r * std::cos(phi), ggx_.alpha_y() * r * std::sin(phi), 1.0));
+    }
     // GGX by D(m) cos(theta_m): tan^2 theta = alpha^2 u / (1 - u).
-    const double t2 = alpha_ * alpha_ * u.x / std::max(1 - u.x, 1e-300);
+    const double alpha = ggx_.alpha_x();
+    const double t2 = alpha * alpha * u.x / std::max(1 - u.x, 1e-300);
     const double c = 1 / std::sqrt(1 + t2), s = std::sqrt(std::max(0.0, 1 - c * c));
     return {s * std::cos(kTwoPi * u.y), s * std::sin(kTwoPi * u.y), c};
 }

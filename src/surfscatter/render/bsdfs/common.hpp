@@ -55,13 +55,15 @@ private:
 ConductorIor read_conductor_ior(Properties& props);
 
 // Mitsuba's microfacet distributions for roughconductor, roughdielectric and roughplastic: `distribution` beckmann
-// (Mitsuba's default) or ggx, isotropic `alpha` (alpha_u = alpha_v), Smith's separable shadowing-masking
-// G = G1(wi) G1(wo) as Mitsuba. Normals are sampled from the visible normals (GGX with sample_visible, Heitz 2018)
-// or from D(m) cos(theta_m) (Beckmann, or sample_visible = false).
+// (Mitsuba's default) or ggx, `alpha`, or `alpha_u` along the shading frame's s = dp/du and `alpha_v` along t
+// (anisotropic: bsdf/microfacet.hpp's forms; roughplastic, like Mitsuba's, takes alpha_u = alpha_v only), Smith's
+// separable shadowing-masking G = G1(wi) G1(wo) as Mitsuba. Normals are sampled from the visible normals (GGX with
+// sample_visible, Heitz 2018) or from D(m) cos(theta_m) (Beckmann, or sample_visible = false).
 class Microfacet {
 public:
-    Microfacet(bool beckmann, double alpha, bool sample_visible);
-    static Microfacet read(Properties& props);  // distribution, alpha / alpha_u / alpha_v, sample_visible
+    Microfacet(bool beckmann, double alpha_u, double alpha_v, bool sample_visible);
+    // distribution, alpha / alpha_u / alpha_v, sample_visible; alpha_u != alpha_v is an error unless `anisotropic`.
+    static Microfacet read(Properties& props, bool anisotropic = true);
     double D(const Vec3& m) const;
     double G1(const Vec3& w, const Vec3& m) const;  // 0 unless w and m are on the same side of the facet
     double G(const Vec3& wi, const Vec3& wo, const Vec3& m) const { return G1(wi, m) * G1(wo, m); }
@@ -73,12 +75,10 @@ public:
     // Directional albedo of microfacet reflection, int F(wo.m) D G / (4 cos_i cos_o) cos_i dwi, for a dielectric
     // of index ratio eta seen from wo (wo.z > 0); quadrature over the projected normals (24 x 24 Gauss-Legendre).
     double reflection_albedo(const Vec3& wo, double eta) const;
-    double alpha() const { return alpha_; }
 
 private:
     double lambda(const Vec3& w) const;
     bool beckmann_;
-    double alpha_;
     bool visible_;
     bsdf::GgxDistribution ggx_;
     bsdf::BeckmannDistribution beckmann_distribution_;

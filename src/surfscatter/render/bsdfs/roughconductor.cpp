@@ -1,10 +1,11 @@
 // Mitsuba's `roughconductor` BSDF: a microfacet metal (Walter et al. 2007) with exact conductor Fresnel.
 //
-// Supported: `distribution` (beckmann (Mitsuba's default) | ggx), `alpha` (default 0.1; or alpha_u = alpha_v),
+// Supported: `distribution` (beckmann (Mitsuba's default) | ggx), `alpha` (default 0.1), or `alpha_u` (along the
+// shading frame's s = dp/du) and `alpha_v` (along t) for an anisotropic lobe,
 // `sample_visible` (default true; honoured for ggx), `material` / `eta` + `k` (as conductor.cpp),
 // `specular_reflectance` (default 1). f = F(wo.m) D(m) G1(wi) G1(wo) / (4 cos_i cos_o), m the half vector.
 // One-sided. For roughness from measured surface statistics use surfscatter's ggx_stats (scattering_models.cpp).
-// Not supported (an error): anisotropic alpha (alpha_u != alpha_v), textured alpha.
+// Not supported (an error): textured alpha.
 // Differences: Beckmann normals are sampled from D cos (Mitsuba samples its visible normals); noise, not mean.
 #include "surfscatter/render/bsdfs/common.hpp"
 #include "surfscatter/render/plugins.hpp"

@@ -1,13 +1,13 @@
 // Mitsuba's `roughdielectric` BSDF: a rough interface between two dielectrics (Walter et al. 2007).
 //
 // Supported: `int_ior` (default bk7), `ext_ior` (default air), `distribution` (beckmann (default) | ggx), `alpha`
-// (default 0.1; or alpha_u = alpha_v), `sample_visible` (default true; honoured for ggx), `specular_reflectance`,
+// (default 0.1; or alpha_u along s = dp/du and alpha_v along t, anisotropic), `sample_visible` (default true; honoured for ggx), `specular_reflectance`,
 // `specular_transmittance` (default 1). With viewer wo, light wi and eta the index ratio across the interface from
 // the viewer's side: reflection F D G / (4 |cos_i cos_o|) at m = normalize(wi + wo); refraction
 // (1 - F) D G |wi.m| |wo.m| / (|cos_i cos_o| (wo.m + eta wi.m)^2) at m = normalize(wo + eta wi) (this includes the
 // 1/eta^2 radiance scaling), G = G1(wi) G1(wo), F the dielectric Fresnel at wo.m. Sampling: a normal from the
 // viewer's side, then reflection with probability F, else refraction. Both sides.
-// Not supported (an error): anisotropic or textured alpha.
+// Not supported (an error): textured alpha.
 // Differences: Beckmann normals are sampled from D cos, and without sample_visible Mitsuba widens the sampled
 // roughness by (1.2 - 0.2 sqrt|cos|); both change noise, not the mean.
 #include "surfscatter/render/bsdfs/common.hpp"

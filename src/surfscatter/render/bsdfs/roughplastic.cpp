@@ -9,7 +9,8 @@
 // The tables are computed when the BSDF is built (quadrature over the projected normals). One-sided.
 // Sampling: the specular lobe with probability (1 - T(cos_o)) w / ((1 - T) w + T (1 - w)), w = s / (s + d) from
 // the scalar values of the reflectances at the shading point, else the cosine-weighted diffuse lobe.
-// Not supported (an error): anisotropic or textured alpha.
+// Not supported (an error): anisotropic alpha (alpha_u != alpha_v: T(mu) is tabulated over cos only, and Mitsuba's
+// roughplastic takes one alpha too), textured alpha.
 // Differences: the lobe weights use the reflectances at the shading point (Mitsuba: the textures' means);
 // Beckmann normals are sampled from D cos.
 #include <algorithm>
@@ -108,7 +109,7 @@ private:
 
 MaterialPtr plugins::roughplastic(Properties& props) {
     const double eta = read_relative_ior(props, "polypropylene", "air", true);
-    const Microfacet distribution = Microfacet::read(props);
+    const Microfacet distribution = Microfacet::read(props, false);  // T(mu) tables: isotropic only, as Mitsuba's
     return std::make_shared<RoughPlastic>(eta, distribution, props.get_texture("diffuse_reflectance", 0.5),
                                           props.get_texture("specular_reflectance", 1.0), props.get_bool("nonlinear", false));
 }

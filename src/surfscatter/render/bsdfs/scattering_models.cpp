@@ -4,7 +4,9 @@
 // ordinary BSDF plugins: usable wherever a BSDF is (shapes, twosided, blendbsdf, mask, bumpmap, normalmap).
 //
 // Parameters (bsdf/model_options.hpp, the same names as the CLI): `material`, `psd`, `sigma`, `corr_length`,
-// `gamma`, `surface_file` (any height map format, read once per scene and reported with its valid fraction),
+// `corr_length_v` and `lay_angle` (degrees; elliptical statistics, surface/elliptical_statistics.hpp: the lay
+// direction u is the shading frame's s = dp/du turned by lay_angle about the normal towards t, so the shape's
+// tangent frame orients the lay; docs/RENDERER.md lists each shape's dp/du), `gamma`, `surface_file` (any height map format, read once per scene and reported with its valid fraction),
 // `form`, `fresnel` (all but two_scale's macro part), ghs and two_scale: `method`, `truncation`,
 // `epsilon`, `renormalization`; ghs_ssa: `ssa_form`; ggx_stats: `alpha_from`, `smoothing`,
 // `alpha`; two_scale: `cutoff_wavelengths`, `macro_ndf`. A parameter the model and modes chosen do not use is an
@@ -88,6 +90,8 @@ void read_surface_options(Properties& props, bsdf::ModelOptions& o) {
     o.surface.sigma = props.get_float("sigma", o.surface.sigma);
     o.surface.corr_length = props.get_float("corr_length", o.surface.corr_length);
     o.surface.gamma = props.get_float("gamma", o.surface.gamma);
+    o.surface.corr_length_v = props.get_float("corr_length_v", o.surface.corr_length_v);
+    o.surface.lay_angle = props.get_float("lay_angle", o.surface.lay_angle);
     if (props.has("surface_file")) {
         o.surface.surface_file = props.get_file("surface_file").string();
         if (!psd) o.surface.psd = bsdf::PsdKind::file;
@@ -99,7 +103,8 @@ void read_surface_options(Properties& props, bsdf::ModelOptions& o) {
 
 // An option given in the scene that the model and modes chosen do not use is an error at its line (the CLI's rule).
 void check_applicable(Properties& props, const bsdf::ModelOptions& o, const std::string& type) {
-    for (const char* name : {"material", "psd", "sigma", "corr_length", "gamma", "surface_file", "form", "fresnel",
+    for (const char* name : {"material", "psd", "sigma", "corr_length", "corr_length_v", "lay_angle", "gamma",
+                             "surface_file", "form", "fresnel",
                              "method", "truncation", "epsilon", "renormalization", "ssa_form", "alpha_from",
                              "smoothing", "alpha", "cutoff_wavelengths", "macro_ndf"})
         if (props.has(name))
