@@ -55,5 +55,9 @@ BENCHMARK_CAPTURE(BM_PhotoSetupView1, ggx, {{"model", "roughconductor"}})
     ->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
 BENCHMARK_CAPTURE(BM_PhotoSetupView1, ggx_stats, {{"model", "ggx_stats"}})
     ->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
+// The same plate brushed (elliptical KC: corr_length 4 um along the marks, 0.5 um across, lay at 30 deg).
+BENCHMARK_CAPTURE(BM_PhotoSetupView1, ggx_stats_anisotropic,
+                  {{"model", "ggx_stats"}, {"corr_length_v", "0.5"}, {"lay_angle", "30"}})
+    ->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
 BENCHMARK_CAPTURE(BM_PhotoSetupView1, ghs_exact, {{"model", "ghs"}})
     ->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);

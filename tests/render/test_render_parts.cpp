@@ -105,6 +105,12 @@ TEST(ModelParameters, TextReadsAsTheXmlPluginDoes) {
                       {"renormalization", "false"}}, "study");
     EXPECT_EQ(two_scale.cutoff_wavelengths, 50.0);
     EXPECT_FALSE(two_scale.renormalization);
+    // Elliptical statistics by the SurfaceOptions names (a study's model or surface parameters, -D defines).
+    const bsdf::ModelOptions brushed = scattering_model_options(
+        "ggx_stats", {{"sigma", "0.1"}, {"corr_length", "20"}, {"corr_length_v", "1"}, {"lay_angle", "90"}, {"gamma", "4"}},
+        "study");
+    EXPECT_EQ(brushed.surface.corr_length_v, 1.0);
+    EXPECT_EQ(brushed.surface.lay_angle, 90.0);
 }
 
 TEST(ModelParameters, TextErrorsNameTheOriginAndTheParameter) {
@@ -132,6 +138,11 @@ TEST(ModelParameters, TextErrorsNameTheOriginAndTheParameter) {
     EXPECT_EQ(message("ghs", with("gamma", "0.5")), "models[1]: bsdf 'ghs': gamma must be between 1.01 and 100 (KC), got 0.5");
     EXPECT_NE(message("ghs", with("renormalization", "yes")).find("true or false"), std::string::npos);
     EXPECT_NE(message("roughconductor", kc).find("unknown scattering model 'roughconductor'"), std::string::npos);
+    EXPECT_EQ(message("ggx_stats", {{"alpha", "0.1"}, {"lay_angle", "30"}}),
+              "models[1]: lay_angle: parameter 'lay_angle' does not apply to bsdf 'ggx_stats': model ggx_stats with "
+              "alpha_from none takes no surface");
+    EXPECT_EQ(message("ghs", with("corr_length_v", "-1")),
+              "models[1]: bsdf 'ghs': corr_length_v must be between 1e-09 and 1e+09 um, got -1");
 }
 
 }  // namespace

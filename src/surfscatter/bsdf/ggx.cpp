@@ -23,10 +23,7 @@ GgxBsdf::GgxBsdf(material::Conductor material, double alpha)
     : material_(std::move(material)), alpha_([alpha](double) { return Vec2(alpha, alpha); }), alpha_constant_(true) {}
 
 GgxBsdf::GgxBsdf(material::Conductor material, std::function<Vec2(double)> alpha_uv, double lay_angle_rad)
-    : material_(std::move(material)), alpha_(std::move(alpha_uv)), lay_angle_(lay_angle_rad),
-      cos_a_(std::cos(lay_angle_rad)), sin_a_(std::sin(lay_angle_rad)), rotated_(lay_angle_rad != 0) {
-    if (!std::isfinite(lay_angle_rad)) fail("lay_angle must be finite, got {}", lay_angle_rad);
-}
+    : material_(std::move(material)), alpha_(std::move(alpha_uv)), lay_(lay_angle_rad) {}
 
 GgxBsdf::GgxBsdf(material::Conductor material, Vec2 alpha_uv, double lay_angle_rad)
     : GgxBsdf(std::move(material), [alpha_uv](double) { return alpha_uv; }, lay_angle_rad) {
@@ -35,7 +32,7 @@ GgxBsdf::GgxBsdf(material::Conductor material, Vec2 alpha_uv, double lay_angle_r
 
 double GgxBsdf::eval(const Vec3& wi_local, const Vec3& wo_local, double lambda_nm) const {
     if (wi_local.z <= 0 || wo_local.z <= 0) return 0.0;
-    const Vec3 wi = to_lay(wi_local), wo = to_lay(wo_local);
+    const Vec3 wi = lay_.to_lay(wi_local), wo = lay_.to_lay(wo_local);
     const Vec3 sum = wi + wo;
     if (sum.length_squared() == 0) return 0.0;
     const Vec3 h = normalize(sum);
@@ -46,7 +43,7 @@ double GgxBsdf::eval(const Vec3& wi_local, const Vec3& wo_local, double lambda_n
 
 double GgxBsdf::pdf(const Vec3& wi_local, const Vec3& wo_local, double lambda_nm) const {
     if (wi_local.z <= 0 || wo_local.z <= 0) return 0.0;
-    const Vec3 wi = to_lay(wi_local), wo = to_lay(wo_local);
+    const Vec3 wi = lay_.to_lay(wi_local), wo = lay_.to_lay(wo_local);
     const Vec3 sum = wi + wo;
     if (sum.length_squared() == 0) return 0.0;
     const Vec3 h = normalize(sum);
@@ -59,7 +56,7 @@ WavelengthValues GgxBsdf::eval_packet(const Vec3& wi_local, const Vec3& wo_local
     WavelengthValues f{};
     if (pdf) pdf->fill(0.0);
     if (wi_local.z <= 0 || wo_local.z <= 0) return f;
-    const Vec3 wi = to_lay(wi_local), wo = to_lay(wo_local);
+    const Vec3 wi = lay_.to_lay(wi_local), wo = lay_.to_lay(wo_local);
     const Vec3 sum = wi + wo;
     if (sum.length_squared() == 0) return f;
     const Vec3 h = normalize(sum);
@@ -81,7 +78,7 @@ WavelengthValues GgxBsdf::eval_packet(const Vec3& wi_local, const Vec3& wo_local
 
 std::optional<BsdfSample> GgxBsdf::sample(const Vec3& wi_local, double lambda_nm, double /*u_lobe*/, Vec2 u) const {
     if (wi_local.z <= 0) return std::nullopt;
-    const Vec3 wi = to_lay(wi_local);
+    const Vec3 wi = lay_.to_lay(wi_local);
     const GgxDistribution ggx = distribution(alpha_(lambda_nm));
     const Vec3 h = ggx.sample_visible(wi, u);
     const Vec3 wo = reflect(wi, h);
@@ -91,7 +88,7 @@ std::optional<BsdfSample> GgxBsdf::sample(const Vec3& wi_local, double lambda_nm
     // f cos / pdf = F G2 / G1(wi), independent of D.
     const double F = material_.reflectance(std::clamp(dot(wi, h), 0.0, 1.0), lambda_nm);
     BsdfSample s;
-    s.wo = from_lay(wo);
+    s.wo = lay_.from_lay(wo);
     s.pdf = p;
     s.weight = F * ggx.G2(wi, wo) / ggx.G1(wi);
     return s;

@@ -7,6 +7,7 @@
 #include <functional>
 
 #include "surfscatter/bsdf/bsdf.hpp"
+#include "surfscatter/bsdf/microfacet.hpp"
 #include "surfscatter/material/conductor.hpp"
 #include "surfscatter/math/vec.hpp"
 
@@ -30,24 +31,13 @@ public:
 
     double alpha(double lambda_nm) const { return alpha_(lambda_nm).x; }  // alpha_u
     Vec2 alpha_uv(double lambda_nm) const { return alpha_(lambda_nm); }
-    double lay_angle() const { return lay_angle_; }  // radians
+    double lay_angle() const { return lay_.angle(); }  // radians
 
 private:
-    // A local-frame direction in the lay frame (u, v, z): rotated by -A about z (identity for A = 0).
-    Vec3 to_lay(const Vec3& w) const {
-        if (!rotated_) return w;
-        return {cos_a_ * w.x + sin_a_ * w.y, -sin_a_ * w.x + cos_a_ * w.y, w.z};
-    }
-    Vec3 from_lay(const Vec3& w) const {
-        if (!rotated_) return w;
-        return {cos_a_ * w.x - sin_a_ * w.y, sin_a_ * w.x + cos_a_ * w.y, w.z};
-    }
-
     material::Conductor material_;
     std::function<Vec2(double)> alpha_;
     bool alpha_constant_ = false;
-    double lay_angle_ = 0, cos_a_ = 1, sin_a_ = 0;
-    bool rotated_ = false;
+    LayFrame lay_;
 };
 
 // GGX roughness of the KC(gamma = 3) first-order lobe at normal incidence (THEORY 4.3 with cos(theta_d) = 1):

@@ -11,6 +11,11 @@ void require_microfacet_alpha(double alpha, const char* what) {
         fail("{} must be between {} and {}, got {}", what, kMinMicrofacetAlpha, kMaxMicrofacetAlpha, alpha);
 }
 
+LayFrame::LayFrame(double angle_rad)
+    : angle_(angle_rad), cos_(std::cos(angle_rad)), sin_(std::sin(angle_rad)), turned_(angle_rad != 0) {
+    if (!std::isfinite(angle_rad)) fail("lay_angle must be finite, got {}", angle_rad);
+}
+
 double GgxDistribution::D(const Vec3& h) const {
     if (h.z <= 0) return 0.0;
     const double c2 = h.z * h.z;

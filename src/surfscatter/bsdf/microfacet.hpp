@@ -62,6 +62,27 @@ private:
     double alpha_x_, alpha_y_;
 };
 
+// The lay frame (u, v, z) of an anisotropic lobe whose u axis lies at angle A from x towards y (surface::
+// EllipticalStatistics' convention): local-frame directions turned by -A about z, and back; A = 0 is the identity
+// without arithmetic (isotropic and unturned results stay bitwise what they were).
+class LayFrame {
+public:
+    explicit LayFrame(double angle_rad = 0);
+    double angle() const { return angle_; }
+    Vec3 to_lay(const Vec3& w) const {
+        if (!turned_) return w;
+        return {cos_ * w.x + sin_ * w.y, -sin_ * w.x + cos_ * w.y, w.z};
+    }
+    Vec3 from_lay(const Vec3& w) const {
+        if (!turned_) return w;
+        return {cos_ * w.x - sin_ * w.y, sin_ * w.x + cos_ * w.y, w.z};
+    }
+
+private:
+    double angle_, cos_, sin_;
+    bool turned_;
+};
+
 // Solid-angle density of wo = reflect(wi, h) given the density of h: p(wo) = p(h) / (4 |wo.h|).
 inline double reflection_jacobian(const Vec3& wo, const Vec3& h) { return 1.0 / (4.0 * std::abs(dot(wo, h))); }
 inline Vec3 reflect(const Vec3& w, const Vec3& h) { return 2.0 * dot(w, h) * h - w; }

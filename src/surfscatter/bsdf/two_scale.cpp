@@ -3,13 +3,16 @@
 #include <cmath>
 
 #include "surfscatter/bsdf/microfacet.hpp"
-#include "surfscatter/bsdf/wedge_sampling.hpp"
 
 namespace surfscatter::bsdf {
 
-TwoScaleBsdf::TwoScaleBsdf(material::Conductor material, MacroNdf ndf, double macro_alpha,
-                           std::unique_ptr<GhsBsdf> micro)
-    : material_(std::move(material)), ndf_(ndf), alpha_(macro_alpha), micro_(std::move(micro)) {}
+TwoScaleBsdf::TwoScaleBsdf(material::Conductor material, MacroNdf ndf, double macro_alpha, std::unique_ptr<Bsdf> micro)
+    : TwoScaleBsdf(std::move(material), ndf, Vec2(macro_alpha, macro_alpha), 0.0, std::move(micro)) {}
+
+TwoScaleBsdf::TwoScaleBsdf(material::Conductor material, MacroNdf ndf, Vec2 macro_alpha_uv, double lay_angle_rad,
+                           std::unique_ptr<Bsdf> micro)
+    : material_(std::move(material)), ndf_(ndf), alpha_(macro_alpha_uv), lay_(lay_angle_rad),
+      ggx_(macro_alpha_uv.x, macro_alpha_uv.y), beckmann_(macro_alpha_uv.x, macro_alpha_uv.y), micro_(std::move(micro)) {}
 
 double TwoScaleBsdf::macro_eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
     const Vec3 sum = wi + wo;
@@ -17,8 +20,7 @@ double TwoScaleBsdf::macro_eval(const Vec3& wi, const Vec3& wo, double lambda_nm
     const Vec3 h = normalize(sum);
     const double cos_d = std::clamp(dot(wi, h), 0.0, 1.0);
     const double specular = micro_->delta_probability(wi, lambda_nm) * material_.reflectance(cos_d, lambda_nm);
-    const double dg = ndf_ == MacroNdf::ggx ? GgxDistribution(alpha_).D(h) * GgxDistribution(alpha_).G2(wi, wo)
-                                            : BeckmannDistribution(alpha_).D(h) * BeckmannDistribution(alpha_).G2(wi, wo);
+    const double dg = ndf_ == MacroNdf::ggx ? ggx_.D(h) * ggx_.G2(wi, wo) : beckmann_.D(h) * beckmann_.G2(wi, wo);
     return specular * dg / (4.0 * wi.z * wo.z);
 }
 
@@ -26,20 +28,20 @@ double TwoScaleBsdf::macro_pdf(const Vec3& wi, const Vec3& wo) const {
     const Vec3 sum = wi + wo;
     if (sum.length_squared() == 0) return 0.0;
     const Vec3 h = normalize(sum);
-    const double ph = ndf_ == MacroNdf::ggx ? GgxDistribution(alpha_).visible_density(wi, h)
-                                            : BeckmannDistribution(alpha_).projected_density(h);
+    const double ph = ndf_ == MacroNdf::ggx ? ggx_.visible_density(wi, h) : beckmann_.projected_density(h);
     return ph * reflection_jacobian(wo, h);
 }
 
 double TwoScaleBsdf::eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
     if (wi.z <= 0 || wo.z <= 0) return 0.0;
-    const double f = macro_eval(wi, wo, lambda_nm) + micro_->eval(wi, wo, lambda_nm);
+    const double f = macro_eval(lay_.to_lay(wi), lay_.to_lay(wo), lambda_nm) + micro_->eval(wi, wo, lambda_nm);
     return std::isfinite(f) ? f : 0.0;
 }
 
 double TwoScaleBsdf::pdf(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
     if (wi.z <= 0 || wo.z <= 0) return 0.0;
-    const double p = micro_->delta_probability(wi, lambda_nm) * macro_pdf(wi, wo) + micro_->pdf(wi, wo, lambda_nm);
+    const double p = micro_->delta_probability(wi, lambda_nm) * macro_pdf(lay_.to_lay(wi), lay_.to_lay(wo)) +
+                     micro_->pdf(wi, wo, lambda_nm);
     return std::isfinite(p) ? p : 0.0;
 }
 
@@ -47,9 +49,9 @@ std::optional<BsdfSample> TwoScaleBsdf::sample(const Vec3& wi, double lambda_nm,
     if (wi.z <= 0) return std::nullopt;
     Vec3 wo;
     if (u_lobe < micro_->delta_probability(wi, lambda_nm)) {
-        const Vec3 h = ndf_ == MacroNdf::ggx ? GgxDistribution(alpha_).sample_visible(wi, u)
-                                             : BeckmannDistribution(alpha_).sample_projected(u);
-        wo = reflect(wi, h);
+        const Vec3 wi_lay = lay_.to_lay(wi);
+        const Vec3 h = ndf_ == MacroNdf::ggx ? ggx_.sample_visible(wi_lay, u) : beckmann_.sample_projected(u);
+        wo = lay_.from_lay(reflect(wi_lay, h));
     } else {
         const auto s = micro_->sample(wi, lambda_nm, u_lobe, u);  // u_lobe above the delta probability: scatter
         if (!s) return std::nullopt;

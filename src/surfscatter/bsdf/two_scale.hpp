@@ -16,16 +16,24 @@
 // are wavelength-independent (the micro lobe itself is evaluated at the query wavelength).
 // Sampling: the macro lobe with probability e^{-g0,micro} (the micro GHS's delta probability), else the micro GHS
 // sampler; the pdf is the exact mixture.
+// The macro NDF may be anisotropic (alpha_u along the lay direction at lay_angle, alpha_v across; microfacet.hpp), and
+// the micro lobe is any Bsdf whose delta_probability() is e^{-g0,micro} (the GHS of the high-pass part, isotropic or
+// not): only its Bsdf interface is used.
 #include <memory>
 
-#include "surfscatter/bsdf/ghs.hpp"
+#include "surfscatter/bsdf/bsdf.hpp"
+#include "surfscatter/bsdf/microfacet.hpp"
 #include "surfscatter/bsdf/model_options.hpp"
+#include "surfscatter/material/conductor.hpp"
 
 namespace surfscatter::bsdf {
 
 class TwoScaleBsdf final : public Bsdf {
 public:
-    TwoScaleBsdf(material::Conductor material, MacroNdf ndf, double macro_alpha, std::unique_ptr<GhsBsdf> micro);
+    TwoScaleBsdf(material::Conductor material, MacroNdf ndf, double macro_alpha, std::unique_ptr<Bsdf> micro);
+    // Anisotropic macro NDF: (alpha_u, alpha_v) and the lay angle in radians.
+    TwoScaleBsdf(material::Conductor material, MacroNdf ndf, Vec2 macro_alpha_uv, double lay_angle_rad,
+                 std::unique_ptr<Bsdf> micro);
 
     double eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const override;
     std::optional<BsdfSample> sample(const Vec3& wi, double lambda_nm, double u_lobe, Vec2 u) const override;
@@ -33,17 +41,22 @@ public:
     double jump_radius(double lambda_nm) const override { return micro_->jump_radius(lambda_nm); }
     std::string name() const override { return "two_scale"; }
 
-    double macro_alpha() const { return alpha_; }
-    const GhsBsdf& micro() const { return *micro_; }
+    double macro_alpha() const { return alpha_.x; }  // alpha_u
+    Vec2 macro_alpha_uv() const { return alpha_; }
+    const Bsdf& micro() const { return *micro_; }
 
 private:
+    // Both in the lay frame.
     double macro_eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const;
     double macro_pdf(const Vec3& wi, const Vec3& wo) const;  // density of the macro sampler alone
 
     material::Conductor material_;
     MacroNdf ndf_;
-    double alpha_;
-    std::unique_ptr<GhsBsdf> micro_;
+    Vec2 alpha_;
+    LayFrame lay_;
+    GgxDistribution ggx_;
+    BeckmannDistribution beckmann_;
+    std::unique_ptr<Bsdf> micro_;
 };
 
 // Reference wavelength of the macro/micro split (nm).
