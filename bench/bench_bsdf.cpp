@@ -49,6 +49,13 @@ ModelOptions options_for(int model, double g) {
             o.surface.corr_length_v = 0.4;
             o.surface.lay_angle = 30.0;
             break;
+        case 8:  // model 3 on elliptical statistics (LV = 0.3 LU, lay 30 deg): the anisotropic GGX path
+            o.model = ModelKind::ggx;
+            o.alpha_from = AlphaFrom::smoothed;
+            o.smoothing = 0.1;
+            o.surface.corr_length_v = 0.3;
+            o.surface.lay_angle = 30;
+            break;
         default: {
             o.model = ModelKind::ghs;
             o.surface.psd = PsdKind::measured;
@@ -85,7 +92,7 @@ std::vector<Vec3> directions(const Bsdf& b, const Vec3& wi) {
 }
 
 const char* kNames[] = {"ghs_exact", "ghs_refit", "ghs_ssa", "ggx", "two_scale", "ghs_measured", "aniso_ghs_exact",
-                        "aniso_ghs_ssa"};
+                        "aniso_ghs_ssa", "ggx_anisotropic"};
 
 void BM_eval(benchmark::State& state) {
     const Bsdf& b = model(int(state.range(0)), std::pow(10.0, double(state.range(1)) - 1));
@@ -170,7 +177,7 @@ void BM_eval_packet(benchmark::State& state) {
 
 // Arguments: model index, log10(g) + 1 (0 -> g = 0.1, 2 -> 10, 4 -> 1000).
 void models_and_g(benchmark::internal::Benchmark* b) {
-    for (int m = 0; m < 8; ++m)
+    for (int m = 0; m < 9; ++m)
         for (int lg : {0, 2, 4}) b->Args({m, lg});
 }
 
@@ -203,7 +210,7 @@ BENCHMARK(BM_sample)->Apply(models_and_g);
 BENCHMARK(BM_measured_tables)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime()->Iterations(3);
 BENCHMARK(BM_eval_varying)->Args({0, 2})->Args({3, 2})->Args({6, 2});
 void packet_models(benchmark::internal::Benchmark* b) {
-    for (int m : {0, 3, 6})
+    for (int m : {0, 3, 6, 8})
         for (int lg : {0, 2, 4}) b->Args({m, lg});
 }
 BENCHMARK(BM_eval_packet<true>)->Name("BM_eval_packet")->Apply(packet_models);
