@@ -212,6 +212,14 @@ TEST(Models, ExtremeInputsStayFinite) {
         o.cutoff_wavelengths = 5;
         models.push_back(o);
     }
+    for (AlphaFrom from : {AlphaFrom::measured, AlphaFrom::kc_link}) {
+        // Elliptical, stretched 100x either way (alpha_v 42 for measured), the lay at 45 deg.
+        auto o = test::kc_options(ModelKind::ggx, 0.3, 1.0, 4.0);
+        o.alpha_from = from;
+        o.surface.corr_length_v = from == AlphaFrom::measured ? 0.01 : 100.0;
+        o.surface.lay_angle = 45;
+        models.push_back(o);
+    }
     for (double alpha : {1e-4, 1.0}) {
         ModelOptions o;
         o.model = ModelKind::ggx;
