@@ -213,10 +213,10 @@ TEST(Models, ExtremeInputsStayFinite) {
         models.push_back(o);
     }
     for (AlphaFrom from : {AlphaFrom::measured, AlphaFrom::kc_link}) {
-        // Elliptical, stretched 100x either way (alpha_v 42 for measured), the lay at 45 deg.
+        // Elliptical, stretched 100x (alpha_v 42 for measured) or 10x the other way (kc_link alpha_v 8e-4 at 100 nm).
         auto o = test::kc_options(ModelKind::ggx, 0.3, 1.0, 4.0);
         o.alpha_from = from;
-        o.surface.corr_length_v = from == AlphaFrom::measured ? 0.01 : 100.0;
+        o.surface.corr_length_v = from == AlphaFrom::measured ? 0.01 : 10.0;
         o.surface.lay_angle = 45;
         models.push_back(o);
     }
