@@ -222,5 +222,14 @@ TEST(AnisotropicGgx, LayAngleRotatesTheLobe) {
                 EXPECT_NEAR(swapped.eval(wi, wo, 600.0), f, 1e-12 * (1 + f));
                 EXPECT_NEAR(aligned.eval(rotate(wi, -a), rotate(wo, -a), 600.0), f, 1e-12 * (1 + f));
                 EXPECT_NEAR(swapped.pdf(wi, wo, 600.0), base.pdf(wi, wo, 600.0), 1e-12 * (1 + base.pdf(wi, wo, 600.0)));
+                // The packet (four wavelengths, reverse pdf) equals eval and pdf one at a time.
+                WavelengthValues pdf{};
+                const WavelengthValues lambdas{450.0, 520.0, 600.0, 700.0};
+                const WavelengthValues packet = base.eval_packet(wi, wo, lambdas, &pdf);
+                for (std::size_t k = 0; k < lambdas.size(); ++k) {
+                    const double fk = base.eval(wi, wo, lambdas[k]), pk = base.pdf(wo, wi, lambdas[k]);
+                    EXPECT_NEAR(packet[k], fk, 1e-12 * (1 + fk));
+                    EXPECT_NEAR(pdf[k], pk, 1e-12 * (1 + pk));
+                }
             }
 }

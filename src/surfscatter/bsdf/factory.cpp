@@ -243,9 +243,8 @@ std::unique_ptr<Bsdf> elliptical_ggx(const ModelOptions& o, SurfaceSource& surfa
         const double lu = elliptical.corr_length_u(), lv = elliptical.corr_length_v();
         surface.kc();  // kc_link needs a KC surface, as for the isotropic one
         return std::make_unique<GgxBsdf>(
-            std::move(material),
-            [lu, lv](double lambda_nm) { return Vec2(kc_link_alpha(lu, lambda_nm), kc_link_alpha(lv, lambda_nm)); },
-            lay);
+            std::move(material), [lu](double lambda_nm) { return kc_link_alpha(lu, lambda_nm); },
+            [lv](double lambda_nm) { return kc_link_alpha(lv, lambda_nm); }, lay);
     }
     if (surface.map()) fail("corr_length_v and lay_angle need psd kc or gaussian: a height map gives its own statistics");
     const double smoothing = slope_smoothing(o);

@@ -7,69 +7,83 @@
 
 namespace surfscatter::bsdf {
 
-namespace {
-
-GgxDistribution distribution(Vec2 alpha_uv) { return GgxDistribution(alpha_uv.x, alpha_uv.y); }
-
-}  // namespace
-
 GgxBsdf::GgxBsdf(material::Conductor material, std::function<double(double)> alpha)
-    : material_(std::move(material)), alpha_([alpha = std::move(alpha)](double lambda_nm) {
-          const double a = alpha(lambda_nm);
-          return Vec2(a, a);
-      }) {}
+    : material_(std::move(material)), alpha_(std::move(alpha)) {}
 
 GgxBsdf::GgxBsdf(material::Conductor material, double alpha)
-    : material_(std::move(material)), alpha_([alpha](double) { return Vec2(alpha, alpha); }), alpha_constant_(true) {}
-
-GgxBsdf::GgxBsdf(material::Conductor material, std::function<Vec2(double)> alpha_uv, double lay_angle_rad)
-    : material_(std::move(material)), alpha_(std::move(alpha_uv)), lay_(lay_angle_rad) {}
-
-GgxBsdf::GgxBsdf(material::Conductor material, Vec2 alpha_uv, double lay_angle_rad)
-    : GgxBsdf(std::move(material), [alpha_uv](double) { return alpha_uv; }, lay_angle_rad) {
+    : GgxBsdf(std::move(material), [alpha](double) { return alpha; }) {
     alpha_constant_ = true;
 }
 
-double GgxBsdf::eval(const Vec3& wi_local, const Vec3& wo_local, double lambda_nm) const {
-    if (wi_local.z <= 0 || wo_local.z <= 0) return 0.0;
-    const Vec3 wi = lay_.to_lay(wi_local), wo = lay_.to_lay(wo_local);
+GgxBsdf::GgxBsdf(material::Conductor material, std::function<double(double)> alpha_u,
+                 std::function<double(double)> alpha_v, double lay_angle_rad)
+    : material_(std::move(material)), alpha_(std::move(alpha_u)), alpha_v_(std::move(alpha_v)), lay_(lay_angle_rad) {}
+
+GgxBsdf::GgxBsdf(material::Conductor material, Vec2 alpha_uv, double lay_angle_rad)
+    : GgxBsdf(std::move(material), [u = alpha_uv.x](double) { return u; }, [v = alpha_uv.y](double) { return v; },
+              lay_angle_rad) {
+    alpha_constant_ = true;
+}
+
+Vec2 GgxBsdf::alpha_uv(double lambda_nm) const {
+    const double u = alpha_(lambda_nm);
+    return {u, alpha_v_ ? alpha_v_(lambda_nm) : u};
+}
+
+double GgxBsdf::eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
+    if (wi.z <= 0 || wo.z <= 0) return 0.0;
+    return lay_.turned() ? eval_lay(lay_.to_lay(wi), lay_.to_lay(wo), lambda_nm) : eval_lay(wi, wo, lambda_nm);
+}
+
+double GgxBsdf::eval_lay(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
     const Vec3 sum = wi + wo;
     if (sum.length_squared() == 0) return 0.0;
     const Vec3 h = normalize(sum);
-    const GgxDistribution ggx = distribution(alpha_(lambda_nm));
+    const GgxDistribution ggx = distribution(lambda_nm);
     const double F = material_.reflectance(std::clamp(dot(wi, h), 0.0, 1.0), lambda_nm);
     return ggx.D(h) * ggx.G2(wi, wo) * F / (4.0 * wi.z * wo.z);
 }
 
-double GgxBsdf::pdf(const Vec3& wi_local, const Vec3& wo_local, double lambda_nm) const {
-    if (wi_local.z <= 0 || wo_local.z <= 0) return 0.0;
-    const Vec3 wi = lay_.to_lay(wi_local), wo = lay_.to_lay(wo_local);
+double GgxBsdf::pdf(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
+    if (wi.z <= 0 || wo.z <= 0) return 0.0;
+    return lay_.turned() ? pdf_lay(lay_.to_lay(wi), lay_.to_lay(wo), lambda_nm) : pdf_lay(wi, wo, lambda_nm);
+}
+
+double GgxBsdf::pdf_lay(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
     const Vec3 sum = wi + wo;
     if (sum.length_squared() == 0) return 0.0;
     const Vec3 h = normalize(sum);
-    const GgxDistribution ggx = distribution(alpha_(lambda_nm));
+    const GgxDistribution ggx = distribution(lambda_nm);
     return ggx.visible_density(wi, h) * reflection_jacobian(wo, h);
 }
 
-WavelengthValues GgxBsdf::eval_packet(const Vec3& wi_local, const Vec3& wo_local, const WavelengthValues& lambda_nm,
+WavelengthValues GgxBsdf::eval_packet(const Vec3& wi, const Vec3& wo, const WavelengthValues& lambda_nm,
                                       WavelengthValues* pdf) const {
+    if (wi.z <= 0 || wo.z <= 0) {
+        if (pdf) pdf->fill(0.0);
+        return WavelengthValues{};
+    }
+    return lay_.turned() ? eval_packet_lay(lay_.to_lay(wi), lay_.to_lay(wo), lambda_nm, pdf)
+                         : eval_packet_lay(wi, wo, lambda_nm, pdf);
+}
+
+WavelengthValues GgxBsdf::eval_packet_lay(const Vec3& wi, const Vec3& wo, const WavelengthValues& lambda_nm,
+                                          WavelengthValues* pdf) const {
     WavelengthValues f{};
     if (pdf) pdf->fill(0.0);
-    if (wi_local.z <= 0 || wo_local.z <= 0) return f;
-    const Vec3 wi = lay_.to_lay(wi_local), wo = lay_.to_lay(wo_local);
     const Vec3 sum = wi + wo;
     if (sum.length_squared() == 0) return f;
     const Vec3 h = normalize(sum);
     const double cos_d = std::clamp(dot(wi, h), 0.0, 1.0);
     double d_g = 0, density = 0;  // D G2 / (4 cos_i cos_o) and pdf(wo, wi) for one alpha
-    const auto geometry = [&](Vec2 alpha) {
-        const GgxDistribution ggx = distribution(alpha);
+    const auto geometry = [&](double lambda) {
+        const GgxDistribution ggx = distribution(lambda);
         d_g = ggx.D(h) * ggx.G2(wi, wo) / (4.0 * wi.z * wo.z);
         if (pdf) density = ggx.visible_density(wo, h) * reflection_jacobian(wi, h);
     };
-    if (alpha_constant_) geometry(alpha_(lambda_nm[0]));
+    if (alpha_constant_) geometry(lambda_nm[0]);
     for (std::size_t k = 0; k < f.size(); ++k) {
-        if (!alpha_constant_) geometry(alpha_(lambda_nm[k]));
+        if (!alpha_constant_) geometry(lambda_nm[k]);
         f[k] = d_g * material_.reflectance(cos_d, lambda_nm[k]);
         if (pdf) (*pdf)[k] = density;
     }
@@ -79,7 +93,7 @@ WavelengthValues GgxBsdf::eval_packet(const Vec3& wi_local, const Vec3& wo_local
 std::optional<BsdfSample> GgxBsdf::sample(const Vec3& wi_local, double lambda_nm, double /*u_lobe*/, Vec2 u) const {
     if (wi_local.z <= 0) return std::nullopt;
     const Vec3 wi = lay_.to_lay(wi_local);
-    const GgxDistribution ggx = distribution(alpha_(lambda_nm));
+    const GgxDistribution ggx = distribution(lambda_nm);
     const Vec3 h = ggx.sample_visible(wi, u);
     const Vec3 wo = reflect(wi, h);
     if (wo.z <= 0) return std::nullopt;

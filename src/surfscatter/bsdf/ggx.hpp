@@ -17,8 +17,9 @@ class GgxBsdf final : public Bsdf {
 public:
     GgxBsdf(material::Conductor material, std::function<double(double lambda_nm)> alpha);
     GgxBsdf(material::Conductor material, double alpha);
-    // Anisotropic: (alpha_u, alpha_v) at a wavelength, and the lay angle A in radians.
-    GgxBsdf(material::Conductor material, std::function<Vec2(double lambda_nm)> alpha_uv, double lay_angle_rad);
+    // Anisotropic: alpha_u and alpha_v at a wavelength, and the lay angle A in radians.
+    GgxBsdf(material::Conductor material, std::function<double(double lambda_nm)> alpha_u,
+            std::function<double(double lambda_nm)> alpha_v, double lay_angle_rad);
     GgxBsdf(material::Conductor material, Vec2 alpha_uv, double lay_angle_rad);
 
     double eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const override;
@@ -29,13 +30,25 @@ public:
                                  WavelengthValues* pdf) const override;
     std::string name() const override { return "ggx_stats"; }  // the model's one name (model_options)
 
-    double alpha(double lambda_nm) const { return alpha_(lambda_nm).x; }  // alpha_u
-    Vec2 alpha_uv(double lambda_nm) const { return alpha_(lambda_nm); }
+    double alpha(double lambda_nm) const { return alpha_(lambda_nm); }  // alpha_u
+    Vec2 alpha_uv(double lambda_nm) const;
     double lay_angle() const { return lay_.angle(); }  // radians
 
 private:
+    // eval, pdf and eval_packet of directions in the lay frame (upper hemisphere).
+    double eval_lay(const Vec3& wi, const Vec3& wo, double lambda_nm) const;
+    double pdf_lay(const Vec3& wi, const Vec3& wo, double lambda_nm) const;
+    WavelengthValues eval_packet_lay(const Vec3& wi, const Vec3& wo, const WavelengthValues& lambda_nm,
+                                     WavelengthValues* pdf) const;
+    // alpha_ is alpha_u (or the isotropic alpha), alpha_v_ empty when isotropic. One double per function: a (u, v)
+    // pair returned through std::function cost GGX eval a store-forwarding stall (2.5x its time).
+    GgxDistribution distribution(double lambda_nm) const {
+        if (!alpha_v_) return GgxDistribution(alpha_(lambda_nm));
+        return GgxDistribution(alpha_(lambda_nm), alpha_v_(lambda_nm));
+    }
+
     material::Conductor material_;
-    std::function<Vec2(double)> alpha_;
+    std::function<double(double)> alpha_, alpha_v_;
     bool alpha_constant_ = false;
     LayFrame lay_;
 };

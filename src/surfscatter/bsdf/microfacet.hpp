@@ -69,6 +69,7 @@ class LayFrame {
 public:
     explicit LayFrame(double angle_rad = 0);
     double angle() const { return angle_; }
+    bool turned() const { return turned_; }
     Vec3 to_lay(const Vec3& w) const {
         if (!turned_) return w;
         return {cos_ * w.x + sin_ * w.y, -sin_ * w.x + cos_ * w.y, w.z};
