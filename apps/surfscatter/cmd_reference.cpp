@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "command.hpp"
+#include "profile_surface_options.hpp"
 #include "surfscatter/bsdf/model_options.hpp"
 #include "surfscatter/bsdf/profile_lobes.hpp"
 #include "surfscatter/core/error.hpp"
@@ -37,20 +38,6 @@ namespace surfscatter::cli {
 
 namespace {
 
-// The options --psd kc|gaussian --sigma --corr-length [--gamma] of exact-1d's statistical mode and of models-1d.
-struct SurfaceArgs {
-    std::optional<std::string> psd;
-    std::optional<double> sigma, corr_length, gamma;
-    void add_to(CLI::App* sub, const char* psd_help);
-};
-
-void SurfaceArgs::add_to(CLI::App* sub, const char* psd_help) {
-    sub->add_option("--psd", psd, psd_help)->check(CLI::IsMember({"kc", "gaussian"}));
-    sub->add_option("--sigma", sigma, "rms height sigma_h (um), with --psd");
-    sub->add_option("--corr-length", corr_length, "correlation length (um), with --psd");
-    sub->add_option("--gamma", gamma, "KC exponent gamma > 1, with --psd kc");
-}
-
 struct Exact1dArgs {
     std::string profile, material, polarisation, output;
     double wavelength = 0, theta_i = 0, beam_width = 0, points_per_wavelength = 10;
@@ -60,19 +47,6 @@ struct Exact1dArgs {
     long long realizations = 0, seed = 1;
     int threads = 0;
 };
-
-std::unique_ptr<surface::RadialStatistics> statistics_from(const SurfaceArgs& a) {
-    if (!a.sigma || !a.corr_length) fail("--psd {} needs --sigma and --corr-length", *a.psd);
-    surface::require_surface_length(*a.sigma, "--sigma");
-    surface::require_surface_length(*a.corr_length, "--corr-length");
-    if (*a.psd == "kc") {
-        if (!a.gamma) fail("--gamma is required for --psd kc");
-        surface::require_kc_gamma(*a.gamma, "--gamma");
-        return std::make_unique<surface::KCorrelation>(*a.sigma, *a.corr_length, *a.gamma);
-    }
-    if (a.gamma) fail("--gamma applies to --psd kc only");
-    return std::make_unique<surface::GaussianAcv>(*a.sigma, *a.corr_length);
-}
 
 // --material, --wavelength, --theta-i and --polarisation, as exact-1d and models-1d spell them.
 void add_incidence_options(CLI::App* sub, std::string& material, double& wavelength, double& theta_i,
