@@ -167,3 +167,39 @@ TEST(CliReference, Models1dWritesTheModelsOnTheExactGrid) {
                       "--polarisation", "s", "-o", out},
                      "models-1d needs the surface");
 }
+
+// validity: the table's columns and rows, the JSON and the two PNGs; a reference too noisy to conclude anything
+// (4 realizations) is said so and exits 2 after writing what it has; bad input refused in one line.
+TEST(CliReference, ValidityWritesTheTableAndRefusesAnUnresolvedReference) {
+    const auto out = (scratch_directory("surfscatter_cli_reference") / "validity").string();
+    const std::vector<std::string> base{"validity", "--psd", "kc", "--sigma", "0.01", "--corr-length", "1",
+                                        "--gamma", "3", "--material", "perfect", "--wavelengths", "550",
+                                        "--length-um", "12", "--beam-width", "2", "-o", out};
+    const auto with = [&](std::vector<std::string> extra) {
+        auto args = base;
+        args.insert(args.end(), extra.begin(), extra.end());
+        return args;
+    };
+    const auto r = run_cli(with({"--theta-i", "0,40", "--realizations", "4"}));
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("no case is conclusive"), std::string::npos) << r.err;
+    EXPECT_NE(r.out.find("550 nm, theta_i 40 deg, p: nothing can be concluded"), std::string::npos) << r.out;
+    const std::string csv = read_whole_file(out + ".csv");
+    EXPECT_EQ(csv.substr(0, csv.find('\n')),
+              "model,wavelength_nm,theta_i_deg,polarisation,median_rel_error,worst_rel_error,worst_theta_o_deg,"
+              "directions_used,directions_excluded,reference_median_rel_stderr,model_energy,reference_energy,"
+              "trusted,verdict");
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 3 * 2 * 2);  // models x incidences x polarisations
+    EXPECT_NE(csv.find("\nkirchhoff,550,40,p,"), std::string::npos) << csv;
+    EXPECT_NE(read_whole_file(out + ".json").find("\"verdict\""), std::string::npos);
+    EXPECT_GT(std::filesystem::file_size(out + "_slices.png"), 1000u);
+    EXPECT_GT(std::filesystem::file_size(out + "_error_map.png"), 1000u);
+
+    expect_bad_input(with({"--theta-i", "0,90", "--realizations", "4"}), "theta_i must be in [0, 90) degrees, got 90");
+    expect_bad_input(with({"--theta-i", "0", "--realizations", "1"}), "--realizations must be at least 2, got 1");
+    expect_bad_input(with({"--theta-i", "0", "--realizations", "4", "--tolerance", "2"}),
+                     "--tolerance must be in (0, 1), got 2");
+    expect_bad_input({"validity", "--material", "perfect", "--wavelengths", "550", "--theta-i", "0", "--length-um",
+                      "12", "--beam-width", "2", "--realizations", "4", "-o", out},
+                     "validity needs the surface");
+}
