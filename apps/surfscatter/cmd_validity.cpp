@@ -40,18 +40,15 @@ std::string csv_table(const std::vector<validity::ProfileCase>& cases) {
     std::string out = "model,wavelength_nm,theta_i_deg,polarisation,median_rel_error,worst_rel_error,"
                       "worst_theta_o_deg,directions_used,directions_excluded,reference_median_rel_stderr,"
                       "model_energy,reference_energy,trusted,verdict\n";
-    for (const auto& c : cases)
-        for (const auto& m : c.models) {
-            const auto& cmp = m.comparison;
-            const bool trusted = c.verdict.trusted && c.verdict.best_model == m.model;
-            out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\"\n", m.model,
-                               format_number(c.wavelength_nm), format_number(c.theta_i_deg),
-                               validity::to_string(c.polarisation), format_number(cmp.median_rel_error),
-                               format_number(cmp.worst_rel_error), format_number(cmp.worst_theta_o_rad / kDegree),
-                               cmp.directions_used, cmp.directions_excluded,
-                               format_number(cmp.reference_median_rel_stderr), format_number(m.model_energy),
-                               format_number(c.reference_energy), trusted ? 1 : 0, c.verdict.text);
-        }
+    for (const auto& row : validity::table(cases)) {
+        const auto& cmp = row.comparison;
+        out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\"\n", row.model, format_number(row.wavelength_nm),
+                           format_number(row.theta_i_deg), row.polarisation, format_number(cmp.median_rel_error),
+                           format_number(cmp.worst_rel_error), format_number(cmp.worst_theta_o_rad / kDegree),
+                           cmp.directions_used, cmp.directions_excluded,
+                           format_number(cmp.reference_median_rel_stderr), format_number(row.model_energy),
+                           format_number(row.reference_energy), row.trusted ? 1 : 0, row.verdict);
+    }
     return out;
 }
 

@@ -92,6 +92,7 @@ PYBIND11_MODULE(_surfscatter, m) {
     surfscatter::python::bind_surface(m);
     surfscatter::python::bind_bsdf(m);
     surfscatter::python::bind_profile_lobes(m);
+    surfscatter::python::bind_validity(m);
     surfscatter::python::bind_render(m);
     surfscatter::python::bind_photo(m);
 }

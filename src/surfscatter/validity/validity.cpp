@@ -153,6 +153,16 @@ Verdict decide(const std::vector<ModelResult>& models, const Criteria& criteria)
     return v;
 }
 
+std::vector<TableRow> table(const std::vector<ProfileCase>& cases) {
+    std::vector<TableRow> rows;
+    for (const ProfileCase& c : cases)
+        for (const ModelResult& m : c.models)
+            rows.push_back({m.model, c.wavelength_nm, c.theta_i_deg, to_string(c.polarisation), m.comparison,
+                            m.model_energy, c.reference_energy, c.verdict.trusted && c.verdict.best_model == m.model,
+                            c.verdict.text});
+    return rows;
+}
+
 std::vector<ProfileCase> profile_validity(const surface::RadialStatistics& statistics,
                                           const material::Conductor& conductor, const ProfileStudy& study) {
     if (study.wavelengths_nm.empty()) fail("validity: no wavelengths given");

@@ -108,4 +108,16 @@ std::vector<ProfileCase> profile_validity(const surface::RadialStatistics& stati
 
 std::string to_string(bsdf::ProfilePolarisation polarisation);
 
+// One row per model and case, as `surfscatter validity` writes OUT.csv and Python returns its table.
+struct TableRow {
+    std::string model;
+    double wavelength_nm = 0, theta_i_deg = 0;
+    std::string polarisation;
+    CurveComparison comparison;
+    double model_energy = 0, reference_energy = 0;
+    bool trusted = false;  // this model is the case's verdict
+    std::string verdict;
+};
+std::vector<TableRow> table(const std::vector<ProfileCase>& cases);
+
 }  // namespace surfscatter::validity
