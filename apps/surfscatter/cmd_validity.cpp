@@ -71,6 +71,7 @@ nlohmann::json json_report(const std::vector<validity::ProfileCase>& cases, cons
         jc["reference_energy"] = c.reference_energy;
         jc["verdict"] = {{"conclusive", c.verdict.conclusive}, {"trusted", c.verdict.trusted},
                          {"best_model", c.verdict.best_model}, {"within_tolerance", c.verdict.within_tolerance},
+                         {"ruled_out", c.verdict.ruled_out},
                          {"text", c.verdict.text}};
         std::vector<double> theta_deg;
         for (const double t : c.reference.theta_o_rad) theta_deg.push_back(t / kDegree);
@@ -151,11 +152,11 @@ void run_validity(const ValidityArgs& a) {
     print_summary(cases);
     std::printf("wrote %s, %s, %s_slices.png and %s_error_map.png\n", csv_path.c_str(), json_path.c_str(),
                 a.output.c_str(), a.output.c_str());
-    std::size_t conclusive = 0;
-    for (const auto& c : cases) conclusive += c.verdict.conclusive ? 1 : 0;
-    // Nothing concluded anywhere: the reference itself cannot be trusted at these settings.
-    if (conclusive == 0 && !interrupt_requested())
-        fail("no case is conclusive: the reference's Monte Carlo error is too large (more --realizations or "
+    std::size_t concluded = 0;
+    for (const auto& c : cases) concluded += c.verdict.conclusive || !c.verdict.ruled_out.empty() ? 1 : 0;
+    // Nothing concluded anywhere (no model certified or ruled out): the reference cannot be trusted at these settings.
+    if (concluded == 0 && !interrupt_requested())
+        fail("nothing can be concluded: the reference's Monte Carlo error is too large (more --realizations or "
              "--length-um)");
 }
 

@@ -69,6 +69,7 @@ py::dict validity(const surface::RadialStatistics& surface, const std::string& m
         v["trusted"] = c.verdict.trusted;
         v["best_model"] = c.verdict.best_model;
         v["within_tolerance"] = c.verdict.within_tolerance;
+        v["ruled_out"] = c.verdict.ruled_out;
         v["text"] = c.verdict.text;
         verdicts.append(v);
     }
@@ -90,7 +91,7 @@ void bind_validity(py::module_& m) {
 validity` (docs/VALIDITY.md): the 1-D GHS, SSA and Kirchhoff forms against exact-1d averaged over `realizations`
 random profiles of length_um (Thorsos beam of width beam_width_um), for every wavelength in wavelengths_nm (nm),
 incidence in theta_i_deg (degrees) and polarisation ('s', 'p'). Returns {'table': one dict per model and case with
-the CSV's columns, 'verdicts': one dict per case (conclusive, trusted, best_model, within_tolerance, text)}.)");
+the CSV's columns, 'verdicts': one dict per case (conclusive, trusted, best_model, within_tolerance, ruled_out, text)}.)");
 }
 
 }  // namespace surfscatter::python

@@ -109,6 +109,7 @@ TEST(Validity, VerdictsOnConstructedCases) {
     EXPECT_EQ(v.best_model, "ghs");
     EXPECT_EQ(v.within_tolerance, (std::vector<std::string>{"ghs", "ghs_ssa"}));
     EXPECT_NE(v.text.find("trust ghs"), std::string::npos);
+    EXPECT_EQ(v.ruled_out, (std::vector<std::string>{"kirchhoff"}));  // 30 % > 10 % + 2 x 2 %
     // No model close enough.
     v = sv::decide({model_with("ghs", 0.25, 20, 0.02), model_with("kirchhoff", 0.15, 20, 0.02)}, criteria);
     EXPECT_TRUE(v.conclusive);
@@ -116,11 +117,16 @@ TEST(Validity, VerdictsOnConstructedCases) {
     EXPECT_EQ(v.best_model, "kirchhoff");
     EXPECT_TRUE(v.within_tolerance.empty());
     EXPECT_NE(v.text.find("no model"), std::string::npos);
-    // The reference's own error larger than the tolerance, or no usable direction: nothing concluded.
-    v = sv::decide({model_with("ghs", 0.01, 20, 0.15)}, criteria);
+    // The reference's own error larger than the tolerance: no model certified, but one far off is ruled out.
+    v = sv::decide({model_with("ghs", 0.01, 20, 0.15), model_with("ghs_ssa", 0.41, 20, 0.15),
+                    model_with("kirchhoff", 0.39, 20, 0.15)},
+                   criteria);
     EXPECT_FALSE(v.conclusive);
     EXPECT_FALSE(v.trusted);
     EXPECT_TRUE(v.best_model.empty());
+    EXPECT_EQ(v.ruled_out, (std::vector<std::string>{"ghs_ssa"}));  // 41 % > 10 % + 2 x 15 % > 39 %
+    EXPECT_NE(v.text.find("no model can be certified"), std::string::npos) << v.text;
+    // No usable direction: nothing concluded.
     v = sv::decide({model_with("ghs", 0.0, 0, 0.0)}, criteria);
     EXPECT_FALSE(v.conclusive);
     EXPECT_NE(v.text.find("nothing can be concluded"), std::string::npos);

@@ -120,10 +120,17 @@ Verdict decide(const std::vector<ModelResult>& models, const Criteria& criteria)
                              percent(criteria.max_reference_stderr), c.directions_excluded);
         return v;
     }
+    std::string ruled_out;
+    for (const ModelResult& m : models)
+        if (m.comparison.median_rel_error > criteria.tolerance + 2 * c.reference_median_rel_stderr) {
+            v.ruled_out.push_back(m.model);
+            ruled_out += fmt::format(" {} ({})", m.model, percent(m.comparison.median_rel_error));
+        }
+    if (!ruled_out.empty()) ruled_out = "; ruled out:" + ruled_out;
     if (c.reference_median_rel_stderr > criteria.tolerance) {
-        v.text = fmt::format("nothing can be concluded: the reference's median standard error {} exceeds the "
-                             "tolerance {}; use more realizations",
-                             percent(c.reference_median_rel_stderr), percent(criteria.tolerance));
+        v.text = fmt::format("no model can be certified: the reference's median standard error {} exceeds the "
+                             "tolerance {} (use more realizations){}",
+                             percent(c.reference_median_rel_stderr), percent(criteria.tolerance), ruled_out);
         return v;
     }
     v.conclusive = true;
@@ -144,11 +151,13 @@ Verdict decide(const std::vector<ModelResult>& models, const Criteria& criteria)
             for (const std::string& name : v.within_tolerance)
                 if (name != best->model) v.text += " " + name;
         }
+        v.text += ruled_out;
     } else {
         v.text = fmt::format("no model is within {} (tolerance + reference uncertainty): the closest is {} "
                              "(median error {}, worst {})",
                              percent(allowed), best->model, percent(best->comparison.median_rel_error),
                              percent(best->comparison.worst_rel_error));
+        v.text += ruled_out;
     }
     return v;
 }

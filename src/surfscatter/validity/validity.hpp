@@ -13,8 +13,9 @@
 // Before comparing, the curves are averaged over theta_o bins (Criteria::bin_deg, bin_curves below).
 // Verdict per (wavelength, incidence, polarisation): the model of smallest median error is trusted when that median
 // is within `tolerance` plus the reference's own median relative standard error over the directions used (the
-// reference's noise enters the measured error); nothing is concluded when that standard error exceeds the tolerance
-// itself or no direction is usable.
+// reference's noise enters the measured error); no model is certified when that standard error exceeds the tolerance
+// itself or no direction is usable. Even then a model whose median error exceeds the tolerance plus twice the
+// reference's standard error is ruled out.
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -76,6 +77,7 @@ struct Verdict {
     bool trusted = false;         // the best model is within the tolerance
     std::string best_model;       // empty when not conclusive
     std::vector<std::string> within_tolerance;
+    std::vector<std::string> ruled_out;  // median error > tolerance + 2 x the reference's standard error
     std::string text;             // one plain sentence
 };
 
