@@ -147,7 +147,10 @@ void run_validity(const ValidityArgs& a) {
 
     const std::string csv_path = a.output + ".csv", json_path = a.output + ".json";
     write_file_atomically(csv_path, csv_table(cases));
-    write_file_atomically(json_path, json_report(cases, a, statistics->cache_key(), conductor.name()).dump() + "\n");
+    write_file_atomically(json_path, json_report(cases, a,
+                                                fmt::format("{}, sigma_h {} um", statistics->cache_key(),
+                                                            format_number(statistics->sigma_h())),
+                                                conductor.name()).dump() + "\n");
     run_plot_script("validity.py", {json_path, a.output + "_slices.png", a.output + "_error_map.png"});
     print_summary(cases);
     std::printf("wrote %s, %s, %s_slices.png and %s_error_map.png\n", csv_path.c_str(), json_path.c_str(),
