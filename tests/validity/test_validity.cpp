@@ -32,6 +32,20 @@ sv::ModelResult model_with(const char* name, double median, std::size_t used, do
     return m;
 }
 
+// The worked example of docs/VALIDITY.md: a smooth KC profile, a perfect conductor, 550 nm, s, at `theta_i_deg`.
+sv::ProfileStudy smooth_study(double theta_i_deg) {
+    sv::ProfileStudy study;
+    study.wavelengths_nm = {550};
+    study.theta_i_deg = {theta_i_deg};
+    study.polarisations = {ss::bsdf::ProfilePolarisation::s};
+    study.beam_width_um = 4;
+    study.statistical.length_um = 24;
+    study.statistical.realizations = 64;
+    study.statistical.seed = 1;
+    study.criteria.bin_deg = 10;
+    return study;
+}
+
 }  // namespace
 
 TEST(Validity, CompareCurvesUsesTheDirectionsAboveOnePercentOfThePeak) {
@@ -137,16 +151,7 @@ TEST(Validity, VerdictsOnConstructedCases) {
 TEST(Validity, SmoothProfileTrustsGhsAndSsaNotKirchhoffAtWideAngles) {
     const ss::surface::KCorrelation surface(0.01, 1.0, 3.0);
     const auto conductor = ss::material::Conductor::from_name("perfect");
-    sv::ProfileStudy study;
-    study.wavelengths_nm = {550};
-    study.theta_i_deg = {60};
-    study.polarisations = {ss::bsdf::ProfilePolarisation::s};
-    study.beam_width_um = 4;
-    study.statistical.length_um = 24;
-    study.statistical.realizations = 64;
-    study.statistical.seed = 1;
-    study.criteria.bin_deg = 10;
-    const auto cases = sv::profile_validity(surface, conductor, study);
+    const auto cases = sv::profile_validity(surface, conductor, smooth_study(60));
     ASSERT_EQ(cases.size(), 1u);
     const auto& c = cases.front();
     ASSERT_TRUE(c.verdict.conclusive) << c.verdict.text;
@@ -165,10 +170,7 @@ TEST(Validity, SmoothProfileTrustsGhsAndSsaNotKirchhoffAtWideAngles) {
 TEST(Validity, RefusesBadInput) {
     const ss::surface::KCorrelation surface(0.01, 1.0, 3.0);
     const auto conductor = ss::material::Conductor::from_name("perfect");
-    sv::ProfileStudy study;
-    study.wavelengths_nm = {550};
-    study.theta_i_deg = {90};
-    study.polarisations = {ss::bsdf::ProfilePolarisation::s};
+    auto study = smooth_study(90);
     EXPECT_THROW(sv::profile_validity(surface, conductor, study), ss::Error);
     study.theta_i_deg = {};
     EXPECT_THROW(sv::profile_validity(surface, conductor, study), ss::Error);
