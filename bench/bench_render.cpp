@@ -61,3 +61,7 @@ BENCHMARK_CAPTURE(BM_PhotoSetupView1, ggx_stats_anisotropic,
     ->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
 BENCHMARK_CAPTURE(BM_PhotoSetupView1, ghs_exact, {{"model", "ghs"}})
     ->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
+// The brushed plate with exact GHS (AnisotropicGhsBsdf; its azimuth tables from the disk cache after the first run).
+BENCHMARK_CAPTURE(BM_PhotoSetupView1, ghs_exact_anisotropic,
+                  {{"model", "ghs"}, {"corr_length_v", "0.5"}, {"lay_angle", "30"}})
+    ->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);

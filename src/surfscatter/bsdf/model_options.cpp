@@ -148,7 +148,9 @@ std::string inapplicable_option(const ModelOptions& o, std::string_view name) {
         if (name == "corr_length_v" || name == "lay_angle")
             if (from_map) return "used with psd kc or gaussian only (a height map gives its own statistics)";
         if (name == "lay_angle")
-            return unless(o.surface.corr_length_v != 0, "used with corr_length_v only (without it the surface is isotropic)");
+            // 0 is every front end's default (scenes pass it through -D defaults): only a turned lay needs LV.
+            return unless(o.surface.corr_length_v != 0 || o.surface.lay_angle == 0,
+                          "used with corr_length_v only (without it the surface is isotropic)");
         if (name == "surface_file" || name == "form")
             return unless(from_map, "used with a height map (psd file or measured) only");
     }
