@@ -1,11 +1,13 @@
 // The exact 1-D solver: one solve of a KC profile (sigma 0.05 um, L 2 um, gamma 3) at 550 nm, 10 points per
 // wavelength, against profile length, for the perfect conductor (s, p) and silver (s, p); and the statistical mode's
-// realizations on 1 and 2 threads. The Kirchhoff BRDF of a KC map (sigma 0.1 or 0.5 um, L 2 um, gamma 4, 0.1 um
+// realizations on 1 and 2 threads. The dense solve alone at 1,820 unknowns: Eigen's PartialPivLU against LAPACK's
+// zgetrf/zgetrs (reference/dense_solve.hpp), like with like in one run. The Kirchhoff BRDF of a KC map (sigma 0.1 or 0.5 um, L 2 um, gamma 4, 0.1 um
 // pixels) of 512^2 and 1024^2 points at 550 nm, theta_i 30 deg, gold, 16 sub-areas, on 1 and 2 threads. CPU and wall time are reported separately (docs/PERFORMANCE.md).
 #include <benchmark/benchmark.h>
 
 #include "surfscatter/material/conductor.hpp"
 #include "surfscatter/math/vec.hpp"
+#include "surfscatter/reference/dense_solve.hpp"
 #include "surfscatter/reference/exact_1d.hpp"
 #include "surfscatter/reference/exact_1d_statistics.hpp"
 #include "surfscatter/reference/kirchhoff_map.hpp"
@@ -44,6 +46,21 @@ BENCHMARK(BM_Exact1dSolve)
     ->Unit(benchmark::kMillisecond)
     ->MeasureProcessCPUTime()
     ->UseRealTime();
+
+// range(0): 0 Eigen's PartialPivLU, 1 LAPACK (solve_dense), on a 1,820-unknown system (a 100 um profile's).
+void BM_DenseSolve(benchmark::State& state) {
+    const Eigen::Index n = 1820;
+    Eigen::MatrixXcd a = Eigen::MatrixXcd::Random(n, n);
+    a.diagonal().array() += 2.0;
+    const Eigen::VectorXcd b = Eigen::VectorXcd::Random(n);
+    for (auto _ : state) {
+        if (state.range(0) == 0)
+            benchmark::DoNotOptimize(Eigen::PartialPivLU<Eigen::MatrixXcd>(a).solve(b).eval());
+        else
+            benchmark::DoNotOptimize(sr::solve_dense(a, b, "the benchmark system"));
+    }
+}
+BENCHMARK(BM_DenseSolve)->Arg(0)->Arg(1)->Iterations(2)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
 
 // Four realizations of 50 um profiles (perfect conductor, s) on range(0) threads.
 void BM_Exact1dStatistics(benchmark::State& state) {

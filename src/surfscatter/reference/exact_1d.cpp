@@ -8,6 +8,7 @@
 #include "surfscatter/core/resources.hpp"
 #include "surfscatter/math/quadrature.hpp"
 #include "surfscatter/math/vec.hpp"
+#include "surfscatter/reference/dense_solve.hpp"
 #include "surfscatter/reference/hankel.hpp"
 
 namespace surfscatter::reference {
@@ -318,11 +319,11 @@ FarField solve_exact_1d(const Profile& profile, const material::Conductor& condu
     //   psi/2 = -int [psi dG2/dn' - G2 rho L] dx',  so  L = (rho S2)^-1 (1/2 + DL2) psi.
     Eigen::VectorXcd psi = Eigen::VectorXcd::Zero(n), normal = Eigen::VectorXcd::Zero(n);
     if (conductor.is_perfect() && s_pol) {
-        normal = Eigen::PartialPivLU<Eigen::MatrixXcd>(dirichlet_matrix(surface, k)).solve(incident);
+        normal = solve_dense(dirichlet_matrix(surface, k), incident, "the perfect conductor's s-polarised system");
     } else if (conductor.is_perfect()) {
         Eigen::MatrixXcd m = -double_layer_matrix(surface, k);
         m.diagonal().array() += 0.5;
-        psi = Eigen::PartialPivLU<Eigen::MatrixXcd>(m).solve(incident);
+        psi = solve_dense(std::move(m), incident, "the perfect conductor's p-polarised system");
     } else {
         const Complex index = conductor.ior(options.lambda_nm);
         const Complex rho = s_pol ? Complex(1.0) : index * index;
@@ -340,7 +341,7 @@ FarField solve_exact_1d(const Profile& profile, const material::Conductor& condu
                 for (std::size_t l = lo; l < hi; ++l) sum += w(i, l) * inside.dbl(l, j);
                 m(i, j) += sum / rho;
             }
-        psi = Eigen::PartialPivLU<Eigen::MatrixXcd>(m).solve(incident);
+        psi = solve_dense(std::move(m), incident, "the metal's boundary system");
         normal = banded_solve(inside.single, inside.band, inside.dbl * psi) / rho;
     }
 
