@@ -1,10 +1,15 @@
-// surfscatter validity: which model to trust for a surface (docs/VALIDITY.md). Profiles cut through KC/Gaussian
-// statistics: the 1-D GHS, SSA and Kirchhoff forms against exact-1d's average over random profiles, per wavelength,
-// incidence and polarisation. Writes OUT.csv (one row per model and case), OUT.json (the table, the verdicts and the
-// curves), OUT_slices.png and OUT_error_map.png, and a summary on stdout.
+// surfscatter validity: which model to trust for a surface (docs/VALIDITY.md). Two routes:
+// * profiles (--length-um): profiles cut through KC/Gaussian statistics, the 1-D GHS, SSA and Kirchhoff forms against
+//   exact-1d's average over random profiles, per wavelength, incidence and polarisation;
+// * maps (--surface-file, or --map-size-um for maps synthesised from --psd statistics, elliptical with
+//   --corr-length-v / --lay-angle): every 2-D model the factory makes against the maps' Kirchhoff BRDF, per
+//   wavelength and incidence (theta_i, phi_i), with Kirchhoff's own validity (validity/map_validity.hpp).
+// Writes OUT.csv (one row per model and case), OUT.json (the table, the verdicts and the curves), OUT_slices.png and
+// OUT_error_map.png, and a summary on stdout.
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,6 +25,8 @@
 #include "surfscatter/core/resources.hpp"
 #include "surfscatter/material/conductor.hpp"
 #include "surfscatter/math/vec.hpp"
+#include "surfscatter/surface/height_map_form.hpp"
+#include "surfscatter/validity/map_validity.hpp"
 #include "surfscatter/validity/validity.hpp"
 
 namespace surfscatter::cli {
@@ -34,6 +41,13 @@ struct ValidityArgs {
     double tolerance = 0.10, max_reference_stderr = 0.25, bin_deg = 3;
     long long realizations = 0, seed = 1;
     int threads = 0;
+    // the map route
+    std::string surface_file, form = "plane";
+    std::vector<double> phi_i;
+    std::optional<double> map_size, corr_length_v, lay_angle, subarea;
+    long long map_pixels = 256;
+    double max_theta_o = 80;
+    bool map_route() const { return !surface_file.empty() || map_size.has_value(); }
 };
 
 std::string csv_table(const std::vector<validity::ProfileCase>& cases) {
@@ -106,19 +120,34 @@ void print_summary(const std::vector<validity::ProfileCase>& cases) {
                     c.verdict.text.c_str());
 }
 
-void run_validity(const ValidityArgs& a) {
-    if (!a.surface.psd) fail("validity needs the surface: --psd kc|gaussian --sigma --corr-length [--gamma]");
-    const auto statistics = statistics_from(a.surface);
-    const auto conductor = material::Conductor::from_name(a.material);
-    require_positive(a.length, "--length-um");
-    require_positive(a.beam_width, "--beam-width");
-    if (a.realizations < 2) fail("--realizations must be at least 2, got {}", a.realizations);
-    if (a.seed < 0) fail("--seed must be >= 0, got {}", a.seed);
+void check_criteria(const ValidityArgs& a) {
     require_thread_count(a.threads, "--threads");
     if (!(a.tolerance > 0 && a.tolerance < 1)) fail("--tolerance must be in (0, 1), got {}", a.tolerance);
     if (!(a.bin_deg >= 0 && a.bin_deg <= 30)) fail("--bin-deg must be in [0, 30] degrees, got {}", a.bin_deg);
     if (!(a.max_reference_stderr > 0 && a.max_reference_stderr <= 1))
         fail("--max-reference-stderr must be in (0, 1], got {}", a.max_reference_stderr);
+}
+
+validity::Criteria criteria_from(const ValidityArgs& a) {
+    validity::Criteria criteria;
+    criteria.tolerance = a.tolerance;
+    criteria.max_reference_stderr = a.max_reference_stderr;
+    criteria.bin_deg = a.bin_deg;
+    return criteria;
+}
+
+void run_profile_validity(const ValidityArgs& a) {
+    if (!a.surface.psd) fail("validity needs the surface: --psd kc|gaussian --sigma --corr-length [--gamma]");
+    if (!a.phi_i.empty() || a.corr_length_v || a.lay_angle || a.subarea)
+        fail("--phi-i, --corr-length-v, --lay-angle and --subarea-um belong to the map route (--surface-file or "
+             "--map-size-um); the profiles route (--length-um) takes isotropic statistics in the plane of incidence");
+    const auto statistics = statistics_from(a.surface);
+    const auto conductor = material::Conductor::from_name(a.material);
+    if (!(a.length > 0)) fail("the profiles route needs --length-um (> 0), got {}", a.length);
+    require_positive(a.beam_width, "--beam-width");
+    if (a.realizations < 2) fail("--realizations must be at least 2, got {}", a.realizations);
+    if (a.seed < 0) fail("--seed must be >= 0, got {}", a.seed);
+    check_criteria(a);
 
     validity::ProfileStudy study;
     study.wavelengths_nm = a.wavelengths;
@@ -133,9 +162,7 @@ void run_validity(const ValidityArgs& a) {
     study.statistical.realizations = static_cast<std::size_t>(a.realizations);
     study.statistical.seed = static_cast<std::uint64_t>(a.seed);
     study.statistical.threads = a.threads;
-    study.criteria.tolerance = a.tolerance;
-    study.criteria.max_reference_stderr = a.max_reference_stderr;
-    study.criteria.bin_deg = a.bin_deg;
+    study.criteria = criteria_from(a);
     study.progress = true;
     install_interrupt_handler();
     const auto cases = validity::profile_validity(*statistics, conductor, study);
@@ -163,12 +190,182 @@ void run_validity(const ValidityArgs& a) {
              "--length-um)");
 }
 
+std::string map_csv_table(const std::vector<validity::MapCase>& cases) {
+    std::string out = "model,wavelength_nm,theta_i_deg,polarisation,median_rel_error,worst_rel_error,"
+                      "worst_theta_o_deg,directions_used,directions_excluded,reference_median_rel_stderr,"
+                      "model_energy,reference_energy,trusted,verdict,phi_i_deg,reference_valid\n";
+    for (const auto& row : validity::table(cases)) {
+        const auto& cmp = row.comparison;
+        out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\",{},{}\n", row.model,
+                           format_number(row.wavelength_nm), format_number(row.theta_i_deg), row.polarisation,
+                           format_number(cmp.median_rel_error), format_number(cmp.worst_rel_error),
+                           format_number(cmp.worst_theta_o_rad / kDegree), cmp.directions_used,
+                           cmp.directions_excluded, format_number(cmp.reference_median_rel_stderr),
+                           format_number(row.model_energy), format_number(row.reference_energy), row.trusted ? 1 : 0,
+                           row.verdict, format_number(row.phi_i_deg), row.reference_valid ? 1 : 0);
+    }
+    return out;
+}
+
+nlohmann::json map_json_report(const std::vector<validity::MapCase>& cases, const ValidityArgs& a,
+                               const validity::MapSurface& surface, const std::string& material) {
+    nlohmann::json j;
+    j["route"] = "maps";
+    j["surface"] = surface.description;
+    j["material"] = material;
+    j["criteria"] = {{"peak_fraction", validity::Criteria{}.peak_fraction}, {"max_reference_stderr", a.max_reference_stderr},
+                     {"tolerance", a.tolerance}, {"bin_deg", a.bin_deg}};
+    j["reference"] = {{"solver", "kirchhoff"}, {"maps", surface.maps.size()}, {"max_theta_o_deg", a.max_theta_o}};
+    j["refused_models"] = surface.refused;
+    j["model_notes"] = surface.notes;
+    j["cases"] = nlohmann::json::array();
+    for (const auto& c : cases) {
+        nlohmann::json jc;
+        jc["wavelength_nm"] = c.wavelength_nm;
+        jc["theta_i_deg"] = c.theta_i_deg;
+        jc["phi_i_deg"] = c.phi_i_deg;
+        jc["polarisation"] = "unpolarised";
+        jc["reference_energy"] = c.reference_energy;
+        jc["reference_energy_stderr"] = c.reference_energy_stderr;
+        jc["reference_subareas"] = c.subareas;
+        jc["lattice_step"] = {c.lattice_step_x, c.lattice_step_y};
+        jc["reference_warnings"] = c.reference_warnings;
+        const auto& v = c.reference_validity;
+        jc["reference_validity"] = {{"valid", v.valid}, {"k_l", v.k_l}, {"curvature_share", v.curvature_share},
+                                    {"median_radius_um", v.median_radius_um}, {"shadowed_share", v.shadowed_share},
+                                    {"text", v.text}};
+        jc["verdict"] = {{"conclusive", c.verdict.conclusive}, {"trusted", c.verdict.trusted},
+                         {"best_model", c.verdict.best_model}, {"within_tolerance", c.verdict.within_tolerance},
+                         {"ruled_out", c.verdict.ruled_out},
+                         {"text", c.verdict.text}};
+        std::vector<double> theta_deg;
+        for (const double t : c.binned.theta_o_rad) theta_deg.push_back(t / kDegree);
+        jc["binned"] = {{"o_x", c.binned.o_x},
+                        {"o_y", c.binned.o_y},
+                        {"theta_o_deg", theta_deg},
+                        {"reference_per_sr", c.binned.reference},
+                        {"reference_stderr_per_sr", c.binned.reference_stderr}};
+        for (std::size_t m = 0; m < c.models.size(); ++m)
+            jc["binned"]["models"][c.models[m].model] = c.binned.models[m];
+        for (const auto& m : c.models)
+            jc["models"][m.model] = {{"median_rel_error", m.comparison.median_rel_error},
+                                     {"worst_rel_error", m.comparison.worst_rel_error},
+                                     {"directions_used", m.comparison.directions_used},
+                                     {"directions_excluded", m.comparison.directions_excluded},
+                                     {"used_bins", m.comparison.used},
+                                     {"model_energy", m.model_energy},
+                                     {"coherent", m.coherent}};
+        j["cases"].push_back(std::move(jc));
+    }
+    return j;
+}
+
+bsdf::SurfaceOptions map_surface_options(const ValidityArgs& a) {
+    bsdf::SurfaceOptions s;
+    s.form = surface::parse_form(a.form, "--form");
+    if (!a.surface_file.empty()) {
+        if (a.surface.psd || a.map_size)
+            fail("--surface-file is the surface: --psd and --map-size-um synthesise one instead, give one or the other");
+        if (a.corr_length_v || a.lay_angle) fail("--corr-length-v and --lay-angle describe a synthesised surface");
+        s.psd = bsdf::PsdKind::measured;
+        s.surface_file = a.surface_file;
+        return s;
+    }
+    if (!a.surface.psd) fail("--map-size-um synthesises maps from --psd kc|gaussian --sigma --corr-length [--gamma]");
+    statistics_from(a.surface);  // checks the options, naming the bad one
+    s.psd = *a.surface.psd == "kc" ? bsdf::PsdKind::kc : bsdf::PsdKind::gaussian;
+    s.sigma = *a.surface.sigma;
+    s.corr_length = *a.surface.corr_length;
+    s.gamma = a.surface.gamma.value_or(0.0);
+    if (a.corr_length_v) surface::require_surface_length(*a.corr_length_v, "--corr-length-v");
+    if (a.lay_angle) require_finite(*a.lay_angle, "--lay-angle");
+    s.corr_length_v = a.corr_length_v.value_or(0.0);
+    s.lay_angle = a.lay_angle.value_or(0.0);
+    return s;
+}
+
+void run_map_validity(const ValidityArgs& a, bool polarisation_given) {
+    if (a.length > 0 || a.beam_width > 0)
+        fail("--length-um and --beam-width belong to the profiles route; the map route's reference is the Kirchhoff "
+             "BRDF of the map(s)");
+    if (polarisation_given) fail("--polarisation: the map route is unpolarised (its reference averages s and p)");
+    check_criteria(a);
+    if (a.seed < 0) fail("--seed must be >= 0, got {}", a.seed);
+    if (a.subarea) require_positive(*a.subarea, "--subarea-um");
+    if (!(a.max_theta_o > 0 && a.max_theta_o < 90)) fail("--max-theta-o must be in (0, 90) degrees, got {}", a.max_theta_o);
+    validity::SynthesisSettings synthesis;
+    if (a.map_size) {
+        synthesis.size_um = *a.map_size;
+        if (a.map_pixels < static_cast<long long>(surface::kMinHeightMapSize) || a.map_pixels > 8192)
+            fail("--map-pixels must be in [{}, 8192], got {}", surface::kMinHeightMapSize, a.map_pixels);
+        synthesis.pixels = static_cast<std::size_t>(a.map_pixels);
+        const long long realizations = a.realizations > 0 ? a.realizations : 1;
+        if (realizations > 1000) fail("--realizations must be at most 1000 maps, got {}", realizations);
+        synthesis.realizations = static_cast<std::size_t>(realizations);
+        synthesis.seed = static_cast<std::uint64_t>(a.seed);
+    } else if (a.realizations > 1) {
+        fail("--realizations: a measured map (--surface-file) is one realization, got {}", a.realizations);
+    }
+    const auto conductor = material::Conductor::from_name(a.material);
+    const validity::MapSurface surface = validity::map_surface(map_surface_options(a), a.material, synthesis);
+    for (const std::string& note : surface.notes) std::fprintf(stderr, "surfscatter: note: %s\n", note.c_str());
+    for (const std::string& why : surface.refused)
+        std::fprintf(stderr, "surfscatter: not compared: %s\n", why.c_str());
+
+    validity::MapStudy study;
+    study.wavelengths_nm = a.wavelengths;
+    study.theta_i_deg = a.theta_i;
+    study.phi_i_deg = a.phi_i.empty() ? std::vector<double>{0.0} : a.phi_i;
+    study.subarea_um = a.subarea.value_or(0.0);
+    study.max_theta_o_deg = a.max_theta_o;
+    study.criteria = criteria_from(a);
+    study.threads = a.threads;
+    study.progress = true;
+    install_interrupt_handler();
+    const auto cases = validity::map_validity(surface, conductor, study);
+    const std::size_t asked = a.wavelengths.size() * a.theta_i.size() * study.phi_i_deg.size();
+    if (cases.size() < asked)
+        std::fprintf(stderr, "surfscatter: interrupted: %s.csv holds %zu of %zu cases\n", a.output.c_str(),
+                     cases.size(), asked);
+    if (cases.empty()) return;
+
+    const std::string csv_path = a.output + ".csv", json_path = a.output + ".json";
+    write_file_atomically(csv_path, map_csv_table(cases));
+    write_file_atomically(json_path, map_json_report(cases, a, surface, conductor.name()).dump() + "\n");
+    run_plot_script("validity_map.py", {json_path, a.output + "_slices.png", a.output + "_error_map.png"});
+    for (const auto& c : cases) {
+        for (const std::string& w : c.reference_warnings)
+            std::fprintf(stderr, "surfscatter: warning: %s nm, theta_i %s deg: %s\n",
+                         format_number(c.wavelength_nm).c_str(), format_number(c.theta_i_deg).c_str(), w.c_str());
+        std::printf("%s nm, theta_i %s deg, phi_i %s deg: %s\n", format_number(c.wavelength_nm).c_str(),
+                    format_number(c.theta_i_deg).c_str(), format_number(c.phi_i_deg).c_str(), c.verdict.text.c_str());
+    }
+    std::printf("wrote %s, %s, %s_slices.png and %s_error_map.png\n", csv_path.c_str(), json_path.c_str(),
+                a.output.c_str(), a.output.c_str());
+    std::size_t valid = 0, concluded = 0;
+    for (const auto& c : cases) {
+        valid += c.reference_validity.valid ? 1 : 0;
+        concluded += c.reference_validity.valid && (c.verdict.conclusive || !c.verdict.ruled_out.empty()) ? 1 : 0;
+    }
+    if (concluded == 0 && !interrupt_requested()) {
+        if (valid == 0)
+            fail("nothing can be concluded: the Kirchhoff reference is outside its validity in every case (see the "
+                 "verdicts)");
+        fail("nothing can be concluded: the Kirchhoff reference's standard error is too large (more --realizations, "
+             "larger maps or wider --bin-deg)");
+    }
+}
+
 const Command command("validity", [](CLI::App& app) {
     auto a = std::make_shared<ValidityArgs>();
     auto* sub = app.add_subcommand(
         "validity", "Which model to trust: the 1-D GHS, SSA and Kirchhoff forms against the exact 1-D solution "
-                    "averaged over random profiles, per wavelength, incidence and polarisation (docs/VALIDITY.md)");
-    a->surface.add_to(sub, "kc or gaussian PSD of the isotropic surface the random profiles are cuts through");
+                    "averaged over random profiles, per wavelength, incidence and polarisation (--length-um); or "
+                    "every 2-D model against the Kirchhoff BRDF of a height map (--surface-file) or of maps "
+                    "synthesised from the statistics (--map-size-um), with Kirchhoff's own validity "
+                    "(docs/VALIDITY.md)");
+    a->surface.add_to(sub, "kc or gaussian PSD of the surface the random profiles are cuts through (profiles route) "
+                           "or the maps are synthesised from (map route)");
     sub->add_option("--material", a->material,
                     "perfect, a built-in metal (Ag, Au, Al, Cu, ...) or a .yml/.csv refractive index file")
         ->required();
@@ -176,10 +373,25 @@ const Command command("validity", [](CLI::App& app) {
     add_number_list(sub, "--theta-i", a->theta_i, "angles of incidence in degrees, comma-separated")->required();
     sub->add_option("--polarisation", a->polarisation, "s | p | both (default)")
         ->check(CLI::IsMember({"s", "p", "both"}));
-    sub->add_option("--length-um", a->length, "length of each random profile (um), centred on x = 0")->required();
-    sub->add_option("--beam-width", a->beam_width, "Thorsos taper width g along x in um")->required();
-    sub->add_option("--realizations", a->realizations, "random profiles per case (>= 2)")->required();
-    sub->add_option("--seed", a->seed, "seed of the first profile; profile r uses seed + r (default 1)");
+    sub->add_option("--length-um", a->length,
+                    "profiles route: length of each random profile (um), centred on x = 0");
+    sub->add_option("--beam-width", a->beam_width, "profiles route: Thorsos taper width g along x in um");
+    sub->add_option("--realizations", a->realizations,
+                    "random profiles per case (profiles route, >= 2), or maps synthesised (map route, default 1)");
+    sub->add_option("--seed", a->seed, "seed of the first profile or map; number r uses seed + r (default 1)");
+    sub->add_option("--surface-file", a->surface_file,
+                    "map route: a measured height map (any format `surface info` reads) as the surface");
+    sub->add_option("--form", a->form,
+                    "map route: form removed from --surface-file: none (mean) | plane (default) | poly2 | poly3 | poly4");
+    sub->add_option("--map-size-um", a->map_size, "map route: side of the square maps synthesised from --psd (um)");
+    sub->add_option("--map-pixels", a->map_pixels, "map route: pixels per side of the synthesised maps (default 256)");
+    sub->add_option("--corr-length-v", a->corr_length_v,
+                    "map route: correlation length across the lay (um): elliptical statistics");
+    sub->add_option("--lay-angle", a->lay_angle, "map route: lay direction from x towards y, degrees (default 0)");
+    add_number_list(sub, "--phi-i", a->phi_i, "map route: incidence azimuths in degrees, comma-separated (default 0)");
+    sub->add_option("--subarea-um", a->subarea,
+                    "map route: Kirchhoff sub-area side (um; default a quarter of the map's shorter side)");
+    sub->add_option("--max-theta-o", a->max_theta_o, "map route: largest theta_o compared, degrees (default 80)");
     sub->add_option("--points-per-wavelength", a->points_per_wavelength,
                     "exact-1d solver nodes per wavelength (default 10)");
     sub->add_option("--tolerance", a->tolerance, "median relative error a trusted model keeps within (default 0.1)");
@@ -191,7 +403,12 @@ const Command command("validity", [](CLI::App& app) {
     sub->add_option("--threads", a->threads, "realizations solved at once, 0 = all cores (default)");
     sub->add_option("-o", a->output, "output prefix: OUT.csv, OUT.json, OUT_slices.png, OUT_error_map.png")
         ->required();
-    sub->callback([a] { run_validity(*a); });
+    sub->callback([a, sub] {
+        if (a->map_route())
+            run_map_validity(*a, sub->count("--polarisation") > 0);
+        else
+            run_profile_validity(*a);
+    });
 });
 
 }  // namespace

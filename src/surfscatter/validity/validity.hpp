@@ -119,6 +119,8 @@ struct TableRow {
     double model_energy = 0, reference_energy = 0;
     bool trusted = false;  // this model is the case's verdict
     std::string verdict;
+    double phi_i_deg = 0;         // the map route's incidence azimuth (0 for profiles)
+    bool reference_valid = true;  // the map route: the Kirchhoff reference is within its validity
 };
 std::vector<TableRow> table(const std::vector<ProfileCase>& cases);
 

@@ -1,0 +1,256 @@
+#include "surfscatter/validity/map_validity.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "surfscatter/bsdf/albedo.hpp"
+#include "surfscatter/bsdf/factory.hpp"
+#include "surfscatter/core/error.hpp"
+#include "surfscatter/core/progress.hpp"
+#include "surfscatter/math/vec.hpp"
+#include "surfscatter/reference/kirchhoff_map.hpp"
+#include "surfscatter/surface/elliptical_statistics.hpp"
+#include "surfscatter/surface/height_map_form.hpp"
+#include "surfscatter/surface/synthesis.hpp"
+
+namespace surfscatter::validity {
+
+namespace {
+
+constexpr long kSpecularLobeSteps = 2;        // the Hann window's main lobe, each side of the specular direction
+constexpr double kHannCellsPerIndependent = 2.25;  // (1.5 steps noise-equivalent bandwidth per axis)^2
+
+const std::vector<bsdf::ModelKind> kModelKinds{bsdf::ModelKind::ghs, bsdf::ModelKind::ghs_ssa, bsdf::ModelKind::ggx,
+                                               bsdf::ModelKind::two_scale};
+
+void add_models(MapSurface& out, const bsdf::SurfaceOptions& surface, const std::string& material,
+                const std::string& suffix) {
+    for (const auto kind : kModelKinds) {
+        bsdf::ModelOptions options;
+        options.model = kind;
+        options.material = material;
+        options.surface = surface;
+        const std::string name = bsdf::to_string(kind) + suffix;
+        try {
+            std::vector<std::string> notes;
+            std::shared_ptr<const bsdf::Bsdf> model = bsdf::make_bsdf(options, &notes);
+            for (const std::string& note : notes) out.notes.push_back(name + ": " + note);
+            out.models.push_back({name, std::move(model)});
+        } catch (const Error& e) {
+            out.refused.push_back(name + ": " + e.what());
+        }
+    }
+}
+
+std::shared_ptr<const surface::RadialStatistics> radial_statistics(const bsdf::SurfaceOptions& s) {
+    if (s.psd == bsdf::PsdKind::kc) return std::make_shared<surface::KCorrelation>(s.sigma, s.corr_length, s.gamma);
+    return std::make_shared<surface::GaussianAcv>(s.sigma, s.corr_length);
+}
+
+std::vector<double> lattice_values(const bsdf::Bsdf& model, const Vec3& wi, double lambda_nm,
+                                   const std::vector<double>& o_x, const std::vector<double>& o_y) {
+    std::vector<double> f(o_x.size());
+    for (std::size_t d = 0; d < o_x.size(); ++d) {
+        const Vec3 wo{o_x[d], o_y[d], std::sqrt(std::max(0.0, 1.0 - o_x[d] * o_x[d] - o_y[d] * o_y[d]))};
+        f[d] = model.eval(wi, wo, lambda_nm);
+    }
+    return f;
+}
+
+// Floor division for lattice indices of either sign.
+long bin_index(long m, long cells) { return m >= 0 ? m / cells : -((-m + cells - 1) / cells); }
+
+}  // namespace
+
+MapSurface map_surface(const bsdf::SurfaceOptions& surface, const std::string& material,
+                       const SynthesisSettings& synthesis) {
+    MapSurface out;
+    if (surface.psd == bsdf::PsdKind::file || surface.psd == bsdf::PsdKind::measured) {
+        if (surface.surface_file.empty()) fail("validity: a height map needs its file (surface_file)");
+        bsdf::SurfaceOptions measured = surface;
+        bsdf::load_height_map(measured);
+        out.maps.push_back(surface::remove_form(*measured.height_map, surface.form));
+        measured.psd = bsdf::PsdKind::measured;
+        add_models(out, measured, material, "/measured");
+        measured.psd = bsdf::PsdKind::file;
+        add_models(out, measured, material, "/file");
+        out.description = fmt::format("{} ({} removed)", surface::describe(out.maps.front()),
+                                      surface::to_string(surface.form));
+        return out;
+    }
+    surface::require_surface_length(synthesis.size_um, "map size");
+    if (synthesis.pixels < surface::kMinHeightMapSize)
+        fail("map pixels must be at least {}, got {}", surface::kMinHeightMapSize, synthesis.pixels);
+    if (synthesis.realizations < 1) fail("realizations must be at least 1, got {}", synthesis.realizations);
+    add_models(out, surface, material, "");
+    const auto radial = radial_statistics(surface);
+    const surface::SynthesisGrid grid{synthesis.pixels, synthesis.pixels,
+                                      synthesis.size_um / static_cast<double>(synthesis.pixels)};
+    const bool elliptical = surface.corr_length_v > 0 && surface.corr_length_v != surface.corr_length;
+    const auto stretched = elliptical ? std::make_shared<surface::EllipticalStatistics>(
+                                            radial, surface.corr_length_v, surface.lay_angle * kDegree)
+                                      : nullptr;
+    for (std::size_t r = 0; r < synthesis.realizations; ++r) {
+        const std::uint64_t seed = synthesis.seed + r;
+        out.maps.push_back(stretched ? surface::synthesize_surface(*stretched, grid, seed)
+                                     : surface::synthesize_surface(*radial, grid, seed));
+    }
+    out.description = fmt::format(
+        "{}, sigma_h {} um{}, {} map(s) of {} um, {} x {} pixels, seeds from {}", radial->cache_key(), surface.sigma,
+        elliptical ? fmt::format(", corr_length_v {} um, lay_angle {} deg", surface.corr_length_v, surface.lay_angle)
+                   : std::string(),
+        synthesis.realizations, synthesis.size_um, synthesis.pixels, synthesis.pixels, synthesis.seed);
+    return out;
+}
+
+std::vector<MapCase> map_validity(const MapSurface& surface, const material::Conductor& conductor,
+                                  const MapStudy& study) {
+    if (surface.maps.empty()) fail("validity: no height map");
+    if (surface.models.empty()) fail("validity: the factory makes no model for this surface");
+    if (study.wavelengths_nm.empty()) fail("validity: no wavelengths given");
+    if (study.theta_i_deg.empty()) fail("validity: no angles of incidence given");
+    if (study.phi_i_deg.empty()) fail("validity: no incidence azimuths given");
+    for (const double theta : study.theta_i_deg)
+        if (!(theta >= 0 && theta < 90)) fail("validity: theta_i must be in [0, 90) degrees, got {}", theta);
+    for (const double phi : study.phi_i_deg) require_finite(phi, "phi_i");
+    for (const double lambda : study.wavelengths_nm)
+        if (!(lambda > 0) || !std::isfinite(lambda)) fail("validity: wavelength must be > 0 nm, got {}", lambda);
+    if (!(study.criteria.bin_deg >= 0 && study.criteria.bin_deg <= 30))
+        fail("validity: bin width must be in [0, 30] degrees, got {}", study.criteria.bin_deg);
+    const surface::HeightMap& first = surface.maps.front();
+    const double subarea = study.subarea_um > 0 ? study.subarea_um : 0.25 * std::min(first.width(), first.height());
+
+    const std::size_t total =
+        study.wavelengths_nm.size() * study.theta_i_deg.size() * study.phi_i_deg.size() * surface.maps.size();
+    Progress progress("validity", total, study.progress);
+    std::vector<MapCase> cases;
+    for (const double lambda : study.wavelengths_nm)
+        for (const double theta_i : study.theta_i_deg)
+            for (const double phi_i : study.phi_i_deg) {
+                if (interrupt_requested()) return cases;
+                MapCase mc;
+                mc.wavelength_nm = lambda;
+                mc.theta_i_deg = theta_i;
+                mc.phi_i_deg = phi_i;
+                mc.reference_validity = kirchhoff_validity(first, lambda, theta_i, phi_i);
+                reference::KirchhoffOptions options;
+                options.lambda_nm = lambda;
+                options.theta_i_rad = theta_i * kDegree;
+                options.phi_i_rad = phi_i * kDegree;
+                options.subarea_um = subarea;
+                options.max_theta_o_rad = study.max_theta_o_deg * kDegree;
+                options.threads = study.threads;
+                // The mean over the maps; variances of the means add as independent.
+                reference::KirchhoffResult sum;
+                std::vector<double> variance;
+                double energy_variance = 0;
+                for (const surface::HeightMap& map : surface.maps) {
+                    reference::KirchhoffResult r = reference::kirchhoff_brdf(map, conductor, options);
+                    if (r.subareas_done < r.subareas) return cases;  // interrupted
+                    if (sum.brdf.empty()) {
+                        sum = r;
+                        variance.assign(r.brdf.size(), 0.0);
+                        sum.subareas = 0;
+                        std::fill(sum.brdf.begin(), sum.brdf.end(), 0.0);
+                        std::fill(sum.coherent.begin(), sum.coherent.end(), 0.0);
+                        sum.albedo = 0;
+                    }
+                    for (std::size_t d = 0; d < r.brdf.size(); ++d) {
+                        sum.brdf[d] += r.brdf[d];
+                        sum.coherent[d] += r.coherent[d];
+                        variance[d] += r.standard_error[d] * r.standard_error[d];
+                    }
+                    sum.albedo += r.albedo;
+                    energy_variance += r.albedo_standard_error * r.albedo_standard_error;
+                    sum.subareas += r.subareas;
+                    for (const std::string& w : r.warnings)
+                        if (std::find(mc.reference_warnings.begin(), mc.reference_warnings.end(), w) ==
+                            mc.reference_warnings.end())
+                            mc.reference_warnings.push_back(w);
+                    progress.advance();
+                }
+                const double count = static_cast<double>(surface.maps.size());
+                mc.reference_energy = sum.albedo / count;
+                mc.reference_energy_stderr = std::sqrt(energy_variance) / count;
+                mc.subareas = sum.subareas;
+                mc.lattice_step_x = sum.step_x;
+                mc.lattice_step_y = sum.step_y;
+
+                const Vec3 wi{std::sin(theta_i * kDegree) * std::cos(phi_i * kDegree),
+                              std::sin(theta_i * kDegree) * std::sin(phi_i * kDegree), std::cos(theta_i * kDegree)};
+                std::vector<std::vector<double>> model_f(surface.models.size());
+                for (std::size_t m = 0; m < surface.models.size(); ++m) {
+                    const bsdf::Bsdf& model = *surface.models[m].bsdf;
+                    ModelResult result;
+                    result.model = surface.models[m].name;
+                    result.coherent = model.delta_reflectance(wi, lambda);
+                    result.model_energy =
+                        bsdf::directional_albedo(model, theta_i * kDegree, lambda, phi_i * kDegree).total();
+                    model_f[m] = lattice_values(model, wi, lambda, sum.o_x, sum.o_y);
+                    mc.models.push_back(std::move(result));
+                }
+
+                // Square bins of `cells` lattice steps per axis; the specular lobe left out.
+                const long cells_x = std::max(1L, std::lround(study.criteria.bin_deg * kDegree / sum.step_x));
+                const long cells_y = std::max(1L, std::lround(study.criteria.bin_deg * kDegree / sum.step_y));
+                struct Accumulator {
+                    double ox = 0, oy = 0, ref = 0, var = 0;
+                    std::vector<double> models;
+                    std::size_t n = 0;
+                };
+                std::map<std::pair<long, long>, Accumulator> bins;
+                for (std::size_t d = 0; d < sum.brdf.size(); ++d) {
+                    const long mx = std::lround((sum.o_x[d] + wi.x) / sum.step_x);
+                    const long my = std::lround((sum.o_y[d] + wi.y) / sum.step_y);
+                    if (std::abs(mx) <= kSpecularLobeSteps && std::abs(my) <= kSpecularLobeSteps) continue;
+                    Accumulator& a = bins[{bin_index(my, cells_y), bin_index(mx, cells_x)}];
+                    if (a.models.empty()) a.models.assign(surface.models.size(), 0.0);
+                    a.ox += sum.o_x[d];
+                    a.oy += sum.o_y[d];
+                    a.ref += (sum.brdf[d] - sum.coherent[d]) / count;
+                    a.var += variance[d] / (count * count);
+                    for (std::size_t m = 0; m < surface.models.size(); ++m) a.models[m] += model_f[m][d];
+                    ++a.n;
+                }
+                LatticeBins& b = mc.binned;
+                b.models.resize(surface.models.size());
+                for (const auto& [key, a] : bins) {
+                    const double n = static_cast<double>(a.n);
+                    b.o_x.push_back(a.ox / n);
+                    b.o_y.push_back(a.oy / n);
+                    b.theta_o_rad.push_back(std::asin(std::min(1.0, std::hypot(a.ox / n, a.oy / n))));
+                    b.reference.push_back(a.ref / n);
+                    b.reference_stderr.push_back(std::sqrt(a.var / n / std::max(1.0, n / kHannCellsPerIndependent)));
+                    for (std::size_t m = 0; m < surface.models.size(); ++m) b.models[m].push_back(a.models[m] / n);
+                }
+                for (std::size_t m = 0; m < mc.models.size(); ++m)
+                    mc.models[m].comparison = compare_curves(b.theta_o_rad, b.reference, b.reference_stderr,
+                                                             b.models[m], study.criteria);
+                mc.verdict = decide(mc.models, study.criteria);
+                if (!mc.reference_validity.valid) {
+                    mc.verdict.text = fmt::format("not concluded, the reference is not trusted here ({}); against it: {}",
+                                                  mc.reference_validity.text, mc.verdict.text);
+                    mc.verdict.conclusive = false;
+                    mc.verdict.trusted = false;
+                }
+                cases.push_back(std::move(mc));
+            }
+    progress.finish();
+    return cases;
+}
+
+std::vector<TableRow> table(const std::vector<MapCase>& cases) {
+    std::vector<TableRow> rows;
+    for (const MapCase& c : cases)
+        for (const ModelResult& m : c.models)
+            rows.push_back({m.model, c.wavelength_nm, c.theta_i_deg, "unpolarised", m.comparison, m.model_energy,
+                            c.reference_energy, c.verdict.trusted && c.verdict.best_model == m.model, c.verdict.text,
+                            c.phi_i_deg, c.reference_validity.valid});
+    return rows;
+}
+
+}  // namespace surfscatter::validity
