@@ -7,14 +7,49 @@
 #include "arrays.hpp"
 #include "bindings.hpp"
 #include "surfscatter/bsdf/profile_lobes.hpp"
+#include "surfscatter/core/error.hpp"
 #include "surfscatter/material/conductor.hpp"
 #include "surfscatter/math/vec.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
+#include "surfscatter/surface/height_map_form.hpp"
+#include "surfscatter/validity/map_validity.hpp"
 #include "surfscatter/validity/validity.hpp"
 
 namespace surfscatter::python {
 
+using namespace pybind11::literals;
+
 namespace {
+
+py::dict row_dict(const validity::TableRow& row) {
+    py::dict d;
+    d["model"] = row.model;
+    d["wavelength_nm"] = row.wavelength_nm;
+    d["theta_i_deg"] = row.theta_i_deg;
+    d["polarisation"] = row.polarisation;
+    d["median_rel_error"] = row.comparison.median_rel_error;
+    d["worst_rel_error"] = row.comparison.worst_rel_error;
+    d["worst_theta_o_deg"] = row.comparison.worst_theta_o_rad / kDegree;
+    d["directions_used"] = row.comparison.directions_used;
+    d["directions_excluded"] = row.comparison.directions_excluded;
+    d["reference_median_rel_stderr"] = row.comparison.reference_median_rel_stderr;
+    d["model_energy"] = row.model_energy;
+    d["reference_energy"] = row.reference_energy;
+    d["trusted"] = row.trusted;
+    d["verdict"] = row.verdict;
+    return d;
+}
+
+py::dict verdict_dict(const validity::Verdict& verdict) {
+    py::dict v;
+    v["conclusive"] = verdict.conclusive;
+    v["trusted"] = verdict.trusted;
+    v["best_model"] = verdict.best_model;
+    v["within_tolerance"] = verdict.within_tolerance;
+    v["ruled_out"] = verdict.ruled_out;
+    v["text"] = verdict.text;
+    return v;
+}
 
 py::dict validity(const surface::RadialStatistics& surface, const std::string& material,
                   const std::vector<double>& wavelengths_nm, const std::vector<double>& theta_i_deg,
@@ -41,41 +76,106 @@ py::dict validity(const surface::RadialStatistics& surface, const std::string& m
         cases = validity::profile_validity(surface, conductor, study);
     }
     py::list rows;
-    for (const auto& row : validity::table(cases)) {
-        py::dict d;
-        d["model"] = row.model;
-        d["wavelength_nm"] = row.wavelength_nm;
-        d["theta_i_deg"] = row.theta_i_deg;
-        d["polarisation"] = row.polarisation;
-        d["median_rel_error"] = row.comparison.median_rel_error;
-        d["worst_rel_error"] = row.comparison.worst_rel_error;
-        d["worst_theta_o_deg"] = row.comparison.worst_theta_o_rad / kDegree;
-        d["directions_used"] = row.comparison.directions_used;
-        d["directions_excluded"] = row.comparison.directions_excluded;
-        d["reference_median_rel_stderr"] = row.comparison.reference_median_rel_stderr;
-        d["model_energy"] = row.model_energy;
-        d["reference_energy"] = row.reference_energy;
-        d["trusted"] = row.trusted;
-        d["verdict"] = row.verdict;
-        rows.append(d);
-    }
+    for (const auto& row : validity::table(cases)) rows.append(row_dict(row));
     py::list verdicts;
     for (const auto& c : cases) {
-        py::dict v;
+        py::dict v = verdict_dict(c.verdict);
         v["wavelength_nm"] = c.wavelength_nm;
         v["theta_i_deg"] = c.theta_i_deg;
         v["polarisation"] = validity::to_string(c.polarisation);
-        v["conclusive"] = c.verdict.conclusive;
-        v["trusted"] = c.verdict.trusted;
-        v["best_model"] = c.verdict.best_model;
-        v["within_tolerance"] = c.verdict.within_tolerance;
-        v["ruled_out"] = c.verdict.ruled_out;
-        v["text"] = c.verdict.text;
         verdicts.append(v);
     }
     py::dict out;
     out["table"] = rows;
     out["verdicts"] = verdicts;
+    return out;
+}
+
+// surface=: KC / Gaussian statistics (with their lay) to synthesise maps from, or a height map (object or path).
+bsdf::SurfaceOptions map_surface_options(py::handle surface, const std::string& form) {
+    bsdf::SurfaceOptions s;
+    s.form = surface::parse_form(form, "form");
+    if (py::isinstance<surface::KCorrelation>(surface) || py::isinstance<surface::GaussianAcv>(surface)) {
+        const auto& radial = surface.cast<const surface::RadialStatistics&>();
+        s.psd = py::isinstance<surface::KCorrelation>(surface) ? bsdf::PsdKind::kc : bsdf::PsdKind::gaussian;
+        s.sigma = radial.sigma_h();
+        s.corr_length = radial.correlation_length();
+        if (s.psd == bsdf::PsdKind::kc) s.gamma = surface.cast<const surface::KCorrelation&>().gamma();
+        const Lay lay = lay_of(surface);
+        s.corr_length_v = lay.corr_length_v;
+        s.lay_angle = lay.lay_angle_deg;
+        return s;
+    }
+    s.psd = bsdf::PsdKind::measured;
+    if (py::isinstance<surface::HeightMap>(surface)) {
+        const auto map = surface.cast<std::shared_ptr<surface::HeightMap>>();
+        s.surface_file = map->origin();
+        s.height_map = map;
+    } else if (py::isinstance<py::str>(surface) ||
+               py::isinstance(surface, py::module_::import("os").attr("PathLike"))) {
+        s.surface_file = py::str(surface).cast<std::string>();
+    } else {
+        fail("surface must be a KCorrelation, a GaussianAcv, a HeightMap or the path of a height map file, got {}",
+             py::repr(surface).cast<std::string>());
+    }
+    return s;
+}
+
+py::dict validity_map(py::handle surface_arg, const std::string& material, const std::vector<double>& wavelengths_nm,
+                      const std::vector<double>& theta_i_deg, const std::vector<double>& phi_i_deg,
+                      const std::string& form, double map_size_um, std::size_t map_pixels, std::size_t realizations,
+                      std::uint64_t seed, double subarea_um, double max_theta_o_deg, double bin_deg, double tolerance,
+                      double max_reference_stderr, int threads) {
+    const bsdf::SurfaceOptions options = map_surface_options(surface_arg, form);
+    const bool measured = options.psd == bsdf::PsdKind::measured;
+    if (measured && (map_size_um != 0 || realizations != 1))
+        fail("map_size_um and realizations synthesise maps from statistics: a height map is one realization");
+    if (!(max_theta_o_deg > 0 && max_theta_o_deg < 90))
+        fail("max_theta_o_deg must be in (0, 90) degrees, got {}", max_theta_o_deg);
+    if (subarea_um != 0) require_positive(subarea_um, "subarea_um");
+    const auto conductor = material::Conductor::from_name(material);
+    validity::MapStudy study;
+    study.wavelengths_nm = wavelengths_nm;
+    study.theta_i_deg = theta_i_deg;
+    study.phi_i_deg = phi_i_deg;
+    study.subarea_um = subarea_um;
+    study.max_theta_o_deg = max_theta_o_deg;
+    study.criteria.bin_deg = bin_deg;
+    study.criteria.tolerance = tolerance;
+    study.criteria.max_reference_stderr = max_reference_stderr;
+    study.threads = threads;
+    std::vector<validity::MapCase> cases;
+    validity::MapSurface surface;
+    {
+        const py::gil_scoped_release release;
+        surface = validity::map_surface(options, material, {map_size_um, map_pixels, realizations, seed});
+        cases = validity::map_validity(surface, conductor, study);
+    }
+    py::list rows;
+    for (const auto& row : validity::table(cases)) {
+        py::dict d = row_dict(row);
+        d["phi_i_deg"] = row.phi_i_deg;
+        d["reference_valid"] = row.reference_valid;
+        rows.append(d);
+    }
+    py::list verdicts;
+    for (const auto& c : cases) {
+        py::dict v = verdict_dict(c.verdict);
+        v["wavelength_nm"] = c.wavelength_nm;
+        v["theta_i_deg"] = c.theta_i_deg;
+        v["phi_i_deg"] = c.phi_i_deg;
+        const auto& k = c.reference_validity;
+        v["reference_validity"] = py::dict("valid"_a = k.valid, "k_l"_a = k.k_l, "curvature_share"_a = k.curvature_share,
+                                           "median_radius_um"_a = k.median_radius_um,
+                                           "shadowed_share"_a = k.shadowed_share, "text"_a = k.text);
+        v["reference_energy"] = c.reference_energy;
+        verdicts.append(v);
+    }
+    py::dict out;
+    out["table"] = rows;
+    out["verdicts"] = verdicts;
+    out["refused_models"] = surface.refused;
+    out["surface"] = surface.description;
     return out;
 }
 
@@ -92,6 +192,20 @@ validity` (docs/VALIDITY.md): the 1-D GHS, SSA and Kirchhoff forms against exact
 random profiles of length_um (Thorsos beam of width beam_width_um), for every wavelength in wavelengths_nm (nm),
 incidence in theta_i_deg (degrees) and polarisation ('s', 'p'). Returns {'table': one dict per model and case with
 the CSV's columns, 'verdicts': one dict per case (conclusive, trusted, best_model, within_tolerance, ruled_out, text)}.)");
+    m.def("validity_map", &validity_map, py::arg("surface"), py::arg("material"), py::arg("wavelengths_nm"),
+          py::arg("theta_i_deg"), py::arg("phi_i_deg") = std::vector<double>{0.0}, py::arg("form") = "plane",
+          py::arg("map_size_um") = 0.0, py::arg("map_pixels") = 256, py::arg("realizations") = 1,
+          py::arg("seed") = 1, py::arg("subarea_um") = 0.0, py::arg("max_theta_o_deg") = 80.0,
+          py::arg("bin_deg") = 3.0, py::arg("tolerance") = 0.1, py::arg("max_reference_stderr") = 0.25,
+          py::arg("threads") = 0,
+          R"(Which 2-D model to trust for a height map, as `surfscatter validity --surface-file` / `--map-size-um`
+(docs/VALIDITY.md, "Height maps"): every model the factory makes for `surface` against the Kirchhoff BRDF of the
+map(s), with Kirchhoff's own validity. `surface`: a HeightMap or a height map path (form removed as `form` says; the
+models from psd measured and psd file), or a KCorrelation / GaussianAcv, elliptical if made with corr_length_v /
+lay_angle_deg (`realizations` square maps of map_size_um and map_pixels a side are synthesised, seeds seed,
+seed + 1, ...). Wavelengths in nm, angles in degrees, subarea_um 0: a quarter of the map. Returns {'table': one dict per
+model and case with the CSV's columns, 'verdicts': one dict per case (the verdict, its reference_validity and
+reference_energy), 'refused_models': the models the factory does not make for this surface and why, 'surface'}.)");
 }
 
 }  // namespace surfscatter::python
