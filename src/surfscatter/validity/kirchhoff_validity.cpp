@@ -48,12 +48,14 @@ void convolve_axis(std::vector<double>& value, std::vector<double>& weight, std:
 }
 
 double bilinear(const surface::HeightMap& map, double fx, double fy, bool& inside) {
-    const double x0 = std::floor(fx), y0 = std::floor(fy);
-    inside = x0 >= 0 && y0 >= 0 && x0 + 1 < static_cast<double>(map.nx()) && y0 + 1 < static_cast<double>(map.ny());
+    const double last_x = static_cast<double>(map.nx() - 1), last_y = static_cast<double>(map.ny() - 1);
+    inside = fx >= 0 && fy >= 0 && fx <= last_x && fy <= last_y;
     if (!inside) return 0;
-    const auto ix = static_cast<std::size_t>(x0), iy = static_cast<std::size_t>(y0);
+    // The cell's lower corner, the last pixel's point taken as the far corner of the cell before it.
+    const auto ix = static_cast<std::size_t>(std::min(std::floor(fx), last_x - 1));
+    const auto iy = static_cast<std::size_t>(std::min(std::floor(fy), last_y - 1));
     inside = map.valid(ix, iy) && map.valid(ix + 1, iy) && map.valid(ix, iy + 1) && map.valid(ix + 1, iy + 1);
-    const double tx = fx - x0, ty = fy - y0;
+    const double tx = fx - static_cast<double>(ix), ty = fy - static_cast<double>(iy);
     return (1 - ty) * ((1 - tx) * map(ix, iy) + tx * map(ix + 1, iy)) +
            ty * ((1 - tx) * map(ix, iy + 1) + tx * map(ix + 1, iy + 1));
 }

@@ -15,10 +15,12 @@
 // over valid points): spatial frequencies above 2 k scatter into no propagating direction at first order (the
 // Kirchhoff lattice ends at |q_xy| < 2 k) and are attenuated by e^-2 or more, so pixel noise does not decide.
 // Curvature: the largest principal curvature |H| + sqrt(H^2 - K) of z = h(x, y) from central differences (second
-// order in the pixel spacing: 1e-3 relative on a sinusoid of 60 pixels a period, KirchhoffValidity tests).
+// order in the pixel spacing; on a sinusoid of 64 pixels a period the median radius within 1 % and the share of
+// pixels curved under lambda within 1.5 % of the closed form, KirchhoffValidity tests).
 // Shadows: a pixel is shadowed when the map rises above the ray towards the light, marched in steps of the smaller
 // pixel spacing with bilinear heights until the ray passes the map's highest point or leaves the map (or its valid
-// points); measured against the closed form s / (s + cot theta_i) of a triangle wave of slope s.
+// points); on a triangle wave of slope s within 2 pixels of a brute-force search on the closed form and within the
+// last period of the infinite wave's s / (s + cot theta_i) (KirchhoffValidity tests).
 #include <string>
 
 #include "surfscatter/surface/height_map.hpp"
