@@ -5,7 +5,7 @@ import subprocess
 import pytest
 
 import surfscatter as ss
-from conftest import CLI, CLI_RTOL
+from conftest import CLI, CLI_RTOL, SOURCE_DIR, run_cli
 
 
 def test_validity_matches_the_cli(tmp_path):
@@ -34,3 +34,45 @@ def test_validity_refuses_bad_input():
         ss.validity(ss.KCorrelation(0.01, 1.0, 3.0), "perfect", [550], [90], 12, 2, 4)
     with pytest.raises(ss.Error, match="polarisations"):
         ss.validity(ss.KCorrelation(0.01, 1.0, 3.0), "perfect", [550], [0], 12, 2, 4, polarisations=["x"])
+
+
+def test_validity_map_matches_the_cli(tmp_path):
+    """The map route on the example KC map: the same rows and verdicts as `surfscatter validity --surface-file`."""
+    surface_file = SOURCE_DIR / "examples" / "data" / "kc_surface.gsf"
+    got = ss.validity_map(str(surface_file), "perfect", wavelengths_nm=[550], theta_i_deg=[0], bin_deg=6)
+    assert [row["model"] for row in got["table"]][:2] == ["ghs/measured", "ghs_ssa/measured"]
+    verdict = got["verdicts"][0]
+    assert verdict["reference_validity"]["valid"]
+    assert "ghs_ssa/measured" in verdict["ruled_out"]
+    out = tmp_path / "m"
+    run_cli("validity", "--surface-file", surface_file, "--material", "perfect", "--wavelengths", "550",
+            "--theta-i", "0", "--bin-deg", "6", "-o", out)
+    with open(f"{out}.csv") as f:
+        rows = list(csv.DictReader(f))
+    assert len(rows) == len(got["table"])
+    for mine, theirs in zip(got["table"], rows):
+        assert mine["model"] == theirs["model"]
+        assert mine["median_rel_error"] == pytest.approx(float(theirs["median_rel_error"]), rel=CLI_RTOL)
+        assert mine["model_energy"] == pytest.approx(float(theirs["model_energy"]), rel=CLI_RTOL)
+        assert mine["reference_valid"] == (theirs["reference_valid"] == "1")
+        assert mine["verdict"] == theirs["verdict"]
+
+
+def test_validity_map_synthesises_elliptical_maps():
+    """An elliptical KC surface: the maps are drawn with its lay; two_scale refuses elliptical statistics, and says so."""
+    surface = ss.KCorrelation(0.02, 2.0, 3.0, corr_length_v=4.0, lay_angle_deg=30)
+    got = ss.validity_map(surface, "perfect", wavelengths_nm=[550], theta_i_deg=[20], phi_i_deg=[0, 90],
+                          map_size_um=32, map_pixels=256, realizations=2, subarea_um=8, bin_deg=6)
+    assert {row["phi_i_deg"] for row in got["table"]} == {0, 90}
+    assert any(why.startswith("two_scale: ") for why in got["refused_models"])
+    assert "corr_length_v 4 um, lay_angle 30 deg" in got["surface"]
+
+
+def test_validity_map_refuses_bad_input():
+    with pytest.raises(ss.Error, match="a height map is one realization"):
+        ss.validity_map(str(SOURCE_DIR / "examples" / "data" / "kc_surface.gsf"), "perfect", [550], [0],
+                        realizations=2)
+    with pytest.raises(ss.Error, match="map size"):
+        ss.validity_map(ss.KCorrelation(0.02, 2.0, 3.0), "perfect", [550], [0])
+    with pytest.raises(ss.Error, match="surface must be"):
+        ss.validity_map(3, "perfect", [550], [0])
