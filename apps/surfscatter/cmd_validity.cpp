@@ -50,20 +50,38 @@ struct ValidityArgs {
     bool map_route() const { return !surface_file.empty() || map_size.has_value(); }
 };
 
-std::string csv_table(const std::vector<validity::ProfileCase>& cases) {
+// One row per model and case; the map route appends its incidence azimuth and whether the reference is valid.
+std::string csv_table(const std::vector<validity::TableRow>& rows, bool map_route) {
     std::string out = "model,wavelength_nm,theta_i_deg,polarisation,median_rel_error,worst_rel_error,"
                       "worst_theta_o_deg,directions_used,directions_excluded,reference_median_rel_stderr,"
-                      "model_energy,reference_energy,trusted,verdict\n";
-    for (const auto& row : validity::table(cases)) {
+                      "model_energy,reference_energy,trusted,verdict";
+    out += map_route ? ",phi_i_deg,reference_valid\n" : "\n";
+    for (const auto& row : rows) {
         const auto& cmp = row.comparison;
-        out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\"\n", row.model, format_number(row.wavelength_nm),
+        out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\"", row.model, format_number(row.wavelength_nm),
                            format_number(row.theta_i_deg), row.polarisation, format_number(cmp.median_rel_error),
                            format_number(cmp.worst_rel_error), format_number(cmp.worst_theta_o_rad / kDegree),
                            cmp.directions_used, cmp.directions_excluded,
                            format_number(cmp.reference_median_rel_stderr), format_number(row.model_energy),
                            format_number(row.reference_energy), row.trusted ? 1 : 0, row.verdict);
+        out += map_route ? fmt::format(",{},{}\n", format_number(row.phi_i_deg), row.reference_valid ? 1 : 0) : "\n";
     }
     return out;
+}
+
+nlohmann::json verdict_json(const validity::Verdict& v) {
+    return {{"conclusive", v.conclusive}, {"trusted", v.trusted},       {"best_model", v.best_model},
+            {"within_tolerance", v.within_tolerance}, {"ruled_out", v.ruled_out}, {"text", v.text}};
+}
+
+nlohmann::json model_json(const validity::ModelResult& m) {
+    return {{"median_rel_error", m.comparison.median_rel_error},
+            {"worst_rel_error", m.comparison.worst_rel_error},
+            {"directions_used", m.comparison.directions_used},
+            {"directions_excluded", m.comparison.directions_excluded},
+            {"used_bins", m.comparison.used},
+            {"model_energy", m.model_energy},
+            {"coherent", m.coherent}};
 }
 
 nlohmann::json json_report(const std::vector<validity::ProfileCase>& cases, const ValidityArgs& a,
@@ -83,10 +101,7 @@ nlohmann::json json_report(const std::vector<validity::ProfileCase>& cases, cons
         jc["theta_i_deg"] = c.theta_i_deg;
         jc["polarisation"] = validity::to_string(c.polarisation);
         jc["reference_energy"] = c.reference_energy;
-        jc["verdict"] = {{"conclusive", c.verdict.conclusive}, {"trusted", c.verdict.trusted},
-                         {"best_model", c.verdict.best_model}, {"within_tolerance", c.verdict.within_tolerance},
-                         {"ruled_out", c.verdict.ruled_out},
-                         {"text", c.verdict.text}};
+        jc["verdict"] = verdict_json(c.verdict);
         std::vector<double> theta_deg;
         for (const double t : c.reference.theta_o_rad) theta_deg.push_back(t / kDegree);
         jc["theta_o_deg"] = theta_deg;
@@ -99,15 +114,10 @@ nlohmann::json json_report(const std::vector<validity::ProfileCase>& cases, cons
                         {"reference_stderr_per_rad", c.binned.reference_stderr}};
         for (std::size_t m = 0; m < c.models.size(); ++m)
             jc["binned"]["models"][c.models[m].model] = c.binned.models[m];
-        for (const auto& m : c.models)
-            jc["models"][m.model] = {{"median_rel_error", m.comparison.median_rel_error},
-                                     {"worst_rel_error", m.comparison.worst_rel_error},
-                                     {"directions_used", m.comparison.directions_used},
-                                     {"directions_excluded", m.comparison.directions_excluded},
-                                     {"used_bins", m.comparison.used},
-                                     {"model_energy", m.model_energy},
-                                     {"coherent", m.coherent},
-                                     {"incoherent_per_rad", m.incoherent_per_rad}};
+        for (const auto& m : c.models) {
+            jc["models"][m.model] = model_json(m);
+            jc["models"][m.model]["incoherent_per_rad"] = m.incoherent_per_rad;
+        }
         j["cases"].push_back(std::move(jc));
     }
     return j;
@@ -173,7 +183,7 @@ void run_profile_validity(const ValidityArgs& a) {
     if (cases.empty()) return;
 
     const std::string csv_path = a.output + ".csv", json_path = a.output + ".json";
-    write_file_atomically(csv_path, csv_table(cases));
+    write_file_atomically(csv_path, csv_table(validity::table(cases), false));
     write_file_atomically(json_path, json_report(cases, a,
                                                 fmt::format("{}, sigma_h {} um", statistics->cache_key(),
                                                             format_number(statistics->sigma_h())),
@@ -188,23 +198,6 @@ void run_profile_validity(const ValidityArgs& a) {
     if (concluded == 0 && !interrupt_requested())
         fail("nothing can be concluded: the reference's Monte Carlo error is too large (more --realizations or "
              "--length-um)");
-}
-
-std::string map_csv_table(const std::vector<validity::MapCase>& cases) {
-    std::string out = "model,wavelength_nm,theta_i_deg,polarisation,median_rel_error,worst_rel_error,"
-                      "worst_theta_o_deg,directions_used,directions_excluded,reference_median_rel_stderr,"
-                      "model_energy,reference_energy,trusted,verdict,phi_i_deg,reference_valid\n";
-    for (const auto& row : validity::table(cases)) {
-        const auto& cmp = row.comparison;
-        out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\",{},{}\n", row.model,
-                           format_number(row.wavelength_nm), format_number(row.theta_i_deg), row.polarisation,
-                           format_number(cmp.median_rel_error), format_number(cmp.worst_rel_error),
-                           format_number(cmp.worst_theta_o_rad / kDegree), cmp.directions_used,
-                           cmp.directions_excluded, format_number(cmp.reference_median_rel_stderr),
-                           format_number(row.model_energy), format_number(row.reference_energy), row.trusted ? 1 : 0,
-                           row.verdict, format_number(row.phi_i_deg), row.reference_valid ? 1 : 0);
-    }
-    return out;
 }
 
 nlohmann::json map_json_report(const std::vector<validity::MapCase>& cases, const ValidityArgs& a,
@@ -234,10 +227,7 @@ nlohmann::json map_json_report(const std::vector<validity::MapCase>& cases, cons
         jc["reference_validity"] = {{"valid", v.valid}, {"k_l", v.k_l}, {"curvature_share", v.curvature_share},
                                     {"median_radius_um", v.median_radius_um}, {"shadowed_share", v.shadowed_share},
                                     {"text", v.text}};
-        jc["verdict"] = {{"conclusive", c.verdict.conclusive}, {"trusted", c.verdict.trusted},
-                         {"best_model", c.verdict.best_model}, {"within_tolerance", c.verdict.within_tolerance},
-                         {"ruled_out", c.verdict.ruled_out},
-                         {"text", c.verdict.text}};
+        jc["verdict"] = verdict_json(c.verdict);
         std::vector<double> theta_deg;
         for (const double t : c.binned.theta_o_rad) theta_deg.push_back(t / kDegree);
         jc["binned"] = {{"o_x", c.binned.o_x},
@@ -247,14 +237,7 @@ nlohmann::json map_json_report(const std::vector<validity::MapCase>& cases, cons
                         {"reference_stderr_per_sr", c.binned.reference_stderr}};
         for (std::size_t m = 0; m < c.models.size(); ++m)
             jc["binned"]["models"][c.models[m].model] = c.binned.models[m];
-        for (const auto& m : c.models)
-            jc["models"][m.model] = {{"median_rel_error", m.comparison.median_rel_error},
-                                     {"worst_rel_error", m.comparison.worst_rel_error},
-                                     {"directions_used", m.comparison.directions_used},
-                                     {"directions_excluded", m.comparison.directions_excluded},
-                                     {"used_bins", m.comparison.used},
-                                     {"model_energy", m.model_energy},
-                                     {"coherent", m.coherent}};
+        for (const auto& m : c.models) jc["models"][m.model] = model_json(m);
         j["cases"].push_back(std::move(jc));
     }
     return j;
@@ -330,7 +313,7 @@ void run_map_validity(const ValidityArgs& a, bool polarisation_given) {
     if (cases.empty()) return;
 
     const std::string csv_path = a.output + ".csv", json_path = a.output + ".json";
-    write_file_atomically(csv_path, map_csv_table(cases));
+    write_file_atomically(csv_path, csv_table(validity::table(cases), true));
     write_file_atomically(json_path, map_json_report(cases, a, surface, conductor.name()).dump() + "\n");
     run_plot_script("validity_map.py", {json_path, a.output + "_slices.png", a.output + "_error_map.png"});
     for (const auto& c : cases) {

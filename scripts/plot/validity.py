@@ -76,18 +76,24 @@ def error_map(report, out):
             ax.set_xlim(-90, 90)
             ax.set_yticks(theta_i)
             ax.tick_params(labelsize=7)
-    fig.supxlabel("theta_o (deg)", fontsize=8)
+    finish_error_map(fig, axes, image, "theta_o (deg)", "relative error (%)", out)
+
+
+def finish_error_map(fig, axes, image, xlabel, colour_label, out):
+    """Labels, the colour bar and the file of an error map (this script's and validity_map.py's)."""
+    fig.supxlabel(xlabel, fontsize=8)
     fig.supylabel("theta_i (deg, rows)", fontsize=8)
     fig.tight_layout()
-    fig.colorbar(image, ax=axes, shrink=0.8, label="relative error (%)")
+    fig.colorbar(image, ax=axes, shrink=0.8, label=colour_label)
     fig.savefig(out, dpi=80)
 
 
-def main():
+def run(slices_plot, error_map_plot):
+    """Usage: script OUT.json slices.png error_map.png"""
     report = json.load(open(sys.argv[1]))
-    slices(report, sys.argv[2])
-    error_map(report, sys.argv[3])
+    slices_plot(report, sys.argv[2])
+    error_map_plot(report, sys.argv[3])
 
 
 if __name__ == "__main__":
-    main()
+    run(slices, error_map)

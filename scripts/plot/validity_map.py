@@ -5,15 +5,14 @@ reference's standard error as a band), one panel per case, titled with whether K
 model's median relative error over theta_i and theta_o (the bins the comparison used, in 5 degree rings of theta_o),
 one panel per model and (wavelength, phi_i).
 Usage: validity_map.py OUT.json slices.png error_map.png"""
-import json
 import math
-import sys
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from validity import finish_error_map, run  # noqa: E402  (the profiles route's plots, same directory)
 
 RING_DEG = 5.0
 
@@ -22,14 +21,14 @@ def positive(values):
     return np.where(values > 0, values, np.nan)
 
 
-def in_plane(case):
+def in_plane(case, bin_deg):
     """Indices of the bins near the plane of incidence, sorted by signed theta_o (forward scattering positive)."""
     b = case["binned"]
     phi = math.radians(case["phi_i_deg"])
     ox, oy = np.array(b["o_x"]), np.array(b["o_y"])
     along = -(ox * math.cos(phi) + oy * math.sin(phi))  # towards the specular side
     across = -ox * math.sin(phi) + oy * math.cos(phi)
-    half_bin = 0.5 * max(math.radians(case.get("bin_deg", 3.0)), max(case["lattice_step"]))
+    half_bin = 0.5 * max(math.radians(bin_deg), max(case["lattice_step"]))
     keep = np.nonzero(np.abs(across) <= half_bin)[0]
     theta = np.degrees(np.arcsin(np.clip(along[keep], -1, 1)))
     order = np.argsort(theta)
@@ -42,8 +41,7 @@ def slices(report, out):
     rows = math.ceil(len(cases) / cols)
     fig, axes = plt.subplots(rows, cols, figsize=(4.4 * cols, 3.1 * rows), squeeze=False)
     for ax, case in zip(axes.flat, cases):
-        case["bin_deg"] = report["criteria"]["bin_deg"]
-        idx, theta = in_plane(case)
+        idx, theta = in_plane(case, report["criteria"]["bin_deg"])
         b = case["binned"]
         y = np.array(b["reference_per_sr"])[idx]
         e = np.array(b["reference_stderr_per_sr"])[idx]
@@ -101,18 +99,8 @@ def error_map(report, out):
             ax.set_xlim(0, 90)
             ax.set_yticks(theta_i)
             ax.tick_params(labelsize=7)
-    fig.supxlabel("theta_o (deg, any azimuth)", fontsize=8)
-    fig.supylabel("theta_i (deg, rows)", fontsize=8)
-    fig.tight_layout()
-    fig.colorbar(image, ax=axes, shrink=0.8, label="median relative error (%)")
-    fig.savefig(out, dpi=80)
-
-
-def main():
-    report = json.load(open(sys.argv[1]))
-    slices(report, sys.argv[2])
-    error_map(report, sys.argv[3])
+    finish_error_map(fig, axes, image, "theta_o (deg, any azimuth)", "median relative error (%)", out)
 
 
 if __name__ == "__main__":
-    main()
+    run(slices, error_map)
