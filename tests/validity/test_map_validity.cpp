@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/progress.hpp"
 #include "surfscatter/material/conductor.hpp"
 #include "surfscatter/math/vec.hpp"
 #include "surfscatter/surface/height_map.hpp"
@@ -207,4 +208,13 @@ TEST(MapValidity, RefusesBadInput) {
     EXPECT_THROW(sv::map_validity(maps, ss::material::Conductor::from_name("perfect"), study), ss::Error);
     study = fast_study(-1);
     EXPECT_THROW(sv::map_validity(maps, ss::material::Conductor::from_name("perfect"), study), ss::Error);
+}
+
+// An interrupted run returns the cases completed: none when interrupted before the first (no partial case).
+TEST(MapValidity, InterruptedBeforeTheFirstCaseReturnsNone) {
+    const sv::MapSurface maps = kc_maps(0.02, 2, 3);
+    ss::request_interrupt();
+    const auto cases = sv::map_validity(maps, ss::material::Conductor::from_name("perfect"), fast_study(550));
+    ss::clear_interrupt();
+    EXPECT_TRUE(cases.empty());
 }

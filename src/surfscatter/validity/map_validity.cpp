@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <utility>
 
 #include <fmt/format.h>
@@ -59,6 +60,52 @@ std::vector<double> lattice_values(const bsdf::Bsdf& model, const Vec3& wi, doub
         f[d] = model.eval(wi, wo, lambda_nm);
     }
     return f;
+}
+
+// The maps' Kirchhoff BRDFs averaged on their common lattice; the variances of the means add as independent.
+struct MapsReference {
+    std::vector<double> o_x, o_y, brdf, coherent, variance;
+    double step_x = 0, step_y = 0, albedo = 0, albedo_stderr = 0;
+    std::size_t subareas = 0;
+    std::vector<std::string> warnings;  // each once
+};
+
+// Empty when interrupted.
+std::optional<MapsReference> mean_reference(const std::vector<surface::HeightMap>& maps,
+                                            const material::Conductor& conductor,
+                                            const reference::KirchhoffOptions& options, Progress& progress) {
+    MapsReference out;
+    const double count = static_cast<double>(maps.size());
+    double albedo_variance = 0;
+    for (const surface::HeightMap& map : maps) {
+        const reference::KirchhoffResult r = reference::kirchhoff_brdf(map, conductor, options);
+        if (r.subareas_done < r.subareas) return std::nullopt;
+        if (out.brdf.empty()) {
+            out.o_x = r.o_x;
+            out.o_y = r.o_y;
+            out.step_x = r.step_x;
+            out.step_y = r.step_y;
+            out.brdf.assign(r.brdf.size(), 0.0);
+            out.coherent.assign(r.brdf.size(), 0.0);
+            out.variance.assign(r.brdf.size(), 0.0);
+        } else if (r.brdf.size() != out.brdf.size() || r.step_x != out.step_x || r.step_y != out.step_y) {
+            fail("validity: {} has another direction lattice than the first map (the maps must share their grid)",
+                 map.origin());
+        }
+        for (std::size_t d = 0; d < r.brdf.size(); ++d) {
+            out.brdf[d] += r.brdf[d] / count;
+            out.coherent[d] += r.coherent[d] / count;
+            out.variance[d] += r.standard_error[d] * r.standard_error[d] / (count * count);
+        }
+        out.albedo += r.albedo / count;
+        albedo_variance += r.albedo_standard_error * r.albedo_standard_error / (count * count);
+        out.subareas += r.subareas;
+        for (const std::string& w : r.warnings)
+            if (std::find(out.warnings.begin(), out.warnings.end(), w) == out.warnings.end()) out.warnings.push_back(w);
+        progress.advance();
+    }
+    out.albedo_stderr = std::sqrt(albedo_variance);
+    return out;
 }
 
 // Floor division for lattice indices of either sign.
@@ -144,41 +191,15 @@ std::vector<MapCase> map_validity(const MapSurface& surface, const material::Con
                 options.subarea_um = subarea;
                 options.max_theta_o_rad = study.max_theta_o_deg * kDegree;
                 options.threads = study.threads;
-                // The mean over the maps; variances of the means add as independent.
-                reference::KirchhoffResult sum;
-                std::vector<double> variance;
-                double energy_variance = 0;
-                for (const surface::HeightMap& map : surface.maps) {
-                    reference::KirchhoffResult r = reference::kirchhoff_brdf(map, conductor, options);
-                    if (r.subareas_done < r.subareas) return cases;  // interrupted
-                    if (sum.brdf.empty()) {
-                        sum = r;
-                        variance.assign(r.brdf.size(), 0.0);
-                        sum.subareas = 0;
-                        std::fill(sum.brdf.begin(), sum.brdf.end(), 0.0);
-                        std::fill(sum.coherent.begin(), sum.coherent.end(), 0.0);
-                        sum.albedo = 0;
-                    }
-                    for (std::size_t d = 0; d < r.brdf.size(); ++d) {
-                        sum.brdf[d] += r.brdf[d];
-                        sum.coherent[d] += r.coherent[d];
-                        variance[d] += r.standard_error[d] * r.standard_error[d];
-                    }
-                    sum.albedo += r.albedo;
-                    energy_variance += r.albedo_standard_error * r.albedo_standard_error;
-                    sum.subareas += r.subareas;
-                    for (const std::string& w : r.warnings)
-                        if (std::find(mc.reference_warnings.begin(), mc.reference_warnings.end(), w) ==
-                            mc.reference_warnings.end())
-                            mc.reference_warnings.push_back(w);
-                    progress.advance();
-                }
-                const double count = static_cast<double>(surface.maps.size());
-                mc.reference_energy = sum.albedo / count;
-                mc.reference_energy_stderr = std::sqrt(energy_variance) / count;
+                const auto reference = mean_reference(surface.maps, conductor, options, progress);
+                if (!reference) return cases;  // interrupted
+                const MapsReference& sum = *reference;
+                mc.reference_energy = sum.albedo;
+                mc.reference_energy_stderr = sum.albedo_stderr;
                 mc.subareas = sum.subareas;
                 mc.lattice_step_x = sum.step_x;
                 mc.lattice_step_y = sum.step_y;
+                mc.reference_warnings = sum.warnings;
 
                 const Vec3 wi{std::sin(theta_i * kDegree) * std::cos(phi_i * kDegree),
                               std::sin(theta_i * kDegree) * std::sin(phi_i * kDegree), std::cos(theta_i * kDegree)};
@@ -211,8 +232,8 @@ std::vector<MapCase> map_validity(const MapSurface& surface, const material::Con
                     if (a.models.empty()) a.models.assign(surface.models.size(), 0.0);
                     a.ox += sum.o_x[d];
                     a.oy += sum.o_y[d];
-                    a.ref += (sum.brdf[d] - sum.coherent[d]) / count;
-                    a.var += variance[d] / (count * count);
+                    a.ref += sum.brdf[d] - sum.coherent[d];
+                    a.var += sum.variance[d];
                     for (std::size_t m = 0; m < surface.models.size(); ++m) a.models[m] += model_f[m][d];
                     ++a.n;
                 }
