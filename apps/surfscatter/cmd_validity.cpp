@@ -130,6 +130,11 @@ void print_summary(const std::vector<validity::ProfileCase>& cases) {
                     c.verdict.text.c_str());
 }
 
+void say_if_interrupted(const std::string& output, std::size_t done, std::size_t asked) {
+    if (done < asked)
+        std::fprintf(stderr, "surfscatter: interrupted: %s.csv holds %zu of %zu cases\n", output.c_str(), done, asked);
+}
+
 void check_criteria(const ValidityArgs& a) {
     require_thread_count(a.threads, "--threads");
     if (!(a.tolerance > 0 && a.tolerance < 1)) fail("--tolerance must be in (0, 1), got {}", a.tolerance);
@@ -177,9 +182,7 @@ void run_profile_validity(const ValidityArgs& a) {
     install_interrupt_handler();
     const auto cases = validity::profile_validity(*statistics, conductor, study);
     const std::size_t asked = a.wavelengths.size() * a.theta_i.size() * study.polarisations.size();
-    if (cases.size() < asked)
-        std::fprintf(stderr, "surfscatter: interrupted: %s.csv holds %zu of %zu cases\n", a.output.c_str(),
-                     cases.size(), asked);
+    say_if_interrupted(a.output, cases.size(), asked);
     if (cases.empty()) return;
 
     const std::string csv_path = a.output + ".csv", json_path = a.output + ".json";
@@ -307,9 +310,7 @@ void run_map_validity(const ValidityArgs& a, bool polarisation_given) {
     install_interrupt_handler();
     const auto cases = validity::map_validity(surface, conductor, study);
     const std::size_t asked = a.wavelengths.size() * a.theta_i.size() * study.phi_i_deg.size();
-    if (cases.size() < asked)
-        std::fprintf(stderr, "surfscatter: interrupted: %s.csv holds %zu of %zu cases\n", a.output.c_str(),
-                     cases.size(), asked);
+    say_if_interrupted(a.output, cases.size(), asked);
     if (cases.empty()) return;
 
     const std::string csv_path = a.output + ".csv", json_path = a.output + ".json";
