@@ -14,7 +14,8 @@
 // about the specular one, the separable Hann window's main lobe where the coherent part is spread, are left out. A
 // bin's standard error is the rms of its directions' over sqrt(max(1, n / 2.25)) for n directions: neighbouring
 // lattice directions of a Hann window are correlated over its noise-equivalent bandwidth of 1.5 steps per axis (an
-// estimate, as the profiles route's). Energies: the reference's albedo over its lattice (coherent included, theta_o
+// estimate: against the scatter of the bins between 8 independent maps its median ratio is 1.18 on a smooth and 0.99
+// on a rough KC surface, MapValidity.BinStandardErrorMatchesTheScatterBetweenMaps). Energies: the reference's albedo over its lattice (coherent included, theta_o
 // <= max_theta_o) and the model's directional albedo over the hemisphere (bsdf/albedo.hpp): a lattice sum would miss
 // a peak narrower than the lattice step (the two-scale macro lobe).
 // The verdict is validity::decide's; where the reference is outside its own validity (kirchhoff_validity.hpp, on
