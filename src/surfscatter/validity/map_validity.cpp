@@ -111,6 +111,44 @@ std::optional<MapsReference> mean_reference(const std::vector<surface::HeightMap
 // Floor division for lattice indices of either sign.
 long bin_index(long m, long cells) { return m >= 0 ? m / cells : -((-m + cells - 1) / cells); }
 
+// Square bins of about `bin_rad` a side in direction cosines (header); the specular lobe left out.
+LatticeBins bin_lattice(const MapsReference& reference, const Vec3& wi, const std::vector<std::vector<double>>& model_f,
+                        double bin_rad) {
+    const long cells_x = std::max(1L, std::lround(bin_rad / reference.step_x));
+    const long cells_y = std::max(1L, std::lround(bin_rad / reference.step_y));
+    struct Accumulator {
+        double ox = 0, oy = 0, ref = 0, var = 0;
+        std::vector<double> models;
+        std::size_t n = 0;
+    };
+    std::map<std::pair<long, long>, Accumulator> bins;
+    for (std::size_t d = 0; d < reference.brdf.size(); ++d) {
+        const long mx = std::lround((reference.o_x[d] + wi.x) / reference.step_x);
+        const long my = std::lround((reference.o_y[d] + wi.y) / reference.step_y);
+        if (std::abs(mx) <= kSpecularLobeSteps && std::abs(my) <= kSpecularLobeSteps) continue;
+        Accumulator& a = bins[{bin_index(my, cells_y), bin_index(mx, cells_x)}];
+        if (a.models.empty()) a.models.assign(model_f.size(), 0.0);
+        a.ox += reference.o_x[d];
+        a.oy += reference.o_y[d];
+        a.ref += reference.brdf[d] - reference.coherent[d];
+        a.var += reference.variance[d];
+        for (std::size_t m = 0; m < model_f.size(); ++m) a.models[m] += model_f[m][d];
+        ++a.n;
+    }
+    LatticeBins b;
+    b.models.resize(model_f.size());
+    for (const auto& [key, a] : bins) {
+        const double n = static_cast<double>(a.n);
+        b.o_x.push_back(a.ox / n);
+        b.o_y.push_back(a.oy / n);
+        b.theta_o_rad.push_back(std::asin(std::min(1.0, std::hypot(a.ox / n, a.oy / n))));
+        b.reference.push_back(a.ref / n);
+        b.reference_stderr.push_back(std::sqrt(a.var / n / std::max(1.0, n / kHannCellsPerIndependent)));
+        for (std::size_t m = 0; m < model_f.size(); ++m) b.models[m].push_back(a.models[m] / n);
+    }
+    return b;
+}
+
 }  // namespace
 
 MapSurface map_surface(const bsdf::SurfaceOptions& surface, const std::string& material,
@@ -215,39 +253,8 @@ std::vector<MapCase> map_validity(const MapSurface& surface, const material::Con
                     mc.models.push_back(std::move(result));
                 }
 
-                // Square bins of `cells` lattice steps per axis; the specular lobe left out.
-                const long cells_x = std::max(1L, std::lround(study.criteria.bin_deg * kDegree / sum.step_x));
-                const long cells_y = std::max(1L, std::lround(study.criteria.bin_deg * kDegree / sum.step_y));
-                struct Accumulator {
-                    double ox = 0, oy = 0, ref = 0, var = 0;
-                    std::vector<double> models;
-                    std::size_t n = 0;
-                };
-                std::map<std::pair<long, long>, Accumulator> bins;
-                for (std::size_t d = 0; d < sum.brdf.size(); ++d) {
-                    const long mx = std::lround((sum.o_x[d] + wi.x) / sum.step_x);
-                    const long my = std::lround((sum.o_y[d] + wi.y) / sum.step_y);
-                    if (std::abs(mx) <= kSpecularLobeSteps && std::abs(my) <= kSpecularLobeSteps) continue;
-                    Accumulator& a = bins[{bin_index(my, cells_y), bin_index(mx, cells_x)}];
-                    if (a.models.empty()) a.models.assign(surface.models.size(), 0.0);
-                    a.ox += sum.o_x[d];
-                    a.oy += sum.o_y[d];
-                    a.ref += sum.brdf[d] - sum.coherent[d];
-                    a.var += sum.variance[d];
-                    for (std::size_t m = 0; m < surface.models.size(); ++m) a.models[m] += model_f[m][d];
-                    ++a.n;
-                }
-                LatticeBins& b = mc.binned;
-                b.models.resize(surface.models.size());
-                for (const auto& [key, a] : bins) {
-                    const double n = static_cast<double>(a.n);
-                    b.o_x.push_back(a.ox / n);
-                    b.o_y.push_back(a.oy / n);
-                    b.theta_o_rad.push_back(std::asin(std::min(1.0, std::hypot(a.ox / n, a.oy / n))));
-                    b.reference.push_back(a.ref / n);
-                    b.reference_stderr.push_back(std::sqrt(a.var / n / std::max(1.0, n / kHannCellsPerIndependent)));
-                    for (std::size_t m = 0; m < surface.models.size(); ++m) b.models[m].push_back(a.models[m] / n);
-                }
+                mc.binned = bin_lattice(sum, wi, model_f, study.criteria.bin_deg * kDegree);
+                const LatticeBins& b = mc.binned;
                 for (std::size_t m = 0; m < mc.models.size(); ++m)
                     mc.models[m].comparison = compare_curves(b.theta_o_rad, b.reference, b.reference_stderr,
                                                              b.models[m], study.criteria);
