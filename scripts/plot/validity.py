@@ -38,10 +38,15 @@ def slices(report, out):
         ax.set_title(f"{case['wavelength_nm']:g} nm, {case['theta_i_deg']:g} deg, {case['polarisation']}", fontsize=8)
         ax.tick_params(labelsize=7)
         ax.legend(fontsize=6)
-    for ax in list(axes.flat)[len(cases):]:
+    finish_slices(fig, axes, len(cases), "theta_o (deg)", "incoherent intensity (1/rad)", report, out)
+
+
+def finish_slices(fig, axes, panels, xlabel, ylabel, report, out):
+    """Blank unused panels, labels, the title and the file of a slices figure (this script's and validity_map.py's)."""
+    for ax in list(axes.flat)[panels:]:
         ax.axis("off")
-    fig.supxlabel("theta_o (deg)", fontsize=8)
-    fig.supylabel("incoherent intensity (1/rad)", fontsize=8)
+    fig.supxlabel(xlabel, fontsize=8)
+    fig.supylabel(ylabel, fontsize=8)
     fig.suptitle(f"{report['surface']}, {report['material']}", fontsize=9)
     fig.tight_layout()
     fig.savefig(out, dpi=80)

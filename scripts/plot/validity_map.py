@@ -12,7 +12,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from validity import finish_error_map, run  # noqa: E402  (the profiles route's plots, same directory)
+from validity import finish_error_map, finish_slices, run  # noqa: E402  (the profiles route's plots, same directory)
 
 RING_DEG = 5.0
 
@@ -58,13 +58,8 @@ def slices(report, out):
                      f" deg: {valid}", fontsize=7)
         ax.tick_params(labelsize=7)
         ax.legend(fontsize=5)
-    for ax in list(axes.flat)[len(cases):]:
-        ax.axis("off")
-    fig.supxlabel("theta_o in the plane of incidence (deg, specular side positive)", fontsize=8)
-    fig.supylabel("diffuse BRDF (1/sr)", fontsize=8)
-    fig.suptitle(f"{report['surface']}, {report['material']}", fontsize=8)
-    fig.tight_layout()
-    fig.savefig(out, dpi=80)
+    finish_slices(fig, axes, len(cases), "theta_o in the plane of incidence (deg, specular side positive)",
+                  "diffuse BRDF (1/sr)", report, out)
 
 
 def error_map(report, out):
