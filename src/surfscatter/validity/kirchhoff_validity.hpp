@@ -1,8 +1,8 @@
 #pragma once
 // Whether the Kirchhoff (tangent-plane) reference of a height map (reference/kirchhoff_map.hpp) can be trusted at a
 // wavelength and incidence. The tangent-plane approximation replaces the surface at each point by its tangent plane,
-// so it needs (Tsang & Kong, "Scattering of Electromagnetic Waves", the tangent-plane approximation for a rough
-// surface; THEORY.md 7.4):
+// so it needs (Tsang, Kong et al., "Scattering of Electromagnetic Waves", the tangent-plane approximation for a rough
+// surface: radius of curvature >> lambda, shadowing and multiple scattering negligible; [M] in THEORY.md 7.4's sense):
 // * a local radius of curvature rho large against the wavelength: 2 k rho cos^3(theta_i) >> 1 (Brekhovskikh's
 //   condition, [M]); taken here as rho cos^3(theta_i) >= lambda (2 k rho cos^3 >= 4 pi) at all but
 //   kMaxCurvatureShare of the valid pixels;
