@@ -29,7 +29,7 @@ struct BrdfArgs {
     std::string ssa_form = "energy", alpha_from, macro_ndf = "ggx", material;  // alpha_from, material: not given
     double epsilon = 1e-6, alpha = 0, smoothing = 0, cutoff_wavelengths = 100;
     bool no_renormalization = false;
-    std::string psd, surface_file, form = "plane";
+    std::string psd, psd_fit, surface_file, form = "plane";  // psd_fit: not given
     double sigma = 0, corr_length = 0, gamma = 0, corr_length_v = 0, lay_angle = 0;
     // The --surface map, read when first needed and shared by every model of the command.
     mutable std::shared_ptr<const surface::HeightMap> height_map;
@@ -123,6 +123,9 @@ bsdf::ModelOptions model_options(const BrdfArgs& a, const std::string& spec) {
         o.surface.psd = psd.empty() ? bsdf::PsdKind::file : bsdf::parse_psd(psd, "--psd");
         o.surface.surface_file = a.surface_file;
         o.surface.form = surface::parse_form(a.form, "--form");
+        // Parsed for every map model, used by psd file only (slice --models ghs:file,ghs:measured).
+        const bsdf::PsdFit fit = a.psd_fit.empty() ? bsdf::PsdFit::isotropic : bsdf::parse_psd_fit(a.psd_fit, "--psd-fit");
+        if (o.surface.psd == bsdf::PsdKind::file) o.surface.psd_fit = fit;
         if (!a.height_map) {
             bsdf::load_height_map(o.surface);
             a.height_map = o.surface.height_map;
@@ -283,6 +286,8 @@ void add_model_options(CLI::App* cmd, BrdfArgs& a, bool several_thetas) {
                                               "(a perfect conductor, R = 1)");
     cmd->add_option("--psd", a.psd, "surface statistics: kc | gaussian | file (KC fitted to --surface) | measured "
                                     "(the --surface map's own radial PSD)");
+    cmd->add_option("--psd-fit", a.psd_fit, "--psd file: the KC fitted to --surface is isotropic (default) | elliptical "
+                                            "(LU, LV and lay angle fitted to the 2-D PSD; docs/SURFACE.md)");
     cmd->add_option("--sigma", a.sigma, "rms height (um); --sigma, --corr-length, --gamma alone mean --psd kc");
     cmd->add_option("--corr-length", a.corr_length, "correlation length (um): KC L, or Gaussian l");
     cmd->add_option("--gamma", a.gamma, "KC exponent gamma > 1");

@@ -71,6 +71,8 @@ const std::map<std::string, Setter>& option_setters() {
         {"lay_angle_deg", [](ModelOptions& o, py::handle v, const char* n) { o.surface.lay_angle = number_option(v, n); }},
         {"surface_file", [](ModelOptions& o, py::handle v, const char* n) { o.surface.surface_file = path_string(v, n); }},
         {"form", [](ModelOptions& o, py::handle v, const char* n) { o.surface.form = surface::parse_form(text_option(v, n), n); }},
+        {"psd_fit",
+         [](ModelOptions& o, py::handle v, const char* n) { o.surface.psd_fit = bsdf::parse_psd_fit(text_option(v, n), n); }},
     };
     return setters;
 }
@@ -188,7 +190,8 @@ py::dict options_dict(const ModelOptions& o) {
                     "psd"_a = to_string(o.surface.psd), "sigma"_a = o.surface.sigma,
                     "corr_length"_a = o.surface.corr_length, "gamma"_a = o.surface.gamma,
                     "corr_length_v"_a = o.surface.corr_length_v, "lay_angle_deg"_a = o.surface.lay_angle,
-                    "surface_file"_a = o.surface.surface_file, "form"_a = surface::to_string(o.surface.form));
+                    "surface_file"_a = o.surface.surface_file, "form"_a = surface::to_string(o.surface.form),
+                    "psd_fit"_a = to_string(o.surface.psd_fit));
 }
 
 Vec3 vec(const double* v) { return {v[0], v[1], v[2]}; }
@@ -277,7 +280,9 @@ Keyword options, named and spelled as in the XML plugins and bsdf::ModelOptions:
     fresnel 'incident' | 'half' | 'rr', renormalization True | False, ssa_form 'energy' | 'strict',
     alpha (ggx_stats; alone it means alpha_from 'none'), alpha_from 'measured' (default: the surface's rms slope)
     | 'smoothed' | 'kc_link' | 'none', smoothing (um),
-    cutoff_wavelengths (two-scale N), macro_ndf 'ggx' | 'beckmann', form 'none' | 'plane' | 'poly2'..'poly4'.
+    cutoff_wavelengths (two-scale N), macro_ndf 'ggx' | 'beckmann', form 'none' | 'plane' | 'poly2'..'poly4',
+    psd_fit 'isotropic' (default) | 'elliptical' (a height map's KC fit: the elliptical one makes ghs, ghs_ssa and
+    ggx_stats anisotropic, with the fitted LU, LV and lay angle; psd 'file' only).
 Unknown options, bad values and missing parameters raise surfscatter.Error with the library's message.
 Building a model may tabulate its lobes (seconds the first time; cached on disk, $SURFSCATTER_CACHE_DIR).
 
@@ -353,9 +358,10 @@ void bind_bsdf(py::module_& m) {
             const auto& s = b.options.surface;
             return fmt::format("<surfscatter.Bsdf {} material={} psd={}{}>", b.model->name(), b.options.material,
                                to_string(s.psd),
-                               b.model->isotropic() ? ""
-                                                    : fmt::format(" corr_length={} corr_length_v={} lay_angle_deg={}",
-                                                                  s.corr_length, s.corr_length_v, s.lay_angle));
+                               b.model->isotropic()                  ? ""
+                               : s.psd_fit == bsdf::PsdFit::elliptical ? std::string(" psd_fit=elliptical")
+                                                                       : fmt::format(" corr_length={} corr_length_v={} lay_angle_deg={}",
+                                                                                     s.corr_length, s.corr_length_v, s.lay_angle));
         });
 
     m.def("bsdf", &make, py::arg("model") = "ghs", py::arg("surface") = py::none(), py::arg("material") = "perfect",

@@ -39,6 +39,8 @@ void validate_lay(const SurfaceOptions& s) {
 }
 
 void validate_surface(const SurfaceOptions& s) {
+    if (s.psd_fit == PsdFit::elliptical && s.psd != PsdKind::file)
+        fail("psd_fit elliptical needs psd file (the elliptical KC fitted to a height map), got psd {}", to_string(s.psd));
     switch (s.psd) {
         case PsdKind::kc:
             surface::require_surface_length(s.sigma, "sigma");
@@ -74,14 +76,18 @@ public:
     const surface::HeightMap* map() const { return options_.height_map.get(); }
     surface::Form form() const { return options_.form; }
 
-    // KC parameters: given, or fitted to the height map after form removal (kc_fit.hpp).
-    surface::KCorrelation kc() const {
+    // KC parameters: given, or fitted to the height map after form removal (kc_fit.hpp); with psd_fit elliptical the
+    // elliptical fit's sigma, LU and gamma (its LV and lay angle: elliptical()).
+    surface::KCorrelation kc() {
         if (options_.psd == PsdKind::kc)
             return surface::KCorrelation(options_.sigma, options_.corr_length, options_.gamma);
+        if (options_.psd == PsdKind::file && options_.psd_fit == PsdFit::elliptical) {
+            const surface::EllipticalKcFit& e = map_fit().elliptical;
+            surface::require_resolved(e);
+            return surface::KCorrelation(e.sigma_h_um, e.corr_length_u_um, e.gamma);
+        }
         if (options_.psd == PsdKind::file) {
-            surface::KcFitOptions fit_options;
-            fit_options.form = options_.form;
-            const auto fit = surface::fit_surface(*map(), fit_options).kc;
+            const surface::KcFit& fit = map_fit().kc;
             surface::require_resolved(fit);
             return surface::KCorrelation(fit.sigma_h_um, fit.corr_length_um, fit.gamma);
         }
@@ -113,6 +119,13 @@ public:
     // The elliptical statistics (model_options.hpp: corr_length_v, lay_angle), or null for an isotropic surface
     // (corr_length_v 0 or equal to corr_length): every isotropic result stays exactly what it was.
     std::shared_ptr<const surface::EllipticalStatistics> elliptical(std::vector<std::string>* notes) {
+        if (options_.psd == PsdKind::file && options_.psd_fit == PsdFit::elliptical) {
+            const auto radial = statistics(notes);  // refuses an unresolved fit
+            const surface::EllipticalKcFit& e = map_fit().elliptical;
+            if (notes) notes->push_back(elliptical_fit_note(e));
+            return std::make_shared<const surface::EllipticalStatistics>(radial, e.corr_length_v_um,
+                                                                         e.lay_angle_deg * kDegree);
+        }
         const double lv = options_.corr_length_v;
         if (lv == 0 || lv == options_.corr_length) return nullptr;
         return std::make_shared<const surface::EllipticalStatistics>(statistics(notes), lv,
@@ -122,6 +135,43 @@ public:
 private:
     // " of <file>" for the notes, or nothing for statistics given without a file.
     std::string of_file() const { return options_.surface_file.empty() ? "" : " of " + options_.surface_file; }
+
+    // Both KC fits of the map (fit_surface), computed once.
+    const surface::SurfaceFit& map_fit() {
+        if (!map_fit_) {
+            surface::KcFitOptions fit_options;
+            fit_options.form = options_.form;
+            map_fit_ = std::make_unique<const surface::SurfaceFit>(surface::fit_surface(*map(), fit_options));
+        }
+        return *map_fit_;
+    }
+
+    // What the models use of psd_fit elliptical, with its standard errors and whether the data tell it from an
+    // isotropic surface (elliptical_fit.hpp); its misfit when the elliptical KC describes the 2-D PSD poorly.
+    std::string elliptical_fit_note(const surface::EllipticalKcFit& e) const {
+        std::string note = fmt::format(
+            "psd_fit elliptical{}: KC sigma {:.4g} +- {:.2g} um, corr_length (LU) {:.4g} +- {:.2g} um, corr_length_v "
+            "(LV) {:.4g} +- {:.2g} um, lay_angle {:.4g} +- {:.2g} deg, gamma {:.4g} +- {:.2g} (LV / LU {:.3g} +- "
+            "{:.2g}; {} cells, {} window); ",
+            of_file(), e.sigma_h_um, e.sigma_h_error_um, e.corr_length_u_um, e.corr_length_u_error_um,
+            e.corr_length_v_um, e.corr_length_v_error_um, e.lay_angle_deg, e.lay_angle_error_deg, e.gamma,
+            e.gamma_error, e.axis_ratio(), e.axis_ratio_error, e.cells,
+            e.window == surface::Window::rectangular ? "rectangular" : "Hann");
+        if (e.anisotropic())
+            note += fmt::format("the anisotropy is significant (chi-square {:.3g} > {:.3g}, false-alarm probability "
+                                "1e-3 for an isotropic surface)",
+                                e.anisotropy_chi2, surface::kAnisotropyChi2);
+        else
+            note += fmt::format("warning: the anisotropy is not significant (chi-square {:.3g} <= {:.3g}): the data do "
+                                "not tell this surface from an isotropic one, and the lay angle is undetermined; "
+                                "psd_fit isotropic describes the map as well",
+                                e.anisotropy_chi2, surface::kAnisotropyChi2);
+        if (e.log_residual_rms > surface::kPoorFitFactor * e.statistical_floor)
+            note += fmt::format("; warning: the elliptical KC fits this 2-D PSD poorly (log residual rms {:.3g}, {:.1f} "
+                                "times its statistical floor)",
+                                e.log_residual_rms, e.log_residual_rms / e.statistical_floor);
+        return note;
+    }
 
     // A map whose variance sits in its few longest periods gives a sigma (and so g) no better than those few samples:
     // refused above kMaxMeasuredSigmaError, a warning above kWarnMeasuredSigmaError (surface::MapStatistics::
@@ -181,6 +231,7 @@ private:
 
     SurfaceOptions options_;
     std::shared_ptr<const surface::RadialStatistics> statistics_;
+    std::unique_ptr<const surface::SurfaceFit> map_fit_;
 };
 
 // The refusal of alpha_from measured / smoothed where the surface's rms slope diverges.
@@ -246,9 +297,14 @@ std::unique_ptr<Bsdf> elliptical_ggx(const ModelOptions& o, SurfaceSource& surfa
             std::move(material), [lu](double lambda_nm) { return kc_link_alpha(lu, lambda_nm); },
             [lv](double lambda_nm) { return kc_link_alpha(lv, lambda_nm); }, lay);
     }
-    if (surface.map()) fail("corr_length_v and lay_angle need psd kc or gaussian: a height map gives its own statistics");
     const double smoothing = slope_smoothing(o);
-    const Vec2 variances = surface::smoothed_slope_variances_lay(elliptical, smoothing);
+    // A height map (psd_fit elliptical) gives its own slopes along the fitted lay axes, as the isotropic route does.
+    const surface::HeightMap* map = surface.map();
+    const Vec2 variances =
+        !map ? surface::smoothed_slope_variances_lay(elliptical, smoothing)
+        : smoothing > 0
+            ? surface::slope_variances_lay(surface::gaussian_smooth(*map, smoothing, surface.form()), lay, surface::Form::none)
+            : surface::slope_variances_lay(*map, lay, surface.form());
     if (!std::isfinite(variances.x) || !std::isfinite(variances.y)) fail_divergent_slope(o);
     const Vec2 alpha(checked_slope_alpha(o, smoothing, std::sqrt(2 * variances.x), "alpha_u"),
                      checked_slope_alpha(o, smoothing, std::sqrt(2 * variances.y), "alpha_v"));
@@ -296,8 +352,9 @@ std::unique_ptr<Bsdf> make_bsdf(const ModelOptions& o, std::vector<std::string>*
     const auto elliptical = surface.elliptical(notes);
     if (elliptical && o.model == ModelKind::ggx) return elliptical_ggx(o, surface, *elliptical, std::move(material));
     if (elliptical && o.model == ModelKind::two_scale) {
-        fail("model {} does not take elliptical statistics yet (corr_length_v {} um differs from corr_length {} um)",
-             to_string(o.model), o.surface.corr_length_v, o.surface.corr_length);
+        fail("model {} does not take elliptical statistics yet (corr_length_v {} um differs from corr_length {} um{})",
+             to_string(o.model), elliptical->corr_length_v(), elliptical->corr_length_u(),
+             o.surface.psd_fit == PsdFit::elliptical ? ", from psd_fit elliptical; use psd_fit isotropic" : "");
     }
     switch (o.model) {
         case ModelKind::ggx: return std::make_unique<GgxBsdf>(std::move(material), ggx_alpha(o, surface, notes));

@@ -29,6 +29,8 @@ public:
     WavelengthValues eval_packet(const Vec3& wi, const Vec3& wo, const WavelengthValues& lambda_nm,
                                  WavelengthValues* pdf) const override;
     std::string name() const override { return "ggx_stats"; }  // the model's one name (model_options)
+    // The anisotropic one (alpha_v given) depends on the azimuths through the lay: its albedo on phi_i (albedo.hpp).
+    bool isotropic() const override { return !alpha_v_; }
 
     double alpha(double lambda_nm) const { return alpha_(lambda_nm); }  // alpha_u
     Vec2 alpha_uv(double lambda_nm) const;

@@ -84,6 +84,7 @@ constexpr std::pair<const char*, AlphaFrom> kAlphaFrom[]{{"none", AlphaFrom::non
 constexpr std::pair<const char*, MacroNdf> kMacroNdf[]{{"ggx", MacroNdf::ggx}, {"beckmann", MacroNdf::beckmann}};
 constexpr std::pair<const char*, PsdKind> kPsd[]{
     {"kc", PsdKind::kc}, {"gaussian", PsdKind::gaussian}, {"file", PsdKind::file}, {"measured", PsdKind::measured}};
+constexpr std::pair<const char*, PsdFit> kPsdFit[]{{"isotropic", PsdFit::isotropic}, {"elliptical", PsdFit::elliptical}};
 
 constexpr Names<ModelKind> kModels{kModelNames, kModelAliases};
 template <typename E, std::size_t N>
@@ -102,6 +103,7 @@ SsaForm parse_ssa_form(std::string_view t, const char* what) { return parse_enum
 AlphaFrom parse_alpha_from(std::string_view t, const char* what) { return parse_enum(t, what, names(kAlphaFrom)); }
 MacroNdf parse_macro_ndf(std::string_view t, const char* what) { return parse_enum(t, what, names(kMacroNdf)); }
 PsdKind parse_psd(std::string_view t, const char* what) { return parse_enum(t, what, names(kPsd)); }
+PsdFit parse_psd_fit(std::string_view t, const char* what) { return parse_enum(t, what, names(kPsdFit)); }
 
 std::string choices(std::string_view option) {
     if (option == "model") return list_of(kModels);
@@ -112,6 +114,7 @@ std::string choices(std::string_view option) {
     if (option == "alpha_from") return list_of(names(kAlphaFrom));
     if (option == "macro_ndf") return list_of(names(kMacroNdf));
     if (option == "psd") return list_of(names(kPsd));
+    if (option == "psd_fit") return list_of(names(kPsdFit));
     fail("choices: '{}' is not an enumerated model option", printable(option));
 }
 
@@ -140,7 +143,7 @@ std::string inapplicable_option(const ModelOptions& o, std::string_view name) {
     if (name == "smoothing") return unless(ggx && o.alpha_from == AlphaFrom::smoothed, "used with alpha_from smoothed only");
     if (name == "cutoff_wavelengths" || name == "macro_ndf") return unless(m == ModelKind::two_scale, "used by model two_scale only");
     if (name == "psd" || name == "sigma" || name == "corr_length" || name == "gamma" || name == "surface_file" ||
-        name == "form" || name == "corr_length_v" || name == "lay_angle") {
+        name == "form" || name == "corr_length_v" || name == "lay_angle" || name == "psd_fit") {
         if (!with_surface) return "model ggx_stats with alpha_from none takes no surface";
         if (name == "sigma" || name == "corr_length")
             return unless(!from_map, "a height map gives its own statistics (psd file or measured)");
@@ -153,6 +156,7 @@ std::string inapplicable_option(const ModelOptions& o, std::string_view name) {
                           "used with corr_length_v only (without it the surface is isotropic)");
         if (name == "surface_file" || name == "form")
             return unless(from_map, "used with a height map (psd file or measured) only");
+        if (name == "psd_fit") return unless(psd == PsdKind::file, "used with psd file (the KC fitted to a height map) only");
     }
     return {};
 }
@@ -165,5 +169,6 @@ std::string to_string(SsaForm v) { return enum_name(v, names(kSsaForms)); }
 std::string to_string(AlphaFrom v) { return enum_name(v, names(kAlphaFrom)); }
 std::string to_string(MacroNdf v) { return enum_name(v, names(kMacroNdf)); }
 std::string to_string(PsdKind v) { return enum_name(v, names(kPsd)); }
+std::string to_string(PsdFit v) { return enum_name(v, names(kPsdFit)); }
 
 }  // namespace surfscatter::bsdf

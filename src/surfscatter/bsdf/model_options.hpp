@@ -26,6 +26,7 @@ enum class AlphaFrom { none, measured, smoothed, kc_link };  // GGX roughness: g
 enum class MacroNdf { ggx, beckmann };                   // two-scale macro-roughness NDF
 enum class PsdKind { kc, gaussian, file, measured };     // surface statistics: KC, Gaussian ACV, KC fitted to a height
                                                          // map, or the map's own radial PSD
+enum class PsdFit { isotropic, elliptical };             // psd file: the KC fitted to the map, radial or elliptical
 
 struct SurfaceOptions {
     PsdKind psd = PsdKind::kc;
@@ -39,6 +40,9 @@ struct SurfaceOptions {
     double lay_angle = 0;
     std::string surface_file; // height map (psd = file or measured): any format read_height_map reads
     surface::Form form = surface::Form::plane;  // removed from the height map before its statistics
+    // psd file only: the isotropic KC fit (kc_fit.hpp), or the elliptical one (elliptical_fit.hpp), whose LU, LV and
+    // lay angle make the statistics elliptical as corr_length_v and lay_angle do for psd kc.
+    PsdFit psd_fit = PsdFit::isotropic;
     // The map read from surface_file when the caller has read it already (to report on it, load_height_map());
     // make_bsdf reads surface_file itself otherwise.
     std::shared_ptr<const surface::HeightMap> height_map;
@@ -80,9 +84,10 @@ SsaForm parse_ssa_form(std::string_view text, const char* what = "ssa_form");
 AlphaFrom parse_alpha_from(std::string_view text, const char* what = "alpha_from");
 MacroNdf parse_macro_ndf(std::string_view text, const char* what = "macro_ndf");
 PsdKind parse_psd(std::string_view text, const char* what = "psd");
+PsdFit parse_psd_fit(std::string_view text, const char* what = "psd_fit");
 
 // The valid values of the enumerated option `name` ("model", "method", "truncation", "fresnel", "ssa_form",
-// "alpha_from", "macro_ndf", "psd") as "a | b | c", for help texts.
+// "alpha_from", "macro_ndf", "psd", "psd_fit") as "a | b | c", for help texts.
 std::string choices(std::string_view name);
 
 // A given alpha without alpha_from means alpha_from none, as KC parameters without psd mean psd kc: the rule every
@@ -104,5 +109,6 @@ std::string to_string(SsaForm v);
 std::string to_string(AlphaFrom v);
 std::string to_string(MacroNdf v);
 std::string to_string(PsdKind v);
+std::string to_string(PsdFit v);
 
 }  // namespace surfscatter::bsdf

@@ -29,13 +29,22 @@ void write_slice_csv(std::ostream& out, const std::string& name, const Bsdf& mod
 }
 
 void write_albedo_csv(std::ostream& out, const std::string& name, const Bsdf& model, const std::vector<double>& theta_i_deg,
-                      double lambda_nm, bool header) {
-    if (header) out << "model,theta_i,albedo,scatter,specular\n";
-    for (const double ti : theta_i_deg) {
-        const DirectionalAlbedo a = directional_albedo(model, ti * kDegree, lambda_nm);
-        out << name << ',' << number(ti) << ',' << number(a.total()) << ',' << number(a.scatter) << ','
-            << number(a.specular) << '\n';
-    }
+                      const std::vector<double>& phi_i_deg, double lambda_nm, bool header) {
+    if (header) out << "model,theta_i,albedo,scatter,specular,phi_i_deg\n";
+    for (const double phi : phi_i_deg)
+        for (const double ti : theta_i_deg) {
+            const DirectionalAlbedo a = directional_albedo(model, ti * kDegree, lambda_nm, phi * kDegree);
+            out << name << ',' << number(ti) << ',' << number(a.total()) << ',' << number(a.scatter) << ','
+                << number(a.specular) << ',' << number(phi) << '\n';
+        }
+}
+
+std::vector<double> albedo_azimuths(const Bsdf& model, double phi_i_deg) {
+    if (model.isotropic()) return {phi_i_deg};
+    constexpr int kSteps = 12;  // 15 deg over [0, 180)
+    std::vector<double> azimuths;
+    for (int k = 0; k < kSteps; ++k) azimuths.push_back(phi_i_deg + 180.0 * k / kSteps);
+    return azimuths;
 }
 
 }  // namespace surfscatter::bsdf

@@ -223,7 +223,8 @@ private:
         if (job_.kind == JobKind::slice)
             bsdf::write_slice_csv(text, p["name"], *model, theta_i, p["phi_i"].get<double>(), p["wavelength"].get<double>(), true);
         else
-            bsdf::write_albedo_csv(text, p["name"], *model, theta_i, p["wavelength"].get<double>(), true);
+            bsdf::write_albedo_csv(text, p["name"], *model, theta_i, bsdf::albedo_azimuths(*model, p["phi_i"].get<double>()),
+                                   p["wavelength"].get<double>(), true);
         fs::create_directories(output(0).parent_path());
         write_file_atomically(output(0), text.str());
     }

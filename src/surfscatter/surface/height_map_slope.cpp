@@ -11,25 +11,44 @@
 
 namespace surfscatter::surface {
 
-double rms_slope(const HeightMap& map, Form form) {
-    const HeightMap flat = remove_form(map, form);
+namespace {
+
+// f(gx, gy) for the central-difference gradient at every interior point of `flat` whose four neighbours are valid;
+// the number of such points. Error if there is none.
+template <typename F>
+std::size_t for_each_gradient(const HeightMap& flat, const std::string& origin, F&& f) {
     const double inv_2dx = 0.5 / flat.spacing_x(), inv_2dy = 0.5 / flat.spacing_y();
-    double sum = 0.0;
     std::size_t count = 0;
     for (std::size_t iy = 1; iy + 1 < flat.ny(); ++iy)
         for (std::size_t ix = 1; ix + 1 < flat.nx(); ++ix) {
             if (!(flat.valid(ix - 1, iy) && flat.valid(ix + 1, iy) && flat.valid(ix, iy - 1) &&
                   flat.valid(ix, iy + 1)))
                 continue;
-            const double gx = (flat(ix + 1, iy) - flat(ix - 1, iy)) * inv_2dx;
-            const double gy = (flat(ix, iy + 1) - flat(ix, iy - 1)) * inv_2dy;
-            sum += gx * gx + gy * gy;
+            f((flat(ix + 1, iy) - flat(ix - 1, iy)) * inv_2dx, (flat(ix, iy + 1) - flat(ix, iy - 1)) * inv_2dy);
             ++count;
         }
-    if (count == 0)
-        fail("{}: no point has four valid neighbours; the slope is undefined",
-             map.origin());
+    if (count == 0) fail("{}: no point has four valid neighbours; the slope is undefined", origin);
+    return count;
+}
+
+}  // namespace
+
+double rms_slope(const HeightMap& map, Form form) {
+    double sum = 0.0;
+    const std::size_t count =
+        for_each_gradient(remove_form(map, form), map.origin(), [&](double gx, double gy) { sum += gx * gx + gy * gy; });
     return std::sqrt(sum / static_cast<double>(count));
+}
+
+Vec2 slope_variances_lay(const HeightMap& map, double lay_angle_rad, Form form) {
+    const double c = std::cos(lay_angle_rad), s = std::sin(lay_angle_rad);
+    double sum_u = 0.0, sum_v = 0.0;
+    const std::size_t count = for_each_gradient(remove_form(map, form), map.origin(), [&](double gx, double gy) {
+        const double gu = c * gx + s * gy, gv = -s * gx + c * gy;
+        sum_u += gu * gu;
+        sum_v += gv * gv;
+    });
+    return {sum_u / static_cast<double>(count), sum_v / static_cast<double>(count)};
 }
 
 namespace {

@@ -7,6 +7,7 @@
 // relative error about -(q dx)^2/6, i.e. -0.16 % at 10 samples per period. For a rough surface the rms slope is a
 // property of the surface AND the resolution: for KC with gamma <= 3 it diverges as the pixel spacing goes to zero,
 // so always quote the spacing (or the smoothing scale) with it.
+#include "surfscatter/math/vec.hpp"
 #include "surfscatter/surface/height_map.hpp"
 #include "surfscatter/surface/height_map_form.hpp"
 
@@ -15,6 +16,10 @@ namespace surfscatter::surface {
 // Root-mean-square slope sqrt<(dh/dx)^2 + (dh/dy)^2> of the form-removed map (dimensionless). Error if no point
 // has four valid neighbours.
 double rms_slope(const HeightMap& map, Form form = Form::plane);
+
+// Mean-square slopes <h_u^2>, <h_v^2> of the form-removed map along the lay axes u (at lay_angle_rad from the map's x
+// towards y) and v, from the same central differences: <h_u^2> + <h_v^2> = rms_slope^2 up to round-off.
+Vec2 slope_variances_lay(const HeightMap& map, double lay_angle_rad, Form form = Form::plane);
 
 // The form-removed map convolved with a Gaussian of standard deviation `smoothing_um` (transfer function
 // exp(-s^2 zeta^2 / 2)), computed by FFT on the mirror-extended map (2nx x 2ny, even reflection at every edge), so
