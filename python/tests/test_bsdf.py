@@ -1,6 +1,8 @@
 """surfscatter.bsdf: eval and albedo against `surfscatter brdf eval/albedo`, eval/sample/pdf consistency on arrays,
 broadcasting, options named as in the XML, and bad input."""
 
+import re
+
 import numpy as np
 import pytest
 
@@ -300,3 +302,25 @@ def test_elliptical_bad_values_and_models():
         ss.bsdf("two_scale", surface=ss.KCorrelation(**ELLIPTICAL), material="Au")
     with pytest.raises(ss.Error, match="give either surface= or"):
         ss.bsdf("ghs", surface=ss.KCorrelation(0.03, 2.0, 2.5), corr_length_v=1.0, material="Au")
+
+
+def test_psd_fit_elliptical_equals_the_cli_and_reports_the_fit():
+    path = shared("realdata", "heightmaps", "opd-1.opd")
+    cli = cli_csv("brdf", "eval", "--model", "ghs_ssa", "--surface", path, "--psd-fit", "elliptical", "--material", "Ag",
+                  "--wavelength", 500, "--theta-i", 20, "--phi-i", 40, "--theta-o", numbers(THETA_O),
+                  "--phi-o", numbers(PHI_O))
+    with pytest.warns(UserWarning) as warned:
+        model = ss.bsdf("ghs_ssa", surface=path, psd_fit="elliptical", material="Ag")
+    assert [str(w.message) for w in warned] == model.notes
+    assert any("psd_fit elliptical of" in n and "the anisotropy is significant" in n for n in model.notes)
+    assert model.options["psd_fit"] == "elliptical" and "psd_fit=elliptical" in repr(model)
+    wi = ss.direction(20.0, 40.0)
+    np.testing.assert_allclose(model.eval(wi, ss.direction(cli["theta_o"], cli["phi_o"]), 500.0), cli["brdf"],
+                               rtol=CLI_RTOL)
+    assert ss.bsdf("ghs", surface=path, material="Ag").options["psd_fit"] == "isotropic"
+    with pytest.raises(ss.Error, match="psd_fit does not apply to model ghs: used with psd file"):
+        ss.bsdf("ghs", surface=ss.KCorrelation(**KC), psd_fit="elliptical", material="Ag")
+    with pytest.raises(ss.Error, match=re.escape("psd_fit must be one of isotropic | elliptical, got 'radial'")):
+        ss.bsdf("ghs", surface=path, psd_fit="radial", material="Ag")
+    with pytest.raises(ss.Error, match="elliptical KC fit: no elliptical KC fits"):
+        ss.bsdf("ghs", surface=shared("realdata", "heightmaps", "di-1.di"), psd_fit="elliptical", material="Ag")

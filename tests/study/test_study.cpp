@@ -272,6 +272,46 @@ TEST(StudyJobs, TablesOnlyWhereSeveralJobsShareThem) {
                  Error);
 }
 
+// The albedo of an anisotropic model (the elliptical GGX) is tabulated over incidence azimuths 0, 15, .., 165 deg from
+// the study's phi_i, an isotropic model's at phi_i alone; the azimuths' albedos differ, and repeat after 180 deg.
+TEST(StudyRun, AlbedoOfAnAnisotropicModelOverIncidenceAzimuths) {
+    const fs::path dir = scratch("albedo_azimuths");
+    const Study s = parse_study(R"({"parameters": {"material": "Au"},
+        "models": [{"name": "iso", "model": "ggx_stats", "alpha": 0.2},
+                   {"name": "lay", "model": "ggx_stats", "alpha_from": "kc_link", "sigma": 0.1, "corr_length": 1,
+                    "corr_length_v": 0.3, "lay_angle": 20, "gamma": 3}],
+        "wavelengths": [550], "albedo": {"theta_i": [30, 60], "phi_i": 10}})",
+                                dir, "s.json");
+    const JobContext context{1, false, "testhost"};
+    for (const Job& job : expand(s))
+        if (job.kind == JobKind::albedo) ASSERT_EQ(run_job(s, job, context)["status"], "done") << job.id;
+    const auto rows = [&](const std::string& model) {
+        std::ifstream in(dir / ("brdf/albedo_550nm_" + model + ".csv"));
+        std::string line;
+        std::getline(in, line);
+        EXPECT_EQ(line, "model,theta_i,albedo,scatter,specular,phi_i_deg");
+        std::vector<std::vector<double>> table;  // theta_i, albedo, phi_i_deg
+        while (std::getline(in, line)) {
+            std::stringstream cells(line);
+            std::vector<std::string> cell(6);
+            for (auto& c : cell) std::getline(cells, c, ',');
+            table.push_back({std::stod(cell[1]), std::stod(cell[2]), std::stod(cell[5])});
+        }
+        return table;
+    };
+    const auto iso = rows("iso");
+    ASSERT_EQ(iso.size(), 2u);
+    EXPECT_EQ(iso[0][2], 10.0);
+    const auto lay = rows("lay");
+    ASSERT_EQ(lay.size(), 24u);
+    for (std::size_t k = 0; k < 12; ++k) {
+        EXPECT_DOUBLE_EQ(lay[2 * k][2], 10.0 + 15.0 * static_cast<double>(k));
+        EXPECT_EQ(lay[2 * k + 1][0], 60.0);
+    }
+    // At 60 deg the albedo along the lay (phi_i 10 + 15 k nearest 20 deg) and across it (110 deg) differ.
+    EXPECT_GT(std::abs(lay[1][1] - lay[13][1]), 1e-3);
+}
+
 // BRDF jobs run in process: the outputs, the report, the manifest's resume rule.
 TEST(StudyRun, BrdfJobsWriteTablesAndTheManifestKnowsWhenTheyAreUpToDate) {
     const fs::path dir = scratch("brdf");
@@ -296,7 +336,7 @@ TEST(StudyRun, BrdfJobsWriteTablesAndTheManifestKnowsWhenTheyAreUpToDate) {
     std::ifstream albedo(dir / "brdf/kc/albedo_550nm_ghs.csv");
     std::string line;
     std::getline(albedo, line);
-    EXPECT_EQ(line, "model,theta_i,albedo,scatter,specular");
+    EXPECT_EQ(line, "model,theta_i,albedo,scatter,specular,phi_i_deg");
     int rows = 0;
     while (std::getline(albedo, line)) {
         ++rows;
