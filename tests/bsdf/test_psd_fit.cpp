@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "../surface/height_test_util.hpp"
 #include "hemisphere_albedo.hpp"
 #include "model_fixtures.hpp"
 #include "surfscatter/bsdf/albedo.hpp"
@@ -45,14 +46,7 @@ const ss::HeightMap& elliptical_map() {
     return map;
 }
 
-// The map turned by +90 deg (from +x towards +y): h'(X, Y) = h(Y, N - 1 - X) on a square grid.
-ss::HeightMap turned(const ss::HeightMap& map) {
-    const std::size_t n = map.nx();
-    std::vector<double> heights(n * n);
-    for (std::size_t y = 0; y < n; ++y)
-        for (std::size_t x = 0; x < n; ++x) heights[y * n + x] = map(y, n - 1 - x);
-    return ss::HeightMap(n, n, map.spacing_x(), map.spacing_y(), std::move(heights), "turned");
-}
+using ss::test::turned;
 
 ModelOptions from_map(ModelKind model, const ss::HeightMap& map, PsdFit fit) {
     ModelOptions o;

@@ -5,10 +5,22 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/surface/height_map.hpp"
 
 namespace surfscatter::surface::test {
+
+// The square map turned by +90 deg (from +x towards +y): h'(X, Y) = h(Y, N - 1 - X).
+inline HeightMap turned(const HeightMap& map) {
+    const std::size_t n = map.nx();
+    std::vector<double> heights(n * n);
+    for (std::size_t y = 0; y < n; ++y)
+        for (std::size_t x = 0; x < n; ++x) heights[y * n + x] = map(y, n - 1 - x);
+    return HeightMap(n, n, map.spacing_x(), map.spacing_y(), std::move(heights), "turned");
+}
 
 // Runs f and returns the Error message (fails the test if nothing is thrown).
 template <typename F>

@@ -13,6 +13,7 @@
 
 #include <fmt/format.h>
 
+#include "height_test_util.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/math/vec.hpp"
 #include "surfscatter/surface/elliptical_fit.hpp"
@@ -39,14 +40,7 @@ ss::EllipticalKcFit fit_of(const ss::HeightMap& map) { return ss::fit_surface(ma
 // Signed difference of two lay angles modulo 180 deg, in [-90, 90).
 double angle_difference(double a, double b) { return std::remainder(a - b, 180.0); }
 
-// The map turned by +90 deg (from +x towards +y): h'(X, Y) = h(Y, N - 1 - X) on a square grid.
-ss::HeightMap turned(const ss::HeightMap& map) {
-    const std::size_t n = map.nx();
-    std::vector<double> heights(n * n);
-    for (std::size_t y = 0; y < n; ++y)
-        for (std::size_t x = 0; x < n; ++x) heights[y * n + x] = map(y, n - 1 - x);
-    return ss::HeightMap(n, n, map.spacing_x(), map.spacing_y(), std::move(heights), "turned");
-}
+using ss::test::turned;
 
 }  // namespace
 
