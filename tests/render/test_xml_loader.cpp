@@ -88,6 +88,28 @@ TEST(XmlLoader, MeasuredPsdFromASurfaceFile) {
     EXPECT_EQ(note->rfind((dir / "measured.xml").string() + ":", 0), 0u) << *note;
 }
 
+// psd_fit elliptical: the elliptical KC fitted to surface_file, its fit a scene note; with psd kc an error at its line.
+TEST(XmlLoader, PsdFitEllipticalFromASurfaceFile) {
+    const std::string opd = (fs::path(SURFSCATTER_SHARED_DATA) / "realdata" / "heightmaps" / "opd-1.opd").string();
+    const auto scene = load_scene_from_string(
+        scene_xml("<shape type=\"rectangle\"><bsdf type=\"ghs_ssa\"><string name=\"surface_file\" value=\"" + opd +
+                  "\"/><string name=\"psd_fit\" value=\"elliptical\"/></bsdf></shape>"),
+        "scene.xml");
+    const auto note = std::find_if(scene->notes.begin(), scene->notes.end(), [](const std::string& n) {
+        return n.find("psd_fit elliptical of") != std::string::npos;
+    });
+    ASSERT_NE(note, scene->notes.end());
+    EXPECT_NE(note->find("the anisotropy is significant"), std::string::npos) << *note;
+    const std::string kc = scene_xml(
+        "<shape type=\"rectangle\">\n<bsdf type=\"ghs\"><float name=\"sigma\" value=\"0.05\"/><float name=\"corr_length\" "
+        "value=\"2\"/><float name=\"gamma\" value=\"3\"/>\n<string name=\"psd_fit\" value=\"elliptical\"/></bsdf></shape>");
+    EXPECT_NE(load_error(kc).find(fmt::format("scene.xml:{}: parameter 'psd_fit' does not apply to bsdf 'ghs': used with "
+                                              "psd file (the KC fitted to a height map) only",
+                                              line_of(kc, "psd_fit"))),
+              std::string::npos)
+        << load_error(kc);
+}
+
 TEST(XmlLoader, ErrorsCarryFileAndLine) {
     // Syntax error on line 3.
     // A <float> left open: pugixml reports the mismatched end tag on line 4.
