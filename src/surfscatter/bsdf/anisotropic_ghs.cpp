@@ -171,7 +171,7 @@ std::optional<BsdfSample> AnisotropicGhsBsdf::sample(const Vec3& wi, double lamb
 }
 
 AnisotropicGhsBsdf::AzimuthTables AnisotropicGhsBsdf::cached_tables(double lambda_nm) const {
-    constexpr std::uint32_t kVersion = 1;  // of build_tables' construction and the layout
+    constexpr std::uint32_t kVersion = 2;  // of build_tables' construction and the layout
     const std::string key = fmt::format(
         "ghs-anisotropic-incidence:{}:sigma_h={:.17g}:{}:normalization={}:relevant={}:lambda={:.17g}:nodes={}x{}"
         ":azimuth=cos2(phi-A)",
@@ -200,35 +200,115 @@ AnisotropicGhsBsdf::AzimuthTables AnisotropicGhsBsdf::build_tables(double lambda
     return tables;
 }
 
-double AnisotropicGhsBsdf::disc_integral(const Vec3& wi, const std::function<double(Vec2, double)>& f) const {
-    const double s = sin_theta(wi);
-    // The lay components of q = q (cos(phi_i + phi), sin(phi_i + phi)) and of its mirror image phi -> -phi, from
-    // cos phi and sin phi alone.
-    const Vec2 along = s > 0 ? stats_->to_lay({wi.x / s, wi.y / s}) : stats_->to_lay({1.0, 0.0});
-    return integrate_disc_adaptive(s, wi.z, [&](double q, double phi, double cos2_theta_o) {
-        const double c = q * std::cos(phi), t = q * std::sin(phi);
-        const double uc = along.x * c, us = along.x * t, vc = along.y * c, vs = along.y * t;
-        return 0.5 * (f({uc - vs, vc + us}, cos2_theta_o) + f({uc + vs, vc - us}, cos2_theta_o));
-    }, 1e-4).value;
+// The visible disc in the stretched plane w = (q_u, s q_v) (q = i_xy + o_xy in lay components): an ellipse about
+// the specular point w = 0, the lobe a function of |w| (and of g, through cos theta_o). Along the ray of angle psi,
+// w = rho (cos psi, sin psi), q = t e with e = a (cos psi, sin psi / s) a unit vector, rho = a t; the ray leaves the disc
+// at t = q_max = b + sqrt(b^2 + cos^2 theta_i), b = sin theta_i (e . i_uv), and there cos^2 theta_o =
+// (q_max - t)(t + cos^2 theta_i / q_max) (the factored form has no cancellation near the horizon).
+AnisotropicGhsBsdf::DiscRays::DiscRays(const AnisotropicGhsBsdf& bsdf, const Vec3& wi)
+    : stretch(bsdf.stretch_), sin_i(sin_theta(wi)), cos2_i(wi.z * wi.z),
+      incidence(sin_i > 0 ? bsdf.stats_->to_lay({wi.x / sin_i, wi.y / sin_i}) : Vec2{1.0, 0.0}) {
+    // The quarters between e = i_uv, its normal, -i_uv and minus its normal (b = 0 where the horizon comes closest at
+    // grazing incidence): their images in psi, increasing (the map keeps orientation).
+    auto angle = [&](Vec2 e) { return std::atan2(stretch * e.y, e.x); };
+    const double first = angle(incidence);
+    double second = angle({-incidence.y, incidence.x});
+    while (second <= first) second += kTwoPi;
+    edges = {first, second, first + kPi, second + kPi, first + kTwoPi};
 }
 
-// Along rays zeta = t e from the specular point (|e| = 1, at azimuth phi from the incidence plane): the ray leaves the
-// visible disc at t = k q_max, q_max = b + sqrt(b^2 + cos^2 theta_i), b = sin theta_i cos phi, and P-hat(t e) =
-// s P-hat_radial(a t), a = |(e_u, s e_v)|, so it carries s / (2 pi a^2) F(a k q_max), F the radial CDF (closed form for
-// KC and Gaussian): a 1-D integral over phi, split where b = 0 (at grazing incidence q_max falls from 2 to 0 there).
+AnisotropicGhsBsdf::DiscRays::Ray AnisotropicGhsBsdf::DiscRays::at(double psi) const {
+    const double ex = std::cos(psi), ey = std::sin(psi) / stretch, a = 1.0 / std::sqrt(ex * ex + ey * ey);
+    const double b = sin_i * a * (ex * incidence.x + ey * incidence.y), root = std::sqrt(b * b + cos2_i);
+    const double q_max = b >= 0 ? b + root : cos2_i / (root - b);  // no cancellation for b < 0
+    return {a, q_max, a * q_max};
+}
+
+// Integral over psi of f(ray) by adaptive Gauss-Kronrod on each quarter, to rel_tol of the whole (abs_scale: its size).
+// Near grazing incidence the specular point lies cos^2 theta_i / 2 from the horizon and q_max falls from ~2 to ~0
+// across the ray at b = 0, over |b| ~ cos theta_i: each quarter is integrated in v, psi = psi_0 +- c sinh v from its
+// b = 0 end psi_0, with c that width in psi (b = cos theta_i sinh v there: q_max = cos theta_i e^{+-v}, smooth in v).
+double AnisotropicGhsBsdf::DiscRays::integrate(const std::function<double(const Ray&)>& f, double rel_tol,
+                                                double abs_scale) const {
+    constexpr double kGradedFraction = 0.1;  // of the quarter: a transition narrower than this is graded
+    double total = 0;
+    for (int quarter = 0; quarter < 4; ++quarter) {
+        const bool upper = quarter % 2 == 0;  // b = 0 at the quarter's upper end (quarters 0 and 2)
+        const double lo = edges[std::size_t(quarter)], hi = edges[std::size_t(quarter) + 1];
+        const double end = upper ? hi : lo, width = hi - lo, sign = upper ? -1.0 : 1.0;
+        // dpsi / dphi = s / a^2 on the b = 0 ray (phi: the ray's angle in the q plane), where |e . i_uv| = 0.
+        const Ray edge = at(end);
+        const double scale = sin_i > 0 ? std::sqrt(cos2_i) / sin_i * stretch / (edge.a * edge.a) : width;
+        if (scale > kGradedFraction * width) {  // no narrow transition: the plain angle is the better variable
+            total += math::integrate_adaptive([&](double psi) { return f(at(psi)); }, lo, hi, rel_tol,
+                                              0.25 * rel_tol * abs_scale);
+            continue;
+        }
+        total += math::integrate_adaptive([&](double v) {
+            return scale * std::cosh(v) * f(at(end + sign * scale * std::sinh(v)));
+        }, 0.0, std::asinh(width / scale), rel_tol, 0.25 * rel_tol * abs_scale);
+    }
+    return total;
+}
+
+// P-hat(zeta) d^2 zeta = P_radial(k |w|) k^2 d^2 w: a ray carries F(k rho_max) / (2 pi) dpsi, F the radial CDF (closed
+// form for KC and Gaussian).
 double AnisotropicGhsBsdf::visible_disc_mass(const Vec3& wi, double k) const {
-    const double s = sin_theta(wi), c2 = wi.z * wi.z, phi_i = s > 0 ? std::atan2(wi.y, wi.x) : 0.0;
-    auto ray = [&](double phi) {
-        const double b = s * std::cos(phi), root = std::sqrt(b * b + c2);
-        const double q_max = b >= 0 ? b + root : c2 / (root - b);  // no cancellation for b < 0
-        const Vec2 uv = stats_->to_lay({std::cos(phi_i + phi), std::sin(phi_i + phi)});
-        const double a2 = uv.x * uv.x + stretch2_ * uv.y * uv.y;
-        return stretch_ / (kTwoPi * a2) * stats_->radial().radial_cdf(std::sqrt(a2) * k * q_max);
-    };
-    double mass = 0;
-    for (int quarter = 0; quarter < 4; ++quarter)
-        mass += math::integrate_adaptive(ray, 0.5 * kPi * quarter, 0.5 * kPi * (quarter + 1), 1e-10, 1e-14);
+    const DiscRays rays(*this, wi);
+    const double mass = rays.integrate([&](const DiscRays::Ray& r) {
+        return stats_->radial().radial_cdf(k * r.rho_max) / kTwoPi;
+    }, 1e-7, 1.0);
     return std::clamp(mass, 0.0, 1.0);
+}
+
+// k^2 s integral over the disc of S_g,radial(k |w|) d^2 q = k^2 integral of S_g(k rho) rho drho dpsi (d^2 w = s d^2 q).
+// Along each ray a fixed Gauss-Legendre rule: rho = rho_max e^u over u in [ln 1e-6, ln 1/2] (the lobe down to 1e-6 of
+// the ray: rho^2 S in u is a bump a few units wide; the disc left out holds ~(1e-6 rho_max / lobe width)^2 of it), then
+// rho = rho_max (1 - tau^2 / 2) over tau in [0, 1] (cos theta_o ~ tau there: smooth in tau); over psi adaptive to 1e-4
+// (the error estimate; the result is ~1e-5 off, AnisotropicGhs.TablesMatchDirectQuadrature).
+double AnisotropicGhsBsdf::scatter_mass(const Vec3& wi, double k, double sigma) const {
+    // The rule in rho / rho_max, the same on every ray: nodes, 1 - node (exact near the horizon), their logarithms and
+    // weights (with the Jacobians).
+    struct RayRule {
+        std::array<double, kLobeNodes + kHorizonNodes> fraction, complement, log_fraction, weight;
+        RayRule() {
+            const math::GaussLegendreRule lobe(kLobeNodes), horizon(kHorizonNodes);
+            constexpr double kLogInner = -13.815510557964274, kLogOuter = -0.69314718055994531;  // ln 1e-6, ln 0.5
+            const double half_u = 0.5 * (kLogOuter - kLogInner), mid_u = 0.5 * (kLogOuter + kLogInner);
+            for (std::size_t j = 0; j < std::size_t(kLobeNodes); ++j) {  // d rho = rho du: rho^2 du
+                log_fraction[j] = mid_u + half_u * lobe.nodes[j];
+                fraction[j] = std::exp(log_fraction[j]);
+                complement[j] = -std::expm1(log_fraction[j]);
+                weight[j] = half_u * lobe.weights[j] * fraction[j] * fraction[j];
+            }
+            for (std::size_t j = 0; j < std::size_t(kHorizonNodes); ++j) {  // d rho = rho_max tau d tau: rho tau d tau
+                const double tau = 0.5 * (1.0 + horizon.nodes[j]);
+                const std::size_t i = std::size_t(kLobeNodes) + j;
+                complement[i] = 0.5 * tau * tau;
+                fraction[i] = 1.0 - complement[i];
+                log_fraction[i] = std::log(fraction[i]);
+                weight[i] = 0.5 * horizon.weights[j] * fraction[i] * tau;
+            }
+        }
+    };
+    static const RayRule kRule;
+    const DiscRays rays(*this, wi);
+    const double ci = wi.z, log_k_sigma = std::log(k * sigma), log_k = std::log(k);
+    auto along = [&](const DiscRays::Ray& r) {
+        const double far = rays.cos2_i / r.q_max, log_rho_max = log_k + std::log(r.rho_max);
+        double sum = 0;
+        for (std::size_t j = 0; j < kRule.fraction.size(); ++j) {
+            const double t = r.q_max * kRule.fraction[j];
+            const double cos_theta_o = std::sqrt(r.q_max * kRule.complement[j] * (t + far));  // (q_max - t)(t + far)
+            const double log_g = 2.0 * (log_k_sigma + math::fast_log(ci + cos_theta_o));
+            const double log_zeta = log_rho_max + kRule.log_fraction[j];
+            sum += kRule.weight[j] * (log_native_ ? math::fast_exp(log_native_->log_eval_at_logs(log_g, log_zeta))
+                                                  : core_->density_at_logs(log_g, log_zeta));
+        }
+        return sum * r.rho_max * r.rho_max;
+    };
+    const double g0 = (2.0 * k * sigma * ci) * (2.0 * k * sigma * ci);
+    return k * k * rays.integrate(along, 1e-4, -std::expm1(-g0) / (k * k));
 }
 
 GhsBsdf::Direct AnisotropicGhsBsdf::direct(const Vec3& wi, double lambda_nm) const {
@@ -241,10 +321,7 @@ GhsBsdf::Direct AnisotropicGhsBsdf::direct(const Vec3& wi, double lambda_nm) con
         case LobeNormalization::disc_mass: return {sigma, 1.0 / disc_mass};
         case LobeNormalization::albedo: {
             const double a = 2.0 * k * sigma * ci;
-            const double mass = k * k * stretch_ * disc_integral(wi, [&](Vec2 uv, double cos2_theta_o) {
-                return core_->density_at_logs(2.0 * math::fast_log(k * sigma * (ci + std::sqrt(cos2_theta_o))),
-                                              0.5 * math::fast_log(k * k * (uv.x * uv.x + stretch2_ * uv.y * uv.y)));
-            });
+            const double mass = scatter_mass(wi, k, sigma);
             return {sigma, mass > 0 ? -std::expm1(-a * a) / mass : 1.0};
         }
     }
