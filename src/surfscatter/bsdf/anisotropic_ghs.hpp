@@ -17,7 +17,7 @@
 // the ray where grazing incidence brings the horizon close): sigma from the radial CDF at each ray's end, N from a fixed
 // 32-point rule along each ray (24 in ln |w| for the lobe, 8 at the horizon); built lazily and kept in the disk cache
 // under a key naming the elliptical statistics (LV and A included), the core and the settings; ~0.15 CPU s per
-// wavelength node for photo-setup's plate (bench_bsdf BM_anisotropic_tables; a render touches ~45 nodes once; the disk
+// wavelength node for photo-setup's plate (bench_bsdf BM_ghs_tables/1; a render touches ~45 nodes once; the disk
 // cache keeps them).
 // Accuracy (AnisotropicGhs.TablesMatchDirectQuadrature, against Gauss-Legendre over the disc written in the test):
 // sigma within 1e-3 and N within 3e-3 of their direct values at (theta_i, phi_r) between the nodes for s = 0.25 and 4
