@@ -3,7 +3,8 @@
 // measured route (`--psd measured`, map_statistics.hpp) of a 1024^2 map of that KC surface at 0.05 um, and
 // BM_measured_tables builds its tables from nothing (the disk cache pointed at an empty folder). The per-wavelength tables (sigma_rel,
 // K) are built before timing. aniso_ghs_exact / aniso_ghs_ssa: the same surfaces made elliptical (LV = 0.4 LU, lay angle
-// 30 deg; AnisotropicGhsBsdf). BM_eval_packet: the renderer's four-wavelength call (f and the reverse pdf).
+// 30 deg; AnisotropicGhsBsdf), aniso_two_scale two_scale's (N 50). BM_eval_packet: the renderer's four-wavelength
+// call (f and the reverse pdf).
 // Run: build/bench/bench_bsdf --benchmark_min_time=0.2
 #include <benchmark/benchmark.h>
 
@@ -46,6 +47,12 @@ ModelOptions options_for(int model, double g) {
         case 6:  // elliptical: LV = 0.4 LU, lay angle 30 deg (AnisotropicGhsBsdf)
         case 7:
             o.model = model == 6 ? ModelKind::ghs : ModelKind::ghs_ssa;
+            o.surface.corr_length_v = 0.4;
+            o.surface.lay_angle = 30.0;
+            break;
+        case 9:  // model 4 on elliptical statistics (LV = 0.4 LU, lay 30 deg): anisotropic macro NDF and micro GHS
+            o.model = ModelKind::two_scale;
+            o.cutoff_wavelengths = 50;
             o.surface.corr_length_v = 0.4;
             o.surface.lay_angle = 30.0;
             break;
@@ -92,7 +99,7 @@ std::vector<Vec3> directions(const Bsdf& b, const Vec3& wi) {
 }
 
 const char* kNames[] = {"ghs_exact", "ghs_refit", "ghs_ssa", "ggx", "two_scale", "ghs_measured", "aniso_ghs_exact",
-                        "aniso_ghs_ssa", "ggx_anisotropic"};
+                        "aniso_ghs_ssa", "ggx_anisotropic", "aniso_two_scale"};
 
 void BM_eval(benchmark::State& state) {
     const Bsdf& b = model(int(state.range(0)), std::pow(10.0, double(state.range(1)) - 1));
@@ -177,7 +184,7 @@ void BM_eval_packet(benchmark::State& state) {
 
 // Arguments: model index, log10(g) + 1 (0 -> g = 0.1, 2 -> 10, 4 -> 1000).
 void models_and_g(benchmark::internal::Benchmark* b) {
-    for (int m = 0; m < 9; ++m)
+    for (int m = 0; m < 10; ++m)
         for (int lg : {0, 2, 4}) b->Args({m, lg});
 }
 

@@ -289,6 +289,22 @@ def test_elliptical_surface_equals_keywords_and_cli():
     np.testing.assert_array_equal(equal.eval(wi, wo, 633.0), isotropic.eval(wi, wo, 633.0))
 
 
+def test_elliptical_two_scale_equals_cli_and_isotropic_at_equal_lengths():
+    wi = ss.direction(40.0, 10.0)
+    wo = ss.direction(np.array([10.0, 40.0, 60.0]), np.array([150.0, 190.0, 250.0]))
+    model = ss.bsdf("two_scale", surface=ss.KCorrelation(**ELLIPTICAL), material="Au")
+    cli = cli_csv("brdf", "eval", "--model", "two_scale", "--sigma", 0.03, "--corr-length", 2.0, "--gamma", 2.5,
+                  "--corr-length-v", 0.6, "--lay-angle", 35, "--material", "Au", "--wavelength", 633,
+                  "--theta-i", 40, "--phi-i", 10, "--theta-o", "10,40,60", "--phi-o", "150,190,250")
+    got = model.eval(wi, ss.direction(cli["theta_o"], cli["phi_o"]), 633.0)
+    np.testing.assert_allclose(got, cli["brdf"], rtol=CLI_RTOL)
+    isotropic = ss.bsdf("two_scale", surface=ss.KCorrelation(0.03, 2.0, 2.5), material="Au")
+    equal = ss.bsdf("two_scale", surface=ss.KCorrelation(0.03, 2.0, 2.5, corr_length_v=2.0, lay_angle_deg=35.0),
+                    material="Au")
+    np.testing.assert_allclose(equal.eval(wi, wo, 633.0), isotropic.eval(wi, wo, 633.0), rtol=1e-9)
+    assert not np.allclose(model.eval(wi, wo, 633.0), isotropic.eval(wi, wo, 633.0), rtol=1e-3)
+
+
 def test_elliptical_bad_values_and_models():
     with pytest.raises(ss.Error, match="corr_length_v must be between"):
         ss.KCorrelation(0.03, 2.0, 2.5, corr_length_v=-1.0)
@@ -298,8 +314,6 @@ def test_elliptical_bad_values_and_models():
         ss.KCorrelation(0.03, 2.0, 2.5, lay_angle_deg=30)
     with pytest.raises(ss.Error, match="lay_angle_deg does not apply to model ghs: used with corr_length_v only"):
         ss.bsdf("ghs", sigma=0.03, corr_length=2.0, gamma=2.5, lay_angle_deg=30, material="Au")
-    with pytest.raises(ss.Error, match="does not take elliptical statistics"):
-        ss.bsdf("two_scale", surface=ss.KCorrelation(**ELLIPTICAL), material="Au")
     with pytest.raises(ss.Error, match="give either surface= or"):
         ss.bsdf("ghs", surface=ss.KCorrelation(0.03, 2.0, 2.5), corr_length_v=1.0, material="Au")
 

@@ -180,9 +180,9 @@ TEST(CliBrdf, PsdFitElliptical) {
     expect_bad({"brdf", "eval", "--surface", map, "--psd-fit", "radial", "--material", "perfect", "--wavelength", "550",
                 "--theta-i", "30", "--theta-o", "30"},
                "--psd-fit must be one of isotropic | elliptical, got 'radial'");
-    expect_bad({"brdf", "eval", "--model", "two_scale", "--surface", map, "--psd-fit", "elliptical", "--material",
-                "perfect", "--wavelength", "550", "--theta-i", "30", "--theta-o", "30"},
-               "does not take elliptical statistics yet");
+    const auto two_scale = run_cli({"brdf", "eval", "--model", "two_scale", "--surface", map, "--psd-fit", "elliptical",
+                                    "--material", "perfect", "--wavelength", "550", "--theta-i", "30", "--theta-o", "30"});
+    EXPECT_EQ(two_scale.exit_code, 0) << two_scale.err;
     std::filesystem::remove_all(dir);
 }
 
@@ -337,12 +337,17 @@ TEST(CliBrdf, EllipticalSurfaceOptions) {
     expect_bad({"--corr-length-v", "0.5", "--lay-angle", "nan"}, "lay_angle must be finite");
     expect_bad({"--corr-length-v", "abc"}, "--corr-length-v");
     expect_bad({"--lay-angle", "30"}, "--lay-angle does not apply to --model ghs_ssa: used with corr_length_v only");
-    // two_scale is the one model without an anisotropic form yet: it says so.
-    const auto two_scale = run_cli({"brdf", "eval", "--model", "two_scale", "--sigma", "0.03", "--corr-length", "2",
-                                    "--gamma", "4", "--corr-length-v", "1", "--material", "Au", "--wavelength", "633",
-                                    "--theta-i", "40", "--theta-o", "10"});
-    EXPECT_EQ(two_scale.exit_code, 2);
-    EXPECT_NE(two_scale.err.find("does not take elliptical statistics"), std::string::npos) << two_scale.err;
+    // two_scale takes elliptical statistics: LV = LU with a lay angle is its isotropic output itself, LV != LU differs.
+    const std::vector<std::string> two_scale = {"brdf", "eval", "--model", "two_scale", "--sigma", "0.03",
+                                                "--corr-length", "2", "--gamma", "4", "--material", "Au",
+                                                "--wavelength", "633", "--theta-i", "40", "--theta-o", "10,40,45"};
+    const auto two_scale_isotropic = with(two_scale, {});
+    const auto two_scale_equal = with(two_scale, {"--corr-length-v", "2", "--lay-angle", "30"});
+    const auto two_scale_elliptical = with(two_scale, {"--corr-length-v", "1", "--lay-angle", "30"});
+    ASSERT_EQ(two_scale_equal.exit_code, 0) << two_scale_equal.err;
+    ASSERT_EQ(two_scale_elliptical.exit_code, 0) << two_scale_elliptical.err;
+    EXPECT_EQ(two_scale_equal.out, two_scale_isotropic.out);
+    EXPECT_NE(two_scale_elliptical.out, two_scale_isotropic.out);
     const auto ggx = run_cli({"brdf", "eval", "--model", "ggx_stats", "--sigma", "0.03", "--corr-length", "2",
                               "--gamma", "4", "--corr-length-v", "1", "--material", "Au", "--wavelength", "633",
                               "--theta-i", "40", "--theta-o", "10"});

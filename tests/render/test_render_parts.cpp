@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "render_test_util.hpp"
+#include "surfscatter/bsdf/factory.hpp"
 #include "surfscatter/core/progress.hpp"
 #include "surfscatter/render/model_parameters.hpp"
 
@@ -111,6 +112,11 @@ TEST(ModelParameters, TextReadsAsTheXmlPluginDoes) {
         "study");
     EXPECT_EQ(brushed.surface.corr_length_v, 1.0);
     EXPECT_EQ(brushed.surface.lay_angle, 90.0);
+    // two_scale takes them too: an anisotropic macro NDF and micro lobe.
+    const bsdf::ModelOptions brushed_two_scale = scattering_model_options(
+        "two_scale", {{"sigma", "0.05"}, {"corr_length", "2"}, {"corr_length_v", "0.8"}, {"lay_angle", "30"},
+                      {"gamma", "4"}, {"cutoff_wavelengths", "50"}}, "study");
+    EXPECT_FALSE(bsdf::make_bsdf(brushed_two_scale)->isotropic());
 }
 
 TEST(ModelParameters, TextErrorsNameTheOriginAndTheParameter) {

@@ -34,12 +34,11 @@ AnisotropicGhsBsdf::AnisotropicGhsBsdf(std::shared_ptr<const surface::Elliptical
     : stats_(std::move(stats)), core_(std::move(core)), material_(std::move(material)),
       settings_(std::move(settings)), tables_(std::size_t(kWavelengthAxis.size())) {
     if (!stats_ || !core_) fail("anisotropic {} needs elliptical statistics and a scatter core", settings_.name);
-    if (stats_->radial().psd_jump_radius() != 0)
-        fail("anisotropic {} needs a PSD without a jump (the stretched jump is an ellipse)", settings_.name);
     stretch_ = stats_->stretch();
     stretch2_ = stretch_ * stretch_;
+    // A PSD with a jump (the two-scale micro part) has no log-valued table: the core adds its first order exactly.
     const auto* exact = dynamic_cast<const ExactScatterCore*>(core_.get());
-    log_native_ = exact ? &exact->table() : nullptr;
+    log_native_ = exact && stats_->radial().psd_jump_radius() == 0.0 ? &exact->table() : nullptr;
 }
 
 [[gnu::always_inline]] inline AnisotropicGhsBsdf::Incidence AnisotropicGhsBsdf::lookup(const Vec3& wi,

@@ -27,7 +27,10 @@
 // (|w| <= k (1 + sin theta_i) max(1, s), w = (zeta_u, s zeta_v)), a uniform azimuth there, mapped back to zeta; a draw
 // outside the visible disc is a failed sample (nothing returned), so the pdf is the exact sub-probability density
 //   pdf(o) = (1 - e^{-g0}) s k^2 cos theta_o p_core(|w|).
-// The core's PSD must not jump (KC, Gaussian: those the factory makes elliptical).
+// The core's PSD may jump (the two-scale micro part: SharpCutStatistics, whose cut is a circle in the stretched plane,
+// an ellipse in zeta): eval and the sampler are then exact as for the isotropic micro lobe (the core adds the first
+// order at the stretched radius), but the cubature of N does not know the ellipse (TwoScaleElliptical.* in
+// tests/bsdf/test_two_scale_elliptical.cpp measure N and the albedo against quadrature that splits every ray there).
 #include <array>
 #include <functional>
 #include <memory>

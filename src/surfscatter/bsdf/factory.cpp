@@ -311,6 +311,29 @@ std::unique_ptr<Bsdf> elliptical_ggx(const ModelOptions& o, SurfaceSource& surfa
     return std::make_unique<GgxBsdf>(std::move(material), alpha, lay);
 }
 
+// The macro NDF's alpha from a low-pass mean-square slope, unclamped (it was floored at 1e-4, which widened the macro
+// lobe of smooth, long-correlated surfaces); a low-pass part without slope would be a mirror, not an NDF.
+double macro_alpha(const ModelOptions& o, double slope2) {
+    const double alpha = std::sqrt(slope2);
+    if (!(alpha > 0) || !std::isfinite(alpha))
+        fail("the low-pass part below {} wavelengths has rms slope {}: no macro NDF", o.cutoff_wavelengths, alpha);
+    return alpha;
+}
+
+// two_scale on elliptical statistics (docs/MODELS.md "Two-scale on elliptical statistics"): the split on the ellipse
+// inside the circle zeta_c (psd_split.hpp), per lay axis alpha = sqrt(2 <h_axis^2>) (ggx_stats' convention, so that
+// LV = LU gives the isotropic alpha = rms slope of the low-pass part), the micro lobe the anisotropic GHS of the
+// high-pass part.
+std::unique_ptr<Bsdf> elliptical_two_scale(const ModelOptions& o, const surface::EllipticalStatistics& elliptical,
+                                           double zeta_c, material::Conductor material, GhsSettings settings) {
+    const auto split = surface::split_elliptical_psd(elliptical, zeta_c);
+    const Vec2 alpha(macro_alpha(o, 2 * split.slope_variances_lay.x), macro_alpha(o, 2 * split.slope_variances_lay.y));
+    auto micro = std::make_unique<AnisotropicGhsBsdf>(
+        split.micro, std::make_shared<ExactScatterCore>(split.micro->radial_ptr()), material, std::move(settings));
+    return std::make_unique<TwoScaleBsdf>(std::move(material), o.macro_ndf, alpha, elliptical.lay_angle(),
+                                          std::move(micro));
+}
+
 GhsSettings ghs_settings(const ModelOptions& o) {
     GhsSettings settings;
     settings.fresnel = o.fresnel;
@@ -347,15 +370,10 @@ std::unique_ptr<Bsdf> make_bsdf(const ModelOptions& o, std::vector<std::string>*
     validate(o);
     auto material = material::Conductor::from_name(o.material);
     SurfaceSource surface(needs_surface(o) ? o.surface : SurfaceOptions{});
-    // Elliptical statistics (null for an isotropic surface): the GHS family takes them through AnisotropicGhsBsdf,
-    // ggx_stats through its anisotropic GGX; two_scale not yet.
+    // Elliptical statistics (null for an isotropic surface): the GHS family and two_scale's micro lobe take them
+    // through AnisotropicGhsBsdf, ggx_stats and two_scale's macro NDF through the anisotropic microfacet NDFs.
     const auto elliptical = surface.elliptical(notes);
     if (elliptical && o.model == ModelKind::ggx) return elliptical_ggx(o, surface, *elliptical, std::move(material));
-    if (elliptical && o.model == ModelKind::two_scale) {
-        fail("model {} does not take elliptical statistics yet (corr_length_v {} um differs from corr_length {} um{})",
-             to_string(o.model), elliptical->corr_length_v(), elliptical->corr_length_u(),
-             o.surface.psd_fit == PsdFit::elliptical ? ", from psd_fit elliptical; use psd_fit isotropic" : "");
-    }
     switch (o.model) {
         case ModelKind::ggx: return std::make_unique<GgxBsdf>(std::move(material), ggx_alpha(o, surface, notes));
         case ModelKind::ghs_ssa:
@@ -378,14 +396,11 @@ std::unique_ptr<Bsdf> make_bsdf(const ModelOptions& o, std::vector<std::string>*
         }
         case ModelKind::two_scale: {
             const double zeta_c = surface::cutoff_frequency(kTwoScaleReferenceWavelength, o.cutoff_wavelengths);
-            const auto split = surface::split_psd(surface.statistics(notes), zeta_c, surface::LowPassFilter::sharp);
-            // alpha = rms slope of the low-pass part, unclamped (it was floored at 1e-4, which widened the macro lobe of
-            // smooth, long-correlated surfaces); a low-pass part without slope would be a mirror, not an NDF.
-            const double alpha = std::sqrt(split.slope2_macro);
-            if (!(alpha > 0) || !std::isfinite(alpha))
-                fail("the low-pass part below {} wavelengths has rms slope {}: no macro NDF", o.cutoff_wavelengths, alpha);
             GhsSettings settings = ghs_settings(o);
             settings.name = "two_scale_micro";
+            if (elliptical) return elliptical_two_scale(o, *elliptical, zeta_c, std::move(material), std::move(settings));
+            const auto split = surface::split_psd(surface.statistics(notes), zeta_c, surface::LowPassFilter::sharp);
+            const double alpha = macro_alpha(o, split.slope2_macro);  // the rms slope of the low-pass part
             auto micro = std::make_unique<GhsBsdf>(split.micro, std::make_shared<ExactScatterCore>(split.micro),
                                                    material, settings);
             return std::make_unique<TwoScaleBsdf>(std::move(material), o.macro_ndf, alpha, std::move(micro));

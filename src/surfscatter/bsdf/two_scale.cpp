@@ -14,12 +14,12 @@ TwoScaleBsdf::TwoScaleBsdf(material::Conductor material, MacroNdf ndf, Vec2 macr
     : material_(std::move(material)), ndf_(ndf), alpha_(macro_alpha_uv), lay_(lay_angle_rad),
       ggx_(macro_alpha_uv.x, macro_alpha_uv.y), beckmann_(macro_alpha_uv.x, macro_alpha_uv.y), micro_(std::move(micro)) {}
 
-double TwoScaleBsdf::macro_eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
+double TwoScaleBsdf::macro_eval(const Vec3& wi, const Vec3& wo, double lambda_nm, double weight) const {
     const Vec3 sum = wi + wo;
     if (sum.length_squared() == 0) return 0.0;
     const Vec3 h = normalize(sum);
     const double cos_d = std::clamp(dot(wi, h), 0.0, 1.0);
-    const double specular = micro_->delta_probability(wi, lambda_nm) * material_.reflectance(cos_d, lambda_nm);
+    const double specular = weight * material_.reflectance(cos_d, lambda_nm);
     const double dg = ndf_ == MacroNdf::ggx ? ggx_.D(h) * ggx_.G2(wi, wo) : beckmann_.D(h) * beckmann_.G2(wi, wo);
     return specular * dg / (4.0 * wi.z * wo.z);
 }
@@ -34,7 +34,9 @@ double TwoScaleBsdf::macro_pdf(const Vec3& wi, const Vec3& wo) const {
 
 double TwoScaleBsdf::eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
     if (wi.z <= 0 || wo.z <= 0) return 0.0;
-    const double f = macro_eval(lay_.to_lay(wi), lay_.to_lay(wo), lambda_nm) + micro_->eval(wi, wo, lambda_nm);
+    // The macro weight from the micro lobe at the local-frame incidence (an anisotropic micro lobe's depends on it).
+    const double f = macro_eval(lay_.to_lay(wi), lay_.to_lay(wo), lambda_nm, micro_->delta_probability(wi, lambda_nm)) +
+                     micro_->eval(wi, wo, lambda_nm);
     return std::isfinite(f) ? f : 0.0;
 }
 

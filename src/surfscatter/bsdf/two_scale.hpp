@@ -40,6 +40,7 @@ public:
     double pdf(const Vec3& wi, const Vec3& wo, double lambda_nm) const override;
     double jump_radius(double lambda_nm) const override { return micro_->jump_radius(lambda_nm); }
     std::string name() const override { return "two_scale"; }
+    bool isotropic() const override { return alpha_.x == alpha_.y && micro_->isotropic(); }
 
     double macro_alpha() const { return alpha_.x; }  // alpha_u
     Vec2 macro_alpha_uv() const { return alpha_; }
@@ -47,7 +48,8 @@ public:
 
 private:
     // Both in the lay frame.
-    double macro_eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const;
+    // weight: the micro lobe's delta probability e^{-g0,micro} at the incidence in the local frame.
+    double macro_eval(const Vec3& wi, const Vec3& wo, double lambda_nm, double weight) const;
     double macro_pdf(const Vec3& wi, const Vec3& wo) const;  // density of the macro sampler alone
 
     material::Conductor material_;

@@ -1,5 +1,6 @@
 #include "surfscatter/surface/psd_split.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -66,6 +67,23 @@ PsdSplit split_psd(std::shared_ptr<const RadialStatistics> base, double zeta_c, 
         split.micro = std::make_shared<SharpCutStatistics>(base, zeta_c, CutPart::high_pass);
     else
         split.micro = std::make_shared<GaussianFilteredStatistics>(base, zeta_c, true);
+    return split;
+}
+
+EllipticalPsdSplit split_elliptical_psd(const EllipticalStatistics& stats, double zeta_c) {
+    require_positive(zeta_c, "cutoff frequency");
+    EllipticalPsdSplit split;
+    const double s = stats.stretch();
+    split.cut_stretched = zeta_c * std::min(1.0, s);
+    const RadialStatistics& radial = stats.radial();
+    const double sigma2 = radial.sigma_h() * radial.sigma_h();
+    split.sigma2_macro = sigma2 * radial.radial_cdf(split.cut_stretched);
+    split.sigma2_micro = sigma2 - split.sigma2_macro;
+    const double half = 0.5 * radial.mean_square_slope(0.0, split.cut_stretched);
+    split.slope_variances_lay = Vec2(half, half / (s * s));
+    const auto micro = std::make_shared<SharpCutStatistics>(stats.radial_ptr(), split.cut_stretched, CutPart::high_pass);
+    // The micro part's own correlation length times s: the same stretch.
+    split.micro = std::make_shared<EllipticalStatistics>(micro, s * micro->correlation_length(), stats.lay_angle());
     return split;
 }
 

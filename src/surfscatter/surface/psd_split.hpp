@@ -4,6 +4,8 @@
 // ISO 16610 Gaussian with cutoff wavelength 2 pi / zeta_c (|H|^2 = 2^(-2 (zeta/zeta_c)^2)).
 #include <memory>
 
+#include "surfscatter/math/vec.hpp"
+#include "surfscatter/surface/elliptical_statistics.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
 
 namespace surfscatter::surface {
@@ -37,5 +39,21 @@ struct PsdSplit {
 };
 
 PsdSplit split_psd(std::shared_ptr<const RadialStatistics> base, double zeta_c, LowPassFilter);
+
+// The sharp split of elliptical statistics (docs/MODELS.md "Two-scale on elliptical statistics"): the cut is the
+// ellipse |(zeta_u, s zeta_v)| = R, R = zeta_c min(1, s) (s = LV / LU), the largest ellipse of the surface's own shape
+// inside the circle |zeta| = zeta_c: the low-pass part holds only frequencies the wavelength does not resolve, and
+// both parts stay stretches of radial statistics (the sharp cut of the radial one at R), so every self-convolution
+// order of the micro part is the stretched isotropic one (elliptical_statistics.hpp). Per lay axis (THEORY 7.1)
+// <h_u^2> = M / 2 and <h_v^2> = M / (2 s^2), M the radial mean-square slope below R; <h_u h_v> = 0.
+struct EllipticalPsdSplit {
+    double cut_stretched = 0;       // R (rad/um) in the stretched plane
+    double sigma2_macro = 0;        // um^2
+    double sigma2_micro = 0;        // um^2
+    Vec2 slope_variances_lay;       // <h_u^2>, <h_v^2> of the low-pass part
+    std::shared_ptr<const EllipticalStatistics> micro;  // the high-pass part: SharpCutStatistics at R, stretched by s
+};
+
+EllipticalPsdSplit split_elliptical_psd(const EllipticalStatistics& stats, double zeta_c);
 
 }  // namespace surfscatter::surface
