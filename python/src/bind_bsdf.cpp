@@ -269,7 +269,7 @@ model: 'ghs' (full GHS), 'ghs_ssa' (smooth-surface approximation), 'ggx_stats' (
     or of a given alpha), 'two_scale': the scene plugins' names (docs/CONVENTIONS.md; old spellings such as 'ggx'
     work with a DeprecationWarning).
 surface: the surface statistics: KCorrelation(sigma, corr_length, gamma), GaussianAcv(sigma, corr_length) (either
-    elliptical with corr_length_v= and lay_angle_deg=: models ghs and ghs_ssa), a
+    elliptical with corr_length_v= and lay_angle_deg=: models ghs, ghs_ssa, ggx_stats and two_scale), a
     MapStatistics (measured_statistics(height_map): psd 'measured'), a HeightMap or the path of a height map file
     (after removing `form`: KC fitted to it, or with psd='measured' its own radial PSD); or None and the XML's
     keywords psd ('kc' | 'gaussian' | 'file' | 'measured'), sigma (um), corr_length (um), gamma, corr_length_v (um),
