@@ -18,7 +18,8 @@
 // sampler; the pdf is the exact mixture.
 // The macro NDF may be anisotropic (alpha_u along the lay direction at lay_angle, alpha_v across; microfacet.hpp), and
 // the micro lobe is any Bsdf whose delta_probability() is e^{-g0,micro} (the GHS of the high-pass part, isotropic or
-// not): only its Bsdf interface is used.
+// not): only its Bsdf interface is used. On elliptical statistics (the factory; docs/MODELS.md "Two-scale on elliptical
+// statistics") the macro weight depends on the incidence azimuth: it is the micro lobe's at the local-frame incidence.
 #include <memory>
 
 #include "surfscatter/bsdf/bsdf.hpp"
