@@ -59,12 +59,13 @@ def test_validity_map_matches_the_cli(tmp_path):
 
 
 def test_validity_map_synthesises_elliptical_maps():
-    """An elliptical KC surface: the maps are drawn with its lay; two_scale refuses elliptical statistics, and says so."""
+    """An elliptical KC surface: the maps are drawn with its lay; two_scale takes elliptical statistics too."""
     surface = ss.KCorrelation(0.02, 2.0, 3.0, corr_length_v=4.0, lay_angle_deg=30)
     got = ss.validity_map(surface, "perfect", wavelengths_nm=[550], theta_i_deg=[20], phi_i_deg=[0, 90],
                           map_size_um=32, map_pixels=256, realizations=2, subarea_um=8, bin_deg=6)
     assert {row["phi_i_deg"] for row in got["table"]} == {0, 90}
-    assert any(why.startswith("two_scale: ") for why in got["refused_models"])
+    assert not any(why.startswith("two_scale: ") for why in got["refused_models"])
+    assert "two_scale" in {row["model"] for row in got["table"]}
     assert "corr_length_v 4 um, lay_angle 30 deg" in got["surface"]
 
 
