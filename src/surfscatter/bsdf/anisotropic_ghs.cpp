@@ -170,7 +170,7 @@ std::optional<BsdfSample> AnisotropicGhsBsdf::sample(const Vec3& wi, double lamb
 }
 
 AnisotropicGhsBsdf::AzimuthTables AnisotropicGhsBsdf::cached_tables(double lambda_nm) const {
-    constexpr std::uint32_t kVersion = 2;  // of build_tables' construction and the layout
+    constexpr std::uint32_t kVersion = 3;  // of build_tables' construction and the layout
     const std::string key = fmt::format(
         "ghs-anisotropic-incidence:{}:sigma_h={:.17g}:{}:normalization={}:relevant={}:lambda={:.17g}:nodes={}x{}"
         ":azimuth=cos2(phi-A)",
@@ -306,7 +306,26 @@ double AnisotropicGhsBsdf::scatter_mass(const Vec3& wi, double k, double sigma) 
         }
         return sum * r.rho_max * r.rho_max;
     };
+    // A PSD that jumps (the two-scale micro part) jumps on the circle |w| = rho_jump of the stretched plane: rays that
+    // cross it take the rule on each side, rho = lo + (hi - lo) f (the rule's weight / fraction is its df weight).
+    const double rho_jump = stats_->radial().psd_jump_radius() / k;
+    auto piece = [&](const DiscRays::Ray& r, double lo, double hi) {
+        const double far = rays.cos2_i / r.q_max, width = hi - lo;
+        double sum = 0;
+        for (std::size_t j = 0; j < kRule.fraction.size(); ++j) {
+            const double rho = lo + width * kRule.fraction[j], t = rho / r.a;
+            const double gap = hi == r.rho_max ? width * kRule.complement[j] / r.a : r.q_max - t;  // q_max - t
+            const double cos_theta_o = std::sqrt(gap * (t + far));
+            sum += kRule.weight[j] / kRule.fraction[j] * rho *
+                   core_->density_at_logs(2.0 * (log_k_sigma + math::fast_log(ci + cos_theta_o)), log_k + std::log(rho));
+        }
+        return sum * width;
+    };
+    auto split = [&](const DiscRays::Ray& r) {
+        return rho_jump < r.rho_max ? piece(r, 0.0, rho_jump) + piece(r, rho_jump, r.rho_max) : along(r);
+    };
     const double g0 = (2.0 * k * sigma * ci) * (2.0 * k * sigma * ci);
+    if (rho_jump > 0) return k * k * rays.integrate(split, 1e-4, -std::expm1(-g0) / (k * k));
     return k * k * rays.integrate(along, 1e-4, -std::expm1(-g0) / (k * k));
 }
 
