@@ -1,0 +1,351 @@
+#include "surfscatter/surface/spectrum_lobes_2d.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <cstdint>
+#include <cstring>
+
+#include <fftw3.h>
+#include <fmt/format.h>
+
+#include "surfscatter/core/error.hpp"
+#include "surfscatter/surface/fftw_planner.hpp"
+#include "surfscatter/surface/height_map_fft.hpp"
+
+namespace surfscatter::surface {
+
+namespace {
+
+constexpr std::uint32_t kVersion = 1;  // of the construction, in key()
+
+// A real function on a full, centred lattice: nodes -half_x .. half_x by -half_y .. half_y, spacing dzx, dzy.
+struct Centred {
+    long half_x = 0, half_y = 0;
+    double dzx = 0, dzy = 0;
+    std::vector<double> v;
+    double& at(long i, long j) { return v[std::size_t((j + half_y) * (2 * half_x + 1) + (i + half_x))]; }
+    double at(long i, long j) const { return v[std::size_t((j + half_y) * (2 * half_x + 1) + (i + half_x))]; }
+};
+
+// The full plane of a half-plane (r2c) layout value(kx, ky) of an n_x x n_y lattice, kx in [0, n_x/2]: the point
+// (-kx, -ky) mirrors (kx, ky); a Nyquist bin of an even side (the same lattice point at +- n/2) is split half and half
+// between both, so that the result is even.
+template <class Value>
+Centred centred_plane(std::size_t nx, std::size_t ny, double dzx, double dzy, Value value) {
+    Centred c;
+    c.half_x = long(nx / 2);
+    c.half_y = long(ny / 2);
+    c.dzx = dzx;
+    c.dzy = dzy;
+    c.v.assign(std::size_t((2 * c.half_x + 1) * (2 * c.half_y + 1)), 0.0);
+    const auto wrap = [](long k, std::size_t n) { return std::size_t(((k % long(n)) + long(n)) % long(n)); };
+    for (long j = -c.half_y; j <= c.half_y; ++j)
+        for (long i = -c.half_x; i <= c.half_x; ++i) {
+            const long kx = i >= 0 ? i : -i, ky = i >= 0 ? j : -j;
+            double factor = 1.0;
+            if (nx % 2 == 0 && std::abs(i) == c.half_x) factor *= 0.5;
+            if (ny % 2 == 0 && std::abs(j) == c.half_y) factor *= 0.5;
+            c.at(i, j) = factor * value(std::size_t(kx), wrap(ky, ny));
+        }
+    return c;
+}
+
+// Chebyshev ring (max(|i|, |j|)) of a node.
+long ring_of(long i, long j) { return std::max(std::abs(i), std::abs(j)); }
+
+// The stored row of a centred lattice: cropped to the square of Chebyshev radius D outside which at most kCropMass of
+// its |mass| lies, averaged over odd s x s blocks so that at most kMaxCells nodes per axis remain, round-off below 0
+// set to 0, scaled to unit mass; `mass` is the lobe's exact mass (1 - e^{-g}, or 1) for raw_mass. `edge` gets the
+// share of the mass in the outer quarter of the lattice.
+SpectrumLobes2d::Row make_row(const Centred& c, double mass, double& edge) {
+    const long rings = std::max(c.half_x, c.half_y) + 1;
+    std::vector<double> ring_mass(std::size_t(rings), 0.0);
+    double total = 0, outer = 0, peak = 0;
+    for (long j = -c.half_y; j <= c.half_y; ++j)
+        for (long i = -c.half_x; i <= c.half_x; ++i) {
+            const double a = std::abs(c.at(i, j));
+            ring_mass[std::size_t(ring_of(i, j))] += a;
+            total += a;
+            peak = std::max(peak, c.at(i, j));
+            if (4 * std::abs(i) > 3 * c.half_x || 4 * std::abs(j) > 3 * c.half_y) outer += a;
+        }
+    edge = total > 0 ? outer / total : 0.0;
+    long radius = rings - 1;
+    for (double tail = 0; radius > 0 && tail + ring_mass[std::size_t(radius)] <= SpectrumLobes2d::kCropMass * total;
+         --radius)
+        tail += ring_mass[std::size_t(radius)];
+    const long dx = std::min(radius, c.half_x), dy = std::min(radius, c.half_y);
+    auto nodes = [](long d, long s) { return 2 * ((d + s - 1) / s) + 1; };
+    long s = 1;
+    while (nodes(dx, s) > long(SpectrumLobes2d::kMaxCells) || nodes(dy, s) > long(SpectrumLobes2d::kMaxCells)) s += 2;
+    SpectrumLobes2d::Row row;
+    row.half_x = (dx + s - 1) / s;
+    row.half_y = (dy + s - 1) / s;
+    row.hx = double(s) * c.dzx;
+    row.hy = double(s) * c.dzy;
+    row.value.assign(std::size_t((2 * row.half_x + 1) * (2 * row.half_y + 1)), 0.0);
+    const long h = (s - 1) / 2;
+    const double floor = 1e-12 * peak;
+    double sum = 0;
+    for (long j = -row.half_y; j <= row.half_y; ++j)
+        for (long i = -row.half_x; i <= row.half_x; ++i) {
+            double block = 0;
+            for (long b = std::max(j * s - h, -c.half_y); b <= std::min(j * s + h, c.half_y); ++b)
+                for (long a = std::max(i * s - h, -c.half_x); a <= std::min(i * s + h, c.half_x); ++a)
+                    block += c.at(a, b);
+            block /= double(s * s);
+            if (block < 0) {
+                if (block < -floor) fail("2-D lobe row: value {} below zero beyond round-off (peak {})", block, peak);
+                block = 0;
+            }
+            row.value[std::size_t((j + row.half_y) * (2 * row.half_x + 1) + (i + row.half_x))] = block;
+            sum += block;
+        }
+    const double row_mass = sum * row.hx * row.hy;
+    if (!(row_mass > 0)) fail("2-D lobe row without mass");
+    row.raw_mass = row_mass / mass;
+    for (double& v : row.value) v /= row_mass;
+    return row;
+}
+
+// FFTW plans, destroyed under the planner's lock.
+struct PlanGuard {
+    fftw_plan plan;
+    explicit PlanGuard(fftw_plan p) : plan(p) {
+        if (!plan) fail("FFTW could not create a plan");
+    }
+    ~PlanGuard() {
+        std::lock_guard lock(fftw_planner_mutex());
+        fftw_destroy_plan(plan);
+    }
+    PlanGuard(const PlanGuard&) = delete;
+    PlanGuard& operator=(const PlanGuard&) = delete;
+};
+
+std::size_t power_of_two_at_least(std::size_t n) {
+    std::size_t p = 1;
+    while (p < n) p *= 2;
+    return p;
+}
+
+std::uint64_t fnv1a(const void* data, std::size_t bytes, std::uint64_t h = 1469598103934665603ull) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < bytes; ++i) h = (h ^ p[i]) * 1099511628211ull;
+    return h;
+}
+
+}  // namespace
+
+double SpectrumLobes2d::Row::at(Vec2 zeta) const {
+    const double u = zeta.x / hx + double(half_x), v = zeta.y / hy + double(half_y);
+    const double nx = double(2 * half_x), ny = double(2 * half_y);
+    if (!(u >= 0 && u <= nx && v >= 0 && v <= ny)) return 0.0;
+    const long i = std::min(long(u), std::max(2 * half_x - 1, 0L)), j = std::min(long(v), std::max(2 * half_y - 1, 0L));
+    const long stride = 2 * half_x + 1;
+    const double tx = half_x > 0 ? u - double(i) : 0.0, ty = half_y > 0 ? v - double(j) : 0.0;
+    const double* p = value.data() + j * stride + i;
+    const double* q = half_y > 0 ? p + stride : p;
+    const long dx = half_x > 0 ? 1 : 0;
+    return (1 - ty) * ((1 - tx) * p[0] + tx * p[dx]) + ty * ((1 - tx) * q[0] + tx * q[dx]);
+}
+
+double SpectrumLobes2d::Row::cell_density(Vec2 zeta) const {
+    const long i = std::lround(zeta.x / hx), j = std::lround(zeta.y / hy);
+    if (std::abs(i) > half_x || std::abs(j) > half_y || !std::isfinite(zeta.x) || !std::isfinite(zeta.y)) return 0.0;
+    return value[std::size_t((j + half_y) * (2 * half_x + 1) + (i + half_x))];
+}
+
+SpectrumLobes2d::SpectrumLobes2d(const Psd2d& spectrum, double g_max) : g_max_(g_max), spectrum_(spectrum) {
+    if (!(g_max > 0 && g_max <= 1e7)) fail("2-D measured lobes: g_max must be in (0, 1e7], got {}", g_max);
+    const double variance = spectrum.integral();
+    if (!(variance > 0) || !std::isfinite(variance))
+        fail("2-D measured lobes: the periodogram's lattice sum is {} (needs > 0)", variance);
+    sigma_h_ = std::sqrt(variance);
+    for (double& v : spectrum_.values) v /= variance;
+    const std::size_t nx = spectrum_.nx, ny = spectrum_.ny, hx = spectrum_.half_nx();
+    const double dzx = spectrum_.dzeta_x, dzy = spectrum_.dzeta_y;
+    const Centred unit = centred_plane(nx, ny, dzx, dzy,
+                                       [&](std::size_t kx, std::size_t ky) { return spectrum_.values[ky * hx + kx]; });
+
+    // 2. rho on the p-fold lattice.
+    const double nyquist = std::min(0.5 * double(nx) * dzx, 0.5 * double(ny) * dzy);
+    const std::size_t p_max = std::max<std::size_t>(1, kMaxLattice / std::max(nx, ny));
+    padding_ = std::clamp<std::size_t>(std::size_t(std::ceil(kCoverage / nyquist)), 1, p_max);
+    const std::size_t fx = padding_ * nx, fy = padding_ * ny, fhx = fx / 2 + 1;
+    std::vector<std::complex<double>> padded(fy * fhx, 0.0);
+    for (long j = -unit.half_y; j <= unit.half_y; ++j)
+        for (long i = 0; i <= unit.half_x; ++i) {
+            // Without padding the c2r's own Nyquist column stands for both +- nx/2: it takes both halves.
+            const double factor = (padding_ == 1 && nx % 2 == 0 && i == unit.half_x && i > 0) ? 2.0 : 1.0;
+            const std::size_t row = std::size_t(((j % long(fy)) + long(fy)) % long(fy));
+            padded[row * fhx + std::size_t(i)] += factor * unit.at(i, j) * dzx * dzy;
+        }
+    std::vector<double> rho(fx * fy);
+    {
+        fftw_plan raw;
+        {
+            std::lock_guard lock(fftw_planner_mutex());
+            raw = fftw_plan_dft_c2r_2d(int(fy), int(fx), reinterpret_cast<fftw_complex*>(padded.data()), rho.data(),
+                                       FFTW_ESTIMATE);
+        }
+        PlanGuard plan(raw);
+        fftw_execute(plan.plan);
+    }
+    const double dxf = kTwoPi / (double(fx) * dzx), dyf = kTwoPi / (double(fy) * dzy);
+    auto rho_at = [&](long i, long j) {
+        return rho[std::size_t(((j % long(fy)) + long(fy)) % long(fy)) * fx + std::size_t(((i % long(fx)) + long(fx)) % long(fx))];
+    };
+    // The extremes of rho beyond each Chebyshev radius, for the windows of step 3.
+    const long rings = long(std::max(fx, fy) / 2) + 1;
+    std::vector<double> beyond_max(std::size_t(rings) + 1, -HUGE_VAL), beyond_min(std::size_t(rings) + 1, HUGE_VAL);
+    for (long j = -long(fy / 2); j < long(fy - fy / 2); ++j)
+        for (long i = -long(fx / 2); i < long(fx - fx / 2); ++i) {
+            const std::size_t r = std::size_t(ring_of(i, j));
+            beyond_max[r] = std::max(beyond_max[r], rho_at(i, j));
+            beyond_min[r] = std::min(beyond_min[r], rho_at(i, j));
+        }
+    for (long r = rings - 1; r >= 0; --r) {
+        beyond_max[std::size_t(r)] = std::max(beyond_max[std::size_t(r)], beyond_max[std::size_t(r) + 1]);
+        beyond_min[std::size_t(r)] = std::min(beyond_min[std::size_t(r)], beyond_min[std::size_t(r) + 1]);
+    }
+
+    // 3. Rows.
+    double edge = 0;
+    rows_.push_back(make_row(unit, 1.0, edge));
+    row_g_.push_back(0.0);
+    edge_fraction_ = edge;
+    const int last = int(std::ceil(std::log10(g_max / kMinG) * kRowsPerDecade - 1e-9));
+    for (int n = 0; n <= std::max(last, 3); ++n) {  // at least the 4 rows of one cubic stencil
+        const double g = kMinG * std::pow(10.0, double(n) / kRowsPerDecade);
+        const double e = std::exp(-g), f0 = -std::expm1(-g);
+        // The window: the smallest Chebyshev radius beyond which |f| < kCropValue f(0).
+        long w = 1;
+        auto beyond = [&](long r) {
+            const double hi = beyond_max[std::size_t(r)], lo = beyond_min[std::size_t(r)];
+            return std::max(std::exp(-g * (1.0 - hi)) - e, e * -std::expm1(g * lo));
+        };
+        while (w < rings && beyond(w) >= kCropValue * f0) ++w;
+        const std::size_t wx = std::min(fx, power_of_two_at_least(std::size_t(2 * w))),
+                          wy = std::min(fy, power_of_two_at_least(std::size_t(2 * w)));
+        std::vector<double> f(wx * wy);
+        std::vector<std::complex<double>> out(wy * (wx / 2 + 1));
+        for (long j = -long(wy / 2); j < long(wy - wy / 2); ++j)
+            for (long i = -long(wx / 2); i < long(wx - wx / 2); ++i) {
+                const double value = std::exp(-g * (1.0 - rho_at(i, j))) - e;
+                f[std::size_t(((j + long(wy)) % long(wy))) * wx + std::size_t((i + long(wx)) % long(wx))] = value;
+            }
+        {
+            fftw_plan raw;
+            {
+                std::lock_guard lock(fftw_planner_mutex());
+                raw = fftw_plan_dft_r2c_2d(int(wy), int(wx), f.data(), reinterpret_cast<fftw_complex*>(out.data()),
+                                           FFTW_ESTIMATE);
+            }
+            PlanGuard plan(raw);
+            fftw_execute(plan.plan);
+        }
+        const double scale = dxf * dyf / (4.0 * kPi * kPi);
+        const std::size_t ohx = wx / 2 + 1;
+        const Centred lobe = centred_plane(wx, wy, kTwoPi / (double(wx) * dxf), kTwoPi / (double(wy) * dyf),
+                                           [&](std::size_t kx, std::size_t ky) { return scale * out[ky * ohx + kx].real(); });
+        rows_.push_back(make_row(lobe, f0, edge));
+        row_g_.push_back(g);
+        edge_fraction_ = std::max(edge_fraction_, edge);
+    }
+    cdfs_.resize(rows_.size());
+    cdf_once_ = std::make_unique<std::once_flag[]>(rows_.size());
+    std::uint64_t h = fnv1a(spectrum_.values.data(), spectrum_.values.size() * sizeof(double));
+    const double dims[4] = {double(nx), double(ny), dzx, dzy};
+    h = fnv1a(dims, sizeof dims, h);
+    key_ = fmt::format("spectrum-lobes-2d:v{}:{:016x}:{}x{}:sigma_h={:.17g}:window={}:p={}:rows/decade={}:cells={}",
+                       kVersion, h, nx, ny, sigma_h_, int(spectrum_.window), padding_, kRowsPerDecade, kMaxCells);
+}
+
+SpectrumLobes2d::Mixture SpectrumLobes2d::mixture(double g, bool first_order_only) const {
+    if (first_order_only || g <= 0) return {0, 0, 1.0, 0.0};
+    if (g < kMinG) {
+        const double t = g / kMinG;
+        return {0, 1, 1.0 - t, t};
+    }
+    const double t = std::log(g / kMinG) / std::log(10.0) * kRowsPerDecade;
+    const std::size_t last = rows_.size() - 1;
+    const std::size_t a = std::min(last, std::size_t(1 + std::size_t(t)));
+    if (a == last) return {a, a, 1.0, 0.0};
+    const double w = t - double(a - 1);
+    return {a, a + 1, 1.0 - w, w};
+}
+
+double SpectrumLobes2d::shape(double g, Vec2 zeta) const {
+    if (!(g >= 0 && g <= g_max_)) fail("2-D measured lobe: g = {} outside [0, {}]", g, g_max_);
+    if (g < kMinG) {
+        const Mixture m = mixture(g, false);
+        return m.wa * rows_[m.a].at(zeta) + m.wb * rows_[m.b].at(zeta);
+    }
+    // Cubic Lagrange in ln g over the 4 rows around it (one-sided at the ends).
+    const double t = std::log(g / kMinG) / std::log(10.0) * kRowsPerDecade;
+    const long nodes = long(rows_.size()) - 1;  // rows 1 .. nodes at t = 0 .. nodes - 1
+    const long first = std::clamp(long(t) - 1, 0L, nodes - 4);
+    const double u = t - double(first);
+    const double w[4] = {-(u - 1) * (u - 2) * (u - 3) / 6, u * (u - 2) * (u - 3) / 2, -u * (u - 1) * (u - 3) / 2,
+                         u * (u - 1) * (u - 2) / 6};
+    double sum = 0;
+    for (int j = 0; j < 4; ++j) sum += w[j] * rows_[std::size_t(first + 1 + j)].at(zeta);
+    return std::max(sum, 0.0);  // the cubic's undershoot where a row is 0 and its neighbours are not
+}
+
+double SpectrumLobes2d::eval(double g, Vec2 zeta) const { return g > 0 ? -std::expm1(-g) * shape(g, zeta) : 0.0; }
+
+double SpectrumLobes2d::first_order(Vec2 zeta) const { return rows_[0].at(zeta); }
+
+double SpectrumLobes2d::disc_mass(Vec2 centre, double radius) const {
+    const Row& r = rows_[0];
+    const long j0 = std::max(-r.half_y, long(std::floor((centre.y - radius) / r.hy)));
+    const long j1 = std::min(r.half_y, long(std::ceil((centre.y + radius) / r.hy)));
+    double sum = 0;
+    for (long j = j0; j <= j1; ++j) {
+        const double dy = double(j) * r.hy - centre.y, dx2 = radius * radius - dy * dy;
+        if (dx2 < 0) continue;
+        const double half_width = std::sqrt(dx2);
+        const long i0 = std::max(-r.half_x, long(std::ceil((centre.x - half_width) / r.hx)));
+        const long i1 = std::min(r.half_x, long(std::floor((centre.x + half_width) / r.hx)));
+        const double* row = r.value.data() + (j + r.half_y) * (2 * r.half_x + 1) + r.half_x;
+        for (long i = i0; i <= i1; ++i) sum += row[i];
+    }
+    return std::clamp(sum * r.hx * r.hy, 0.0, 1.0);
+}
+
+const std::vector<double>& SpectrumLobes2d::cdf(std::size_t row) const {
+    std::call_once(cdf_once_[row], [&] {
+        const Row& r = rows_[row];
+        std::vector<double> c(r.value.size());
+        double sum = 0;
+        for (std::size_t i = 0; i < c.size(); ++i) c[i] = sum += r.value[i];
+        cdfs_[row] = std::move(c);
+    });
+    return cdfs_[row];
+}
+
+Vec2 SpectrumLobes2d::sample(double g, bool first_order_only, double u_row, Vec2 u) const {
+    const Mixture m = mixture(g, first_order_only);
+    std::size_t row = m.a;
+    double v = m.wb > 0 ? u_row / m.wa : u_row;
+    if (m.wb > 0 && u_row >= m.wa) {
+        row = m.b;
+        v = (u_row - m.wa) / m.wb;
+    }
+    const std::vector<double>& c = cdf(row);
+    const double target = std::min(v, 1.0) * c.back();
+    const std::size_t cell = std::min(std::size_t(std::upper_bound(c.begin(), c.end(), target) - c.begin()), c.size() - 1);
+    const Row& r = rows_[row];
+    const long width = 2 * r.half_x + 1;
+    const long i = long(cell) % width - r.half_x, j = long(cell) / width - r.half_y;
+    return {(double(i) + u.x - 0.5) * r.hx, (double(j) + u.y - 0.5) * r.hy};
+}
+
+double SpectrumLobes2d::sample_density(double g, bool first_order_only, Vec2 zeta) const {
+    const Mixture m = mixture(g, first_order_only);
+    return m.wa * rows_[m.a].cell_density(zeta) + (m.wb > 0 ? m.wb * rows_[m.b].cell_density(zeta) : 0.0);
+}
+
+}  // namespace surfscatter::surface

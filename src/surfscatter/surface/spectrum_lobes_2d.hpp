@@ -1,0 +1,106 @@
+#pragma once
+// The full GHS scatter lobe of a height map's own 2-D spectrum (`--psd measured`, measured_spectrum 2d; docs/SURFACE.md
+// "The 2-D measured lobes"): the radial ScatterLobeTable's lobe, but on the periodogram itself, not its ring average:
+//   S_g(zeta) = e^{-g} sum_{m>=1} g^m/m! P-hat^{*m}(zeta) = (1/4 pi^2) FT{e^{-g (1 - rho(r))} - e^{-g}}(zeta),
+// of mass 1 - e^{-g}, tabulated as its unit-mass shape s_g = S_g / (1 - e^{-g}).
+// Construction:
+// 1. P-hat = the periodogram (MapStatistics::spectrum(): its window and DC value) over its lattice sum, which is
+//    sigma_h^2 here (the whole lattice, its corners beyond the Nyquist disc included; the ring route sums the disc).
+//    The lattice's Nyquist bins of an even side are split half and half between +Nyquist and -Nyquist, so that every
+//    tabulated lobe is even (S(-zeta) = S(zeta)). Beyond the lattice P-hat is 0, as the ring route's roll-off
+//    (zeta^-200 beyond Nyquist) makes it in effect: nothing beyond what the map holds enters the first order.
+// 2. rho(r) = sum P-hat e^{i zeta r} dzeta^2 by an inverse FFT of the spectrum zero-padded p-fold (band-limited
+//    interpolation onto a lattice p times finer): p the smallest integer with p * Nyquist >= kCoverage (2 k at
+//    360 nm), at most kMaxLattice / (larger side). e^{g rho} then carries the self-convolutions, which spread beyond
+//    Nyquist (order m reaches m Nyquist), out to p * Nyquist; what an order would put beyond p * Nyquist folds back
+//    (the lattice is periodic): edge_fraction() reports the largest share of any row's mass in the outer quarter of
+//    its lattice, the measure of that folding, and the models pass it on in their notes.
+// 3. Rows: g -> 0 (P-hat itself) and kRowsPerDecade log-spaced g from kMinG up to the g_max given. For each g,
+//    f = e^{-g (1 - rho)} - e^{-g} on the fine lattice cropped to the square window outside which f < kCropValue f(0)
+//    (the whole lattice for small g: f ~ g rho there; a few correlation lengths for large g, where the lobe is wide
+//    and its zeta grid may be coarse), transformed (r2c FFT); the result is cropped to the square holding all but
+//    kCropMass of the row's mass and averaged over odd s x s blocks of bins so that at most kMaxCells per axis
+//    remain (s = 1, every bin of the map's spectrum kept, for maps up to kMaxCells per side at g -> 0). Round-off
+//    below zero (below 1e-12 of a row's peak) is set to 0; each row is scaled to unit mass.
+// Lookup: bilinear in zeta on a row's nodes (0 beyond its outermost nodes), cubic Lagrange in ln g over 4 rows (one-
+// sided at the ends; its undershoot below 0 next to a row's edge read as 0), linear in g between the g -> 0 row and
+// kMinG.
+// Accuracy (SpectrumLobes2d.MatchesDirectPoissonSeriesOfConvolutions, against direct 2-D linear convolutions of a 32^2
+// periodogram summed in the Poisson series, written in the test): at the lattice's nodes |S_g - direct| below 5e-4 of
+// the lobe's peak for g 0.01 .. 5 on and between rows (measured 1e-9 on rows, 1.8e-4 between them: the cubic in ln g
+// dominates; linear, it was 6e-3), every row's mass within 1e-8 of 1 - e^{-g} (the crops drop below kCropMass).
+// Building: one FFT of the fine lattice for rho plus one per row (the large-g rows' windows are small): for a
+// 1024^2 map see docs/PERFORMANCE.md ("2-D measured lobes"). Memory: up to kMaxCells^2 doubles per row (plus the
+// same for its sampling CDF once a row is sampled).
+// Sampling: the row pair of g (or row 0 and the first row) as a mixture with the interpolation's weights, within a
+// row a cell by its CDF (constant density over a cell of side h centred on each node), uniform inside it; the pdf is
+// the same mixture of the piecewise-constant densities, exact for what is drawn (it is not the bilinear shape).
+#include <cstddef>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "surfscatter/math/vec.hpp"
+#include "surfscatter/surface/psd_estimate.hpp"
+
+namespace surfscatter::surface {
+
+class SpectrumLobes2d {
+public:
+    static constexpr double kMinG = 1e-3;
+    static constexpr int kRowsPerDecade = 12;
+    static constexpr std::size_t kMaxCells = 383;       // per axis of a stored row
+    static constexpr std::size_t kMaxLattice = 2048;    // per axis of the fine lattice of rho
+    static constexpr double kCoverage = 4.0 * kPi / 0.36;  // rad/um: 2 k at 360 nm
+    static constexpr double kCropValue = 1e-10;
+    static constexpr double kCropMass = 1e-9;
+
+    // The lobes of `spectrum` (a periodogram, estimate_psd()) for g in [0, g_max]. Error if its lattice sum is not
+    // positive or g_max not in (0, 1e7].
+    SpectrumLobes2d(const Psd2d& spectrum, double g_max);
+
+    double sigma_h() const { return sigma_h_; }                // sqrt of the periodogram's lattice sum, um
+    double g_max() const { return g_max_; }
+    double eval(double g, Vec2 zeta) const;                    // S_g(zeta), um^2; g in [0, g_max] (else Error)
+    double shape(double g, Vec2 zeta) const;                   // s_g = S_g / (1 - e^{-g}), unit mass
+    double first_order(Vec2 zeta) const;                       // P-hat(zeta) (unit mass): the g -> 0 row
+    // Mass of P-hat (the periodogram's lattice points, as the first order's row reads them) in the disc of `radius`
+    // about `centre`: sigma_rel^2 / sigma_h^2 for the visible disc.
+    double disc_mass(Vec2 centre, double radius) const;
+    // A zeta drawn from s_g (first_order_only: from P-hat), and the density of that draw at zeta (1/um^2^-1).
+    Vec2 sample(double g, bool first_order_only, double u_row, Vec2 u) const;
+    double sample_density(double g, bool first_order_only, Vec2 zeta) const;
+
+    double edge_fraction() const { return edge_fraction_; }   // see 2. above
+    std::size_t padding() const { return padding_; }          // p
+    std::size_t rows() const { return rows_.size(); }
+    double row_g(std::size_t row) const { return row_g_[row]; }  // 0 for row 0
+    double row_mass_before_scaling(std::size_t row) const { return rows_[row].raw_mass; }
+    const std::string& key() const { return key_; }            // names the spectrum and the construction
+
+    struct Row {
+        double hx = 0, hy = 0;     // node spacing, rad/um
+        long half_x = 0, half_y = 0;  // nodes -half .. half per axis
+        double raw_mass = 0;       // the row's mass before scaling to 1 (what the crops left, in units of 1 - e^{-g})
+        std::vector<double> value; // unit-mass shape at the nodes, [(j + half_y) * (2 half_x + 1) + (i + half_x)]
+        double at(Vec2 zeta) const;                     // bilinear
+        double cell_density(Vec2 zeta) const;           // the sampler's piecewise-constant density
+    };
+
+private:
+    struct Mixture { std::size_t a, b; double wa, wb; };
+    Mixture mixture(double g, bool first_order_only) const;
+    const std::vector<double>& cdf(std::size_t row) const;
+
+    double sigma_h_ = 0, g_max_ = 0, edge_fraction_ = 0;
+    std::size_t padding_ = 1;
+    Psd2d spectrum_;                 // normalised to unit lattice sum
+    std::vector<Row> rows_;
+    std::vector<double> row_g_;
+    std::string key_;
+    mutable std::vector<std::vector<double>> cdfs_;
+    mutable std::unique_ptr<std::once_flag[]> cdf_once_;
+};
+
+}  // namespace surfscatter::surface
