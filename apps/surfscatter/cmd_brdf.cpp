@@ -29,7 +29,7 @@ struct BrdfArgs {
     std::string ssa_form = "energy", alpha_from, macro_ndf = "ggx", material;  // alpha_from, material: not given
     double epsilon = 1e-6, alpha = 0, smoothing = 0, cutoff_wavelengths = 100;
     bool no_renormalization = false;
-    std::string psd, psd_fit, surface_file, form = "plane";  // psd_fit: not given
+    std::string psd, psd_fit, surface_file, form = "plane", measured_spectrum = "2d";  // psd_fit: not given
     double sigma = 0, corr_length = 0, gamma = 0, corr_length_v = 0, lay_angle = 0;
     // The --surface map, read when first needed and shared by every model of the command.
     mutable std::shared_ptr<const surface::HeightMap> height_map;
@@ -126,6 +126,7 @@ bsdf::ModelOptions model_options(const BrdfArgs& a, const std::string& spec) {
         // Parsed for every map model, used by psd file only (slice --models ghs:file,ghs:measured).
         const bsdf::PsdFit fit = a.psd_fit.empty() ? bsdf::PsdFit::isotropic : bsdf::parse_psd_fit(a.psd_fit, "--psd-fit");
         if (o.surface.psd == bsdf::PsdKind::file) o.surface.psd_fit = fit;
+        o.surface.measured_spectrum = bsdf::parse_measured_spectrum(a.measured_spectrum, "--measured-spectrum");
         if (!a.height_map) {
             bsdf::load_height_map(o.surface);
             a.height_map = o.surface.height_map;
@@ -298,6 +299,9 @@ void add_model_options(CLI::App* cmd, BrdfArgs& a, bool several_thetas) {
     cmd->add_option("--surface", a.surface_file, "height map (any format `surface info` reads): KC fitted to it "
                                                  "(--psd file, default) or its own PSD (--psd measured)");
     cmd->add_option("--form", a.form, "form removed from --surface: none | plane (default) | poly2 | poly3 | poly4");
+    cmd->add_option("--measured-spectrum", a.measured_spectrum,
+                    "--psd measured: 2d (default: ghs and ghs_ssa on the map's 2-D spectrum) | ring (its ring "
+                    "average, as before); docs/SURFACE.md \"The 2-D measured lobes\"");
     cmd->add_option("--wavelength", a.wavelength, "wavelength (nm)")->required();
     if (several_thetas)
         add_number_list(cmd, "--theta-i", a.theta_i, "incidence angles (deg), comma separated")->required();

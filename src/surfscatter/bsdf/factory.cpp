@@ -8,6 +8,7 @@
 
 #include "surfscatter/bsdf/anisotropic_ghs.hpp"
 #include "surfscatter/bsdf/ggx.hpp"
+#include "surfscatter/bsdf/map_ghs.hpp"
 #include "surfscatter/bsdf/microfacet.hpp"
 #include "surfscatter/bsdf/ghs.hpp"
 #include "surfscatter/bsdf/ghs_ssa.hpp"
@@ -108,6 +109,7 @@ public:
                                     : std::make_shared<const surface::MapStatistics>(*map(), options_.form);
                 check_measured_uncertainty(*measured, notes);
                 if (notes) notes->push_back(measured_note(*measured));
+                measured_ = measured;
                 statistics_ = std::move(measured);
                 break;
             }
@@ -232,6 +234,14 @@ private:
     SurfaceOptions options_;
     std::shared_ptr<const surface::RadialStatistics> statistics_;
     std::unique_ptr<const surface::SurfaceFit> map_fit_;
+    std::shared_ptr<const surface::MapStatistics> measured_;
+
+public:
+    // psd measured: the map's statistics (its checks and notes made), for the 2-D spectrum.
+    const surface::MapStatistics& measured(std::vector<std::string>* notes) {
+        statistics(notes);
+        return *measured_;
+    }
 };
 
 // The refusal of alpha_from measured / smoothed where the surface's rms slope diverges.
@@ -342,6 +352,33 @@ GhsSettings ghs_settings(const ModelOptions& o) {
     return settings;
 }
 
+// psd measured with measured_spectrum 2d (model_options.hpp): ghs (exact) and ghs_ssa on the map's 2-D periodogram
+// (map_ghs.hpp); null for the models that take the ring average (two_scale, saying so).
+std::unique_ptr<Bsdf> map_spectrum_bsdf(const ModelOptions& o, SurfaceSource& surface, const material::Conductor& material,
+                                        std::vector<std::string>* notes) {
+    if (o.model == ModelKind::two_scale) {
+        if (notes)
+            notes->push_back("two_scale takes the ring average of the measured PSD (measured_spectrum 2d applies to ghs "
+                             "and ghs_ssa)");
+        return nullptr;
+    }
+    if (o.model != ModelKind::ghs && o.model != ModelKind::ghs_ssa) return nullptr;
+    const surface::MapStatistics& stats = surface.measured(notes);
+    auto lobes = map_lobes(stats.spectrum());
+    if (notes) {
+        const double coverage = double(lobes->padding()) * stats.nyquist();
+        notes->push_back(fmt::format(
+            "measured 2-D spectrum: {} on the map's periodogram (not its ring average; measured_spectrum ring for that), "
+            "sigma {:.6g} um over the whole lattice; self-convolutions on a {}-fold finer lattice, out to |zeta| = "
+            "{:.3g} rad/um; largest share of a lobe in the outer quarter of that lattice {:.2g}{}",
+            to_string(o.model), lobes->sigma_h(), lobes->padding(), coverage, lobes->edge_fraction(),
+            lobes->edge_fraction() > 1e-3 ? " (warning: the highest orders fold back there)" : ""));
+    }
+    if (o.model == ModelKind::ghs_ssa)
+        return std::make_unique<MapGhsBsdf>(std::move(lobes), o.ssa_form, material, ssa_settings(o.ssa_form, o.fresnel));
+    return std::make_unique<MapGhsBsdf>(std::move(lobes), std::nullopt, material, ghs_settings(o));
+}
+
 }  // namespace
 
 void load_height_map(SurfaceOptions& surface) {
@@ -370,6 +407,9 @@ std::unique_ptr<Bsdf> make_bsdf(const ModelOptions& o, std::vector<std::string>*
     validate(o);
     auto material = material::Conductor::from_name(o.material);
     SurfaceSource surface(needs_surface(o) ? o.surface : SurfaceOptions{});
+    if (needs_surface(o) && o.surface.psd == PsdKind::measured &&
+        o.surface.measured_spectrum == MeasuredSpectrum::two_d)
+        if (auto bsdf = map_spectrum_bsdf(o, surface, material, notes)) return bsdf;
     // Elliptical statistics (null for an isotropic surface): the GHS family and two_scale's micro lobe take them
     // through AnisotropicGhsBsdf, ggx_stats and two_scale's macro NDF through the anisotropic microfacet NDFs.
     const auto elliptical = surface.elliptical(notes);

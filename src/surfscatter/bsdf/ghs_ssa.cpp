@@ -4,7 +4,6 @@
 
 namespace surfscatter::bsdf {
 
-namespace {
 GhsSettings ssa_settings(SsaForm form, FresnelMode fresnel) {
     GhsSettings settings;
     settings.name = "ghs_ssa";
@@ -13,7 +12,6 @@ GhsSettings ssa_settings(SsaForm form, FresnelMode fresnel) {
     settings.relevant_roughness = form == SsaForm::energy;
     return settings;
 }
-}  // namespace
 
 std::unique_ptr<GhsBsdf> make_ghs_ssa(std::shared_ptr<const surface::RadialStatistics> stats,
                                       material::Conductor material, SsaForm form, FresnelMode fresnel) {

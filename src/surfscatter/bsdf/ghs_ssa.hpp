@@ -15,6 +15,9 @@
 
 namespace surfscatter::bsdf {
 
+// The SSA's name, Fresnel factor and normalisation (energy: K1 and sigma_rel; strict: none and sigma_h).
+GhsSettings ssa_settings(SsaForm form, FresnelMode fresnel);
+
 std::unique_ptr<GhsBsdf> make_ghs_ssa(std::shared_ptr<const surface::RadialStatistics> stats,
                                       material::Conductor material, SsaForm form, FresnelMode fresnel);
 class AnisotropicGhsBsdf;

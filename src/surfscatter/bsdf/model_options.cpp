@@ -85,6 +85,8 @@ constexpr std::pair<const char*, MacroNdf> kMacroNdf[]{{"ggx", MacroNdf::ggx}, {
 constexpr std::pair<const char*, PsdKind> kPsd[]{
     {"kc", PsdKind::kc}, {"gaussian", PsdKind::gaussian}, {"file", PsdKind::file}, {"measured", PsdKind::measured}};
 constexpr std::pair<const char*, PsdFit> kPsdFit[]{{"isotropic", PsdFit::isotropic}, {"elliptical", PsdFit::elliptical}};
+constexpr std::pair<const char*, MeasuredSpectrum> kMeasuredSpectrum[]{{"2d", MeasuredSpectrum::two_d},
+                                                                       {"ring", MeasuredSpectrum::ring}};
 
 constexpr Names<ModelKind> kModels{kModelNames, kModelAliases};
 template <typename E, std::size_t N>
@@ -104,6 +106,9 @@ AlphaFrom parse_alpha_from(std::string_view t, const char* what) { return parse_
 MacroNdf parse_macro_ndf(std::string_view t, const char* what) { return parse_enum(t, what, names(kMacroNdf)); }
 PsdKind parse_psd(std::string_view t, const char* what) { return parse_enum(t, what, names(kPsd)); }
 PsdFit parse_psd_fit(std::string_view t, const char* what) { return parse_enum(t, what, names(kPsdFit)); }
+MeasuredSpectrum parse_measured_spectrum(std::string_view t, const char* what) {
+    return parse_enum(t, what, names(kMeasuredSpectrum));
+}
 
 std::string choices(std::string_view option) {
     if (option == "model") return list_of(kModels);
@@ -115,6 +120,7 @@ std::string choices(std::string_view option) {
     if (option == "macro_ndf") return list_of(names(kMacroNdf));
     if (option == "psd") return list_of(names(kPsd));
     if (option == "psd_fit") return list_of(names(kPsdFit));
+    if (option == "measured_spectrum") return list_of(names(kMeasuredSpectrum));
     fail("choices: '{}' is not an enumerated model option", printable(option));
 }
 
@@ -142,6 +148,10 @@ std::string inapplicable_option(const ModelOptions& o, std::string_view name) {
     if (name == "alpha_from") return unless(ggx, "used by model ggx_stats only");
     if (name == "smoothing") return unless(ggx && o.alpha_from == AlphaFrom::smoothed, "used with alpha_from smoothed only");
     if (name == "cutoff_wavelengths" || name == "macro_ndf") return unless(m == ModelKind::two_scale, "used by model two_scale only");
+    if (name == "measured_spectrum") {
+        if (!with_surface) return "model ggx_stats with alpha_from none takes no surface";
+        return unless(psd == PsdKind::measured, "used with psd measured only");
+    }
     if (name == "psd" || name == "sigma" || name == "corr_length" || name == "gamma" || name == "surface_file" ||
         name == "form" || name == "corr_length_v" || name == "lay_angle" || name == "psd_fit") {
         if (!with_surface) return "model ggx_stats with alpha_from none takes no surface";
@@ -170,5 +180,6 @@ std::string to_string(AlphaFrom v) { return enum_name(v, names(kAlphaFrom)); }
 std::string to_string(MacroNdf v) { return enum_name(v, names(kMacroNdf)); }
 std::string to_string(PsdKind v) { return enum_name(v, names(kPsd)); }
 std::string to_string(PsdFit v) { return enum_name(v, names(kPsdFit)); }
+std::string to_string(MeasuredSpectrum v) { return enum_name(v, names(kMeasuredSpectrum)); }
 
 }  // namespace surfscatter::bsdf

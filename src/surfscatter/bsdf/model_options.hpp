@@ -27,6 +27,7 @@ enum class MacroNdf { ggx, beckmann };                   // two-scale macro-roug
 enum class PsdKind { kc, gaussian, file, measured };     // surface statistics: KC, Gaussian ACV, KC fitted to a height
                                                          // map, or the map's own radial PSD
 enum class PsdFit { isotropic, elliptical };             // psd file: the KC fitted to the map, radial or elliptical
+enum class MeasuredSpectrum { two_d, ring };             // psd measured: the map's 2-D spectrum, or its ring average
 
 struct SurfaceOptions {
     PsdKind psd = PsdKind::kc;
@@ -48,6 +49,9 @@ struct SurfaceOptions {
     std::shared_ptr<const surface::HeightMap> height_map;
     // psd measured only: a map's statistics estimated already (Python's measured_statistics()), used instead of a map.
     std::shared_ptr<const surface::MapStatistics> measured_psd;
+    // psd measured only: the models ghs (exact) and ghs_ssa on the map's 2-D periodogram (bsdf/map_ghs.hpp), ggx_stats
+    // with alpha_u / alpha_v from its slope covariance; ring: the ring average for every model (two_scale always).
+    MeasuredSpectrum measured_spectrum = MeasuredSpectrum::two_d;
 };
 
 struct ModelOptions {
@@ -85,9 +89,10 @@ AlphaFrom parse_alpha_from(std::string_view text, const char* what = "alpha_from
 MacroNdf parse_macro_ndf(std::string_view text, const char* what = "macro_ndf");
 PsdKind parse_psd(std::string_view text, const char* what = "psd");
 PsdFit parse_psd_fit(std::string_view text, const char* what = "psd_fit");
+MeasuredSpectrum parse_measured_spectrum(std::string_view text, const char* what = "measured_spectrum");
 
 // The valid values of the enumerated option `name` ("model", "method", "truncation", "fresnel", "ssa_form",
-// "alpha_from", "macro_ndf", "psd", "psd_fit") as "a | b | c", for help texts.
+// "alpha_from", "macro_ndf", "psd", "psd_fit", "measured_spectrum") as "a | b | c", for help texts.
 std::string choices(std::string_view name);
 
 // A given alpha without alpha_from means alpha_from none, as KC parameters without psd mean psd kc: the rule every
@@ -110,5 +115,6 @@ std::string to_string(AlphaFrom v);
 std::string to_string(MacroNdf v);
 std::string to_string(PsdKind v);
 std::string to_string(PsdFit v);
+std::string to_string(MeasuredSpectrum v);
 
 }  // namespace surfscatter::bsdf

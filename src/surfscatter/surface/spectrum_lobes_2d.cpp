@@ -150,12 +150,6 @@ double SpectrumLobes2d::Row::at(Vec2 zeta) const {
     return (1 - ty) * ((1 - tx) * p[0] + tx * p[dx]) + ty * ((1 - tx) * q[0] + tx * q[dx]);
 }
 
-double SpectrumLobes2d::Row::cell_density(Vec2 zeta) const {
-    const long i = std::lround(zeta.x / hx), j = std::lround(zeta.y / hy);
-    if (std::abs(i) > half_x || std::abs(j) > half_y || !std::isfinite(zeta.x) || !std::isfinite(zeta.y)) return 0.0;
-    return value[std::size_t((j + half_y) * (2 * half_x + 1) + (i + half_x))];
-}
-
 SpectrumLobes2d::SpectrumLobes2d(const Psd2d& spectrum, double g_max) : g_max_(g_max), spectrum_(spectrum) {
     if (!(g_max > 0 && g_max <= 1e7)) fail("2-D measured lobes: g_max must be in (0, 1e7], got {}", g_max);
     const double variance = spectrum.integral();
@@ -253,6 +247,8 @@ SpectrumLobes2d::SpectrumLobes2d(const Psd2d& spectrum, double g_max) : g_max_(g
         row_g_.push_back(g);
         edge_fraction_ = std::max(edge_fraction_, edge);
     }
+    for (const Row& r : rows_)
+        reach_ = std::max({reach_, (double(r.half_x) + 0.5) * r.hx, (double(r.half_y) + 0.5) * r.hy});
     cdfs_.resize(rows_.size());
     cdf_once_ = std::make_unique<std::once_flag[]>(rows_.size());
     std::uint64_t h = fnv1a(spectrum_.values.data(), spectrum_.values.size() * sizeof(double));
@@ -300,31 +296,62 @@ double SpectrumLobes2d::first_order(Vec2 zeta) const { return rows_[0].at(zeta);
 
 double SpectrumLobes2d::disc_mass(Vec2 centre, double radius) const {
     const Row& r = rows_[0];
-    const long j0 = std::max(-r.half_y, long(std::floor((centre.y - radius) / r.hy)));
-    const long j1 = std::min(r.half_y, long(std::ceil((centre.y + radius) / r.hy)));
     double sum = 0;
+    const double h = std::max(r.hx, r.hy);
+    const double outer = radius + 0.5 * h;
+    const long j0 = std::max(-r.half_y, long(std::ceil((centre.y - outer) / r.hy)));
+    const long j1 = std::min(r.half_y, long(std::floor((centre.y + outer) / r.hy)));
+    const long i0 = std::max(-r.half_x, long(std::ceil((centre.x - outer) / r.hx)));
+    const long i1 = std::min(r.half_x, long(std::floor((centre.x + outer) / r.hx)));
     for (long j = j0; j <= j1; ++j) {
-        const double dy = double(j) * r.hy - centre.y, dx2 = radius * radius - dy * dy;
-        if (dx2 < 0) continue;
-        const double half_width = std::sqrt(dx2);
-        const long i0 = std::max(-r.half_x, long(std::ceil((centre.x - half_width) / r.hx)));
-        const long i1 = std::min(r.half_x, long(std::floor((centre.x + half_width) / r.hx)));
+        const double dy = double(j) * r.hy - centre.y;
         const double* row = r.value.data() + (j + r.half_y) * (2 * r.half_x + 1) + r.half_x;
-        for (long i = i0; i <= i1; ++i) sum += row[i];
+        for (long i = i0; i <= i1; ++i) {
+            const double dx = double(i) * r.hx - centre.x;
+            sum += std::clamp(0.5 + (radius - std::sqrt(dx * dx + dy * dy)) / h, 0.0, 1.0) * row[i];
+        }
     }
     return std::clamp(sum * r.hx * r.hy, 0.0, 1.0);
 }
 
+double SpectrumLobes2d::finest_spacing(double g_lo, double g_hi) const {
+    double h = HUGE_VAL;
+    for (std::size_t r = 0; r < rows_.size(); ++r) {
+        // Row r serves g between its neighbours' nodes.
+        const double below = r > 0 ? row_g_[r - 1] : 0.0, above = r + 1 < rows_.size() ? row_g_[r + 1] : HUGE_VAL;
+        if (above >= g_lo && below <= g_hi) h = std::min({h, rows_[r].hx, rows_[r].hy});
+    }
+    return h;
+}
+
+// The bilinear cells between nodes (i, j) .. (i + 1, j + 1), cell index j * 2 half_x + i (i, j from 0): cumulative
+// masses (the mean of the corners; the node spacing's area is a common factor).
 const std::vector<double>& SpectrumLobes2d::cdf(std::size_t row) const {
     std::call_once(cdf_once_[row], [&] {
         const Row& r = rows_[row];
-        std::vector<double> c(r.value.size());
+        const long cx = std::max(2 * r.half_x, 1L), cy = std::max(2 * r.half_y, 1L), stride = 2 * r.half_x + 1;
+        std::vector<double> c(std::size_t(cx * cy));
         double sum = 0;
-        for (std::size_t i = 0; i < c.size(); ++i) c[i] = sum += r.value[i];
+        for (long j = 0; j < cy; ++j)
+            for (long i = 0; i < cx; ++i) {
+                const double* p = r.value.data() + j * stride + i;
+                const long dx = r.half_x > 0 ? 1 : 0, dy = r.half_y > 0 ? stride : 0;
+                sum += 0.25 * (p[0] + p[dx] + p[dy] + p[dx + dy]);
+                c[std::size_t(j * cx + i)] = sum;
+            }
         cdfs_[row] = std::move(c);
     });
     return cdfs_[row];
 }
+
+namespace {
+// x in [0, 1] with density proportional to a (1 - x) + b x (a, b >= 0, a + b > 0) at CDF value u, in the form without
+// cancellation.
+double linear_inverse(double a, double b, double u) {
+    const double root = std::sqrt(std::max(0.0, a * a + u * (b * b - a * a)));
+    return a + root > 0 ? std::clamp(u * (a + b) / (a + root), 0.0, 1.0) : u;
+}
+}  // namespace
 
 Vec2 SpectrumLobes2d::sample(double g, bool first_order_only, double u_row, Vec2 u) const {
     const Mixture m = mixture(g, first_order_only);
@@ -338,14 +365,23 @@ Vec2 SpectrumLobes2d::sample(double g, bool first_order_only, double u_row, Vec2
     const double target = std::min(v, 1.0) * c.back();
     const std::size_t cell = std::min(std::size_t(std::upper_bound(c.begin(), c.end(), target) - c.begin()), c.size() - 1);
     const Row& r = rows_[row];
-    const long width = 2 * r.half_x + 1;
-    const long i = long(cell) % width - r.half_x, j = long(cell) / width - r.half_y;
-    return {(double(i) + u.x - 0.5) * r.hx, (double(j) + u.y - 0.5) * r.hy};
+    const long cx = std::max(2 * r.half_x, 1L), stride = 2 * r.half_x + 1;
+    const long i = long(cell) % cx, j = long(cell) / cx;
+    const double* p = r.value.data() + j * stride + i;
+    const long dx = r.half_x > 0 ? 1 : 0, dy = r.half_y > 0 ? stride : 0;
+    // Within the cell the bilinear density: x from its marginal, y given x.
+    const double x = linear_inverse(p[0] + p[dy], p[dx] + p[dx + dy], u.x);
+    const double y = linear_inverse(p[0] * (1 - x) + p[dx] * x, p[dy] * (1 - x) + p[dx + dy] * x, u.y);
+    return {(double(i - r.half_x) + x) * r.hx, (double(j - r.half_y) + y) * r.hy};
 }
 
 double SpectrumLobes2d::sample_density(double g, bool first_order_only, Vec2 zeta) const {
     const Mixture m = mixture(g, first_order_only);
-    return m.wa * rows_[m.a].cell_density(zeta) + (m.wb > 0 ? m.wb * rows_[m.b].cell_density(zeta) : 0.0);
+    auto row_density = [&](std::size_t row) {
+        const Row& r = rows_[row];
+        return r.at(zeta) / (cdf(row).back() * r.hx * r.hy);
+    };
+    return m.wa * row_density(m.a) + (m.wb > 0 ? m.wb * row_density(m.b) : 0.0);
 }
 
 }  // namespace surfscatter::surface

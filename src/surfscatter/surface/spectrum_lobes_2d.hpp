@@ -32,9 +32,12 @@
 // Building: one FFT of the fine lattice for rho plus one per row (the large-g rows' windows are small): for a
 // 1024^2 map see docs/PERFORMANCE.md ("2-D measured lobes"). Memory: up to kMaxCells^2 doubles per row (plus the
 // same for its sampling CDF once a row is sampled).
-// Sampling: the row pair of g (or row 0 and the first row) as a mixture with the interpolation's weights, within a
-// row a cell by its CDF (constant density over a cell of side h centred on each node), uniform inside it; the pdf is
-// the same mixture of the piecewise-constant densities, exact for what is drawn (it is not the bilinear shape).
+// Sampling: the row pair of g (or row 0 and the first row) as a mixture with linear weights in ln g (in g below
+// kMinG), within a row a bilinear cell by its CDF and the point inside it from the bilinear density (its marginal in
+// x, then y given x, both inverted in closed form); the pdf is that mixture of the rows' bilinear shapes (each over its
+// own cell sum), exact for what is drawn and continuous (the eval's cubic in ln g is not the sampler's).
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <memory>
 #include <mutex>
@@ -65,9 +68,18 @@ public:
     double eval(double g, Vec2 zeta) const;                    // S_g(zeta), um^2; g in [0, g_max] (else Error)
     double shape(double g, Vec2 zeta) const;                   // s_g = S_g / (1 - e^{-g}), unit mass
     double first_order(Vec2 zeta) const;                       // P-hat(zeta) (unit mass): the g -> 0 row
-    // Mass of P-hat (the periodogram's lattice points, as the first order's row reads them) in the disc of `radius`
-    // about `centre`: sigma_rel^2 / sigma_h^2 for the visible disc.
+    // Mass of P-hat (the g -> 0 row's nodes, disc_sum's rim weights) in the disc of `radius` about `centre`:
+    // sigma_rel^2 / sigma_h^2 for the visible disc; continuous in centre and radius.
     double disc_mass(Vec2 centre, double radius) const;
+    // The finest node spacing (rad/um) of the rows that g in [g_lo, g_hi] reads, and how far any row reaches
+    // (|zeta_x|, |zeta_y| beyond it: S_g = 0 for every g).
+    double finest_spacing(double g_lo, double g_hi) const;
+    double reach() const { return reach_; }
+    // Midpoint sum of f(zeta) h^2 over the nodes of the lattice of spacing h through 0 that lie within `radius` of
+    // `centre` and within reach(), a node near the rim weighted by the share of its cell inside the disc (a linear
+    // ramp over one cell): int over the disc of f, continuous in centre and radius.
+    template <class F>
+    double disc_sum(Vec2 centre, double radius, double h, F&& f) const;
     // A zeta drawn from s_g (first_order_only: from P-hat), and the density of that draw at zeta (1/um^2^-1).
     Vec2 sample(double g, bool first_order_only, double u_row, Vec2 u) const;
     double sample_density(double g, bool first_order_only, Vec2 zeta) const;
@@ -85,7 +97,6 @@ public:
         double raw_mass = 0;       // the row's mass before scaling to 1 (what the crops left, in units of 1 - e^{-g})
         std::vector<double> value; // unit-mass shape at the nodes, [(j + half_y) * (2 half_x + 1) + (i + half_x)]
         double at(Vec2 zeta) const;                     // bilinear
-        double cell_density(Vec2 zeta) const;           // the sampler's piecewise-constant density
     };
 
 private:
@@ -93,7 +104,7 @@ private:
     Mixture mixture(double g, bool first_order_only) const;
     const std::vector<double>& cdf(std::size_t row) const;
 
-    double sigma_h_ = 0, g_max_ = 0, edge_fraction_ = 0;
+    double sigma_h_ = 0, g_max_ = 0, edge_fraction_ = 0, reach_ = 0;
     std::size_t padding_ = 1;
     Psd2d spectrum_;                 // normalised to unit lattice sum
     std::vector<Row> rows_;
@@ -102,5 +113,24 @@ private:
     mutable std::vector<std::vector<double>> cdfs_;
     mutable std::unique_ptr<std::once_flag[]> cdf_once_;
 };
+
+template <class F>
+double SpectrumLobes2d::disc_sum(Vec2 centre, double radius, double h, F&& f) const {
+    const double outer = radius + 0.5 * h;
+    const long j0 = long(std::ceil(std::max(centre.y - outer, -reach_) / h));
+    const long j1 = long(std::floor(std::min(centre.y + outer, reach_) / h));
+    const long i0 = long(std::ceil(std::max(centre.x - outer, -reach_) / h));
+    const long i1 = long(std::floor(std::min(centre.x + outer, reach_) / h));
+    double sum = 0;
+    for (long j = j0; j <= j1; ++j) {
+        const double y = double(j) * h, dy = y - centre.y;
+        for (long i = i0; i <= i1; ++i) {
+            const double x = double(i) * h, dx = x - centre.x;
+            const double w = std::clamp(0.5 + (radius - std::sqrt(dx * dx + dy * dy)) / h, 0.0, 1.0);
+            if (w > 0) sum += w * f(Vec2(x, y));
+        }
+    }
+    return sum * h * h;
+}
 
 }  // namespace surfscatter::surface

@@ -1,0 +1,191 @@
+#include "surfscatter/bsdf/map_ghs.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "surfscatter/bsdf/wedge_sampling.hpp"  // wavenumber
+#include "surfscatter/core/error.hpp"
+
+namespace surfscatter::bsdf {
+
+namespace {
+
+const NodeAxis kIncidenceAxis = ghs_incidence_axis();
+const NodeAxis kWavelengthAxis = ghs_wavelength_axis();
+constexpr double kAzimuthStep = kPi / MapGhsBsdf::kAzimuthNodes;
+
+// The incidence at cos theta_i = c and azimuth phi.
+Vec3 incidence(double c, double phi) {
+    const double s = std::sqrt(std::max(0.0, 1.0 - c * c));
+    return {s * std::cos(phi), s * std::sin(phi), c};
+}
+
+}  // namespace
+
+std::shared_ptr<const surface::SpectrumLobes2d> map_lobes(const surface::Psd2d& spectrum) {
+    // sigma_rel <= sigma_h; the 2 % margin covers the cubics' overshoot of the tabulated sigma.
+    const double sigma_h = std::sqrt(spectrum.integral());
+    const double a = 2.0 * 1.02 * wavenumber(MapGhsBsdf::kMinWavelength) * sigma_h;
+    return std::make_shared<const surface::SpectrumLobes2d>(spectrum, std::max(a * a, 2.0 * surface::SpectrumLobes2d::kMinG));
+}
+
+MapGhsBsdf::MapGhsBsdf(std::shared_ptr<const surface::SpectrumLobes2d> lobes, std::optional<SsaForm> ssa,
+                       material::Conductor material, GhsSettings settings)
+    : lobes_(std::move(lobes)), ssa_(ssa), material_(std::move(material)), settings_(std::move(settings)),
+      tables_(std::size_t(kWavelengthAxis.size())) {
+    if (!lobes_) fail("{} on a measured 2-D spectrum needs its lobes", settings_.name);
+}
+
+double MapGhsBsdf::density(double g, Vec2 zeta) const {
+    if (!ssa_) return lobes_->eval(g, zeta);
+    const double weight = *ssa_ == SsaForm::strict ? g : -std::expm1(-g);
+    return weight * lobes_->first_order(zeta);
+}
+
+MapGhsBsdf::Incidence MapGhsBsdf::lookup(const Vec3& wi, double lambda_nm) const {
+    if (!(lambda_nm >= kMinWavelength && lambda_nm <= kGhsMaxWavelength))
+        fail("wavelength {} nm outside [{}, {}] nm, the range of {} on a measured 2-D spectrum", lambda_nm,
+             kMinWavelength, kGhsMaxWavelength, settings_.name);
+    const NodeAxis::Position l = kWavelengthAxis.position(lambda_nm);
+    const double cosine = std::clamp(wi.z, kIncidenceAxis.node(0), 1.0);
+    const int c = kIncidenceAxis.position(cosine).interval;
+    const math::Pair d = math::Pair{1.0, 1.0} * (cosine - kIncidenceAxis.node(c));
+    // Azimuth: periodic 4-point Lagrange over the nodes around x = phi_i / step (pi-periodic).
+    double phi = std::atan2(wi.y, wi.x);
+    if (phi < 0) phi += kPi;
+    if (phi >= kPi) phi -= kPi;
+    const double x = phi / kAzimuthStep;
+    const int base = std::min(int(x), kAzimuthNodes - 1);
+    const double t = x - base + 1.0;  // position among the nodes base-1 .. base+2
+    const double w[4] = {-(t - 1) * (t - 2) * (t - 3) / 6, t * (t - 2) * (t - 3) / 2, -t * (t - 1) * (t - 3) / 2,
+                         t * (t - 1) * (t - 2) / 6};
+    auto table = [&](int slot) -> const AzimuthTables& {
+        return tables_.get(std::size_t(slot), [&] { return cached_tables(kWavelengthAxis.node(slot)); });
+    };
+    auto at = [&](const AzimuthTables& tables) {
+        math::Pair v{0.0, 0.0};
+        for (int j = 0; j < 4; ++j) {
+            const int node = (base - 1 + j + kAzimuthNodes) % kAzimuthNodes;
+            v += w[j] * estrin(tables[std::size_t(node)][std::size_t(c)], d);
+        }
+        return v;
+    };
+    const math::Pair at_a = at(table(l.interval)), v = at_a + l.t * (at(table(l.interval + 1)) - at_a);
+    return {wavenumber(lambda_nm), v[0], v[1]};
+}
+
+namespace {
+double specular_exponent(double k, double log_sigma, double cos_theta_i) {
+    const double a = 2.0 * k * cos_theta_i;
+    return a * a * std::exp(2.0 * log_sigma);
+}
+}  // namespace
+
+double MapGhsBsdf::eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
+    if (wi.z <= 0 || wo.z <= 0) return 0.0;
+    return eval(wi, wo, lambda_nm, lookup(wi, lambda_nm));
+}
+
+double MapGhsBsdf::eval(const Vec3& wi, const Vec3& wo, double lambda_nm, const Incidence& in) const {
+    const double k = in.k, a = k * std::exp(in.log_sigma) * (wi.z + wo.z);
+    const double lobe = density(a * a, Vec2(k * (wi.x + wo.x), k * (wi.y + wo.y)));
+    const double f = lobe_fresnel(material_, settings_.fresnel, wi, wo, lambda_nm) * std::exp(in.log_norm) *
+                     norm_power(wi.z) * k * k * lobe;
+    return std::isfinite(f) ? f : 0.0;
+}
+
+double MapGhsBsdf::pdf(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
+    if (wi.z <= 0 || wo.z <= 0) return 0.0;
+    return pdf(wi, wo, lookup(wi, lambda_nm));
+}
+
+double MapGhsBsdf::pdf(const Vec3& wi, const Vec3& wo, const Incidence& in) const {
+    const double k = in.k, g0 = specular_exponent(k, in.log_sigma, wi.z);
+    const double p = -std::expm1(-g0) * k * k * wo.z *
+                     lobes_->sample_density(g0, ssa_.has_value(), Vec2(k * (wi.x + wo.x), k * (wi.y + wo.y)));
+    return std::isfinite(p) ? p : 0.0;
+}
+
+std::optional<BsdfSample> MapGhsBsdf::sample(const Vec3& wi, double lambda_nm, double u_lobe, Vec2 u) const {
+    if (wi.z <= 0) return std::nullopt;
+    const Incidence in = lookup(wi, lambda_nm);
+    const double k = in.k, g0 = specular_exponent(k, in.log_sigma, wi.z), p_delta = std::exp(-g0);
+    if (u_lobe < p_delta) return coherent_delta_sample(material_, wi, lambda_nm, p_delta);
+    const double u_row = std::min((u_lobe - p_delta) / (1.0 - p_delta), std::nextafter(1.0, 0.0));
+    const Vec2 zeta = lobes_->sample(g0, ssa_.has_value(), u_row, u);
+    const double ox = zeta.x / k - wi.x, oy = zeta.y / k - wi.y, z2 = 1.0 - ox * ox - oy * oy;
+    if (!(z2 > 0)) return std::nullopt;  // outside the visible disc: a failed sample (the pdf's missing mass)
+    BsdfSample out;
+    out.wo = Vec3(ox, oy, std::sqrt(z2));
+    out.pdf = pdf(wi, out.wo, in);
+    if (!(out.pdf > 0) || !std::isfinite(out.pdf)) return std::nullopt;
+    out.weight = eval(wi, out.wo, lambda_nm, in) * out.wo.z / out.pdf;
+    if (!std::isfinite(out.weight)) return std::nullopt;
+    return out;
+}
+
+double MapGhsBsdf::delta_probability(const Vec3& wi, double lambda_nm) const {
+    if (wi.z <= 0) return 0.0;
+    const Incidence in = lookup(wi, lambda_nm);
+    return std::exp(-specular_exponent(in.k, in.log_sigma, wi.z));
+}
+
+double MapGhsBsdf::delta_reflectance(const Vec3& wi, double lambda_nm) const {
+    if (wi.z <= 0) return 0.0;
+    return material_.reflectance(std::min(1.0, wi.z), lambda_nm) * delta_probability(wi, lambda_nm);
+}
+
+MapGhsBsdf::AzimuthTables MapGhsBsdf::cached_tables(double lambda_nm) const {
+    constexpr std::uint32_t kVersion = 1;  // of build_tables' construction and the layout
+    const std::string key = fmt::format(
+        "ghs-map2d-incidence:{}:lobe={}:normalization={}:relevant={}:lambda={:.17g}:nodes={}x{}",
+        lobes_->key(), ssa_ ? "first-order-" + to_string(*ssa_) : std::string("full"), int(settings_.normalization),
+        settings_.relevant_roughness, lambda_nm, kGhsThetaNodes, kAzimuthNodes);
+    return cached_incidence_table<AzimuthTables>("ghs-map2d-incidence", kVersion, key,
+                                                 [&] { return build_tables(lambda_nm); });
+}
+
+MapGhsBsdf::AzimuthTables MapGhsBsdf::build_tables(double lambda_nm) const {
+    AzimuthTables tables;
+    std::array<double, kGhsThetaNodes> x{}, log_sigma{}, log_norm{};
+    for (int a = 0; a < kAzimuthNodes; ++a) {
+        for (int j = 0; j < kGhsThetaNodes; ++j) {
+            x[j] = kIncidenceAxis.node(j);
+            const GhsBsdf::Direct d = direct(incidence(x[j], a * kAzimuthStep), lambda_nm);
+            // Finite logarithms even for sigma = 0 or N = 0, for the interpolation.
+            log_sigma[j] = std::log(std::max(d.sigma, std::numeric_limits<double>::min()));
+            log_norm[j] = std::log(std::max(d.norm / norm_power(x[j]), std::numeric_limits<double>::min()));
+        }
+        tables[std::size_t(a)] = fit_incidence_table(x, log_sigma, log_norm);
+    }
+    return tables;
+}
+
+GhsBsdf::Direct MapGhsBsdf::direct(const Vec3& wi, double lambda_nm) const {
+    const double k = wavenumber(lambda_nm), ci = wi.z;
+    const bool needs_mass = settings_.relevant_roughness || settings_.normalization == LobeNormalization::disc_mass;
+    const double disc_mass = needs_mass ? lobes_->disc_mass(Vec2(k * wi.x, k * wi.y), k) : 1.0;
+    const double sigma = settings_.relevant_roughness ? lobes_->sigma_h() * std::sqrt(disc_mass) : lobes_->sigma_h();
+    switch (settings_.normalization) {
+        case LobeNormalization::none: return {sigma, 1.0};
+        case LobeNormalization::disc_mass: return {sigma, disc_mass > 0 ? 1.0 / disc_mass : 1.0};
+        case LobeNormalization::albedo: {
+            // int over the visible disc of S_{g(o)}(zeta) d^2 zeta, zeta = k (i_xy + o_xy), by disc_sum on the finest
+            // lattice of the rows that g(o) reads (g from (k sigma cos theta_i)^2 at the horizon to (2 k sigma)^2).
+            const double a = 2.0 * k * sigma * ci, b = k * sigma;
+            const double h = lobes_->finest_spacing(b * b * ci * ci, b * b * (ci + 1) * (ci + 1));
+            const double mass = lobes_->disc_sum(Vec2(k * wi.x, k * wi.y), k, h, [&](Vec2 zeta) {
+                const double ox = zeta.x / k - wi.x, oy = zeta.y / k - wi.y;
+                const double co = std::sqrt(std::max(0.0, 1.0 - ox * ox - oy * oy)), c = b * (ci + co);
+                return density(c * c, zeta);
+            });
+            return {sigma, mass > 0 ? -std::expm1(-a * a) / mass : 1.0};
+        }
+    }
+    return {sigma, 1.0};
+}
+
+}  // namespace surfscatter::bsdf

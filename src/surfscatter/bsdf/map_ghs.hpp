@@ -1,0 +1,88 @@
+#pragma once
+// The GHS family (full GHS exact, SSA) on a height map's own 2-D spectrum (`--psd measured`, measured_spectrum 2d;
+// docs/MODELS.md "Measured 2-D spectrum"), the lobe from surface::SpectrumLobes2d:
+//   f_r(i, o) = F(i, o) N(i, lambda) k^2 S_g(zeta),  zeta = k (i_xy + o_xy),  g = (k sigma (cos theta_i + cos theta_o))^2,
+// S_g the full lobe (ghs) or the first order (1 - e^{-g}) P-hat (ghs_ssa energy; strict: g_h P-hat with sigma_h, N = 1),
+// plus the coherent delta R e^{-g0}, g0 = (2 k sigma cos theta_i)^2. sigma (sigma_rel^2 = sigma_h^2 times the mass of
+// P-hat over the visible disc, the disc of radius k about k i_xy) and N (GhsSettings' normalisations: K making the
+// albedo R, the disc mass, or 1) depend on the incidence azimuth phi_i as well as theta_i; the periodogram is even,
+// so they are pi-periodic in phi_i. Per wavelength node (GhsBsdf's, from kMinWavelength up) and azimuth node
+// (kAzimuthNodes uniform over [0, pi)) ln sigma and ln(N / cos^p theta_i) are GhsBsdf's cubics over cos theta_i;
+// between azimuth nodes the periodic 4-point Lagrange cubic, between wavelength nodes linear. A table is 64 x
+// kAzimuthNodes pairs of visible-disc integrals (sigma: P-hat's lattice sum over the disc; N: the midpoint sum of the
+// lobe over the nodes of the finest row lattice it reads; both with rim weights that keep them continuous in the
+// incidence, SpectrumLobes2d::disc_sum), built lazily and kept in the disk cache under a key naming the lobes.
+// Accuracy (MapGhs.TablesMatchDirectValues, against direct() between the nodes): sigma within 2e-3 and N within 5e-3
+// (sigma_rel is a lattice sum, a step function of the incidence between the lattice points' crossings of the disc's
+// rim, which the cubics smooth).
+// Wavelengths below kMinWavelength are an Error (the lobes' g range and their lattice's coverage, 2 k there).
+// Sampling: the delta with probability e^{-g0}; otherwise zeta from the lobes' tabulated distribution at g0
+// (SpectrumLobes2d::sample), mapped to o_xy = zeta / k - i_xy; a draw outside the visible disc is a failed sample, so
+// the pdf is the exact sub-probability density pdf(o) = (1 - e^{-g0}) k^2 cos theta_o p(zeta).
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "surfscatter/bsdf/bsdf.hpp"
+#include "surfscatter/bsdf/ghs.hpp"
+#include "surfscatter/bsdf/incidence_tables.hpp"
+#include "surfscatter/bsdf/lazy_slots.hpp"
+#include "surfscatter/bsdf/model_options.hpp"
+#include "surfscatter/material/conductor.hpp"
+#include "surfscatter/surface/spectrum_lobes_2d.hpp"
+
+namespace surfscatter::bsdf {
+
+class MapGhsBsdf final : public Bsdf {
+public:
+    static constexpr int kAzimuthNodes = 24;        // phi_i over [0, pi)
+    static constexpr double kMinWavelength = 360;   // nm
+
+    // ssa: nullopt for the full GHS lobe, else the SSA form (its first-order lobe).
+    MapGhsBsdf(std::shared_ptr<const surface::SpectrumLobes2d> lobes, std::optional<SsaForm> ssa,
+               material::Conductor material, GhsSettings settings);
+
+    double eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const override;
+    std::optional<BsdfSample> sample(const Vec3& wi, double lambda_nm, double u_lobe, Vec2 u) const override;
+    double pdf(const Vec3& wi, const Vec3& wo, double lambda_nm) const override;
+    double delta_reflectance(const Vec3& wi, double lambda_nm) const override;
+    double delta_probability(const Vec3& wi, double lambda_nm) const override;
+    std::string name() const override { return settings_.name; }
+    bool isotropic() const override { return false; }
+
+    const surface::SpectrumLobes2d& lobes() const { return *lobes_; }
+    // The roughness used in g (um) and N for incidence wi (local frame), as tabulated.
+    double sigma(const Vec3& wi, double lambda_nm) const { return std::exp(lookup(wi, lambda_nm).log_sigma); }
+    double normalization(const Vec3& wi, double lambda_nm) const {
+        return std::exp(lookup(wi, lambda_nm).log_norm) * norm_power(wi.z);
+    }
+    // The lobe density at g and zeta (eval without Fresnel, N and k^2).
+    double density(double g, Vec2 zeta) const;
+    // sigma and N computed directly for incidence wi: the reference of the tabulation.
+    GhsBsdf::Direct direct(const Vec3& wi, double lambda_nm) const;
+
+private:
+    using AzimuthTables = std::array<IncidenceTable, kAzimuthNodes>;
+    struct Incidence { double k, log_sigma, log_norm; };
+    Incidence lookup(const Vec3& wi, double lambda_nm) const;
+    double norm_power(double cos_theta_i) const {
+        return settings_.normalization == LobeNormalization::albedo ? cos_theta_i * cos_theta_i : 1.0;
+    }
+    double eval(const Vec3& wi, const Vec3& wo, double lambda_nm, const Incidence& in) const;
+    double pdf(const Vec3& wi, const Vec3& wo, const Incidence& in) const;
+    AzimuthTables cached_tables(double lambda_nm) const;
+    AzimuthTables build_tables(double lambda_nm) const;
+
+    std::shared_ptr<const surface::SpectrumLobes2d> lobes_;
+    std::optional<SsaForm> ssa_;
+    material::Conductor material_;
+    GhsSettings settings_;
+    LazySlots<AzimuthTables> tables_;  // one per wavelength node
+};
+
+// The lobes of a map's periodogram for every g these models reach at wavelengths >= MapGhsBsdf::kMinWavelength
+// (g <= (2 k sigma_h)^2 with a margin for the tables' interpolation of sigma).
+std::shared_ptr<const surface::SpectrumLobes2d> map_lobes(const surface::Psd2d& spectrum);
+
+}  // namespace surfscatter::bsdf
