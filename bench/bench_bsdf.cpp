@@ -1,6 +1,6 @@
 // eval / sample / pdf of every scattering model at g0 = 0.1, 10, 1000 (theta_i = 30 deg, 550 nm, KC gamma = 3,
 // L = 1 um, perfect conductor), and eval with varying incidence and wavelength; ghs_measured is exact GHS on the
-// measured route (`--psd measured`, map_statistics.hpp) of a 1024^2 map of that KC surface at 0.05 um, and
+// measured route's ring average (`--psd measured --measured-spectrum ring`, map_statistics.hpp) of a 1024^2 map of that KC surface at 0.05 um, and
 // BM_measured_tables builds its tables from nothing (the disk cache pointed at an empty folder). The per-wavelength tables (sigma_rel,
 // K) are built before timing. aniso_ghs_exact / aniso_ghs_ssa: the same surfaces made elliptical (LV = 0.4 LU, lay angle
 // 30 deg; AnisotropicGhsBsdf), aniso_two_scale two_scale's (N 50). BM_eval_packet: the renderer's four-wavelength
@@ -66,6 +66,7 @@ ModelOptions options_for(int model, double g) {
         default: {
             o.model = ModelKind::ghs;
             o.surface.psd = PsdKind::measured;
+            o.surface.measured_spectrum = MeasuredSpectrum::ring;  // the ring route (bench_map_ghs: the 2-D one)
             o.surface.surface_file = "kc-1024.gsf";  // named for reports; the map is given
             o.surface.height_map = std::make_shared<const surface::HeightMap>(surface::synthesize_surface(
                 surface::KCorrelation(o.surface.sigma, 1.0, 3.0), {1024, 1024, 0.05}, 1));

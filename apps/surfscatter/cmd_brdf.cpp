@@ -286,7 +286,7 @@ void add_model_options(CLI::App* cmd, BrdfArgs& a, bool several_thetas) {
     cmd->add_option("--material", a.material, "required: built-in metal (Au, Ag, Al, Cu, ...), n,k file, or perfect "
                                               "(a perfect conductor, R = 1)");
     cmd->add_option("--psd", a.psd, "surface statistics: kc | gaussian | file (KC fitted to --surface) | measured "
-                                    "(the --surface map's own radial PSD)");
+                                    "(the --surface map's own spectrum: --measured-spectrum)");
     cmd->add_option("--psd-fit", a.psd_fit, "--psd file: the KC fitted to --surface is isotropic (default) | elliptical "
                                             "(LU, LV and lay angle fitted to the 2-D PSD; docs/SURFACE.md)");
     cmd->add_option("--sigma", a.sigma, "rms height (um); --sigma, --corr-length, --gamma alone mean --psd kc");

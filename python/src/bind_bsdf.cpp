@@ -73,6 +73,10 @@ const std::map<std::string, Setter>& option_setters() {
         {"form", [](ModelOptions& o, py::handle v, const char* n) { o.surface.form = surface::parse_form(text_option(v, n), n); }},
         {"psd_fit",
          [](ModelOptions& o, py::handle v, const char* n) { o.surface.psd_fit = bsdf::parse_psd_fit(text_option(v, n), n); }},
+        {"measured_spectrum",
+         [](ModelOptions& o, py::handle v, const char* n) {
+             o.surface.measured_spectrum = bsdf::parse_measured_spectrum(text_option(v, n), n);
+         }},
     };
     return setters;
 }
@@ -191,7 +195,8 @@ py::dict options_dict(const ModelOptions& o) {
                     "corr_length"_a = o.surface.corr_length, "gamma"_a = o.surface.gamma,
                     "corr_length_v"_a = o.surface.corr_length_v, "lay_angle_deg"_a = o.surface.lay_angle,
                     "surface_file"_a = o.surface.surface_file, "form"_a = surface::to_string(o.surface.form),
-                    "psd_fit"_a = to_string(o.surface.psd_fit));
+                    "psd_fit"_a = to_string(o.surface.psd_fit),
+                    "measured_spectrum"_a = to_string(o.surface.measured_spectrum));
 }
 
 Vec3 vec(const double* v) { return {v[0], v[1], v[2]}; }
@@ -282,7 +287,9 @@ Keyword options, named and spelled as in the XML plugins and bsdf::ModelOptions:
     | 'smoothed' | 'kc_link' | 'none', smoothing (um),
     cutoff_wavelengths (two-scale N), macro_ndf 'ggx' | 'beckmann', form 'none' | 'plane' | 'poly2'..'poly4',
     psd_fit 'isotropic' (default) | 'elliptical' (a height map's KC fit: the elliptical one makes ghs, ghs_ssa and
-    ggx_stats anisotropic, with the fitted LU, LV and lay angle; psd 'file' only).
+    ggx_stats anisotropic, with the fitted LU, LV and lay angle; psd 'file' only),
+    measured_spectrum '2d' (default with psd 'measured': ghs and ghs_ssa on the map's 2-D spectrum) | 'ring' (its
+    ring average, as before).
 Unknown options, bad values and missing parameters raise surfscatter.Error with the library's message.
 Building a model may tabulate its lobes (seconds the first time; cached on disk, $SURFSCATTER_CACHE_DIR).
 

@@ -13,6 +13,7 @@
 #include "lobe_distance.hpp"
 #include "model_fixtures.hpp"
 #include "surfscatter/bsdf/factory.hpp"
+#include "surfscatter/bsdf/ggx.hpp"
 #include "surfscatter/bsdf/map_ghs.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/surface/map_statistics.hpp"
@@ -184,4 +185,39 @@ TEST(MapGhs, EllipticalMapFollowsTheAnisotropicGhs) {
     std::printf("elliptical map: lobe distance to the anisotropic GHS, 2d %.3g, ring %.3g\n", d_two_d, d_ring);
     EXPECT_LT(d_two_d, 0.2);
     EXPECT_LT(d_two_d, 0.5 * d_ring);
+}
+
+// ggx_stats on an elliptical Gaussian-ACV map: alpha_u, alpha_v and the lay from the map's slope covariance against
+// the elliptical GGX of the statistics it was synthesised from (sqrt(2 <h_axis^2>), factory.cpp), statistical (one
+// 512^2 realisation 25 LU wide); the ring route keeps the isotropic rms slope.
+TEST(MapGhs, GgxTakesTheSlopeCovariance) {
+    const double sigma = 0.05, lu = 1.0, lv = 0.4, lay = 30.0;
+    const surface::HeightMap map = surface::synthesize_surface(
+        surface::EllipticalStatistics(std::make_shared<surface::GaussianAcv>(sigma, lu), lv, lay * kDegree),
+        {512, 512, 0.05}, 17);
+    ModelOptions truth;
+    truth.model = ModelKind::ggx;
+    truth.surface.psd = PsdKind::gaussian;
+    truth.surface.sigma = sigma;
+    truth.surface.corr_length = lu;
+    truth.surface.corr_length_v = lv;
+    truth.surface.lay_angle = lay;
+    const auto expected = make_bsdf(truth);
+    ModelOptions o = map_options(ModelKind::ggx, nullptr);
+    o.surface.measured_psd = nullptr;
+    o.surface.surface_file = "elliptical map";
+    o.surface.height_map = std::make_shared<const surface::HeightMap>(map);
+    std::vector<std::string> notes;
+    const auto two_d = make_bsdf(o, &notes);
+    const auto& g = dynamic_cast<const GgxBsdf&>(*two_d);
+    const auto& e = dynamic_cast<const GgxBsdf&>(*expected);
+    std::printf("slope covariance: alpha_u %.4g (truth %.4g), alpha_v %.4g (%.4g), lay %.3g deg\n", g.alpha_uv(kLambda).x,
+                e.alpha_uv(kLambda).x, g.alpha_uv(kLambda).y, e.alpha_uv(kLambda).y, g.lay_angle() / kDegree);
+    EXPECT_NEAR(g.alpha_uv(kLambda).x / e.alpha_uv(kLambda).x, 1.0, 0.05);
+    EXPECT_NEAR(g.alpha_uv(kLambda).y / e.alpha_uv(kLambda).y, 1.0, 0.05);
+    EXPECT_NEAR(std::remainder(g.lay_angle() / kDegree - lay, 180.0), 0.0, 3.0);
+    EXPECT_NE(notes.back().find("slope covariance"), std::string::npos) << notes.back();
+    o.surface.measured_spectrum = MeasuredSpectrum::ring;
+    const auto ring = make_bsdf(o);
+    EXPECT_TRUE(ring->isotropic());
 }

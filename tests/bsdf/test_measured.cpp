@@ -43,6 +43,7 @@ ModelOptions from_map(const fs::path& path, PsdKind psd) {
     ModelOptions o;
     o.surface.psd = psd;
     o.surface.surface_file = path.string();
+    o.surface.measured_spectrum = MeasuredSpectrum::ring;  // this file tests the ring route (test_map_ghs.cpp: 2d)
     return o;
 }
 

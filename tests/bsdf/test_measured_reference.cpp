@@ -97,6 +97,7 @@ TEST(MeasuredReference, GhsMatchesEquationsOneAndTwoOnTheMapsOwnPeriodogram) {
         ModelOptions o;
         o.model = ModelKind::ghs;
         o.surface.psd = PsdKind::measured;
+        o.surface.measured_spectrum = MeasuredSpectrum::ring;  // the ring route is what eq. 1-2 is evaluated on here
         o.surface.surface_file = "exact-amplitude map";
         o.surface.form = surface::Form::none;
         o.surface.height_map = map;
@@ -167,6 +168,7 @@ TEST(MeasuredReference, NonStationaryMapIsNamedInTheNotes) {
         ModelOptions o;
         o.model = ModelKind::ghs_ssa;
         o.surface.psd = PsdKind::measured;
+        o.surface.measured_spectrum = MeasuredSpectrum::ring;  // the ring route is what eq. 1-2 is evaluated on here
         o.surface.surface_file = "map";
         o.surface.height_map = std::make_shared<const surface::HeightMap>(n, n, dx, dx, std::move(heights), "map");
         std::vector<std::string> notes;

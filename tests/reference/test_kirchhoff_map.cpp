@@ -211,6 +211,7 @@ TEST(KirchhoffMap, AgreesWithGhsNearNormalIncidence) {
         ASSERT_EQ(r.subareas, 16u);
         surfscatter::bsdf::ModelOptions model;  // GHS with the PSD measured on this map
         model.surface.psd = surfscatter::bsdf::PsdKind::measured;
+        model.surface.measured_spectrum = surfscatter::bsdf::MeasuredSpectrum::ring;  // the tolerances are the ring route's
         model.surface.measured_psd = std::make_shared<const ss::MapStatistics>(map, ss::Form::none);
         const auto ghs = surfscatter::bsdf::make_bsdf(model);
         const surfscatter::Vec3 wi{std::sin(theta_i * kDegree), 0, std::cos(theta_i * kDegree)};

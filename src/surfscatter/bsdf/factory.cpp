@@ -352,14 +352,42 @@ GhsSettings ghs_settings(const ModelOptions& o) {
     return settings;
 }
 
+// ggx_stats with psd measured 2d: the anisotropic GGX of the map's slope covariance (surface::slope_covariance, of the
+// Gaussian-smoothed map for alpha_from smoothed), per principal axis the Beckmann convention of elliptical_ggx,
+// alpha = sqrt(2 <h_axis^2>), u the axis of least slope; an isotropic map gives alpha_u ~ alpha_v ~ its rms slope.
+std::unique_ptr<Bsdf> map_slope_ggx(const ModelOptions& o, SurfaceSource& surface, const material::Conductor& material,
+                                    std::vector<std::string>* notes) {
+    surface.measured(notes);  // the measured route's checks and notes, as for the other models
+    const double smoothing = slope_smoothing(o);
+    const surface::SlopeCovariance c =
+        smoothing > 0 ? surface::slope_covariance(surface::gaussian_smooth(*surface.map(), smoothing, surface.form()),
+                                                  surface::Form::none)
+                      : surface::slope_covariance(*surface.map(), surface.form());
+    const auto axes = c.axes();
+    const Vec2 alpha(checked_slope_alpha(o, smoothing, std::sqrt(2 * axes.along_u), "alpha_u"),
+                     checked_slope_alpha(o, smoothing, std::sqrt(2 * axes.along_v), "alpha_v"));
+    if (notes)
+        notes->push_back(fmt::format("ggx_stats on the measured map's slope covariance: alpha_u {:.4g}, alpha_v {:.4g}, "
+                                     "lay angle {:.4g} deg (measured_spectrum ring for the isotropic rms slope)",
+                                     alpha.x, alpha.y, axes.angle_u / kDegree));
+    return std::make_unique<GgxBsdf>(material, alpha, axes.angle_u);
+}
+
 // psd measured with measured_spectrum 2d (model_options.hpp): ghs (exact) and ghs_ssa on the map's 2-D periodogram
-// (map_ghs.hpp); null for the models that take the ring average (two_scale, saying so).
+// (map_ghs.hpp); null for the models that keep what they took before (two_scale the ring average, ggx_stats the map's
+// isotropic slope), saying so.
 std::unique_ptr<Bsdf> map_spectrum_bsdf(const ModelOptions& o, SurfaceSource& surface, const material::Conductor& material,
                                         std::vector<std::string>* notes) {
-    if (o.model == ModelKind::two_scale) {
+    if (o.model == ModelKind::ggx && surface.map() &&
+        (o.alpha_from == AlphaFrom::measured || o.alpha_from == AlphaFrom::smoothed))
+        return map_slope_ggx(o, surface, material, notes);
+    if (o.model == ModelKind::two_scale || o.model == ModelKind::ggx) {
         if (notes)
-            notes->push_back("two_scale takes the ring average of the measured PSD (measured_spectrum 2d applies to ghs "
-                             "and ghs_ssa)");
+            notes->push_back(o.model == ModelKind::two_scale
+                                 ? "two_scale takes the ring average of the measured PSD (measured_spectrum 2d applies "
+                                   "to ghs, ghs_ssa and ggx_stats)"
+                                 : "ggx_stats without the height map itself (measured statistics given) takes the "
+                                   "isotropic rms slope of the ring average");
         return nullptr;
     }
     if (o.model != ModelKind::ghs && o.model != ModelKind::ghs_ssa) return nullptr;

@@ -49,8 +49,9 @@ struct SurfaceOptions {
     std::shared_ptr<const surface::HeightMap> height_map;
     // psd measured only: a map's statistics estimated already (Python's measured_statistics()), used instead of a map.
     std::shared_ptr<const surface::MapStatistics> measured_psd;
-    // psd measured only: the models ghs (exact) and ghs_ssa on the map's 2-D periodogram (bsdf/map_ghs.hpp), ggx_stats
-    // with alpha_u / alpha_v from its slope covariance; ring: the ring average for every model (two_scale always).
+    // psd measured only: 2d, the models ghs (exact) and ghs_ssa on the map's 2-D periodogram (bsdf/map_ghs.hpp) and
+    // ggx_stats on the map's slope covariance (alpha_u, alpha_v, lay angle); ring, the ring average and the isotropic
+    // rms slope as before. two_scale takes the ring average either way (its note says so).
     MeasuredSpectrum measured_spectrum = MeasuredSpectrum::two_d;
 };
 

@@ -51,6 +51,28 @@ Vec2 slope_variances_lay(const HeightMap& map, double lay_angle_rad, Form form) 
     return {sum_u / static_cast<double>(count), sum_v / static_cast<double>(count)};
 }
 
+SlopeCovariance slope_covariance(const HeightMap& map, Form form) {
+    const HeightMap flat = remove_form(map, form);
+    SlopeCovariance c;
+    const std::size_t count = for_each_gradient(flat, map.origin(), [&](double gx, double gy) {
+        c.xx += gx * gx;
+        c.yy += gy * gy;
+        c.xy += gx * gy;
+    });
+    const double n = static_cast<double>(count);
+    c.xx /= n;
+    c.yy /= n;
+    c.xy /= n;
+    return c;
+}
+
+SlopeCovariance::Axes SlopeCovariance::axes() const {
+    // Eigenvalues of [[xx, xy], [xy, yy]]; the larger one's eigenvector at 0.5 atan2(2 xy, xx - yy) from x.
+    const double mean = 0.5 * (xx + yy), half = 0.5 * (xx - yy), r = std::hypot(half, xy);
+    const double major = 0.5 * std::atan2(2.0 * xy, xx - yy);
+    return {std::max(0.0, mean - r), mean + r, major + 0.5 * kPi};
+}
+
 namespace {
 
 // G * v by FFT of the 2nx x 2ny mirror extension of v (nx x ny row-major).

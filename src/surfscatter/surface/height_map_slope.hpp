@@ -21,6 +21,15 @@ double rms_slope(const HeightMap& map, Form form = Form::plane);
 // towards y) and v, from the same central differences: <h_u^2> + <h_v^2> = rms_slope^2 up to round-off.
 Vec2 slope_variances_lay(const HeightMap& map, double lay_angle_rad, Form form = Form::plane);
 
+// The slope covariance <g g^T> of the same gradients (xx = <(dh/dx)^2>, yy, xy), and its principal axes: the variance
+// along u, the direction of least slope (along a lay's marks), and across it along v, and u's angle from x (rad).
+struct SlopeCovariance {
+    double xx = 0, yy = 0, xy = 0;
+    struct Axes { double along_u, along_v, angle_u; };
+    Axes axes() const;
+};
+SlopeCovariance slope_covariance(const HeightMap& map, Form form = Form::plane);
+
 // The form-removed map convolved with a Gaussian of standard deviation `smoothing_um` (transfer function
 // exp(-s^2 zeta^2 / 2)), computed by FFT on the mirror-extended map (2nx x 2ny, even reflection at every edge), so
 // that the borders see a continuation of the surface instead of the opposite edge. With invalid points it is the

@@ -206,9 +206,8 @@ SpectrumLobes2d::SpectrumLobes2d(const Psd2d& spectrum, double g_max) : g_max_(g
 
     // 3. Rows.
     double edge = 0;
-    rows_.push_back(make_row(unit, 1.0, edge));
+    rows_.push_back(make_row(unit, 1.0, edge));  // on the map's own lattice: its edge is the band's, nothing folds
     row_g_.push_back(0.0);
-    edge_fraction_ = edge;
     const int last = int(std::ceil(std::log10(g_max / kMinG) * kRowsPerDecade - 1e-9));
     for (int n = 0; n <= std::max(last, 3); ++n) {  // at least the 4 rows of one cubic stencil
         const double g = kMinG * std::pow(10.0, double(n) / kRowsPerDecade);

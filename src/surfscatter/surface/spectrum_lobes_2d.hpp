@@ -13,8 +13,8 @@
 //    interpolation onto a lattice p times finer): p the smallest integer with p * Nyquist >= kCoverage (2 k at
 //    360 nm), at most kMaxLattice / (larger side). e^{g rho} then carries the self-convolutions, which spread beyond
 //    Nyquist (order m reaches m Nyquist), out to p * Nyquist; what an order would put beyond p * Nyquist folds back
-//    (the lattice is periodic): edge_fraction() reports the largest share of any row's mass in the outer quarter of
-//    its lattice, the measure of that folding, and the models pass it on in their notes.
+//    (the lattice is periodic): edge_fraction() reports the largest share of any g > 0 row's mass in the outer quarter
+//    of its lattice, the measure of that folding, and the models pass it on in their notes.
 // 3. Rows: g -> 0 (P-hat itself) and kRowsPerDecade log-spaced g from kMinG up to the g_max given. For each g,
 //    f = e^{-g (1 - rho)} - e^{-g} on the fine lattice cropped to the square window outside which f < kCropValue f(0)
 //    (the whole lattice for small g: f ~ g rho there; a few correlation lengths for large g, where the lobe is wide

@@ -99,13 +99,15 @@ void read_surface_options(Properties& props, bsdf::ModelOptions& o) {
     if (const auto fit = read_choice(props, "psd_fit", bsdf::parse_psd_fit)) o.surface.psd_fit = *fit;
     const std::string form = props.get_string("form", "");
     if (!form.empty()) o.surface.form = surface::parse_form(form, "form");
+    if (const auto spectrum = read_choice(props, "measured_spectrum", bsdf::parse_measured_spectrum))
+        o.surface.measured_spectrum = *spectrum;
     if (const auto fresnel = read_choice(props, "fresnel", bsdf::parse_fresnel)) o.fresnel = *fresnel;
 }
 
 // An option given in the scene that the model and modes chosen do not use is an error at its line (the CLI's rule).
 void check_applicable(Properties& props, const bsdf::ModelOptions& o, const std::string& type) {
     for (const char* name : {"material", "psd", "sigma", "corr_length", "corr_length_v", "lay_angle", "gamma",
-                             "surface_file", "form", "psd_fit", "fresnel",
+                             "surface_file", "form", "psd_fit", "measured_spectrum", "fresnel",
                              "method", "truncation", "epsilon", "renormalization", "ssa_form", "alpha_from",
                              "smoothing", "alpha", "cutoff_wavelengths", "macro_ndf"})
         if (props.has(name))
