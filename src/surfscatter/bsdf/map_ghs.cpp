@@ -8,6 +8,7 @@
 
 #include "surfscatter/bsdf/wedge_sampling.hpp"  // wavenumber
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/math/fast_math.hpp"
 
 namespace surfscatter::bsdf {
 
@@ -41,7 +42,7 @@ MapGhsBsdf::MapGhsBsdf(std::shared_ptr<const surface::SpectrumLobes2d> lobes, st
 
 double MapGhsBsdf::density(double g, Vec2 zeta) const {
     if (!ssa_) return lobes_->eval(g, zeta);
-    const double weight = *ssa_ == SsaForm::strict ? g : -std::expm1(-g);
+    const double weight = *ssa_ == SsaForm::strict ? g : math::one_minus_exp(g);
     return weight * lobes_->first_order(zeta);
 }
 
@@ -90,9 +91,9 @@ double MapGhsBsdf::eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const 
 }
 
 double MapGhsBsdf::eval(const Vec3& wi, const Vec3& wo, double lambda_nm, const Incidence& in) const {
-    const double k = in.k, a = k * std::exp(in.log_sigma) * (wi.z + wo.z);
+    const double k = in.k, a = k * math::fast_exp(in.log_sigma) * (wi.z + wo.z);
     const double lobe = density(a * a, Vec2(k * (wi.x + wo.x), k * (wi.y + wo.y)));
-    const double f = lobe_fresnel(material_, settings_.fresnel, wi, wo, lambda_nm) * std::exp(in.log_norm) *
+    const double f = lobe_fresnel(material_, settings_.fresnel, wi, wo, lambda_nm) * math::fast_exp(in.log_norm) *
                      norm_power(wi.z) * k * k * lobe;
     return std::isfinite(f) ? f : 0.0;
 }

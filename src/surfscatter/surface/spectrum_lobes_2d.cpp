@@ -5,11 +5,13 @@
 #include <complex>
 #include <cstdint>
 #include <cstring>
+#include <numbers>
 
 #include <fftw3.h>
 #include <fmt/format.h>
 
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/math/fast_math.hpp"
 #include "surfscatter/surface/fftw_planner.hpp"
 #include "surfscatter/surface/height_map_fft.hpp"
 
@@ -84,6 +86,8 @@ SpectrumLobes2d::Row make_row(const Centred& c, double mass, double& edge) {
     row.half_y = (dy + s - 1) / s;
     row.hx = double(s) * c.dzx;
     row.hy = double(s) * c.dzy;
+    row.inv_hx = 1.0 / row.hx;
+    row.inv_hy = 1.0 / row.hy;
     row.value.assign(std::size_t((2 * row.half_x + 1) * (2 * row.half_y + 1)), 0.0);
     const long h = (s - 1) / 2;
     const double floor = 1e-12 * peak;
@@ -138,7 +142,7 @@ std::uint64_t fnv1a(const void* data, std::size_t bytes, std::uint64_t h = 14695
 }  // namespace
 
 double SpectrumLobes2d::Row::at(Vec2 zeta) const {
-    const double u = zeta.x / hx + double(half_x), v = zeta.y / hy + double(half_y);
+    const double u = zeta.x * inv_hx + double(half_x), v = zeta.y * inv_hy + double(half_y);
     const double nx = double(2 * half_x), ny = double(2 * half_y);
     if (!(u >= 0 && u <= nx && v >= 0 && v <= ny)) return 0.0;
     const long i = std::min(long(u), std::max(2 * half_x - 1, 0L)), j = std::min(long(v), std::max(2 * half_y - 1, 0L));
@@ -278,7 +282,7 @@ double SpectrumLobes2d::shape(double g, Vec2 zeta) const {
         return m.wa * rows_[m.a].at(zeta) + m.wb * rows_[m.b].at(zeta);
     }
     // Cubic Lagrange in ln g over the 4 rows around it (one-sided at the ends).
-    const double t = std::log(g / kMinG) / std::log(10.0) * kRowsPerDecade;
+    const double t = math::fast_log(g * (1.0 / kMinG)) * (kRowsPerDecade / std::numbers::ln10);
     const long nodes = long(rows_.size()) - 1;  // rows 1 .. nodes at t = 0 .. nodes - 1
     const long first = std::clamp(long(t) - 1, 0L, nodes - 4);
     const double u = t - double(first);
@@ -289,7 +293,7 @@ double SpectrumLobes2d::shape(double g, Vec2 zeta) const {
     return std::max(sum, 0.0);  // the cubic's undershoot where a row is 0 and its neighbours are not
 }
 
-double SpectrumLobes2d::eval(double g, Vec2 zeta) const { return g > 0 ? -std::expm1(-g) * shape(g, zeta) : 0.0; }
+double SpectrumLobes2d::eval(double g, Vec2 zeta) const { return g > 0 ? math::one_minus_exp(g) * shape(g, zeta) : 0.0; }
 
 double SpectrumLobes2d::first_order(Vec2 zeta) const { return rows_[0].at(zeta); }
 

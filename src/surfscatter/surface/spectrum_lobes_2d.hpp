@@ -93,6 +93,7 @@ public:
 
     struct Row {
         double hx = 0, hy = 0;     // node spacing, rad/um
+        double inv_hx = 0, inv_hy = 0;
         long half_x = 0, half_y = 0;  // nodes -half .. half per axis
         double raw_mass = 0;       // the row's mass before scaling to 1 (what the crops left, in units of 1 - e^{-g})
         std::vector<double> value; // unit-mass shape at the nodes, [(j + half_y) * (2 half_x + 1) + (i + half_x)]
