@@ -249,6 +249,19 @@ def test_measured_statistics_is_a_surface_and_equals_psd_measured():
     np.testing.assert_allclose(from_psd.eval(wi, wo, 500.0), from_map.eval(wi, wo, 500.0), rtol=1e-12)
 
 
+def test_measured_spectrum_2d_or_ring_as_at_the_cli():
+    height_map = ss.synthesize(ss.KCorrelation(0.05, 1.0, 3.0), 128, spacing_um=0.1, seed=3)
+    with pytest.warns(UserWarning, match="measured 2-D spectrum"):
+        two_d = ss.bsdf("ghs", surface=height_map, psd="measured", material="perfect")
+    with pytest.warns(UserWarning):
+        ring = ss.bsdf("ghs", surface=height_map, psd="measured", measured_spectrum="ring", material="perfect")
+    assert two_d.options["measured_spectrum"] == "2d" and ring.options["measured_spectrum"] == "ring"
+    wi, wo = ss.direction(20.0), ss.direction(THETA_O, 180.0)
+    assert not np.allclose(two_d.eval(wi, wo, 500.0), ring.eval(wi, wo, 500.0), rtol=1e-6)
+    with pytest.raises(ss.Error, match="measured_spectrum does not apply to model ghs: used with psd measured only"):
+        ss.bsdf("ghs", surface=ss.KCorrelation(**KC), measured_spectrum="ring", material="perfect")
+
+
 def test_version_is_the_cli_version():
     assert ss.__version__ == run_cli("--version").split()[-1] and ss.__version__.count(".") == 2
 

@@ -137,6 +137,25 @@ TEST(CliBrdf, MeasuredPsdRouteAndOverlay) {
                               "--theta-o", "10"});
     EXPECT_EQ(bad.exit_code, 2);
     EXPECT_NE(bad.err.find("--surface takes --psd file"), std::string::npos) << bad.err;
+    // --measured-spectrum: 2d (the default, its own note) or ring (the ring average, as before); with another psd an
+    // error naming it.
+    EXPECT_NE(r.err.find("note: measured 2-D spectrum"), std::string::npos) << r.err;
+    const auto ring = run_cli({"brdf", "eval", "--model", "ghs", "--psd", "measured", "--measured-spectrum", "ring",
+                               "--surface", map, "--material", "perfect", "--wavelength", "550", "--theta-i", "30",
+                               "--theta-o", "10,30,50"});
+    ASSERT_EQ(ring.exit_code, 0) << ring.err;
+    EXPECT_EQ(ring.err.find("2-D spectrum"), std::string::npos) << ring.err;
+    EXPECT_NE(ring.out, r.out);
+    const auto refused = run_cli({"brdf", "eval", "--model", "ghs", "--sigma", "0.05", "--corr-length", "1", "--gamma",
+                                  "3", "--measured-spectrum", "ring", "--material", "perfect", "--wavelength", "550",
+                                  "--theta-i", "30", "--theta-o", "10"});
+    EXPECT_EQ(refused.exit_code, 2);
+    EXPECT_NE(refused.err.find("--measured-spectrum does not apply"), std::string::npos) << refused.err;
+    const auto typo = run_cli({"brdf", "eval", "--model", "ghs", "--psd", "measured", "--measured-spectrum", "3d",
+                               "--surface", map, "--material", "perfect", "--wavelength", "550", "--theta-i", "30",
+                               "--theta-o", "10"});
+    EXPECT_EQ(typo.exit_code, 2);
+    EXPECT_NE(typo.err.find("--measured-spectrum must be one of 2d | ring, got '3d'"), std::string::npos) << typo.err;
     std::filesystem::remove_all(dir);
 }
 
