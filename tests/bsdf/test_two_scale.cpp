@@ -61,9 +61,9 @@ TEST(TwoScale, MicroLobeMatchesIndependentQuadrature) {
                 for (double theta_i : {45.0, 70.0}) {
                     const auto in = ref.incidence(theta_i * kDegree, lambda);
                     const double c = std::cos(theta_i * kDegree);
-                    const auto& micro = dynamic_cast<const GhsBsdf&>(two_scale.micro());
-                    EXPECT_NEAR(micro.sigma(c, lambda), in.sigma_rel, 2e-4 * in.sigma_rel);
-                    EXPECT_NEAR(micro.normalization(c, lambda), in.norm, 2e-3 * in.norm);
+                    const auto& micro_lobe = dynamic_cast<const GhsBsdf&>(two_scale.micro());
+                    EXPECT_NEAR(micro_lobe.sigma(c, lambda), in.sigma_rel, 2e-4 * in.sigma_rel);
+                    EXPECT_NEAR(micro_lobe.normalization(c, lambda), in.norm, 2e-3 * in.norm);
                     const double macro_weight = std::exp(-std::pow(2 * in.k * in.sigma_rel * c, 2));
                     const Vec3 wi = spherical_direction(theta_i * kDegree, 0.0);
                     double worst = 0, worst_micro = 0, worst_theta = 0;

@@ -182,19 +182,16 @@ AnisotropicGhsBsdf::AzimuthTables AnisotropicGhsBsdf::cached_tables(double lambd
 
 AnisotropicGhsBsdf::AzimuthTables AnisotropicGhsBsdf::build_tables(double lambda_nm) const {
     AzimuthTables tables;
-    std::array<double, kGhsThetaNodes> x{}, log_sigma{}, log_norm{};
     for (int a = 0; a < kAzimuthNodes; ++a) {
         const double phi_r = 0.5 * std::acos(std::clamp(-1.0 + 2.0 * a / kLastAzimuth, -1.0, 1.0));
         const Vec2 along = stats_->from_lay({std::cos(phi_r), std::sin(phi_r)});
-        for (int j = 0; j < kGhsThetaNodes; ++j) {
-            x[j] = kIncidenceAxis.node(j);
-            const double s = std::sqrt(std::max(0.0, 1.0 - x[j] * x[j]));
-            const GhsBsdf::Direct d = direct(Vec3(s * along.x, s * along.y, x[j]), lambda_nm);
-            // Finite logarithms even for sigma = 0 or N = 0, for the interpolation.
-            log_sigma[j] = std::log(std::max(d.sigma, std::numeric_limits<double>::min()));
-            log_norm[j] = std::log(std::max(d.norm / norm_power(x[j]), std::numeric_limits<double>::min()));
-        }
-        tables[std::size_t(a)] = fit_incidence_table(x, log_sigma, log_norm);
+        tables[std::size_t(a)] = tabulate_incidence(
+            kIncidenceAxis,
+            [&](double cos_theta_i) {
+                const double s = std::sqrt(std::max(0.0, 1.0 - cos_theta_i * cos_theta_i));
+                return direct(Vec3(s * along.x, s * along.y, cos_theta_i), lambda_nm);
+            },
+            [this](double c) { return norm_power(c); });
     }
     return tables;
 }

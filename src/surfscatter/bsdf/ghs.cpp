@@ -179,15 +179,9 @@ GhsBsdf::Table GhsBsdf::cached_table(double lambda_nm) const {
 }
 
 GhsBsdf::Table GhsBsdf::build_table(double lambda_nm) const {
-    std::array<double, kThetaNodes> x{}, log_sigma{}, log_norm{};
-    for (int j = 0; j < kThetaNodes; ++j) {
-        x[j] = kIncidenceAxis.node(j);
-        const Direct d = direct(std::acos(x[j]), lambda_nm);
-        // Finite logarithms even for sigma = 0 or N = 0, for the interpolation.
-        log_sigma[j] = std::log(std::max(d.sigma, std::numeric_limits<double>::min()));
-        log_norm[j] = std::log(std::max(d.norm / norm_power(x[j]), std::numeric_limits<double>::min()));
-    }
-    return fit_incidence_table(x, log_sigma, log_norm);
+    return tabulate_incidence(
+        kIncidenceAxis, [&](double cos_theta_i) { return direct(std::acos(cos_theta_i), lambda_nm); },
+        [this](double c) { return norm_power(c); });
 }
 
 GhsBsdf::Direct GhsBsdf::direct(double theta_i, double lambda_nm) const {

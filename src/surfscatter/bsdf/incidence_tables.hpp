@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <cmath>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -44,6 +46,20 @@ using IncidenceTable = std::array<CubicPairInterval, kGhsThetaNodes - 1>;  // ov
 IncidenceTable fit_incidence_table(const std::array<double, kGhsThetaNodes>& x,
                                    const std::array<double, kGhsThetaNodes>& first,
                                    const std::array<double, kGhsThetaNodes>& second);
+
+// The table of ln sigma and ln(N / norm_power(x)) at `axis`'s nodes x = cos theta_i, from direct_at(x) (a value with
+// .sigma and .norm, e.g. GhsBsdf::Direct); each logarithm finite even for sigma = 0 or N = 0, for the interpolation.
+template <class DirectAt, class NormPower>
+IncidenceTable tabulate_incidence(const NodeAxis& axis, DirectAt&& direct_at, NormPower&& norm_power) {
+    std::array<double, kGhsThetaNodes> x{}, log_sigma{}, log_norm{};
+    for (int j = 0; j < kGhsThetaNodes; ++j) {
+        x[j] = axis.node(j);
+        const auto d = direct_at(x[j]);
+        log_sigma[j] = std::log(std::max(d.sigma, std::numeric_limits<double>::min()));
+        log_norm[j] = std::log(std::max(d.norm / norm_power(x[j]), std::numeric_limits<double>::min()));
+    }
+    return fit_incidence_table(x, log_sigma, log_norm);
+}
 
 // Estrin's form in d: two independent multiply-adds, then one. Horner in t (three dependent ones after the multiply
 // that makes t) made exact-GHS eval 5 % slower than the bilinear lookup before the cubic; this is as fast.

@@ -151,17 +151,10 @@ MapGhsBsdf::AzimuthTables MapGhsBsdf::cached_tables(double lambda_nm) const {
 
 MapGhsBsdf::AzimuthTables MapGhsBsdf::build_tables(double lambda_nm) const {
     AzimuthTables tables;
-    std::array<double, kGhsThetaNodes> x{}, log_sigma{}, log_norm{};
-    for (int a = 0; a < kAzimuthNodes; ++a) {
-        for (int j = 0; j < kGhsThetaNodes; ++j) {
-            x[j] = kIncidenceAxis.node(j);
-            const GhsBsdf::Direct d = direct(incidence(x[j], a * kAzimuthStep), lambda_nm);
-            // Finite logarithms even for sigma = 0 or N = 0, for the interpolation.
-            log_sigma[j] = std::log(std::max(d.sigma, std::numeric_limits<double>::min()));
-            log_norm[j] = std::log(std::max(d.norm / norm_power(x[j]), std::numeric_limits<double>::min()));
-        }
-        tables[std::size_t(a)] = fit_incidence_table(x, log_sigma, log_norm);
-    }
+    for (int a = 0; a < kAzimuthNodes; ++a)
+        tables[std::size_t(a)] = tabulate_incidence(
+            kIncidenceAxis, [&](double cos_theta_i) { return direct(incidence(cos_theta_i, a * kAzimuthStep), lambda_nm); },
+            [this](double c) { return norm_power(c); });
     return tables;
 }
 
