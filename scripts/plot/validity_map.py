@@ -12,13 +12,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from validity import finish_error_map, finish_slices, run  # noqa: E402  (the profiles route's plots, same directory)
+from validity import finish_error_map, finish_slices, positive, run  # noqa: E402  (the profiles route's plots, same directory)
 
 RING_DEG = 5.0
-
-
-def positive(values):
-    return np.where(values > 0, values, np.nan)
 
 
 def in_plane(case, bin_deg):
