@@ -73,13 +73,6 @@ AnisotropicGhsBsdf::Incidence AnisotropicGhsBsdf::lookup(const Vec3& wi, double 
     return lookup(wi, lambda_nm, wavenumber(lambda_nm));
 }
 
-namespace {
-double specular_exponent(double k, double log_sigma, double cos_theta_i) {
-    const double a = 2.0 * k * cos_theta_i;
-    return a * a * math::fast_exp(2.0 * log_sigma);
-}
-}  // namespace
-
 double AnisotropicGhsBsdf::eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
     if (wi.z <= 0 || wo.z <= 0) return 0.0;
     const double k = wavenumber(lambda_nm);
@@ -119,7 +112,7 @@ WavelengthValues AnisotropicGhsBsdf::eval_packet(const Vec3& wi, const Vec3& wo,
 double AnisotropicGhsBsdf::delta_probability(const Vec3& wi, double lambda_nm) const {
     if (wi.z <= 0) return 0.0;
     const Incidence in = lookup(wi, lambda_nm);
-    return std::exp(-specular_exponent(in.k, in.log_sigma, wi.z));
+    return std::exp(-specular_exponent(in, wi.z));
 }
 
 double AnisotropicGhsBsdf::delta_reflectance(const Vec3& wi, double lambda_nm) const {
@@ -139,7 +132,7 @@ double AnisotropicGhsBsdf::pdf(const Vec3& wi, const Vec3& wo, double lambda_nm)
 
 // d^2 w = s d^2 zeta = s k^2 cos theta_o d omega.
 double AnisotropicGhsBsdf::pdf(const Vec3& wi, const Vec3& wo, const Incidence& in) const {
-    const double k = in.k, g0 = specular_exponent(k, in.log_sigma, wi.z);
+    const double k = in.k, g0 = specular_exponent(in, wi.z);
     const double w = k * stretched(wi.x + wo.x, wi.y + wo.y);
     const double p = math::one_minus_exp(g0) * stretch_ * k * k * wo.z *
                      core_->sample_density(g0, stretched_zeta_max(wi, k), w);
@@ -149,7 +142,7 @@ double AnisotropicGhsBsdf::pdf(const Vec3& wi, const Vec3& wo, const Incidence& 
 std::optional<BsdfSample> AnisotropicGhsBsdf::sample(const Vec3& wi, double lambda_nm, double u_lobe, Vec2 u) const {
     if (wi.z <= 0) return std::nullopt;
     const Incidence in = lookup(wi, lambda_nm);
-    const double k = in.k, g0 = specular_exponent(k, in.log_sigma, wi.z);
+    const double k = in.k, g0 = specular_exponent(in, wi.z);
     const double p_delta = std::exp(-g0);
     if (u_lobe < p_delta) return coherent_delta_sample(material_, wi, lambda_nm, p_delta);
     BsdfSample out;

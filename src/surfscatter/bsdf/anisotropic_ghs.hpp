@@ -81,7 +81,7 @@ public:
 
 private:
     using AzimuthTables = std::array<IncidenceTable, kAzimuthNodes>;
-    struct Incidence { double k, log_sigma, log_norm; };
+    using Incidence = IncidenceLookup;
     Incidence lookup(const Vec3& wi, double lambda_nm) const;
     Incidence lookup(const Vec3& wi, double lambda_nm, double k) const;
     double norm_power(double cos_theta_i) const {

@@ -70,10 +70,6 @@ double GhsBsdf::density(const LobeLogs& logs, double log_sigma) const {
     return exact_ ? exact_->density_at_logs(log_g, logs.log_zeta) : core_->density_at_logs(log_g, logs.log_zeta);
 }
 
-double GhsBsdf::specular_exponent(const Incidence& in, double cos_theta_i) {
-    const double a = 2.0 * in.k * cos_theta_i;
-    return a * a * math::fast_exp(2.0 * in.log_sigma);
-}
 
 inline double GhsBsdf::fresnel(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
     return lobe_fresnel(material_, settings_.fresnel, wi, wo, lambda_nm);

@@ -85,13 +85,12 @@ public:
 private:
     using Interval = CubicPairInterval;  // ln sigma and ln(N / cos^p)
     using Table = IncidenceTable;
-    struct Incidence { double k, log_sigma, log_norm; };  // k in rad/um; log_norm = ln(N / cos^p theta_i)
+    using Incidence = IncidenceLookup;
     Incidence lookup(double cos_theta_i, double lambda_nm) const;
     Incidence lookup(double cos_theta_i, double lambda_nm, double k) const;  // k = wavenumber(lambda_nm), given
     double norm_power(double cos_theta_i) const {  // cos^p theta_i
         return settings_.normalization == LobeNormalization::albedo ? cos_theta_i * cos_theta_i : 1.0;
     }
-    static double specular_exponent(const Incidence& in, double cos_theta_i);  // g0 = (2 k sigma cos theta_i)^2
     struct LobeLogs {  // ln g - 2 ln sigma and ln zeta of a direction pair
         LobeLogs(const Vec3& wi, const Vec3& wo, double k);
         LobeLogs(double log_k, double log_cosine_sum, double log_radius2)  // ln k, ln(cos i + cos o), ln |i_xy + o_xy|^2

@@ -17,6 +17,7 @@
 #include "surfscatter/bsdf/node_axis.hpp"
 #include "surfscatter/core/table_cache.hpp"
 #include "surfscatter/material/conductor.hpp"
+#include "surfscatter/math/fast_math.hpp"
 #include "surfscatter/math/simd_pair.hpp"
 #include "surfscatter/math/vec.hpp"
 
@@ -40,6 +41,17 @@ struct CubicPairInterval {
     double c[4][2];
 };
 using IncidenceTable = std::array<CubicPairInterval, kGhsThetaNodes - 1>;  // over cos theta_i
+
+// One incidence's values read from the tables: k in rad/um, ln sigma, ln(N / cos^p theta_i).
+struct IncidenceLookup {
+    double k, log_sigma, log_norm;
+};
+
+// The coherent part's exponent g0 = (2 k sigma cos theta_i)^2.
+inline double specular_exponent(const IncidenceLookup& in, double cos_theta_i) {
+    const double a = 2.0 * in.k * cos_theta_i;
+    return a * a * math::fast_exp(2.0 * in.log_sigma);
+}
 
 // The table through (x_j, first_j, second_j) at the incidence nodes x_j: per interval the 4-point Lagrange cubic of
 // the nodes around it (one-sided at the ends).

@@ -78,13 +78,6 @@ MapGhsBsdf::Incidence MapGhsBsdf::lookup(const Vec3& wi, double lambda_nm) const
     return {wavenumber(lambda_nm), v[0], v[1]};
 }
 
-namespace {
-double specular_exponent(double k, double log_sigma, double cos_theta_i) {
-    const double a = 2.0 * k * cos_theta_i;
-    return a * a * std::exp(2.0 * log_sigma);
-}
-}  // namespace
-
 double MapGhsBsdf::eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
     if (wi.z <= 0 || wo.z <= 0) return 0.0;
     return eval(wi, wo, lambda_nm, lookup(wi, lambda_nm));
@@ -104,7 +97,7 @@ double MapGhsBsdf::pdf(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
 }
 
 double MapGhsBsdf::pdf(const Vec3& wi, const Vec3& wo, const Incidence& in) const {
-    const double k = in.k, g0 = specular_exponent(k, in.log_sigma, wi.z);
+    const double k = in.k, g0 = specular_exponent(in, wi.z);
     const double p = -std::expm1(-g0) * k * k * wo.z *
                      lobes_->sample_density(g0, ssa_.has_value(), Vec2(k * (wi.x + wo.x), k * (wi.y + wo.y)));
     return std::isfinite(p) ? p : 0.0;
@@ -113,7 +106,7 @@ double MapGhsBsdf::pdf(const Vec3& wi, const Vec3& wo, const Incidence& in) cons
 std::optional<BsdfSample> MapGhsBsdf::sample(const Vec3& wi, double lambda_nm, double u_lobe, Vec2 u) const {
     if (wi.z <= 0) return std::nullopt;
     const Incidence in = lookup(wi, lambda_nm);
-    const double k = in.k, g0 = specular_exponent(k, in.log_sigma, wi.z), p_delta = std::exp(-g0);
+    const double k = in.k, g0 = specular_exponent(in, wi.z), p_delta = std::exp(-g0);
     if (u_lobe < p_delta) return coherent_delta_sample(material_, wi, lambda_nm, p_delta);
     const double u_row = std::min((u_lobe - p_delta) / (1.0 - p_delta), std::nextafter(1.0, 0.0));
     const Vec2 zeta = lobes_->sample(g0, ssa_.has_value(), u_row, u);
@@ -131,7 +124,7 @@ std::optional<BsdfSample> MapGhsBsdf::sample(const Vec3& wi, double lambda_nm, d
 double MapGhsBsdf::delta_probability(const Vec3& wi, double lambda_nm) const {
     if (wi.z <= 0) return 0.0;
     const Incidence in = lookup(wi, lambda_nm);
-    return std::exp(-specular_exponent(in.k, in.log_sigma, wi.z));
+    return std::exp(-specular_exponent(in, wi.z));
 }
 
 double MapGhsBsdf::delta_reflectance(const Vec3& wi, double lambda_nm) const {

@@ -64,7 +64,7 @@ public:
 
 private:
     using AzimuthTables = std::array<IncidenceTable, kAzimuthNodes>;
-    struct Incidence { double k, log_sigma, log_norm; };
+    using Incidence = IncidenceLookup;
     Incidence lookup(const Vec3& wi, double lambda_nm) const;
     double norm_power(double cos_theta_i) const {
         return settings_.normalization == LobeNormalization::albedo ? cos_theta_i * cos_theta_i : 1.0;
