@@ -1,4 +1,5 @@
-// fast_exp / fast_log / one_minus_exp (the BSDF hot path's exp and log) against the standard functions.
+// fast_exp / fast_log / one_minus_exp / fast_atan2 (the BSDF hot path's exp, log and angle) against the standard
+// functions.
 #include <cmath>
 #include <limits>
 #include <random>
@@ -42,6 +43,32 @@ TEST(FastMath, LogWithinTwoUlpOfStdLog) {
         EXPECT_EQ(fast_log(v), std::log(v)) << v;
     EXPECT_TRUE(std::isnan(fast_log(-1.0)));
     EXPECT_TRUE(std::isnan(fast_log(std::nan(""))));
+}
+
+TEST(FastMath, Atan2WithinOneNanoradianOfStdAtan2) {
+    std::mt19937_64 rng(13);
+    std::uniform_real_distribution<double> angle(-3.2, 3.2), log_radius(-300.0, 300.0);
+    double worst = 0.0;
+    for (int i = 0; i < 2000000; ++i) {
+        const double phi = angle(rng), r = std::pow(10.0, log_radius(rng));
+        const double x = r * std::cos(phi), y = r * std::sin(phi);
+        worst = std::max(worst, std::abs(fast_atan2(y, x) - std::atan2(y, x)));
+    }
+    // The octants' edges and the axes, where the reflections meet.
+    for (double x : {1.0, -1.0, 0.5, -2.0})
+        for (double y : {0.0, 1e-300, -1e-300, 1.0, -1.0, 0.5, -2.0, x, -x})
+            worst = std::max(worst, std::abs(fast_atan2(y, x) - std::atan2(y, x)));
+    EXPECT_LT(worst, 1e-9);
+    std::printf("fast_atan2 max error %.3g rad\n", worst);
+    const double inf = std::numeric_limits<double>::infinity();
+    for (double x : {0.0, -0.0, 1.0, -1.0, inf, -inf})
+        for (double y : {0.0, -0.0, 1.0, -1.0, inf, -inf}) {
+            if (x * y != 0.0 && std::isfinite(x * y)) continue;  // a zero or an infinity: std::atan2's exact values
+            EXPECT_EQ(fast_atan2(y, x), std::atan2(y, x)) << y << ", " << x;
+            EXPECT_EQ(std::signbit(fast_atan2(y, x)), std::signbit(std::atan2(y, x))) << y << ", " << x;
+        }
+    EXPECT_TRUE(std::isnan(fast_atan2(std::nan(""), 1.0)));
+    EXPECT_TRUE(std::isnan(fast_atan2(1.0, std::nan(""))));
 }
 
 TEST(FastMath, OneMinusExpKeepsRelativeAccuracy) {

@@ -9,6 +9,7 @@
 #include "surfscatter/bsdf/wedge_sampling.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/math/fast_math.hpp"
+#include "surfscatter/math/lagrange.hpp"
 #include "surfscatter/math/quadrature.hpp"
 
 namespace surfscatter::bsdf {
@@ -55,8 +56,7 @@ AnisotropicGhsBsdf::AnisotropicGhsBsdf(std::shared_ptr<const surface::Elliptical
     x = std::min(x, double(kLastAzimuth));
     const int first = std::clamp(int(x) - 1, 0, kLastAzimuth - 3);
     const double t = x - first;
-    const double w[4] = {-(t - 1) * (t - 2) * (t - 3) / 6, t * (t - 2) * (t - 3) / 2, -t * (t - 1) * (t - 3) / 2,
-                         t * (t - 1) * (t - 2) / 6};
+    const std::array<double, 4> w = math::lagrange4_weights(t);
     auto table = [&](int slot) -> const AzimuthTables& {
         return tables_.get(std::size_t(slot), [&] { return cached_tables(kWavelengthAxis.node(slot)); });
     };
