@@ -9,6 +9,7 @@
 #include "surfscatter/bsdf/wedge_sampling.hpp"  // wavenumber
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/math/fast_math.hpp"
+#include "surfscatter/math/lagrange.hpp"
 
 namespace surfscatter::bsdf {
 
@@ -17,6 +18,8 @@ namespace {
 const NodeAxis kIncidenceAxis = ghs_incidence_axis();
 const NodeAxis kWavelengthAxis = ghs_wavelength_axis();
 constexpr double kAzimuthStep = kPi / MapGhsBsdf::kAzimuthNodes;
+constexpr int kRefinedAzimuths = MapGhsBsdf::kAzimuthNodes * MapGhsBsdf::kRefinement;
+constexpr double kRefinedStep = kPi / kRefinedAzimuths;
 
 // The incidence at cos theta_i = c and azimuth phi.
 Vec3 incidence(double c, double phi) {
@@ -40,13 +43,17 @@ MapGhsBsdf::MapGhsBsdf(std::shared_ptr<const surface::SpectrumLobes2d> lobes, st
     if (!lobes_) fail("{} on a measured 2-D spectrum needs its lobes", settings_.name);
 }
 
-double MapGhsBsdf::density(double g, Vec2 zeta) const {
-    if (!ssa_) return lobes_->eval(g, zeta);
+double MapGhsBsdf::density(double g, Vec2 zeta) const { return density(g, math::fast_log(g), zeta); }
+
+double MapGhsBsdf::density(double g, double log_g, Vec2 zeta) const {
+    if (!ssa_) return lobes_->eval(g, log_g, zeta);
     const double weight = *ssa_ == SsaForm::strict ? g : math::one_minus_exp(g);
     return weight * lobes_->first_order(zeta);
 }
 
-MapGhsBsdf::Incidence MapGhsBsdf::lookup(const Vec3& wi, double lambda_nm) const {
+// Inlined into its callers, with eval's: as GhsBsdf's (the calls and the Incidence passed through memory cost a
+// fifth of an eval).
+[[gnu::always_inline]] inline MapGhsBsdf::Incidence MapGhsBsdf::interpolate(const Vec3& wi, double lambda_nm) const {
     if (!(lambda_nm >= kMinWavelength && lambda_nm <= kGhsMaxWavelength))
         fail("wavelength {} nm outside [{}, {}] nm, the range of {} on a measured 2-D spectrum", lambda_nm,
              kMinWavelength, kGhsMaxWavelength, settings_.name);
@@ -54,41 +61,39 @@ MapGhsBsdf::Incidence MapGhsBsdf::lookup(const Vec3& wi, double lambda_nm) const
     const double cosine = std::clamp(wi.z, kIncidenceAxis.node(0), 1.0);
     const int c = kIncidenceAxis.position(cosine).interval;
     const math::Pair d = math::Pair{1.0, 1.0} * (cosine - kIncidenceAxis.node(c));
-    // Azimuth: periodic 4-point Lagrange over the nodes around x = phi_i / step (pi-periodic).
-    double phi = std::atan2(wi.y, wi.x);
+    // Azimuth: linear between the refined nodes around x = phi_i / step (pi-periodic).
+    double phi = math::fast_atan2(wi.y, wi.x);
     if (phi < 0) phi += kPi;
-    if (phi >= kPi) phi -= kPi;
-    const double x = phi / kAzimuthStep;
-    const int base = std::min(int(x), kAzimuthNodes - 1);
-    const double t = x - base + 1.0;  // position among the nodes base-1 .. base+2
-    const double w[4] = {-(t - 1) * (t - 2) * (t - 3) / 6, t * (t - 2) * (t - 3) / 2, -t * (t - 1) * (t - 3) / 2,
-                         t * (t - 1) * (t - 2) / 6};
-    auto table = [&](int slot) -> const AzimuthTables& {
-        return tables_.get(std::size_t(slot), [&] { return cached_tables(kWavelengthAxis.node(slot)); });
+    double x = phi * (1.0 / kRefinedStep);
+    if (!(x >= 0.0)) x = 0.0;  // NaN components: a node, and the eval's finite check returns 0
+    const int i = std::min(int(x), kRefinedAzimuths - 1), next = i + 1 < kRefinedAzimuths ? i + 1 : 0;
+    const double t = x - double(i);
+    auto table = [&](int slot) -> const RefinedTables& {
+        return tables_.get(std::size_t(slot), [&] { return refine(cached_tables(kWavelengthAxis.node(slot))); });
     };
-    auto at = [&](const AzimuthTables& tables) {
-        math::Pair v{0.0, 0.0};
-        for (int j = 0; j < 4; ++j) {
-            const int node = (base - 1 + j + kAzimuthNodes) % kAzimuthNodes;
-            v += w[j] * estrin(tables[std::size_t(node)][std::size_t(c)], d);
-        }
-        return v;
+    auto at = [&](const RefinedTables& tables) {
+        const math::Pair a = estrin(tables[std::size_t(i)][std::size_t(c)], d);
+        return a + t * (estrin(tables[std::size_t(next)][std::size_t(c)], d) - a);
     };
     const math::Pair at_a = at(table(l.interval)), v = at_a + l.t * (at(table(l.interval + 1)) - at_a);
     return {wavenumber(lambda_nm), v[0], v[1]};
 }
 
-double MapGhsBsdf::eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
-    if (wi.z <= 0 || wo.z <= 0) return 0.0;
-    return eval(wi, wo, lambda_nm, lookup(wi, lambda_nm));
-}
-
-double MapGhsBsdf::eval(const Vec3& wi, const Vec3& wo, double lambda_nm, const Incidence& in) const {
-    const double k = in.k, a = k * math::fast_exp(in.log_sigma) * (wi.z + wo.z);
-    const double lobe = density(a * a, Vec2(k * (wi.x + wo.x), k * (wi.y + wo.y)));
+[[gnu::always_inline]] inline double MapGhsBsdf::eval(const Vec3& wi, const Vec3& wo, double lambda_nm,
+                                                      const Incidence& in) const {
+    // ln g = 2 ln(k (cos i + cos o)) + 2 ln sigma: the first term does not wait for the lookup.
+    const double k = in.k, log_g = 2.0 * (math::fast_log(k * (wi.z + wo.z)) + in.log_sigma);
+    const double lobe = density(math::fast_exp(log_g), log_g, Vec2(k * (wi.x + wo.x), k * (wi.y + wo.y)));
     const double f = lobe_fresnel(material_, settings_.fresnel, wi, wo, lambda_nm) * math::fast_exp(in.log_norm) *
                      norm_power(wi.z) * k * k * lobe;
     return std::isfinite(f) ? f : 0.0;
+}
+
+MapGhsBsdf::Incidence MapGhsBsdf::lookup(const Vec3& wi, double lambda_nm) const { return interpolate(wi, lambda_nm); }
+
+double MapGhsBsdf::eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
+    if (wi.z <= 0 || wo.z <= 0) return 0.0;
+    return eval(wi, wo, lambda_nm, interpolate(wi, lambda_nm));
 }
 
 double MapGhsBsdf::pdf(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
@@ -140,6 +145,28 @@ MapGhsBsdf::AzimuthTables MapGhsBsdf::cached_tables(double lambda_nm) const {
         settings_.relevant_roughness, lambda_nm, kGhsThetaNodes, kAzimuthNodes);
     return cached_incidence_table<AzimuthTables>("ghs-map2d-incidence", kVersion, key,
                                                  [&] { return build_tables(lambda_nm); });
+}
+
+// The periodic 4-point Lagrange cubic through the tabulated azimuth nodes, at kRefinement points per node interval:
+// the cubics in cos theta_i are linear in their coefficients, so the coefficients combine with the Lagrange weights.
+MapGhsBsdf::RefinedTables MapGhsBsdf::refine(const AzimuthTables& tables) {
+    RefinedTables refined;  // returned in place (NRVO): LazySlots constructs it on the heap
+    for (int base = 0; base < kAzimuthNodes; ++base)
+        for (int r = 0; r < kRefinement; ++r) {
+            const std::array<double, 4> w = math::lagrange4_weights(1.0 + double(r) / kRefinement);
+            IncidenceTable& out = refined[std::size_t(base * kRefinement + r)];
+            for (std::size_t c = 0; c < out.size(); ++c)
+                for (int p = 0; p < 4; ++p)
+                    for (int lane = 0; lane < 2; ++lane) {
+                        double sum = 0;
+                        for (int j = 0; j < 4; ++j) {
+                            const int node = (base - 1 + j + kAzimuthNodes) % kAzimuthNodes;
+                            sum += w[std::size_t(j)] * tables[std::size_t(node)][c].c[p][lane];
+                        }
+                        out[c].c[p][lane] = sum;
+                    }
+        }
+    return refined;
 }
 
 MapGhsBsdf::AzimuthTables MapGhsBsdf::build_tables(double lambda_nm) const {

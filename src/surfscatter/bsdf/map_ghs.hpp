@@ -8,13 +8,17 @@
 // albedo R, the disc mass, or 1) depend on the incidence azimuth phi_i as well as theta_i; the periodogram is even,
 // so they are pi-periodic in phi_i. Per wavelength node (GhsBsdf's, from kMinWavelength up) and azimuth node
 // (kAzimuthNodes uniform over [0, pi)) ln sigma and ln(N / cos^p theta_i) are GhsBsdf's cubics over cos theta_i;
-// between azimuth nodes the periodic 4-point Lagrange cubic, between wavelength nodes linear. A table is 64 x
+// between azimuth nodes the periodic 4-point Lagrange cubic, evaluated when a table is loaded at kRefinement points
+// per interval and read linearly between them (two cubics in cos theta_i per wavelength node instead of four on the
+// eval path; it adds at most 3.5e-4 to ln sigma and 7.2e-4 to ln N, MapGhs.RefinedAzimuthsFollowTheCubicThroughTheNodes;
+// memory 0.39 MB per wavelength node); between wavelength nodes linear. A table is 64 x
 // kAzimuthNodes pairs of visible-disc integrals (sigma: P-hat's lattice sum over the disc; N: the midpoint sum of the
 // lobe over the nodes of the finest row lattice it reads; both with rim weights that keep them continuous in the
 // incidence, SpectrumLobes2d::disc_sum), built lazily and kept in the disk cache under a key naming the lobes.
-// Accuracy (MapGhs.TablesMatchDirectValues, against direct() between the nodes): sigma within 2e-3 and N within 5e-3
-// (sigma_rel is a lattice sum, a step function of the incidence between the lattice points' crossings of the disc's
-// rim, which the cubics smooth).
+// Accuracy (MapGhs.TablesMatchDirectValues, against direct() between the nodes every 3.1 deg of phi_i): sigma within
+// 2.7e-3 and N within 3.2e-3 on a Gaussian map, 7.4e-3 and 5.3e-3 on an elliptical one (L_v / L_u = 0.3); sigma_rel is
+// a lattice sum, stepped where lattice points cross the disc's rim, which the cubics smooth (48 azimuth nodes only
+// halved it, for twice the table cost).
 // Wavelengths below kMinWavelength are an Error (the lobes' g range and their lattice's coverage, 2 k there).
 // Sampling: the delta with probability e^{-g0}; otherwise zeta from the lobes' tabulated distribution at g0
 // (SpectrumLobes2d::sample), mapped to o_xy = zeta / k - i_xy; a draw outside the visible disc is a failed sample, so
@@ -36,7 +40,8 @@ namespace surfscatter::bsdf {
 
 class MapGhsBsdf final : public Bsdf {
 public:
-    static constexpr int kAzimuthNodes = 24;        // phi_i over [0, pi)
+    static constexpr int kAzimuthNodes = 24;        // phi_i over [0, pi), tabulated
+    static constexpr int kRefinement = 4;           // refined azimuths per tabulated interval, read linearly
     static constexpr double kMinWavelength = 360;   // nm
 
     // ssa: nullopt for the full GHS lobe, else the SSA form (its first-order lobe).
@@ -59,13 +64,17 @@ public:
     }
     // The lobe density at g and zeta (eval without Fresnel, N and k^2).
     double density(double g, Vec2 zeta) const;
+    double density(double g, double log_g, Vec2 zeta) const;  // with ln g given
     // sigma and N computed directly for incidence wi: the reference of the tabulation.
     GhsBsdf::Direct direct(const Vec3& wi, double lambda_nm) const;
 
 private:
     using AzimuthTables = std::array<IncidenceTable, kAzimuthNodes>;
+    using RefinedTables = std::array<IncidenceTable, kAzimuthNodes * kRefinement>;
+    static RefinedTables refine(const AzimuthTables& tables);
     using Incidence = IncidenceLookup;
     Incidence lookup(const Vec3& wi, double lambda_nm) const;
+    Incidence interpolate(const Vec3& wi, double lambda_nm) const;  // lookup's body, inlined into eval
     double norm_power(double cos_theta_i) const {
         return settings_.normalization == LobeNormalization::albedo ? cos_theta_i * cos_theta_i : 1.0;
     }
@@ -78,7 +87,7 @@ private:
     std::optional<SsaForm> ssa_;
     material::Conductor material_;
     GhsSettings settings_;
-    LazySlots<AzimuthTables> tables_;  // one per wavelength node
+    LazySlots<RefinedTables> tables_;  // one per wavelength node
 };
 
 // The lobes of a map's periodogram for every g these models reach at wavelengths >= MapGhsBsdf::kMinWavelength

@@ -12,6 +12,7 @@
 
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/math/fast_math.hpp"
+#include "surfscatter/math/lagrange.hpp"
 #include "surfscatter/surface/fftw_planner.hpp"
 #include "surfscatter/surface/height_map_fft.hpp"
 
@@ -252,6 +253,15 @@ SpectrumLobes2d::SpectrumLobes2d(const Psd2d& spectrum, double g_max) : g_max_(g
     }
     for (const Row& r : rows_)
         reach_ = std::max({reach_, (double(r.half_x) + 0.5) * r.hx, (double(r.half_y) + 0.5) * r.hy});
+    for (std::size_t first = 0; first + 5 <= rows_.size(); ++first) {
+        const Row& a = rows_[first + 1];
+        bool shared = a.half_x > 0 && a.half_y > 0;
+        for (std::size_t n = 2; n <= 4; ++n) {
+            const Row& b = rows_[first + n];
+            shared = shared && b.half_x == a.half_x && b.half_y == a.half_y && b.hx == a.hx && b.hy == a.hy;
+        }
+        shared_lattice_.push_back(shared);
+    }
     cdfs_.resize(rows_.size());
     cdf_once_ = std::make_unique<std::once_flag[]>(rows_.size());
     std::uint64_t h = fnv1a(spectrum_.values.data(), spectrum_.values.size() * sizeof(double));
@@ -275,25 +285,51 @@ SpectrumLobes2d::Mixture SpectrumLobes2d::mixture(double g, bool first_order_onl
     return {a, a + 1, 1.0 - w, w};
 }
 
-double SpectrumLobes2d::shape(double g, Vec2 zeta) const {
+double SpectrumLobes2d::shape(double g, Vec2 zeta) const { return shape(g, math::fast_log(g), zeta); }
+
+double SpectrumLobes2d::shape(double g, double log_g, Vec2 zeta) const {
     if (!(g >= 0 && g <= g_max_)) fail("2-D measured lobe: g = {} outside [0, {}]", g, g_max_);
     if (g < kMinG) {
         const Mixture m = mixture(g, false);
         return m.wa * rows_[m.a].at(zeta) + m.wb * rows_[m.b].at(zeta);
     }
     // Cubic Lagrange in ln g over the 4 rows around it (one-sided at the ends).
-    const double t = math::fast_log(g * (1.0 / kMinG)) * (kRowsPerDecade / std::numbers::ln10);
+    const double t = (log_g - std::log(kMinG)) * (kRowsPerDecade / std::numbers::ln10);
     const long nodes = long(rows_.size()) - 1;  // rows 1 .. nodes at t = 0 .. nodes - 1
     const long first = std::clamp(long(t) - 1, 0L, nodes - 4);
     const double u = t - double(first);
-    const double w[4] = {-(u - 1) * (u - 2) * (u - 3) / 6, u * (u - 2) * (u - 3) / 2, -u * (u - 1) * (u - 3) / 2,
-                         u * (u - 1) * (u - 2) / 6};
+    const std::array<double, 4> w = math::lagrange4_weights(u);
+    const Row* stencil = rows_.data() + first + 1;
     double sum = 0;
-    for (int j = 0; j < 4; ++j) sum += w[j] * rows_[std::size_t(first + 1 + j)].at(zeta);
+    if (shared_lattice_[std::size_t(first)]) {
+        // One lattice (the common case: the rows of a map's lattice before their windows shrink): its cell and
+        // bilinear weights once, then the four rows' corners combined with the cubic's weights.
+        const Row& r = stencil[0];
+        const double x = zeta.x * r.inv_hx + double(r.half_x), y = zeta.y * r.inv_hy + double(r.half_y);
+        if (!(x >= 0 && x <= double(2 * r.half_x) && y >= 0 && y <= double(2 * r.half_y))) return 0.0;
+        const long i = std::min(long(x), 2 * r.half_x - 1), j = std::min(long(y), 2 * r.half_y - 1);
+        const long stride = 2 * r.half_x + 1, at = j * stride + i;
+        const double tx = x - double(i), ty = y - double(j);
+        double c00 = 0, c10 = 0, c01 = 0, c11 = 0;
+        for (int n = 0; n < 4; ++n) {
+            const double* p = stencil[n].value.data() + at;
+            c00 += w[n] * p[0];
+            c10 += w[n] * p[1];
+            c01 += w[n] * p[stride];
+            c11 += w[n] * p[stride + 1];
+        }
+        sum = (1 - ty) * (c00 + tx * (c10 - c00)) + ty * (c01 + tx * (c11 - c01));
+    } else {
+        for (int n = 0; n < 4; ++n) sum += w[n] * stencil[n].at(zeta);
+    }
     return std::max(sum, 0.0);  // the cubic's undershoot where a row is 0 and its neighbours are not
 }
 
-double SpectrumLobes2d::eval(double g, Vec2 zeta) const { return g > 0 ? math::one_minus_exp(g) * shape(g, zeta) : 0.0; }
+double SpectrumLobes2d::eval(double g, Vec2 zeta) const { return eval(g, math::fast_log(g), zeta); }
+
+double SpectrumLobes2d::eval(double g, double log_g, Vec2 zeta) const {
+    return g > 0 ? math::one_minus_exp(g) * shape(g, log_g, zeta) : 0.0;
+}
 
 double SpectrumLobes2d::first_order(Vec2 zeta) const { return rows_[0].at(zeta); }
 

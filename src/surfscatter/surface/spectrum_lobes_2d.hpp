@@ -67,6 +67,10 @@ public:
     double g_max() const { return g_max_; }
     double eval(double g, Vec2 zeta) const;                    // S_g(zeta), um^2; g in [0, g_max] (else Error)
     double shape(double g, Vec2 zeta) const;                   // s_g = S_g / (1 - e^{-g}), unit mass
+    // The same with ln g given (ln 0 = -inf): a caller that has ln g before g (MapGhsBsdf::eval) shortens the chain
+    // from its lookup to the rows' loads.
+    double eval(double g, double log_g, Vec2 zeta) const;
+    double shape(double g, double log_g, Vec2 zeta) const;
     double first_order(Vec2 zeta) const;                       // P-hat(zeta) (unit mass): the g -> 0 row
     // Mass of P-hat (the g -> 0 row's nodes, disc_sum's rim weights) in the disc of `radius` about `centre`:
     // sigma_rel^2 / sigma_h^2 for the visible disc; continuous in centre and radius.
@@ -110,6 +114,7 @@ private:
     Psd2d spectrum_;                 // normalised to unit lattice sum
     std::vector<Row> rows_;
     std::vector<double> row_g_;
+    std::vector<char> shared_lattice_;  // [first]: rows first + 1 .. first + 4 (a cubic's stencil) share one lattice
     std::string key_;
     mutable std::vector<std::vector<double>> cdfs_;
     mutable std::unique_ptr<std::once_flag[]> cdf_once_;
