@@ -15,14 +15,11 @@
 #include <random>
 #include <vector>
 
+#include "empty_cache.hpp"
 #include "surfscatter/bsdf/factory.hpp"
 #include "surfscatter/bsdf/profile_lobes.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
 #include "surfscatter/surface/synthesis.hpp"
-
-#include <cstdlib>
-#include <filesystem>
-#include <string>
 
 using namespace surfscatter;
 using namespace surfscatter::bsdf;
@@ -193,21 +190,18 @@ void models_and_g(benchmark::internal::Benchmark* b) {
 // and K (one incidence and wavelength), as the first eval of a process with an empty disk cache builds them.
 void BM_measured_tables(benchmark::State& state) {
     ModelOptions o = options_for(5, 10.0);
-    const std::filesystem::path root = std::filesystem::temp_directory_path() / "surfscatter-bench-measured";
+    bench::EmptyCache cache("surfscatter-bench-measured");
     int run = 0;
     for (auto _ : state) {
         state.PauseTiming();
-        const std::filesystem::path dir = root / std::to_string(run++);
-        std::filesystem::remove_all(dir);
-        setenv("SURFSCATTER_CACHE_DIR", dir.c_str(), 1);
+        cache.renew();
         // A new map each run: the tables are also shared in memory by their statistics.
         o.surface.height_map = std::make_shared<const surface::HeightMap>(surface::synthesize_surface(
-            surface::KCorrelation(o.surface.sigma, 1.0, 3.0), {1024, 1024, 0.05}, 100 + run));
+            surface::KCorrelation(o.surface.sigma, 1.0, 3.0), {1024, 1024, 0.05}, 100 + ++run));
         state.ResumeTiming();
         const auto b = make_bsdf(o);
         benchmark::DoNotOptimize(b->eval(spherical_direction(kThetaI, 0), Vec3(0, 0, 1), kLambda));
     }
-    std::filesystem::remove_all(root);
 }
 
 // The exact-GHS sigma_rel / K tables on their first build, for photo-setup's plate (Al, KC sigma 0.15 um, LU 4 um,
@@ -216,9 +210,7 @@ void BM_measured_tables(benchmark::State& state) {
 // core's lobe tables built before timing. Each iteration evaluates at a wavelength between two wavelength nodes no
 // earlier iteration touched, so it builds exactly two nodes' tables; the counter per_node is time per node.
 void BM_ghs_tables(benchmark::State& state) {
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "surfscatter-bench-ghs-tables";
-    std::filesystem::remove_all(dir);
-    setenv("SURFSCATTER_CACHE_DIR", dir.c_str(), 1);
+    const bench::EmptyCache cache("surfscatter-bench-ghs-tables");
     ModelOptions o;
     o.material = "Al";
     o.surface.psd = PsdKind::kc;
@@ -241,7 +233,6 @@ void BM_ghs_tables(benchmark::State& state) {
     state.counters["per_node"] = benchmark::Counter(2.0 * double(state.iterations()),
                                                     benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
     state.SetLabel(state.range(0) == 1 ? "brushed" : "isotropic");
-    std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -7,12 +7,11 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
-#include <cstdlib>
-#include <filesystem>
 #include <memory>
 #include <random>
 #include <vector>
 
+#include "empty_cache.hpp"
 #include "surfscatter/bsdf/factory.hpp"
 #include "surfscatter/bsdf/map_ghs.hpp"
 #include "surfscatter/surface/map_statistics.hpp"
@@ -57,20 +56,16 @@ BENCHMARK(BM_map2d_lobes)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime(
 
 // One wavelength node's tables from nothing: the first eval at a node's own wavelength reads two (its interval's).
 void BM_map2d_tables(benchmark::State& state) {
-    const std::filesystem::path root = std::filesystem::temp_directory_path() / "surfscatter-bench-map2d";
     const auto lobes = map_lobes(map_statistics()->spectrum());
-    int run = 0;
+    bench::EmptyCache cache("surfscatter-bench-map2d");
     for (auto _ : state) {
         state.PauseTiming();
-        const std::filesystem::path dir = root / std::to_string(run++);
-        std::filesystem::remove_all(dir);
-        setenv("SURFSCATTER_CACHE_DIR", dir.c_str(), 1);
+        cache.renew();
         GhsSettings settings;
         const MapGhsBsdf bsdf(lobes, std::nullopt, material::Conductor::from_name("perfect"), settings);
         state.ResumeTiming();
         benchmark::DoNotOptimize(bsdf.eval(Vec3(0.5, 0, std::sqrt(0.75)), Vec3(-0.5, 0.1, 0.86), kLambda));
     }
-    std::filesystem::remove_all(root);
 }
 BENCHMARK(BM_map2d_tables)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime()->Iterations(2);
 

@@ -1,11 +1,10 @@
 // Surface statistics engine: table building (FFTLog) per gamma, disk-cache load, and the lookups the BSDFs make.
 // Table builds use a fresh statistics per iteration (new cache key) in a private cache directory.
-#include <cstdlib>
-#include <filesystem>
 #include <random>
 
 #include <benchmark/benchmark.h>
 
+#include "empty_cache.hpp"
 #include "surfscatter/surface/relevant_roughness.hpp"
 #include "surfscatter/surface/scatter_lobe_table.hpp"
 #include "surfscatter/surface/self_convolution_table.hpp"
@@ -14,13 +13,7 @@ namespace {
 
 using namespace surfscatter::surface;
 
-const bool kPrivateCache = [] {
-    const auto dir = std::filesystem::temp_directory_path() / "surfscatter-bench-surface-cache";
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
-    setenv("SURFSCATTER_CACHE_DIR", dir.c_str(), 1);
-    return true;
-}();
+const surfscatter::bench::EmptyCache kPrivateCache("surfscatter-bench-surface-cache");
 
 double unique_length() {
     static int counter = 0;
