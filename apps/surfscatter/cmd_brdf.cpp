@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -29,10 +30,12 @@ struct BrdfArgs {
     std::string ssa_form = "energy", alpha_from, macro_ndf = "ggx", material;  // alpha_from, material: not given
     double epsilon = 1e-6, alpha = 0, smoothing = 0, cutoff_wavelengths = 100;
     bool no_renormalization = false;
-    std::string psd, psd_fit, surface_file, form = "plane", measured_spectrum = "2d";  // psd_fit: not given
+    std::string psd, psd_fit, surface_file, form = "plane", outliers = "keep";  // psd_fit: not given
+    std::string measured_spectrum = "2d";
     double sigma = 0, corr_length = 0, gamma = 0, corr_length_v = 0, lay_angle = 0;
     // The --surface map, read when first needed and shared by every model of the command.
     mutable std::shared_ptr<const surface::HeightMap> height_map;
+    mutable std::optional<surface::Outliers> filled_outliers;  // what --outliers fill filled in height_map
     double wavelength = 0, phi_i = 0;
     std::vector<double> theta_i;
     // eval
@@ -123,6 +126,7 @@ bsdf::ModelOptions model_options(const BrdfArgs& a, const std::string& spec) {
         o.surface.psd = psd.empty() ? bsdf::PsdKind::file : bsdf::parse_psd(psd, "--psd");
         o.surface.surface_file = a.surface_file;
         o.surface.form = surface::parse_form(a.form, "--form");
+        o.surface.outliers = surface::parse_outlier_policy(a.outliers, "--outliers");
         // Parsed for every map model, used by psd file only (slice --models ghs:file,ghs:measured).
         const bsdf::PsdFit fit = a.psd_fit.empty() ? bsdf::PsdFit::isotropic : bsdf::parse_psd_fit(a.psd_fit, "--psd-fit");
         if (o.surface.psd == bsdf::PsdKind::file) o.surface.psd_fit = fit;
@@ -130,8 +134,10 @@ bsdf::ModelOptions model_options(const BrdfArgs& a, const std::string& spec) {
         if (!a.height_map) {
             bsdf::load_height_map(o.surface);
             a.height_map = o.surface.height_map;
+            a.filled_outliers = o.surface.filled_outliers;
         }
         o.surface.height_map = a.height_map;
+        o.surface.filled_outliers = a.filled_outliers;
     } else if (!a.surface_file.empty() && a.psd == psd) {
         fail("--surface takes --psd file (KC fitted to the map, the default) or measured (its own PSD), got --psd {}", psd);
     } else if (!psd.empty()) {
@@ -299,6 +305,9 @@ void add_model_options(CLI::App* cmd, BrdfArgs& a, bool several_thetas) {
     cmd->add_option("--surface", a.surface_file, "height map (any format `surface info` reads): KC fitted to it "
                                                  "(--psd file, default) or its own PSD (--psd measured)");
     cmd->add_option("--form", a.form, "form removed from --surface: none | plane (default) | poly2 | poly3 | poly4");
+    cmd->add_option("--outliers", a.outliers,
+                    "--surface's outliers (points far from their 5 x 5 neighbourhood): keep (default; the notes count "
+                    "them) | fill (each replaced by its neighbours' median); docs/HEIGHTMAPS.md \"Outliers\"");
     cmd->add_option("--measured-spectrum", a.measured_spectrum,
                     "--psd measured: 2d (default: ghs and ghs_ssa on the map's 2-D spectrum) | ring (its ring "
                     "average, as before); docs/SURFACE.md \"The 2-D measured lobes\"");

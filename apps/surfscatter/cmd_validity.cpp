@@ -43,6 +43,7 @@ struct ValidityArgs {
     int threads = 0;
     // the map route
     std::string surface_file, form = "plane";
+    std::optional<std::string> outliers;
     std::vector<double> phi_i;
     std::optional<double> map_size, corr_length_v, lay_angle, subarea;
     long long map_pixels = 256;
@@ -153,9 +154,10 @@ validity::Criteria criteria_from(const ValidityArgs& a) {
 
 void run_profile_validity(const ValidityArgs& a) {
     if (!a.surface.psd) fail("validity needs the surface: --psd kc|gaussian --sigma --corr-length [--gamma]");
-    if (!a.phi_i.empty() || a.corr_length_v || a.lay_angle || a.subarea)
-        fail("--phi-i, --corr-length-v, --lay-angle and --subarea-um belong to the map route (--surface-file or "
-             "--map-size-um); the profiles route (--length-um) takes isotropic statistics in the plane of incidence");
+    if (!a.phi_i.empty() || a.corr_length_v || a.lay_angle || a.subarea || a.outliers)
+        fail("--phi-i, --corr-length-v, --lay-angle, --subarea-um and --outliers belong to the map route "
+             "(--surface-file or --map-size-um); the profiles route (--length-um) takes isotropic statistics in the "
+             "plane of incidence");
     const auto statistics = statistics_from(a.surface);
     const auto conductor = material::Conductor::from_name(a.material);
     if (!(a.length > 0)) fail("the profiles route needs --length-um (> 0), got {}", a.length);
@@ -208,6 +210,11 @@ nlohmann::json map_json_report(const std::vector<validity::MapCase>& cases, cons
     nlohmann::json j;
     j["route"] = "maps";
     j["surface"] = surface.description;
+    if (!a.surface_file.empty())
+        j["outliers"] = {{"policy", surface::to_string(surface.outlier_policy)},
+                         {"points", surface.outliers.count},
+                         {"share", surface.outliers.share},
+                         {"text", surface::describe(surface.outliers)}};
     j["material"] = material;
     j["criteria"] = {{"peak_fraction", validity::Criteria{}.peak_fraction}, {"max_reference_stderr", a.max_reference_stderr},
                      {"tolerance", a.tolerance}, {"bin_deg", a.bin_deg}};
@@ -255,8 +262,10 @@ bsdf::SurfaceOptions map_surface_options(const ValidityArgs& a) {
         if (a.corr_length_v || a.lay_angle) fail("--corr-length-v and --lay-angle describe a synthesised surface");
         s.psd = bsdf::PsdKind::measured;
         s.surface_file = a.surface_file;
+        s.outliers = surface::parse_outlier_policy(a.outliers.value_or("keep"), "--outliers");
         return s;
     }
+    if (a.outliers) fail("--outliers applies to a measured map (--surface-file); synthesised maps have none");
     if (!a.surface.psd) fail("--map-size-um synthesises maps from --psd kc|gaussian --sigma --corr-length [--gamma]");
     statistics_from(a.surface);  // checks the options, naming the bad one
     s.psd = *a.surface.psd == "kc" ? bsdf::PsdKind::kc : bsdf::PsdKind::gaussian;
@@ -331,6 +340,7 @@ void run_map_validity(const ValidityArgs& a, bool polarisation_given) {
         valid += c.reference_validity.valid ? 1 : 0;
         concluded += c.reference_validity.valid && (c.verdict.conclusive || !c.verdict.ruled_out.empty()) ? 1 : 0;
     }
+    validity::require_outliers_not_dominant(surface);
     if (concluded == 0 && !interrupt_requested()) {
         if (valid == 0)
             fail("nothing can be concluded: the Kirchhoff reference is outside its validity in every case (see the "
@@ -367,6 +377,10 @@ const Command command("validity", [](CLI::App& app) {
                     "map route: a measured height map (any format `surface info` reads) as the surface");
     sub->add_option("--form", a->form,
                     "map route: form removed from --surface-file: none (mean) | plane (default) | poly2 | poly3 | poly4");
+    sub->add_option("--outliers", a->outliers,
+                    "map route: --surface-file's outliers (points far from their 5 x 5 neighbourhood): keep "
+                    "(default; exit 2 when they hold most of its pixel-scale roughness) | fill (each replaced by its "
+                    "neighbours' median); docs/HEIGHTMAPS.md \"Outliers\"");
     sub->add_option("--map-size-um", a->map_size, "map route: side of the square maps synthesised from --psd (um)");
     sub->add_option("--map-pixels", a->map_pixels, "map route: pixels per side of the synthesised maps (default 256)");
     sub->add_option("--corr-length-v", a->corr_length_v,

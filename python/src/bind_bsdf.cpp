@@ -71,6 +71,10 @@ const std::map<std::string, Setter>& option_setters() {
         {"lay_angle_deg", [](ModelOptions& o, py::handle v, const char* n) { o.surface.lay_angle = number_option(v, n); }},
         {"surface_file", [](ModelOptions& o, py::handle v, const char* n) { o.surface.surface_file = path_string(v, n); }},
         {"form", [](ModelOptions& o, py::handle v, const char* n) { o.surface.form = surface::parse_form(text_option(v, n), n); }},
+        {"outliers",
+         [](ModelOptions& o, py::handle v, const char* n) {
+             o.surface.outliers = surface::parse_outlier_policy(text_option(v, n), n);
+         }},
         {"psd_fit",
          [](ModelOptions& o, py::handle v, const char* n) { o.surface.psd_fit = bsdf::parse_psd_fit(text_option(v, n), n); }},
         {"measured_spectrum",
@@ -195,6 +199,7 @@ py::dict options_dict(const ModelOptions& o) {
                     "corr_length"_a = o.surface.corr_length, "gamma"_a = o.surface.gamma,
                     "corr_length_v"_a = o.surface.corr_length_v, "lay_angle_deg"_a = o.surface.lay_angle,
                     "surface_file"_a = o.surface.surface_file, "form"_a = surface::to_string(o.surface.form),
+                    "outliers"_a = surface::to_string(o.surface.outliers),
                     "psd_fit"_a = to_string(o.surface.psd_fit),
                     "measured_spectrum"_a = to_string(o.surface.measured_spectrum));
 }

@@ -19,6 +19,7 @@
 #include "surfscatter/surface/height_map_acv.hpp"
 #include "surfscatter/surface/height_map_form.hpp"
 #include "surfscatter/surface/height_map_io.hpp"
+#include "surfscatter/surface/height_map_outliers.hpp"
 #include "surfscatter/surface/height_map_slope.hpp"
 #include "surfscatter/surface/elliptical_fit.hpp"
 #include "surfscatter/surface/kc_fit.hpp"
@@ -418,11 +419,27 @@ void bind_height_maps(py::module_& m) {
         .def_property_readonly(
             "source", [](const HeightMap& h) { return source_dict(h.source); },
             "what the reader found: {'format', 'reader', 'channel', 'warnings', 'height_unit_um'}")
-        .def("describe", &describe, "one line: file, format, grid, spacing, valid fraction")
+        .def("describe", static_cast<std::string (*)(const HeightMap&)>(&describe),
+             "one line: file, format, grid, spacing, valid fraction")
         .def("__repr__", [](const HeightMap& h) { return "<surfscatter.HeightMap " + describe(h) + ">"; })
         .def(
             "remove_form", [](const HeightMap& h, const std::string& form) { return remove_form(h, parse_form(form, "form")); },
             py::arg("form") = "plane", (std::string("The map minus its least-squares form. ") + kFormDoc).c_str())
+        .def(
+            "outliers",
+            [](const HeightMap& h) {
+                const Outliers o = find_outliers(h);
+                return py::dict("points"_a = o.count, "spots"_a = o.spots, "robust_sigma_um"_a = o.robust_sigma_um,
+                                "largest_um"_a = o.largest_um, "share"_a = o.share, "dominant"_a = o.dominant(),
+                                "text"_a = describe(o));
+            },
+            "Points far from their 5 x 5 neighbourhood (docs/HEIGHTMAPS.md \"Outliers\"): {'points', 'spots', "
+            "'robust_sigma_um', 'largest_um' (the largest residual), 'share' (of the pixel-scale roughness), "
+            "'dominant' (share > 0.5), 'text'}")
+        .def(
+            "fill_outliers", [](const HeightMap& h) { return fill_outliers(h, find_outliers(h)); },
+            "The map with each outlier replaced by the median of its neighbours that are not (what outliers='fill' "
+            "does before the statistics)")
         .def(
             "rms_height", [](const HeightMap& h, const std::string& form) { return rms_height(h, parse_form(form, "form")); },
             py::arg("form") = "plane", (std::string("rms height (um) about the form over the valid points. ") + kFormDoc).c_str())

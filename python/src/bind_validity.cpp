@@ -92,9 +92,10 @@ py::dict validity(const surface::RadialStatistics& surface, const std::string& m
 }
 
 // surface=: KC / Gaussian statistics (with their lay) to synthesise maps from, or a height map (object or path).
-bsdf::SurfaceOptions map_surface_options(py::handle surface, const std::string& form) {
+bsdf::SurfaceOptions map_surface_options(py::handle surface, const std::string& form, const std::string& outliers) {
     bsdf::SurfaceOptions s;
     s.form = surface::parse_form(form, "form");
+    s.outliers = surface::parse_outlier_policy(outliers, "outliers");
     if (py::isinstance<surface::KCorrelation>(surface) || py::isinstance<surface::GaussianAcv>(surface)) {
         const auto& radial = surface.cast<const surface::RadialStatistics&>();
         s.psd = py::isinstance<surface::KCorrelation>(surface) ? bsdf::PsdKind::kc : bsdf::PsdKind::gaussian;
@@ -123,11 +124,14 @@ bsdf::SurfaceOptions map_surface_options(py::handle surface, const std::string& 
 
 py::dict validity_map(py::handle surface_arg, const std::string& material, const std::vector<double>& wavelengths_nm,
                       const std::vector<double>& theta_i_deg, const std::vector<double>& phi_i_deg,
-                      const std::string& form, double map_size_um, std::size_t map_pixels, std::size_t realizations,
-                      std::uint64_t seed, double subarea_um, double max_theta_o_deg, double bin_deg, double tolerance,
-                      double max_reference_stderr, int threads) {
-    const bsdf::SurfaceOptions options = map_surface_options(surface_arg, form);
+                      const std::string& form, const std::string& outliers, double map_size_um,
+                      std::size_t map_pixels, std::size_t realizations, std::uint64_t seed, double subarea_um,
+                      double max_theta_o_deg, double bin_deg, double tolerance, double max_reference_stderr,
+                      int threads) {
+    const bsdf::SurfaceOptions options = map_surface_options(surface_arg, form, outliers);
     const bool measured = options.psd == bsdf::PsdKind::measured;
+    if (!measured && outliers != "keep")
+        fail("outliers applies to a measured map (a HeightMap or a file); synthesised maps have none");
     if (measured && (map_size_um != 0 || realizations != 1))
         fail("map_size_um and realizations synthesise maps from statistics: a height map is one realization");
     if (!(max_theta_o_deg > 0 && max_theta_o_deg < 90))
@@ -151,6 +155,7 @@ py::dict validity_map(py::handle surface_arg, const std::string& material, const
         surface = validity::map_surface(options, material, {map_size_um, map_pixels, realizations, seed});
         cases = validity::map_validity(surface, conductor, study);
     }
+    validity::require_outliers_not_dominant(surface);
     py::list rows;
     for (const auto& row : validity::table(cases)) {
         py::dict d = row_dict(row);
@@ -176,6 +181,10 @@ py::dict validity_map(py::handle surface_arg, const std::string& material, const
     out["verdicts"] = verdicts;
     out["refused_models"] = surface.refused;
     out["surface"] = surface.description;
+    if (measured)
+        out["outliers"] = py::dict("policy"_a = surface::to_string(surface.outlier_policy),
+                                   "points"_a = surface.outliers.count, "share"_a = surface.outliers.share,
+                                   "text"_a = surface::describe(surface.outliers));
     return out;
 }
 
@@ -194,18 +203,21 @@ incidence in theta_i_deg (degrees) and polarisation ('s', 'p'). Returns {'table'
 the CSV's columns, 'verdicts': one dict per case (conclusive, trusted, best_model, within_tolerance, ruled_out, text)}.)");
     m.def("validity_map", &validity_map, py::arg("surface"), py::arg("material"), py::arg("wavelengths_nm"),
           py::arg("theta_i_deg"), py::arg("phi_i_deg") = std::vector<double>{0.0}, py::arg("form") = "plane",
-          py::arg("map_size_um") = 0.0, py::arg("map_pixels") = 256, py::arg("realizations") = 1,
+          py::arg("outliers") = "keep", py::arg("map_size_um") = 0.0, py::arg("map_pixels") = 256,
+          py::arg("realizations") = 1,
           py::arg("seed") = 1, py::arg("subarea_um") = 0.0, py::arg("max_theta_o_deg") = 80.0,
           py::arg("bin_deg") = 3.0, py::arg("tolerance") = 0.1, py::arg("max_reference_stderr") = 0.25,
           py::arg("threads") = 0,
           R"(Which 2-D model to trust for a height map, as `surfscatter validity --surface-file` / `--map-size-um`
 (docs/VALIDITY.md, "Height maps"): every model the factory makes for `surface` against the Kirchhoff BRDF of the
-map(s), with Kirchhoff's own validity. `surface`: a HeightMap or a height map path (form removed as `form` says; the
-models from psd measured and psd file), or a KCorrelation / GaussianAcv, elliptical if made with corr_length_v /
+map(s), with Kirchhoff's own validity. `surface`: a HeightMap or a height map path (form removed as `form` says; its
+outliers kept or filled as `outliers` says, 'keep' or 'fill', an Error when kept ones dominate; the models from psd
+measured and psd file), or a KCorrelation / GaussianAcv, elliptical if made with corr_length_v /
 lay_angle_deg (`realizations` square maps of map_size_um and map_pixels a side are synthesised, seeds seed,
 seed + 1, ...). Wavelengths in nm, angles in degrees, subarea_um 0: a quarter of the map. Returns {'table': one dict per
 model and case with the CSV's columns, 'verdicts': one dict per case (the verdict, its reference_validity and
-reference_energy), 'refused_models': the models the factory does not make for this surface and why, 'surface'}.)");
+reference_energy), 'refused_models': the models the factory does not make for this surface and why, 'surface',
+'outliers' for a measured map (policy, points, share, text)}.)");
 }
 
 }  // namespace surfscatter::python

@@ -77,3 +77,25 @@ def test_validity_map_refuses_bad_input():
         ss.validity_map(ss.KCorrelation(0.02, 2.0, 3.0), "perfect", [550], [0])
     with pytest.raises(ss.Error, match="surface must be"):
         ss.validity_map(3, "perfect", [550], [0])
+
+
+def test_outliers_of_a_map_are_found_filled_and_decide_the_map_route():
+    """Eight spikes of 0.1 um on a smooth synthesised map: HeightMap.outliers() finds them, fill_outliers() removes
+    them, and validity_map refuses the map with outliers='keep' (they dominate) and runs with 'fill'."""
+    clean = ss.synthesize(ss.KCorrelation(0.005, 2.0, 3.0), size=128, spacing_um=0.5, seed=7)
+    h = clean.heights_um.copy()
+    for k in range(8):
+        h[9 + 13 * k, 7 + 14 * k] += 0.1 if k % 2 else -0.1
+    spiked = ss.HeightMap(h, 0.5, origin="spiked")
+    found = spiked.outliers()
+    assert found["points"] == 8 and found["spots"] == 8 and found["dominant"]
+    assert spiked.fill_outliers().outliers()["points"] == 0
+    assert clean.outliers()["points"] == 0
+    with pytest.raises(ss.Error, match="nothing can be trusted: .*8 points in 8 spots"):
+        ss.validity_map(spiked, "perfect", [550], [0], bin_deg=6)
+    got = ss.validity_map(spiked, "perfect", [550], [0], bin_deg=6, outliers="fill")
+    assert got["outliers"]["policy"] == "fill" and got["outliers"]["points"] == 8
+    with pytest.raises(ss.Error, match="outliers must be keep or fill"):
+        ss.validity_map(spiked, "perfect", [550], [0], outliers="drop")
+    with pytest.raises(ss.Error, match="outliers applies to a measured map"):
+        ss.validity_map(ss.KCorrelation(0.02, 2.0, 3.0), "perfect", [550], [0], map_size_um=16, outliers="fill")

@@ -14,6 +14,8 @@
 
 #include "cli_runner.hpp"
 #include "spectrum/test_data.hpp"
+#include "surfscatter/surface/height_map_io.hpp"
+#include "surfscatter/surface/synthesis.hpp"
 
 using surfscatter::test::read_whole_file;
 using surfscatter::test::run_cli;
@@ -253,6 +255,50 @@ TEST(CliValidityMap, ReferenceOutsideItsValidityExitsTwo) {
     EXPECT_NE(csv.find(",0,0\n"), std::string::npos) << csv;  // phi_i 0, reference_valid 0
 }
 
+// A smooth KC map (sigma 5 nm, L 2 um, 128 x 128 pixels of 0.5 um) with 8 spikes of 0.1 um: kept, they hold most of
+// its pixel-scale roughness and the command writes its outputs and exits 2 saying so; filled, it runs and says what it
+// filled. reference kirchhoff and brdf say the same.
+TEST(CliValidityMap, DominantOutliersExitTwoUnlessFilled) {
+    const auto clean = surfscatter::surface::synthesize_surface(surfscatter::surface::KCorrelation(0.005, 2.0, 3.0),
+                                                                {128, 128, 0.5}, 7);
+    std::vector<double> h = clean.heights();
+    for (std::size_t k = 0; k < 8; ++k) h[(9 + 13 * k) * clean.nx() + 7 + 14 * k] += k % 2 ? 0.1 : -0.1;
+    const std::string spiked = map_out("spiked.gsf");
+    surfscatter::surface::write_height_map(clean.with_heights(h), spiked);
+    const std::vector<std::string> args{"validity", "--surface-file", spiked, "--material", "perfect", "--wavelengths",
+                                        "550", "--theta-i", "0", "--bin-deg", "6", "-o", map_out("spiked")};
+    const auto kept = run_cli(args);
+    EXPECT_EQ(kept.exit_code, 2) << kept.err;
+    EXPECT_NE(kept.err.find("nothing can be trusted: "), std::string::npos) << kept.err;
+    EXPECT_NE(kept.err.find("8 points in 8 spots stand out"), std::string::npos) << kept.err;
+    EXPECT_NE(kept.err.find("outliers fill replaces them"), std::string::npos) << kept.err;
+    EXPECT_TRUE(std::filesystem::exists(map_out("spiked") + ".json"));  // written before the refusal
+    auto fill_args = args;
+    fill_args.insert(fill_args.end(), {"--outliers", "fill"});
+    const auto filled = run_cli(fill_args);
+    ASSERT_EQ(filled.exit_code, 0) << filled.err;
+    EXPECT_NE(filled.err.find("8 points in 8 spots stand out"), std::string::npos) << filled.err;
+    EXPECT_NE(filled.err.find("filled from their neighbours"), std::string::npos) << filled.err;
+    EXPECT_NE(read_whole_file(map_out("spiked") + ".json").find("\"policy\":\"fill\""), std::string::npos);
+
+    const auto kirchhoff = run_cli({"reference", "kirchhoff", "--surface", spiked, "--material", "perfect",
+                                    "--wavelength", "550", "--theta-i", "0", "--outliers", "fill", "-o",
+                                    map_out("spiked_kirchhoff.csv")});
+    ASSERT_EQ(kirchhoff.exit_code, 0) << kirchhoff.err;
+    EXPECT_NE(kirchhoff.err.find("note: " + spiked + ": 8 points"), std::string::npos) << kirchhoff.err;
+    const auto brdf = run_cli({"brdf", "eval", "--model", "ghs", "--surface", spiked, "--psd", "measured",
+                               "--material", "perfect", "--wavelength", "550", "--theta-i", "0", "--theta-o", "10"});
+    ASSERT_EQ(brdf.exit_code, 0) << brdf.err;
+    EXPECT_NE(brdf.err.find("warning: " + spiked + ": 8 points"), std::string::npos) << brdf.err;
+    expect_bad_input({"brdf", "eval", "--model", "ghs", "--sigma", "0.1", "--corr-length", "2", "--gamma", "3",
+                      "--material", "perfect", "--wavelength", "550", "--theta-i", "0", "--theta-o", "10",
+                      "--outliers", "fill"},
+                     "--outliers does not apply");
+    expect_bad_input({"reference", "kirchhoff", "--surface", spiked, "--material", "perfect", "--wavelength", "550",
+                      "--theta-i", "0", "--outliers", "drop", "-o", map_out("bad.csv")},
+                     "--outliers: outliers must be keep or fill, got 'drop'");
+}
+
 TEST(CliValidityMap, RefusesBadInput) {
     const auto out = map_out("bad");
     const std::vector<std::string> base{"validity", "--material", "perfect", "--wavelengths", "550", "--theta-i", "0",
@@ -278,4 +324,7 @@ TEST(CliValidityMap, RefusesBadInput) {
                            "--length-um", "12", "--beam-width", "2", "--realizations", "4"}),
                      "belong to the map route");
     expect_bad_input(with({"--surface-file", kExampleMap, "--max-theta-o", "95"}), "--max-theta-o must be in (0, 90)");
+    expect_bad_input(with({"--psd", "kc", "--sigma", "0.02", "--corr-length", "2", "--gamma", "3", "--map-size-um",
+                           "16", "--outliers", "fill"}),
+                     "--outliers applies to a measured map");
 }

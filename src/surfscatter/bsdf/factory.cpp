@@ -16,6 +16,7 @@
 #include "surfscatter/bsdf/two_scale.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/surface/height_map_io.hpp"
+#include "surfscatter/surface/height_map_outliers.hpp"
 #include "surfscatter/surface/height_map_slope.hpp"
 #include "surfscatter/surface/elliptical_slopes.hpp"
 #include "surfscatter/surface/elliptical_statistics.hpp"
@@ -75,6 +76,7 @@ public:
     explicit SurfaceSource(SurfaceOptions s) : options_(std::move(s)) { load_height_map(options_); }
 
     const surface::HeightMap* map() const { return options_.height_map.get(); }
+    const SurfaceOptions& options() const { return options_; }
     surface::Form form() const { return options_.form; }
 
     // KC parameters: given, or fitted to the height map after form removal (kc_fit.hpp); with psd_fit elliptical the
@@ -410,10 +412,25 @@ std::unique_ptr<Bsdf> map_spectrum_bsdf(const ModelOptions& o, SurfaceSource& su
 }  // namespace
 
 void load_height_map(SurfaceOptions& surface) {
-    if ((surface.psd == PsdKind::file || surface.psd == PsdKind::measured) && !surface.height_map &&
-        !surface.measured_psd && !surface.surface_file.empty())
+    if (!(surface.psd == PsdKind::file || surface.psd == PsdKind::measured) || surface.measured_psd) return;
+    if (!surface.height_map && !surface.surface_file.empty())
         surface.height_map =
             std::make_shared<const surface::HeightMap>(surface::read_height_map(surface.surface_file, std::nullopt));
+    if (surface.height_map && surface.outliers == surface::OutlierPolicy::fill && !surface.filled_outliers) {
+        surface::Outliers found;
+        surface.height_map = std::make_shared<const surface::HeightMap>(
+            surface::apply_outlier_policy(*surface.height_map, surface::OutlierPolicy::fill, found));
+        surface.filled_outliers = std::move(found);
+    }
+}
+
+std::optional<std::string> outlier_note(const SurfaceOptions& surface) {
+    const std::string name = surface.surface_file.empty() ? surface.height_map->origin() : surface.surface_file;
+    const surface::Outliers outliers =
+        surface.filled_outliers ? *surface.filled_outliers : surface::find_outliers(*surface.height_map);
+    if (outliers.count == 0) return std::nullopt;
+    const bool warn = !surface.filled_outliers && outliers.dominant();
+    return fmt::format("{}{}: {}", warn ? "warning: " : "", name, surface::describe(outliers, surface.outliers));
 }
 
 void validate(const ModelOptions& o) {
@@ -435,6 +452,8 @@ std::unique_ptr<Bsdf> make_bsdf(const ModelOptions& o, std::vector<std::string>*
     validate(o);
     auto material = material::Conductor::from_name(o.material);
     SurfaceSource surface(needs_surface(o) ? o.surface : SurfaceOptions{});
+    if (notes && surface.options().height_map && !surface.options().measured_psd && !surface.options().outliers_noted)
+        if (auto note = outlier_note(surface.options())) notes->push_back(*note);
     if (needs_surface(o) && o.surface.psd == PsdKind::measured &&
         o.surface.measured_spectrum == MeasuredSpectrum::two_d)
         if (auto bsdf = map_spectrum_bsdf(o, surface, material, notes)) return bsdf;

@@ -4,6 +4,7 @@
 // model. `notes`, if given, receives what the user should know about the result without it being an error: for a
 // measured PSD, the range the data cover and how it is extrapolated beyond.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,7 +17,13 @@ void validate(const ModelOptions& options);
 std::unique_ptr<Bsdf> make_bsdf(const ModelOptions& options, std::vector<std::string>* notes = nullptr);
 
 // Reads surface.surface_file (if psd = file or measured and it is not read yet) into surface.height_map, so that a
-// front end can report on it (surface::describe) and make_bsdf does not read it again.
+// front end can report on it (surface::describe) and make_bsdf does not read it again; with outliers fill, the map's
+// outliers are then filled (once: surface.filled_outliers says what was).
 void load_height_map(SurfaceOptions& surface);
+
+// The models' note on a height map's outliers (surface/height_map_outliers.hpp): what outliers fill filled, or, kept,
+// how many there are and their share of the map's pixel-scale roughness (a warning when they hold most of it);
+// nothing for a map without any.
+std::optional<std::string> outlier_note(const SurfaceOptions& surface);
 
 }  // namespace surfscatter::bsdf

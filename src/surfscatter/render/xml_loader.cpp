@@ -653,16 +653,20 @@ private:
         return located(node, plugin + ": ", build_object);
     }
 
-    // Each surface_file is read once per scene (several BSDFs may use it) and reported in the scene's notes.
+    // Each surface_file is read once per scene and outliers policy (several BSDFs may use it) and reported in the
+    // scene's notes.
     void share_height_map(bsdf::SurfaceOptions& surface) {
         if (surface.psd != bsdf::PsdKind::file && surface.psd != bsdf::PsdKind::measured) return;
-        auto& map = height_maps_[surface.surface_file];
-        if (!map) {
+        SharedMap& shared = height_maps_[{surface.surface_file, surface.outliers}];
+        if (!shared.map) {
             bsdf::load_height_map(surface);
-            map = surface.height_map;
-            scene_->notes.push_back(surface::describe(*map));
+            shared = {surface.height_map, surface.filled_outliers};
+            const auto outliers = bsdf::outlier_note(surface);
+            scene_->notes.push_back(surface::describe(*shared.map) + (outliers ? "; " + *outliers : ""));
         }
-        surface.height_map = map;
+        surface.height_map = shared.map;
+        surface.filled_outliers = shared.filled_outliers;
+        surface.outliers_noted = true;  // in the map's note above, once
     }
 
     // ---------------------------------------------------------------- BSDFs
@@ -1072,7 +1076,11 @@ public:
 private:
     std::map<std::string, std::string> defines_;
     std::unique_ptr<Scene> scene_;
-    std::map<std::string, std::shared_ptr<const surface::HeightMap>> height_maps_;  // by surface_file
+    struct SharedMap {
+        std::shared_ptr<const surface::HeightMap> map;
+        std::optional<surface::Outliers> filled_outliers;
+    };
+    std::map<std::pair<std::string, surface::OutlierPolicy>, SharedMap> height_maps_;  // by surface_file and outliers
     std::vector<std::unique_ptr<Source>> sources_;
     std::map<std::string, Object> objects_;
     std::set<std::string> names_;

@@ -151,6 +151,13 @@ LatticeBins bin_lattice(const MapsReference& reference, const Vec3& wi, const st
 
 }  // namespace
 
+void require_outliers_not_dominant(const MapSurface& surface) {
+    if (surface.outlier_policy == surface::OutlierPolicy::keep && surface.outliers.dominant())
+        fail("nothing can be trusted: {}: {}: the Kirchhoff reference and the models describe them, not the surface; "
+             "outliers fill replaces them by their neighbours' median (docs/HEIGHTMAPS.md \"Outliers\")",
+             surface.description, surface::describe(surface.outliers));
+}
+
 MapSurface map_surface(const bsdf::SurfaceOptions& surface, const std::string& material,
                        const SynthesisSettings& synthesis) {
     MapSurface out;
@@ -158,6 +165,12 @@ MapSurface map_surface(const bsdf::SurfaceOptions& surface, const std::string& m
         if (surface.surface_file.empty()) fail("validity: a height map needs its file (surface_file)");
         bsdf::SurfaceOptions measured = surface;
         bsdf::load_height_map(measured);
+        out.outlier_policy = surface.outliers;
+        out.outliers =
+            measured.filled_outliers ? *measured.filled_outliers : surface::find_outliers(*measured.height_map);
+        out.outliers.mask.clear();
+        if (auto note = bsdf::outlier_note(measured)) out.notes.push_back(*note);  // once, not per model
+        measured.outliers_noted = true;
         out.maps.push_back(surface::remove_form(*measured.height_map, surface.form));
         measured.psd = bsdf::PsdKind::measured;
         add_models(out, measured, material, "/measured");

@@ -30,6 +30,7 @@
 #include "surfscatter/bsdf/model_options.hpp"
 #include "surfscatter/material/conductor.hpp"
 #include "surfscatter/surface/height_map.hpp"
+#include "surfscatter/surface/height_map_outliers.hpp"
 #include "surfscatter/validity/kirchhoff_validity.hpp"
 #include "surfscatter/validity/validity.hpp"
 
@@ -46,7 +47,15 @@ struct MapSurface {
     std::vector<std::string> refused;      // "two_scale: <why>": models the factory does not make for this surface
     std::vector<std::string> notes;        // the factory's notes (a measured PSD's range and extrapolation)
     std::string description;               // one line: the file or the statistics and the maps drawn
+    // A measured map's outliers (surface/height_map_outliers.hpp, without the mask): the ones filled with outliers
+    // fill, else the ones kept. Kept and dominant, the reference and the models describe them, not the surface.
+    surface::Outliers outliers;
+    surface::OutlierPolicy outlier_policy = surface::OutlierPolicy::keep;
 };
+
+// Error when a measured map's outliers were kept and hold most of its pixel-scale roughness: the Kirchhoff reference
+// and the models then describe them, not the surface (front ends call it once their outputs are written).
+void require_outliers_not_dominant(const MapSurface& surface);
 
 struct SynthesisSettings {
     double size_um = 0;          // side of the square maps

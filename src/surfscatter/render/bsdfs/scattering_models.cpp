@@ -7,7 +7,7 @@
 // `corr_length_v` and `lay_angle` (degrees; elliptical statistics, surface/elliptical_statistics.hpp: the lay
 // direction u is the shading frame's s = dp/du turned by lay_angle about the normal towards t, so the shape's
 // tangent frame orients the lay; docs/RENDERER.md lists each shape's dp/du), `gamma`, `surface_file` (any height map format, read once per scene and reported with its valid fraction),
-// `form`, `psd_fit` (psd file: isotropic | elliptical, the KC fit of the map), `fresnel` (all but two_scale's macro part), ghs and two_scale: `method`, `truncation`,
+// `form`, `outliers` (keep | fill, the map's outliers: docs/HEIGHTMAPS.md "Outliers"), `psd_fit` (psd file: isotropic | elliptical, the KC fit of the map), `fresnel` (all but two_scale's macro part), ghs and two_scale: `method`, `truncation`,
 // `epsilon`, `renormalization`; ghs_ssa: `ssa_form`; ggx_stats: `alpha_from`, `smoothing`,
 // `alpha`; two_scale: `cutoff_wavelengths`, `macro_ndf`. A parameter the model and modes chosen do not use is an
 // error at its line (bsdf::inapplicable_option: e.g. `smoothing` without alpha_from smoothed).
@@ -99,6 +99,8 @@ void read_surface_options(Properties& props, bsdf::ModelOptions& o) {
     if (const auto fit = read_choice(props, "psd_fit", bsdf::parse_psd_fit)) o.surface.psd_fit = *fit;
     const std::string form = props.get_string("form", "");
     if (!form.empty()) o.surface.form = surface::parse_form(form, "form");
+    const std::string outliers = props.get_string("outliers", "");
+    if (!outliers.empty()) o.surface.outliers = surface::parse_outlier_policy(outliers, "outliers");
     if (const auto spectrum = read_choice(props, "measured_spectrum", bsdf::parse_measured_spectrum))
         o.surface.measured_spectrum = *spectrum;
     if (const auto fresnel = read_choice(props, "fresnel", bsdf::parse_fresnel)) o.fresnel = *fresnel;
@@ -107,7 +109,7 @@ void read_surface_options(Properties& props, bsdf::ModelOptions& o) {
 // An option given in the scene that the model and modes chosen do not use is an error at its line (the CLI's rule).
 void check_applicable(Properties& props, const bsdf::ModelOptions& o, const std::string& type) {
     for (const char* name : {"material", "psd", "sigma", "corr_length", "corr_length_v", "lay_angle", "gamma",
-                             "surface_file", "form", "psd_fit", "measured_spectrum", "fresnel",
+                             "surface_file", "form", "outliers", "psd_fit", "measured_spectrum", "fresnel",
                              "method", "truncation", "epsilon", "renormalization", "ssa_form", "alpha_from",
                              "smoothing", "alpha", "cutoff_wavelengths", "macro_ndf"})
         if (props.has(name))
