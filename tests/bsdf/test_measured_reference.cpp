@@ -32,7 +32,7 @@ struct LatticeReference {
     std::vector<double> dc;                          // P-hat^{*m}(0) on the lattice
 
     LatticeReference(const surface::HeightMap& map, int orders) : n(map.nx()), dx(map.spacing_x()) {
-        dzeta = 2.0 * kPi / (n * dx);
+        dzeta = 2.0 * kPi / (static_cast<double>(n) * dx);
         const auto spectrum = surface::forward_fft_2d(map.heights(), n, n);
         const std::size_t half = n / 2 + 1;
         periodogram.assign(n * n, 0.0);
@@ -64,8 +64,8 @@ struct LatticeReference {
         double sum = 0.0;
         for (std::size_t ky = 0; ky < n; ++ky)
             for (std::size_t kx = 0; kx < n; ++kx) {
-                const double zx = surface::signed_frequency_index(kx, n) * dzeta - k * sin_theta_i;
-                const double zy = surface::signed_frequency_index(ky, n) * dzeta;
+                const double zx = static_cast<double>(surface::signed_frequency_index(kx, n)) * dzeta - k * sin_theta_i;
+                const double zy = static_cast<double>(surface::signed_frequency_index(ky, n)) * dzeta;
                 if (zx * zx + zy * zy <= k * k) sum += periodogram[ky * n + kx] * dzeta * dzeta;
             }
         return sum;

@@ -21,11 +21,12 @@ inline HeightMap exact_amplitude_map(const RadialStatistics& stats, std::size_t 
     std::vector<std::complex<double>> spectrum(n * half);
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> phase(0.0, 2.0 * kPi);
-    const double dzeta = 2.0 * kPi / (n * dx);
+    const double dzeta = 2.0 * kPi / (static_cast<double>(n) * dx);
     const double norm = 4.0 * kPi * kPi * static_cast<double>(n * n) / (dx * dx);
     for (std::size_t ky = 0; ky < n; ++ky)
         for (std::size_t kx = 0; kx < half; ++kx) {
-            const double zx = kx * dzeta, zy = signed_frequency_index(ky, n) * dzeta;
+            const double zx = static_cast<double>(kx) * dzeta;
+            const double zy = static_cast<double>(signed_frequency_index(ky, n)) * dzeta;
             const double amplitude = std::sqrt(norm * stats.psd(std::hypot(zx, zy)));
             spectrum[ky * half + kx] = std::polar(amplitude, phase(rng));
         }
@@ -63,11 +64,12 @@ inline std::vector<std::pair<double, double>> lattice_rings(const std::vector<do
     for (std::size_t i = 0; i < rho.size(); ++i) power[i] = std::pow(rho[i], m);
     const auto spectrum = forward_fft_2d(power, n, n);
     const std::size_t half = n / 2 + 1;
-    const double dzeta = 2.0 * kPi / (n * dx);
+    const double dzeta = 2.0 * kPi / (static_cast<double>(n) * dx);
     std::vector<double> sum_z(n / 2, 0.0), sum_v(n / 2, 0.0), count(n / 2, 0.0);
     for (std::size_t ky = 0; ky < n; ++ky)
         for (std::size_t kx = 0; kx < half; ++kx) {
-            const double zx = kx * dzeta, zy = signed_frequency_index(ky, n) * dzeta;
+            const double zx = static_cast<double>(kx) * dzeta;
+            const double zy = static_cast<double>(signed_frequency_index(ky, n)) * dzeta;
             const double z = std::hypot(zx, zy);
             const std::size_t ring = static_cast<std::size_t>(std::lround(z / dzeta));
             if (ring == 0 || ring >= n / 2) continue;
