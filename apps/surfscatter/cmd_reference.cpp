@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "command.hpp"
+#include "height_map_outliers_option.hpp"
 #include "profile_surface_options.hpp"
 #include "surfscatter/bsdf/model_options.hpp"
 #include "surfscatter/bsdf/profile_lobes.hpp"
@@ -32,7 +33,6 @@
 #include "surfscatter/reference/profile.hpp"
 #include "surfscatter/surface/height_map_form.hpp"
 #include "surfscatter/surface/height_map_io.hpp"
-#include "surfscatter/surface/height_map_outliers.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
 
 namespace surfscatter::cli {
@@ -160,16 +160,10 @@ void run_kirchhoff(const KirchhoffArgs& a) {
     require_thread_count(a.threads, "--threads");
     const surface::Form form = surface::parse_form(a.form, "--form");
     const auto conductor = material::Conductor::from_name(a.material);
-    const surface::OutlierPolicy policy = surface::parse_outlier_policy(a.outliers, "--outliers");
-    surface::Outliers outliers;
-    const surface::HeightMap map = surface::remove_form(
-        surface::apply_outlier_policy(surface::read_height_map(a.surface_file, {}, {}), policy, outliers), form);
+    const surface::HeightMap map =
+        surface::remove_form(read_height_map_with_outliers(a.surface_file, {}, {}, a.outliers), form);
     for (const std::string& warning : map.source.warnings)
         std::fprintf(stderr, "surfscatter: warning: %s: %s\n", a.surface_file.c_str(), warning.c_str());
-    if (outliers.count > 0)
-        std::fprintf(stderr, "surfscatter: %s: %s: %s\n",
-                     policy == surface::OutlierPolicy::keep && outliers.dominant() ? "warning" : "note",
-                     a.surface_file.c_str(), surface::describe(outliers, policy).c_str());
     reference::KirchhoffOptions o;
     o.lambda_nm = a.wavelength;
     o.theta_i_rad = a.theta_i * kDegree;
@@ -206,9 +200,7 @@ void add_kirchhoff(CLI::App* reference_cmd) {
                      "theta_o_deg,phi_o_deg,brdf_per_sr,standard_error_per_sr,coherent_per_sr");
     sub->add_option("--surface", a->surface_file, "height map (any format `surface info` reads)")->required();
     sub->add_option("--form", a->form, "form removed first: none (mean) | plane (default) | poly2 | poly3 | poly4");
-    sub->add_option("--outliers", a->outliers,
-                    "the map's outliers (points far from their 5 x 5 neighbourhood): keep (default) | fill (each "
-                    "replaced by its neighbours' median); docs/HEIGHTMAPS.md \"Outliers\"");
+    add_outliers_option(sub, a->outliers);
     sub->add_option("--material", a->material,
                     "perfect, a built-in metal (Ag, Au, Al, Cu, ...) or a .yml/.csv refractive index file")
         ->required();

@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "command.hpp"
+#include "height_map_outliers_option.hpp"
 #include "statistics_options.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/paths.hpp"
@@ -23,7 +24,6 @@
 #include "surfscatter/surface/height_map_fft.hpp"
 #include "surfscatter/surface/height_map_form.hpp"
 #include "surfscatter/surface/height_map_io.hpp"
-#include "surfscatter/surface/height_map_outliers.hpp"
 #include "surfscatter/surface/height_map_slope.hpp"
 #include "surfscatter/surface/kc_fit.hpp"
 #include "surfscatter/surface/map_statistics.hpp"
@@ -101,9 +101,7 @@ void add_map_options(CLI::App* cmd, MapArgs& a) {
     cmd->add_option("--spacing", a.spacing, "pixel spacing of a text grid without header (um)");
     cmd->add_option("--height-unit", a.height_unit, "um per height unit of a text grid without header (default 1)");
     cmd->add_option("--form", a.form, "form removed first: none (mean) | plane (default) | poly2 | poly3 | poly4");
-    cmd->add_option("--outliers", a.outliers,
-                    "the map's outliers (points far from their 5 x 5 neighbourhood): keep (default) | fill (each "
-                    "replaced by its neighbours' median); docs/HEIGHTMAPS.md \"Outliers\"");
+    add_outliers_option(cmd, a.outliers);
 }
 
 // The map (after checking the options, its outliers filled with --outliers fill) and the form to remove; the reader's
@@ -113,15 +111,8 @@ surface::HeightMap read_map(const MapArgs& args, surface::Form& form) {
     if (args.spacing) surface::require_valid_spacing(*args.spacing, "--spacing");
     if (args.height_unit) require_positive(*args.height_unit, "--height-unit");
     form = surface::parse_form(args.form, "--form");
-    const surface::OutlierPolicy policy = surface::parse_outlier_policy(args.outliers, "--outliers");
-    surface::Outliers outliers;
-    surface::HeightMap map = surface::apply_outlier_policy(
-        surface::read_height_map(args.input, args.spacing, args.height_unit), policy, outliers);
+    surface::HeightMap map = read_height_map_with_outliers(args.input, args.spacing, args.height_unit, args.outliers);
     for (const std::string& warning : map.source.warnings) std::printf("warning = %s\n", warning.c_str());
-    if (outliers.count > 0)
-        std::fprintf(stderr, "surfscatter: %s: %s: %s\n",
-                     policy == surface::OutlierPolicy::keep && outliers.dominant() ? "warning" : "note",
-                     args.input.c_str(), surface::describe(outliers, policy).c_str());
     return map;
 }
 

@@ -424,13 +424,15 @@ void load_height_map(SurfaceOptions& surface) {
     }
 }
 
-std::optional<std::string> outlier_note(const SurfaceOptions& surface) {
-    const std::string name = surface.surface_file.empty() ? surface.height_map->origin() : surface.surface_file;
-    const surface::Outliers outliers =
-        surface.filled_outliers ? *surface.filled_outliers : surface::find_outliers(*surface.height_map);
+surface::Outliers outliers_of(const SurfaceOptions& surface) {
+    return surface.filled_outliers ? *surface.filled_outliers : surface::find_outliers(*surface.height_map);
+}
+
+std::optional<std::string> outlier_note(const SurfaceOptions& surface, const surface::Outliers& outliers) {
     if (outliers.count == 0) return std::nullopt;
-    const bool warn = !surface.filled_outliers && outliers.dominant();
-    return fmt::format("{}{}: {}", warn ? "warning: " : "", name, surface::describe(outliers, surface.outliers));
+    const std::string name = surface.surface_file.empty() ? surface.height_map->origin() : surface.surface_file;
+    return fmt::format("{}{}: {}", surface::kept_and_dominant(outliers, surface.outliers) ? "warning: " : "", name,
+                       surface::describe(outliers, surface.outliers));
 }
 
 void validate(const ModelOptions& o) {
@@ -453,7 +455,7 @@ std::unique_ptr<Bsdf> make_bsdf(const ModelOptions& o, std::vector<std::string>*
     auto material = material::Conductor::from_name(o.material);
     SurfaceSource surface(needs_surface(o) ? o.surface : SurfaceOptions{});
     if (notes && surface.options().height_map && !surface.options().measured_psd && !surface.options().outliers_noted)
-        if (auto note = outlier_note(surface.options())) notes->push_back(*note);
+        if (auto note = outlier_note(surface.options(), outliers_of(surface.options()))) notes->push_back(*note);
     if (needs_surface(o) && o.surface.psd == PsdKind::measured &&
         o.surface.measured_spectrum == MeasuredSpectrum::two_d)
         if (auto bsdf = map_spectrum_bsdf(o, surface, material, notes)) return bsdf;

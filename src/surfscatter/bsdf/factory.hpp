@@ -21,9 +21,10 @@ std::unique_ptr<Bsdf> make_bsdf(const ModelOptions& options, std::vector<std::st
 // outliers are then filled (once: surface.filled_outliers says what was).
 void load_height_map(SurfaceOptions& surface);
 
-// The models' note on a height map's outliers (surface/height_map_outliers.hpp): what outliers fill filled, or, kept,
-// how many there are and their share of the map's pixel-scale roughness (a warning when they hold most of it);
-// nothing for a map without any.
-std::optional<std::string> outlier_note(const SurfaceOptions& surface);
+// A loaded height map's outliers (surface/height_map_outliers.hpp): those load_height_map filled, else found now.
+surface::Outliers outliers_of(const SurfaceOptions& surface);
+// The models' note on them: what outliers fill filled, or, kept, how many there are and their share of the map's
+// pixel-scale roughness (a warning when they hold most of it); nothing for a map without any.
+std::optional<std::string> outlier_note(const SurfaceOptions& surface, const surface::Outliers& outliers);
 
 }  // namespace surfscatter::bsdf

@@ -661,7 +661,7 @@ private:
         if (!shared.map) {
             bsdf::load_height_map(surface);
             shared = {surface.height_map, surface.filled_outliers};
-            const auto outliers = bsdf::outlier_note(surface);
+            const auto outliers = bsdf::outlier_note(surface, bsdf::outliers_of(surface));
             scene_->notes.push_back(surface::describe(*shared.map) + (outliers ? "; " + *outliers : ""));
         }
         surface.height_map = shared.map;

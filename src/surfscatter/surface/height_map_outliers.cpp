@@ -176,7 +176,7 @@ std::string describe(const Outliers& o) {
 std::string describe(const Outliers& o, OutlierPolicy policy) {
     if (policy == OutlierPolicy::fill) return describe(o) + (o.count > 0 ? "; filled from their neighbours" : "");
     if (o.count == 0) return describe(o);
-    return describe(o) + (o.dominant() ? "; kept: the map's PSD at high frequencies and its BRDF at large angles "
+    return describe(o) + (kept_and_dominant(o, policy) ? "; kept: the map's PSD at high frequencies and its BRDF at large angles "
                                          "describe them, not the surface (outliers fill replaces them)"
                                        : "; kept (outliers fill replaces them)");
 }

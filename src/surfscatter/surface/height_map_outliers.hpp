@@ -48,6 +48,11 @@ struct Outliers {
     bool dominant() const { return share > kDominantOutlierShare; }
 };
 
+// Whether a map's statistics describe its outliers rather than its surface: they were kept and they dominate.
+inline bool kept_and_dominant(const Outliers& outliers, OutlierPolicy policy) {
+    return policy == OutlierPolicy::keep && outliers.dominant();
+}
+
 Outliers find_outliers(const HeightMap& map);
 // The map with every outlier replaced as above (invalid points stay invalid); the map itself when there are none.
 HeightMap fill_outliers(const HeightMap& map, const Outliers& outliers);

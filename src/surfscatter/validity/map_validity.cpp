@@ -152,7 +152,7 @@ LatticeBins bin_lattice(const MapsReference& reference, const Vec3& wi, const st
 }  // namespace
 
 void require_outliers_not_dominant(const MapSurface& surface) {
-    if (surface.outlier_policy == surface::OutlierPolicy::keep && surface.outliers.dominant())
+    if (surface::kept_and_dominant(surface.outliers, surface.outlier_policy))
         fail("nothing can be trusted: {}: {}: the Kirchhoff reference and the models describe them, not the surface; "
              "outliers fill replaces them by their neighbours' median (docs/HEIGHTMAPS.md \"Outliers\")",
              surface.description, surface::describe(surface.outliers));
@@ -166,10 +166,9 @@ MapSurface map_surface(const bsdf::SurfaceOptions& surface, const std::string& m
         bsdf::SurfaceOptions measured = surface;
         bsdf::load_height_map(measured);
         out.outlier_policy = surface.outliers;
-        out.outliers =
-            measured.filled_outliers ? *measured.filled_outliers : surface::find_outliers(*measured.height_map);
+        out.outliers = bsdf::outliers_of(measured);
         out.outliers.mask.clear();
-        if (auto note = bsdf::outlier_note(measured)) out.notes.push_back(*note);  // once, not per model
+        if (auto note = bsdf::outlier_note(measured, out.outliers)) out.notes.push_back(*note);  // once, not per model
         measured.outliers_noted = true;
         out.maps.push_back(surface::remove_form(*measured.height_map, surface.form));
         measured.psd = bsdf::PsdKind::measured;
