@@ -65,7 +65,7 @@ ModelOptions options_for(int model, double g) {
             o.surface.psd = PsdKind::measured;
             o.surface.measured_spectrum = MeasuredSpectrum::ring;  // the ring route (bench_map_ghs: the 2-D one)
             o.surface.surface_file = "kc-1024.gsf";  // named for reports; the map is given
-            o.surface.height_map = std::make_shared<const surface::HeightMap>(surface::synthesize_surface(
+            o.surface.height_map = std::make_shared<const heightmap::HeightMap>(surface::synthesize_surface(
                 surface::KCorrelation(o.surface.sigma, 1.0, 3.0), {1024, 1024, 0.05}, 1));
             break;
         }
@@ -196,7 +196,7 @@ void BM_measured_tables(benchmark::State& state) {
         state.PauseTiming();
         cache.renew();
         // A new map each run: the tables are also shared in memory by their statistics.
-        o.surface.height_map = std::make_shared<const surface::HeightMap>(surface::synthesize_surface(
+        o.surface.height_map = std::make_shared<const heightmap::HeightMap>(surface::synthesize_surface(
             surface::KCorrelation(o.surface.sigma, 1.0, 3.0), {1024, 1024, 0.05}, 100 + ++run));
         state.ResumeTiming();
         const auto b = make_bsdf(o);

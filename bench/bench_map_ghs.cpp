@@ -28,7 +28,7 @@ const double kSigma = std::sqrt(10.0) / (2.0 * kTwoPi / (kLambda * 1e-3) * std::
 const std::shared_ptr<const surface::MapStatistics>& map_statistics() {
     static const auto stats = std::make_shared<const surface::MapStatistics>(
         surface::synthesize_surface(surface::KCorrelation(kSigma, 1.0, 3.0), {1024, 1024, 0.05}, 1),
-        surface::Form::plane);
+        heightmap::Form::plane);
     return stats;
 }
 

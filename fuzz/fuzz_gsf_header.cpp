@@ -1,5 +1,5 @@
-// Fuzz target: the header of Gwyddion Simple Field files (surface/height_map_io.hpp read_gsf, its "name = value"
-// lines through surface/height_map_parse.hpp). The bytes are the header's text: the target adds the magic line, the
+// Fuzz target: the header of Gwyddion Simple Field files (heightmap/io.hpp read_gsf, its "name = value"
+// lines through heightmap/parse.hpp). The bytes are the header's text: the target adds the magic line, the
 // NUL padding and, when the header's XRes x YRes is small, that many float samples, so that mutations explore the
 // header instead of failing on the data's size (fuzz_height_map feeds whole files).
 #include <algorithm>
@@ -7,8 +7,8 @@
 
 #include "fuzz_common.hpp"
 #include "surfscatter/core/input_file.hpp"
-#include "surfscatter/surface/height_map_io.hpp"
-#include "surfscatter/surface/height_map_parse.hpp"
+#include "surfscatter/heightmap/io.hpp"
+#include "surfscatter/heightmap/parse.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     using namespace surfscatter;
@@ -36,7 +36,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     const auto path = fuzz::write_input("header.gsf", file);
     fuzz::expect_clean([&] {
-        const surface::HeightMap map = surface::read_gsf(path);
+        const heightmap::HeightMap map = heightmap::read_gsf(path);
         for (double h : map.heights()) FUZZ_CHECK(std::isfinite(h));
         FUZZ_CHECK(std::isfinite(map.width()) && map.width() > 0 && std::isfinite(map.height()) && map.height() > 0);
         FUZZ_CHECK(std::isfinite(map.offset_x) && std::isfinite(map.offset_y));

@@ -1,10 +1,10 @@
-// Fuzz target: the native X3P reader (surface/height_map_x3p.hpp). libzip checks every entry's CRC, so mutating
+// Fuzz target: the native X3P reader (heightmap/x3p.hpp). libzip checks every entry's CRC, so mutating
 // whole archives would rarely get past it: the input is main.xml, a NUL byte, then bindata/data.bin, and the target
 // stores both in a fresh zip archive before reading it. A map that loads must hold finite heights.
 #include <zip.h>
 
 #include "fuzz_common.hpp"
-#include "surfscatter/surface/height_map_x3p.hpp"
+#include "surfscatter/heightmap/x3p.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     using namespace surfscatter;
@@ -23,7 +23,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     FUZZ_CHECK(zip_close(archive) == 0);
     fuzz::expect_clean([&] {
-        const surface::HeightMap map = surface::read_x3p(path);
+        const heightmap::HeightMap map = heightmap::read_x3p(path);
         for (double h : map.heights()) FUZZ_CHECK(std::isfinite(h));
     });
     return 0;

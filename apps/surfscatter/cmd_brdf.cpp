@@ -34,8 +34,8 @@ struct BrdfArgs {
     std::string measured_spectrum = "2d";
     double sigma = 0, corr_length = 0, gamma = 0, corr_length_v = 0, lay_angle = 0;
     // The --surface map, read when first needed and shared by every model of the command.
-    mutable std::shared_ptr<const surface::HeightMap> height_map;
-    mutable std::optional<surface::Outliers> filled_outliers;  // what --outliers fill filled in height_map
+    mutable std::shared_ptr<const heightmap::HeightMap> height_map;
+    mutable std::optional<heightmap::Outliers> filled_outliers;  // what --outliers fill filled in height_map
     double wavelength = 0, phi_i = 0;
     std::vector<double> theta_i;
     // eval
@@ -125,8 +125,8 @@ bsdf::ModelOptions model_options(const BrdfArgs& a, const std::string& spec) {
     if (!a.surface_file.empty() && from_map) {
         o.surface.psd = psd.empty() ? bsdf::PsdKind::file : bsdf::parse_psd(psd, "--psd");
         o.surface.surface_file = a.surface_file;
-        o.surface.form = surface::parse_form(a.form, "--form");
-        o.surface.outliers = surface::parse_outlier_policy(a.outliers, "--outliers");
+        o.surface.form = heightmap::parse_form(a.form, "--form");
+        o.surface.outliers = heightmap::parse_outlier_policy(a.outliers, "--outliers");
         // Parsed for every map model, used by psd file only (slice --models ghs:file,ghs:measured).
         const bsdf::PsdFit fit = a.psd_fit.empty() ? bsdf::PsdFit::isotropic : bsdf::parse_psd_fit(a.psd_fit, "--psd-fit");
         if (o.surface.psd == bsdf::PsdKind::file) o.surface.psd_fit = fit;
@@ -171,10 +171,10 @@ std::unique_ptr<bsdf::Bsdf> build_model(const bsdf::ModelOptions& options) {
     std::vector<std::string> notes;
     auto model = bsdf::make_bsdf(options, &notes);
     // The --surface map is described once the model is built from it: a map the model refuses gives the error alone.
-    static const surface::HeightMap* described = nullptr;
+    static const heightmap::HeightMap* described = nullptr;
     if (options.surface.height_map && options.surface.height_map.get() != described) {
         described = options.surface.height_map.get();
-        std::fprintf(stderr, "surfscatter: brdf: %s\n", surface::describe(*described).c_str());
+        std::fprintf(stderr, "surfscatter: brdf: %s\n", heightmap::describe(*described).c_str());
     }
     for (const std::string& note : notes)
         if (std::find(printed.begin(), printed.end(), note) == printed.end()) {

@@ -31,8 +31,8 @@
 #include "surfscatter/reference/exact_1d_statistics.hpp"
 #include "surfscatter/reference/kirchhoff_map.hpp"
 #include "surfscatter/reference/profile.hpp"
-#include "surfscatter/surface/height_map_form.hpp"
-#include "surfscatter/surface/height_map_io.hpp"
+#include "surfscatter/heightmap/form.hpp"
+#include "surfscatter/heightmap/io.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
 
 namespace surfscatter::cli {
@@ -158,10 +158,10 @@ void run_kirchhoff(const KirchhoffArgs& a) {
         fail("--max-theta-o must be in (0, 90) degrees, got {}", a.max_theta_o);
     if (a.subarea) require_positive(*a.subarea, "--subarea-um");
     require_thread_count(a.threads, "--threads");
-    const surface::Form form = surface::parse_form(a.form, "--form");
+    const heightmap::Form form = heightmap::parse_form(a.form, "--form");
     const auto conductor = material::Conductor::from_name(a.material);
-    const surface::HeightMap map =
-        surface::remove_form(read_height_map_with_outliers(a.surface_file, {}, {}, a.outliers), form);
+    const heightmap::HeightMap map =
+        heightmap::remove_form(read_height_map_with_outliers(a.surface_file, {}, {}, a.outliers), form);
     for (const std::string& warning : map.source.warnings)
         std::fprintf(stderr, "surfscatter: warning: %s: %s\n", a.surface_file.c_str(), warning.c_str());
     reference::KirchhoffOptions o;

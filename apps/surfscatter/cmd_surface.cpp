@@ -22,8 +22,8 @@
 #include "surfscatter/surface/elliptical_statistics.hpp"
 #include "surfscatter/surface/height_map_acv.hpp"
 #include "surfscatter/surface/height_map_fft.hpp"
-#include "surfscatter/surface/height_map_form.hpp"
-#include "surfscatter/surface/height_map_io.hpp"
+#include "surfscatter/heightmap/form.hpp"
+#include "surfscatter/heightmap/io.hpp"
 #include "surfscatter/surface/height_map_slope.hpp"
 #include "surfscatter/surface/kc_fit.hpp"
 #include "surfscatter/surface/map_statistics.hpp"
@@ -66,16 +66,16 @@ struct FitArgs : MapArgs {
 void synth(const SynthArgs& args) {
     const std::shared_ptr<const surface::RadialStatistics> model = args.statistics.make();
     if (args.seed < 0) fail("--seed must be >= 0, got {}", args.seed);
-    surface::require_valid_spacing(args.spacing, "--spacing");
-    surface::require_height_map_extension(args.output, "-o");
-    if (args.size < static_cast<long long>(surface::kMinHeightMapSize))
-        fail("--size must be at least {} samples, got {}", surface::kMinHeightMapSize, args.size);
+    heightmap::require_valid_spacing(args.spacing, "--spacing");
+    heightmap::require_height_map_extension(args.output, "-o");
+    if (args.size < static_cast<long long>(heightmap::kMinHeightMapSize))
+        fail("--size must be at least {} samples, got {}", heightmap::kMinHeightMapSize, args.size);
     if (args.corr_length_v) surface::require_surface_length(*args.corr_length_v, "--corr-length-v");
     if (!std::isfinite(args.lay_angle)) fail("--lay-angle must be finite, got {}", args.lay_angle);
     const auto n = static_cast<std::size_t>(args.size);
     const surface::SynthesisGrid grid{n, n, args.spacing};
     const bool anisotropic = args.corr_length_v || args.lay_angle != 0.0;
-    surface::HeightMap map =
+    heightmap::HeightMap map =
         anisotropic ? surface::synthesize_surface(
                           surface::EllipticalStatistics(model, args.corr_length_v.value_or(model->correlation_length()),
                                                         args.lay_angle * kPi / 180.0),
@@ -89,7 +89,7 @@ void synth(const SynthArgs& args) {
                                               : "",
                                   s.gamma ? fmt::format(" gamma={}", *s.gamma) : "", args.seed)
                     : args.title;
-    surface::write_height_map(map, args.output);
+    heightmap::write_height_map(map, args.output);
     std::fprintf(stderr, "surfscatter: surface synth: wrote %s (%zu x %zu points of %s um, %s)\n", args.output.c_str(), n,
                  n, format_number(args.spacing).c_str(), map.title.c_str());
 }
@@ -107,18 +107,18 @@ void add_map_options(CLI::App* cmd, MapArgs& a) {
 // The map (after checking the options, its outliers filled with --outliers fill) and the form to remove; the reader's
 // warnings go to stdout, the outliers to stderr as a note (a warning when kept and holding most of the pixel-scale
 // roughness).
-surface::HeightMap read_map(const MapArgs& args, surface::Form& form) {
-    if (args.spacing) surface::require_valid_spacing(*args.spacing, "--spacing");
+heightmap::HeightMap read_map(const MapArgs& args, heightmap::Form& form) {
+    if (args.spacing) heightmap::require_valid_spacing(*args.spacing, "--spacing");
     if (args.height_unit) require_positive(*args.height_unit, "--height-unit");
-    form = surface::parse_form(args.form, "--form");
-    surface::HeightMap map = read_height_map_with_outliers(args.input, args.spacing, args.height_unit, args.outliers);
+    form = heightmap::parse_form(args.form, "--form");
+    heightmap::HeightMap map = read_height_map_with_outliers(args.input, args.spacing, args.height_unit, args.outliers);
     for (const std::string& warning : map.source.warnings) std::printf("warning = %s\n", warning.c_str());
     return map;
 }
 
 void print_value(const char* name, double value) { std::printf("%s = %s\n", name, format_number(value).c_str()); }
 
-void write_measured_plot(const InfoArgs& args, const surface::HeightMap& map, surface::Form form);
+void write_measured_plot(const InfoArgs& args, const heightmap::HeightMap& map, heightmap::Form form);
 
 // The rings of a radial PSD as CSV for psd_fit.py: zeta, psd, count, a model's value (column `model_column`), whether
 // the ring is in the band used, and its independent samples.
@@ -147,10 +147,10 @@ void write_ring_csv(const surface::RadialPsd& r, const char* model_column, const
 }
 
 void info(const InfoArgs& args) {
-    surface::Form form = surface::Form::plane;
-    const surface::HeightMap map = read_map(args, form);
-    const surface::HeightMap flat = surface::remove_form(map, form);
-    const surface::HeightMoments moments = surface::height_moments(flat);
+    heightmap::Form form = heightmap::Form::plane;
+    const heightmap::HeightMap map = read_map(args, form);
+    const heightmap::HeightMap flat = heightmap::remove_form(map, form);
+    const heightmap::HeightMoments moments = heightmap::height_moments(flat);
     const surface::AcvMeasures acv = surface::acv_measures(flat);
     const auto& source = map.source;
     std::printf("format = %s\n", source.format.c_str());
@@ -161,14 +161,14 @@ void info(const InfoArgs& args) {
     print_value("dy_um", map.spacing_y());
     print_value("valid_fraction", map.valid_fraction());
     print_value("rms_height_um", moments.rms);
-    print_value("rms_slope", surface::rms_slope(flat, surface::Form::none));
+    print_value("rms_slope", surface::rms_slope(flat, heightmap::Form::none));
     print_value("skewness", moments.skewness);
     print_value("kurtosis", moments.kurtosis);
     print_value("correlation_length_um", acv.correlation_length_um);
     print_value("texture_aspect_ratio", acv.texture_aspect_ratio);
-    if (map.valid_fraction() < surface::kMinFitValidFraction)
+    if (map.valid_fraction() < heightmap::kMinFitValidFraction)
         std::printf("warning = only %.1f %% of the points are valid; PSD fits need %.0f %%\n",
-                    100.0 * map.valid_fraction(), 100.0 * surface::kMinFitValidFraction);
+                    100.0 * map.valid_fraction(), 100.0 * heightmap::kMinFitValidFraction);
     if (acv.correlation_length_um > surface::kMaxCorrelationLengthFraction * std::min(map.width(), map.height()))
         std::printf("warning = correlation_length_um is more than %.0f %% of the map's shorter side: too small a "
                     "patch to measure it (its ACF falls early); measure a larger area\n",
@@ -185,7 +185,7 @@ void info(const InfoArgs& args) {
 }
 
 // What `--psd measured` uses (map_statistics.hpp), as name = value lines, a CSV of its rings and the PSD plot.
-void write_measured_plot(const InfoArgs& args, const surface::HeightMap& map, surface::Form form) {
+void write_measured_plot(const InfoArgs& args, const heightmap::HeightMap& map, heightmap::Form form) {
     const surface::MapStatistics stats(map, form);
     print_value("measured_sigma_um", stats.sigma_h());
     print_value("measured_sigma_standard_error", stats.sigma_relative_error());
@@ -252,7 +252,7 @@ void write_psd_image(const surface::Psd2d& psd, std::size_t block, const std::st
 // zeta at the outer edge of the image's first column (or row): write_psd_image puts signed index -n/2 there.
 double psd_image_edge(std::size_t n, double dzeta) { return -(static_cast<double>(n / 2) + 0.5) * dzeta; }
 
-void write_fit_plot(const FitArgs& args, const surface::HeightMap& map, const surface::SurfaceFit& result,
+void write_fit_plot(const FitArgs& args, const heightmap::HeightMap& map, const surface::SurfaceFit& result,
                     const std::string& csv);
 
 // The elliptical fit under the names of the model options (--corr-length, --corr-length-v, --lay-angle), prefixed,
@@ -299,7 +299,7 @@ void print_elliptical(const surface::EllipticalKcFit& e) {
 void fit(const FitArgs& args) {
     if (args.smoothing) require_positive(*args.smoothing, "--smoothing");  // before reading the map
     surface::KcFitOptions options;
-    const surface::HeightMap map = read_map(args, options.form);
+    const heightmap::HeightMap map = read_map(args, options.form);
     if (args.smoothing) surface::require_smoothing(*args.smoothing, map, "--smoothing");
     options.min_ring = args.min_ring;
     options.max_nyquist_fraction = args.max_zeta_fraction;
@@ -370,7 +370,7 @@ void write_elliptical_plot(const FitArgs& args, const surface::SurfaceFit& resul
     std::printf("elliptical_plot = %s\n", png.c_str());
 }
 
-void write_fit_plot(const FitArgs& args, const surface::HeightMap& map, const surface::SurfaceFit& result,
+void write_fit_plot(const FitArgs& args, const heightmap::HeightMap& map, const surface::SurfaceFit& result,
                     const std::string& csv) {
     // The 2-D PSD beside the radial fit: a directional texture shows as a streak through the origin.
     std::filesystem::path image = args.plot;

@@ -25,7 +25,7 @@
 #include "surfscatter/core/resources.hpp"
 #include "surfscatter/material/conductor.hpp"
 #include "surfscatter/math/vec.hpp"
-#include "surfscatter/surface/height_map_form.hpp"
+#include "surfscatter/heightmap/form.hpp"
 #include "surfscatter/validity/map_validity.hpp"
 #include "surfscatter/validity/validity.hpp"
 
@@ -211,10 +211,10 @@ nlohmann::json map_json_report(const std::vector<validity::MapCase>& cases, cons
     j["route"] = "maps";
     j["surface"] = surface.description;
     if (!a.surface_file.empty())
-        j["outliers"] = {{"policy", surface::to_string(surface.outlier_policy)},
+        j["outliers"] = {{"policy", heightmap::to_string(surface.outlier_policy)},
                          {"points", surface.outliers.count},
                          {"share", surface.outliers.share},
-                         {"text", surface::describe(surface.outliers)}};
+                         {"text", heightmap::describe(surface.outliers)}};
     j["material"] = material;
     j["criteria"] = {{"peak_fraction", validity::Criteria{}.peak_fraction}, {"max_reference_stderr", a.max_reference_stderr},
                      {"tolerance", a.tolerance}, {"bin_deg", a.bin_deg}};
@@ -255,14 +255,14 @@ nlohmann::json map_json_report(const std::vector<validity::MapCase>& cases, cons
 
 bsdf::SurfaceOptions map_surface_options(const ValidityArgs& a) {
     bsdf::SurfaceOptions s;
-    s.form = surface::parse_form(a.form, "--form");
+    s.form = heightmap::parse_form(a.form, "--form");
     if (!a.surface_file.empty()) {
         if (a.surface.psd || a.map_size)
             fail("--surface-file is the surface: --psd and --map-size-um synthesise one instead, give one or the other");
         if (a.corr_length_v || a.lay_angle) fail("--corr-length-v and --lay-angle describe a synthesised surface");
         s.psd = bsdf::PsdKind::measured;
         s.surface_file = a.surface_file;
-        s.outliers = surface::parse_outlier_policy(a.outliers.value_or("keep"), "--outliers");
+        s.outliers = heightmap::parse_outlier_policy(a.outliers.value_or("keep"), "--outliers");
         return s;
     }
     if (a.outliers) fail("--outliers applies to a measured map (--surface-file); synthesised maps have none");
@@ -291,8 +291,8 @@ void run_map_validity(const ValidityArgs& a, bool polarisation_given) {
     validity::SynthesisSettings synthesis;
     if (a.map_size) {
         synthesis.size_um = *a.map_size;
-        if (a.map_pixels < static_cast<long long>(surface::kMinHeightMapSize) || a.map_pixels > 8192)
-            fail("--map-pixels must be in [{}, 8192], got {}", surface::kMinHeightMapSize, a.map_pixels);
+        if (a.map_pixels < static_cast<long long>(heightmap::kMinHeightMapSize) || a.map_pixels > 8192)
+            fail("--map-pixels must be in [{}, 8192], got {}", heightmap::kMinHeightMapSize, a.map_pixels);
         synthesis.pixels = static_cast<std::size_t>(a.map_pixels);
         const long long realizations = a.realizations > 0 ? a.realizations : 1;
         if (realizations > 1000) fail("--realizations must be at most 1000 maps, got {}", realizations);

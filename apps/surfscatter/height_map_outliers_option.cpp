@@ -2,8 +2,8 @@
 
 #include <cstdio>
 
-#include "surfscatter/surface/height_map_io.hpp"
-#include "surfscatter/surface/height_map_outliers.hpp"
+#include "surfscatter/heightmap/io.hpp"
+#include "surfscatter/heightmap/outliers.hpp"
 
 namespace surfscatter::cli {
 
@@ -13,15 +13,15 @@ void add_outliers_option(CLI::App* cmd, std::string& outliers) {
                     "replaced by its neighbours' median); docs/HEIGHTMAPS.md \"Outliers\"");
 }
 
-surface::HeightMap read_height_map_with_outliers(const std::string& path, std::optional<double> spacing_um,
+heightmap::HeightMap read_height_map_with_outliers(const std::string& path, std::optional<double> spacing_um,
                                                  std::optional<double> height_unit_um, const std::string& outliers) {
-    const surface::OutlierPolicy policy = surface::parse_outlier_policy(outliers, "--outliers");
-    surface::Outliers found;
-    surface::HeightMap map =
-        surface::apply_outlier_policy(surface::read_height_map(path, spacing_um, height_unit_um), policy, found);
+    const heightmap::OutlierPolicy policy = heightmap::parse_outlier_policy(outliers, "--outliers");
+    heightmap::Outliers found;
+    heightmap::HeightMap map =
+        heightmap::apply_outlier_policy(heightmap::read_height_map(path, spacing_um, height_unit_um), policy, found);
     if (found.count > 0)
-        std::fprintf(stderr, "surfscatter: %s: %s: %s\n", surface::kept_and_dominant(found, policy) ? "warning" : "note",
-                     path.c_str(), surface::describe(found, policy).c_str());
+        std::fprintf(stderr, "surfscatter: %s: %s: %s\n", heightmap::kept_and_dominant(found, policy) ? "warning" : "note",
+                     path.c_str(), heightmap::describe(found, policy).c_str());
     return map;
 }
 

@@ -13,7 +13,7 @@
 #include "surfscatter/bsdf/albedo.hpp"
 #include "surfscatter/bsdf/factory.hpp"
 #include "surfscatter/core/error.hpp"
-#include "surfscatter/surface/height_map.hpp"
+#include "surfscatter/heightmap/height_map.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
 
 namespace surfscatter::python {
@@ -70,10 +70,10 @@ const std::map<std::string, Setter>& option_setters() {
         {"corr_length_v", [](ModelOptions& o, py::handle v, const char* n) { o.surface.corr_length_v = number_option(v, n); }},
         {"lay_angle_deg", [](ModelOptions& o, py::handle v, const char* n) { o.surface.lay_angle = number_option(v, n); }},
         {"surface_file", [](ModelOptions& o, py::handle v, const char* n) { o.surface.surface_file = path_string(v, n); }},
-        {"form", [](ModelOptions& o, py::handle v, const char* n) { o.surface.form = surface::parse_form(text_option(v, n), n); }},
+        {"form", [](ModelOptions& o, py::handle v, const char* n) { o.surface.form = heightmap::parse_form(text_option(v, n), n); }},
         {"outliers",
          [](ModelOptions& o, py::handle v, const char* n) {
-             o.surface.outliers = surface::parse_outlier_policy(text_option(v, n), n);
+             o.surface.outliers = heightmap::parse_outlier_policy(text_option(v, n), n);
          }},
         {"psd_fit",
          [](ModelOptions& o, py::handle v, const char* n) { o.surface.psd_fit = bsdf::parse_psd_fit(text_option(v, n), n); }},
@@ -120,8 +120,8 @@ void set_surface(ModelOptions& o, py::handle value, bool psd_given) {
         o.surface.measured_psd = value.cast<std::shared_ptr<surface::MapStatistics>>();
         return;
     }
-    if (py::isinstance<surface::HeightMap>(value)) {
-        const auto map = value.cast<std::shared_ptr<surface::HeightMap>>();
+    if (py::isinstance<heightmap::HeightMap>(value)) {
+        const auto map = value.cast<std::shared_ptr<heightmap::HeightMap>>();
         o.surface.surface_file = map->origin();
         o.surface.height_map = map;
     } else if (py::isinstance<py::str>(value) || py::isinstance(value, py::module_::import("os").attr("PathLike"))) {
@@ -198,8 +198,8 @@ py::dict options_dict(const ModelOptions& o) {
                     "psd"_a = to_string(o.surface.psd), "sigma"_a = o.surface.sigma,
                     "corr_length"_a = o.surface.corr_length, "gamma"_a = o.surface.gamma,
                     "corr_length_v"_a = o.surface.corr_length_v, "lay_angle_deg"_a = o.surface.lay_angle,
-                    "surface_file"_a = o.surface.surface_file, "form"_a = surface::to_string(o.surface.form),
-                    "outliers"_a = surface::to_string(o.surface.outliers),
+                    "surface_file"_a = o.surface.surface_file, "form"_a = heightmap::to_string(o.surface.form),
+                    "outliers"_a = heightmap::to_string(o.surface.outliers),
                     "psd_fit"_a = to_string(o.surface.psd_fit),
                     "measured_spectrum"_a = to_string(o.surface.measured_spectrum));
 }
@@ -280,7 +280,7 @@ model: 'ghs' (full GHS), 'ghs_ssa' (smooth-surface approximation), 'ggx_stats' (
     work with a DeprecationWarning).
 surface: the surface statistics: KCorrelation(sigma, corr_length, gamma), GaussianAcv(sigma, corr_length) (either
     elliptical with corr_length_v= and lay_angle_deg=: models ghs, ghs_ssa, ggx_stats and two_scale), a
-    MapStatistics (measured_statistics(height_map): psd 'measured'), a HeightMap or the path of a height map file
+    MapStatistics (measured_statistics(height_map): psd 'measured'), a heightmap::HeightMap or the path of a height map file
     (after removing `form`: KC fitted to it, or with psd='measured' its own radial PSD); or None and the XML's
     keywords psd ('kc' | 'gaussian' | 'file' | 'measured'), sigma (um), corr_length (um), gamma, corr_length_v (um),
     lay_angle_deg, surface_file.

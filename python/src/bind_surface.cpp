@@ -15,11 +15,11 @@
 #include "bindings.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/math/vec.hpp"
-#include "surfscatter/surface/height_map.hpp"
+#include "surfscatter/heightmap/height_map.hpp"
 #include "surfscatter/surface/height_map_acv.hpp"
-#include "surfscatter/surface/height_map_form.hpp"
-#include "surfscatter/surface/height_map_io.hpp"
-#include "surfscatter/surface/height_map_outliers.hpp"
+#include "surfscatter/heightmap/form.hpp"
+#include "surfscatter/heightmap/io.hpp"
+#include "surfscatter/heightmap/outliers.hpp"
 #include "surfscatter/surface/height_map_slope.hpp"
 #include "surfscatter/surface/elliptical_fit.hpp"
 #include "surfscatter/surface/kc_fit.hpp"
@@ -36,6 +36,7 @@ namespace surfscatter::python {
 namespace {
 
 using namespace surface;
+using namespace heightmap;
 using namespace pybind11::literals;
 
 constexpr const char* kFormDoc =
@@ -56,7 +57,7 @@ std::pair<double, double> spacing_pair(py::handle spacing_um) {
     fail("spacing_um must be one number or a pair (dx, dy), got an array of {} values", a.size());
 }
 
-std::shared_ptr<HeightMap> height_map_from_numpy(py::handle heights_um, py::handle spacing_um, py::handle valid,
+std::shared_ptr<heightmap::HeightMap> height_map_from_numpy(py::handle heights_um, py::handle spacing_um, py::handle valid,
                                                  const std::string& origin) {
     const RealArray h = real_array(heights_um, "heights_um", Domain::unchecked);
     if (h.ndim() != 2) fail("heights_um must be a 2-D array (rows = y, columns = x), got {} dimensions", h.ndim());
@@ -71,7 +72,7 @@ std::shared_ptr<HeightMap> height_map_from_numpy(py::handle heights_um, py::hand
             fail("heights_um is NaN at column {}, row {}: mark the points without data invalid, "
                  "HeightMap(heights_um, spacing_um, valid=~np.isnan(heights_um))", i % nx, i / nx);
         }
-        return std::make_shared<HeightMap>(nx, ny, dx, dy, std::move(values), origin);
+        return std::make_shared<heightmap::HeightMap>(nx, ny, dx, dy, std::move(values), origin);
     }
     const py::array mask = py::module_::import("numpy").attr("asarray")(valid);
     if (mask.dtype().kind() != 'b')
@@ -80,16 +81,16 @@ std::shared_ptr<HeightMap> height_map_from_numpy(py::handle heights_um, py::hand
         fail("valid must have the shape of heights_um ({}, {})", ny, nx);
     const auto flags = py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>::ensure(mask);
     std::vector<std::uint8_t> validity(flags.data(), flags.data() + flags.size());
-    return std::make_shared<HeightMap>(nx, ny, dx, dy, std::move(values), std::move(validity), origin);
+    return std::make_shared<heightmap::HeightMap>(nx, ny, dx, dy, std::move(values), std::move(validity), origin);
 }
 
-py::array_t<double> heights_array(const HeightMap& map) {
+py::array_t<double> heights_array(const heightmap::HeightMap& map) {
     py::array_t<double> out({static_cast<py::ssize_t>(map.ny()), static_cast<py::ssize_t>(map.nx())});
     std::memcpy(out.mutable_data(), map.heights().data(), map.size() * sizeof(double));
     return out;
 }
 
-py::object validity_array(const HeightMap& map) {
+py::object validity_array(const heightmap::HeightMap& map) {
     if (!map.has_invalid()) return py::none();
     py::array_t<bool> out({static_cast<py::ssize_t>(map.ny()), static_cast<py::ssize_t>(map.nx())});
     bool* v = out.mutable_data();
@@ -97,7 +98,7 @@ py::object validity_array(const HeightMap& map) {
     return out;
 }
 
-py::dict source_dict(const HeightMapSource& s) {
+py::dict source_dict(const heightmap::HeightMapSource& s) {
     return py::dict("format"_a = s.format, "reader"_a = s.reader, "channel"_a = s.channel, "warnings"_a = s.warnings,
                     "height_unit_um"_a = s.height_unit_um);
 }
@@ -396,7 +397,7 @@ void bind_statistics(py::module_& m) {
 }
 
 void bind_height_maps(py::module_& m) {
-    py::class_<HeightMap, std::shared_ptr<HeightMap>>(
+    py::class_<heightmap::HeightMap, std::shared_ptr<heightmap::HeightMap>>(
         m, "HeightMap",
         "A height map h(x, y) on a regular grid: heights and spacings in um, an optional validity mask. numpy "
         "layout: heights_um[iy, ix] (rows along y, x along a row), as Gwyddion stores them.")
@@ -407,28 +408,28 @@ void bind_height_maps(py::module_& m) {
              "(False = invalid point: its height is ignored and may be NaN); origin: names the data in messages.")
         .def_property_readonly("heights_um", &heights_array, "heights (ny, nx) in um (a copy; invalid points hold 0)")
         .def_property_readonly("valid", &validity_array, "boolean mask (ny, nx), or None when every point is valid")
-        .def_property_readonly("nx", &HeightMap::nx, "points along x (columns)")
-        .def_property_readonly("ny", &HeightMap::ny, "points along y (rows)")
-        .def_property_readonly("spacing_x_um", &HeightMap::spacing_x, "pixel spacing along x (um)")
-        .def_property_readonly("spacing_y_um", &HeightMap::spacing_y, "pixel spacing along y (um)")
-        .def_property_readonly("width_um", &HeightMap::width, "nx * dx (um)")
-        .def_property_readonly("height_um", &HeightMap::height, "ny * dy (um)")
-        .def_property_readonly("valid_fraction", &HeightMap::valid_fraction, "fraction of the points that are valid")
-        .def_property_readonly("origin", &HeightMap::origin, "where the data came from (file name)")
-        .def_readwrite("title", &HeightMap::title, "title stored in .gsf files")
+        .def_property_readonly("nx", &heightmap::HeightMap::nx, "points along x (columns)")
+        .def_property_readonly("ny", &heightmap::HeightMap::ny, "points along y (rows)")
+        .def_property_readonly("spacing_x_um", &heightmap::HeightMap::spacing_x, "pixel spacing along x (um)")
+        .def_property_readonly("spacing_y_um", &heightmap::HeightMap::spacing_y, "pixel spacing along y (um)")
+        .def_property_readonly("width_um", &heightmap::HeightMap::width, "nx * dx (um)")
+        .def_property_readonly("height_um", &heightmap::HeightMap::height, "ny * dy (um)")
+        .def_property_readonly("valid_fraction", &heightmap::HeightMap::valid_fraction, "fraction of the points that are valid")
+        .def_property_readonly("origin", &heightmap::HeightMap::origin, "where the data came from (file name)")
+        .def_readwrite("title", &heightmap::HeightMap::title, "title stored in .gsf files")
         .def_property_readonly(
-            "source", [](const HeightMap& h) { return source_dict(h.source); },
+            "source", [](const heightmap::HeightMap& h) { return source_dict(h.source); },
             "what the reader found: {'format', 'reader', 'channel', 'warnings', 'height_unit_um'}")
-        .def("describe", static_cast<std::string (*)(const HeightMap&)>(&describe),
+        .def("describe", static_cast<std::string (*)(const heightmap::HeightMap&)>(&describe),
              "one line: file, format, grid, spacing, valid fraction")
-        .def("__repr__", [](const HeightMap& h) { return "<surfscatter.HeightMap " + describe(h) + ">"; })
+        .def("__repr__", [](const heightmap::HeightMap& h) { return "<surfscatter.HeightMap " + describe(h) + ">"; })
         .def(
-            "remove_form", [](const HeightMap& h, const std::string& form) { return remove_form(h, parse_form(form, "form")); },
+            "remove_form", [](const heightmap::HeightMap& h, const std::string& form) { return heightmap::remove_form(h, heightmap::parse_form(form, "form")); },
             py::arg("form") = "plane", (std::string("The map minus its least-squares form. ") + kFormDoc).c_str())
         .def(
             "outliers",
-            [](const HeightMap& h) {
-                const Outliers o = find_outliers(h);
+            [](const heightmap::HeightMap& h) {
+                const heightmap::Outliers o = heightmap::find_outliers(h);
                 return py::dict("points"_a = o.count, "spots"_a = o.spots, "robust_sigma_um"_a = o.robust_sigma_um,
                                 "largest_um"_a = o.largest_um, "share"_a = o.share, "dominant"_a = o.dominant(),
                                 "text"_a = describe(o));
@@ -437,16 +438,16 @@ void bind_height_maps(py::module_& m) {
             "'robust_sigma_um', 'largest_um' (the largest residual), 'share' (of the pixel-scale roughness), "
             "'dominant' (share > 0.5), 'text'}")
         .def(
-            "fill_outliers", [](const HeightMap& h) { return fill_outliers(h, find_outliers(h)); },
+            "fill_outliers", [](const heightmap::HeightMap& h) { return heightmap::fill_outliers(h, heightmap::find_outliers(h)); },
             "The map with each outlier replaced by the median of its neighbours that are not (what outliers='fill' "
             "does before the statistics)")
         .def(
-            "rms_height", [](const HeightMap& h, const std::string& form) { return rms_height(h, parse_form(form, "form")); },
+            "rms_height", [](const heightmap::HeightMap& h, const std::string& form) { return heightmap::rms_height(h, heightmap::parse_form(form, "form")); },
             py::arg("form") = "plane", (std::string("rms height (um) about the form over the valid points. ") + kFormDoc).c_str())
         .def(
             "rms_slope",
-            [](const HeightMap& h, const std::string& form, std::optional<double> smoothing_um) {
-                const Form f = parse_form(form, "form");
+            [](const heightmap::HeightMap& h, const std::string& form, std::optional<double> smoothing_um) {
+                const heightmap::Form f = heightmap::parse_form(form, "form");
                 if (!smoothing_um) return rms_slope(h, f);
                 require_smoothing(*smoothing_um, h, "smoothing_um");
                 return rms_slope_smoothed(h, *smoothing_um, f);
@@ -456,16 +457,16 @@ void bind_height_maps(py::module_& m) {
                          "standard deviation smoothing_um (um) if given. ") + kFormDoc).c_str())
         .def(
             "moments",
-            [](const HeightMap& h, const std::string& form) {
-                const HeightMoments hm = height_moments(remove_form(h, parse_form(form, "form")));
+            [](const heightmap::HeightMap& h, const std::string& form) {
+                const heightmap::HeightMoments hm = heightmap::height_moments(heightmap::remove_form(h, heightmap::parse_form(form, "form")));
                 return py::dict("rms"_a = hm.rms, "skewness"_a = hm.skewness, "kurtosis"_a = hm.kurtosis);
             },
             py::arg("form") = "plane",
             (std::string("{'rms' (um), 'skewness', 'kurtosis'} of the form-removed map, as `surface info`. ") + kFormDoc).c_str())
         .def(
             "acv_measures",
-            [](const HeightMap& h, const std::string& form) {
-                const AcvMeasures a = acv_measures(remove_form(h, parse_form(form, "form")));
+            [](const heightmap::HeightMap& h, const std::string& form) {
+                const AcvMeasures a = acv_measures(heightmap::remove_form(h, heightmap::parse_form(form, "form")));
                 return py::dict("correlation_length_um"_a = a.correlation_length_um,
                                 "autocorrelation_length_um"_a = a.autocorrelation_length_um,
                                 "texture_aspect_ratio"_a = a.texture_aspect_ratio, "str_is_bound"_a = a.str_is_bound,
@@ -476,8 +477,8 @@ void bind_height_maps(py::module_& m) {
                          "Sal and Str (ISO 25178-2, s = 0.2), as `surface info`. ") + kFormDoc).c_str())
         .def(
             "psd",
-            [](const HeightMap& h, const std::string& form) {
-                const Psd2d p = estimate_psd(h, Window::hann, parse_form(form, "form"));
+            [](const heightmap::HeightMap& h, const std::string& form) {
+                const Psd2d p = estimate_psd(h, Window::hann, heightmap::parse_form(form, "form"));
                 py::dict out = psd2d_dict(p);
                 out["radial"] = radial_dict(radial_average(p));
                 return out;
@@ -487,7 +488,7 @@ void bind_height_maps(py::module_& m) {
                          "half-plane P (ny, nx//2 + 1) in um^4, 'zeta_x', 'zeta_y' (rad/um, zeta_y in FFT order), "
                          "'radial': {'zeta', 'psd', 'count', 'dzeta'}}. ") + kFormDoc).c_str())
         .def(
-            "write", [](const HeightMap& h, py::handle path) { write_height_map(h, path_string(path, "path")); },
+            "write", [](const heightmap::HeightMap& h, py::handle path) { heightmap::write_height_map(h, path_string(path, "path")); },
             py::arg("path"), "Writes .gsf or .gwy (by extension), heights in m as Gwyddion writes them.");
 
     m.def(
@@ -495,7 +496,7 @@ void bind_height_maps(py::module_& m) {
         [](py::handle path, std::optional<double> spacing_um, std::optional<double> height_unit_um) {
             const std::string file = path_string(path, "path");
             py::gil_scoped_release release;
-            return std::make_shared<HeightMap>(read_height_map(file, spacing_um, height_unit_um));
+            return std::make_shared<heightmap::HeightMap>(heightmap::read_height_map(file, spacing_um, height_unit_um));
         },
         py::arg("path"), py::arg("spacing_um") = py::none(), py::arg("height_unit_um") = py::none(),
         "Reads any height map: every format Gwyddion reads (.gwy, .gsf, .sdf, MetroPro .dat, .opd, Nanoscope, ...), "
@@ -513,7 +514,7 @@ void bind_height_maps(py::module_& m) {
             else fail("size must be n or (nx, ny) (whole numbers of samples), got {}", py::repr(size).cast<std::string>());
             const SynthesisGrid grid{nx, ny, spacing_um};
             py::gil_scoped_release release;
-            return std::make_shared<HeightMap>(synthesize_surface(statistics, grid, static_cast<std::uint64_t>(seed)));
+            return std::make_shared<heightmap::HeightMap>(synthesize_surface(statistics, grid, static_cast<std::uint64_t>(seed)));
         },
         py::arg("statistics"), py::arg("size"), py::arg("spacing_um"), py::arg("seed") = 1,
         "A random Gaussian surface with the PSD of `statistics` (spectral synthesis, synthesis.hpp) on an n x n "
@@ -550,8 +551,8 @@ void bind_height_maps(py::module_& m) {
 
     m.def(
         "measured_statistics",
-        [](const HeightMap& map, const std::string& form) {
-            const Form f = parse_form(form, "form");
+        [](const heightmap::HeightMap& map, const std::string& form) {
+            const heightmap::Form f = heightmap::parse_form(form, "form");
             py::gil_scoped_release release;
             return std::make_shared<MapStatistics>(map, f);
         },
@@ -639,7 +640,7 @@ void bind_height_maps(py::module_& m) {
 
     const auto fit_options = [](const std::string& form, std::size_t min_ring, double max_zeta_fraction) {
         KcFitOptions options;
-        options.form = parse_form(form, "form");
+        options.form = heightmap::parse_form(form, "form");
         options.min_ring = min_ring;
         options.max_nyquist_fraction = max_zeta_fraction;
         return options;
@@ -647,7 +648,7 @@ void bind_height_maps(py::module_& m) {
 
     m.def(
         "fit_elliptical",
-        [fit_options](const HeightMap& map, const std::string& form, std::size_t min_ring, double max_zeta_fraction) {
+        [fit_options](const heightmap::HeightMap& map, const std::string& form, std::size_t min_ring, double max_zeta_fraction) {
             const KcFitOptions options = fit_options(form, min_ring, max_zeta_fraction);
             py::gil_scoped_release release;
             EllipticalKcFit fit = fit_surface(map, options).elliptical;
@@ -662,7 +663,7 @@ void bind_height_maps(py::module_& m) {
 
     m.def(
         "fit_surface",
-        [fit_options](const HeightMap& map, const std::string& form, std::size_t min_ring, double max_zeta_fraction) {
+        [fit_options](const heightmap::HeightMap& map, const std::string& form, std::size_t min_ring, double max_zeta_fraction) {
             const KcFitOptions options = fit_options(form, min_ring, max_zeta_fraction);
             py::gil_scoped_release release;
             SurfaceFit fit = fit_surface(map, options);

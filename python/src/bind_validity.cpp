@@ -11,7 +11,7 @@
 #include "surfscatter/material/conductor.hpp"
 #include "surfscatter/math/vec.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
-#include "surfscatter/surface/height_map_form.hpp"
+#include "surfscatter/heightmap/form.hpp"
 #include "surfscatter/validity/map_validity.hpp"
 #include "surfscatter/validity/validity.hpp"
 
@@ -94,8 +94,8 @@ py::dict validity(const surface::RadialStatistics& surface, const std::string& m
 // surface=: KC / Gaussian statistics (with their lay) to synthesise maps from, or a height map (object or path).
 bsdf::SurfaceOptions map_surface_options(py::handle surface, const std::string& form, const std::string& outliers) {
     bsdf::SurfaceOptions s;
-    s.form = surface::parse_form(form, "form");
-    s.outliers = surface::parse_outlier_policy(outliers, "outliers");
+    s.form = heightmap::parse_form(form, "form");
+    s.outliers = heightmap::parse_outlier_policy(outliers, "outliers");
     if (py::isinstance<surface::KCorrelation>(surface) || py::isinstance<surface::GaussianAcv>(surface)) {
         const auto& radial = surface.cast<const surface::RadialStatistics&>();
         s.psd = py::isinstance<surface::KCorrelation>(surface) ? bsdf::PsdKind::kc : bsdf::PsdKind::gaussian;
@@ -108,8 +108,8 @@ bsdf::SurfaceOptions map_surface_options(py::handle surface, const std::string& 
         return s;
     }
     s.psd = bsdf::PsdKind::measured;
-    if (py::isinstance<surface::HeightMap>(surface)) {
-        const auto map = surface.cast<std::shared_ptr<surface::HeightMap>>();
+    if (py::isinstance<heightmap::HeightMap>(surface)) {
+        const auto map = surface.cast<std::shared_ptr<heightmap::HeightMap>>();
         s.surface_file = map->origin();
         s.height_map = map;
     } else if (py::isinstance<py::str>(surface) ||
@@ -182,9 +182,9 @@ py::dict validity_map(py::handle surface_arg, const std::string& material, const
     out["refused_models"] = surface.refused;
     out["surface"] = surface.description;
     if (measured)
-        out["outliers"] = py::dict("policy"_a = surface::to_string(surface.outlier_policy),
+        out["outliers"] = py::dict("policy"_a = heightmap::to_string(surface.outlier_policy),
                                    "points"_a = surface.outliers.count, "share"_a = surface.outliers.share,
-                                   "text"_a = surface::describe(surface.outliers));
+                                   "text"_a = heightmap::describe(surface.outliers));
     return out;
 }
 
@@ -210,7 +210,7 @@ the CSV's columns, 'verdicts': one dict per case (conclusive, trusted, best_mode
           py::arg("threads") = 0,
           R"(Which 2-D model to trust for a height map, as `surfscatter validity --surface-file` / `--map-size-um`
 (docs/VALIDITY.md, "Height maps"): every model the factory makes for `surface` against the Kirchhoff BRDF of the
-map(s), with Kirchhoff's own validity. `surface`: a HeightMap or a height map path (form removed as `form` says; its
+map(s), with Kirchhoff's own validity. `surface`: a heightmap::HeightMap or a height map path (form removed as `form` says; its
 outliers kept or filled as `outliers` says, 'keep' or 'fill', an Error when kept ones dominate; the models from psd
 measured and psd file), or a KCorrelation / GaussianAcv, elliptical if made with corr_length_v /
 lay_angle_deg (`realizations` square maps of map_size_um and map_pixels a side are synthesised, seeds seed,

@@ -28,8 +28,8 @@ namespace {
 
 constexpr double kLambda = 550.0;
 
-std::shared_ptr<const surface::MapStatistics> measured(const surface::HeightMap& map) {
-    return std::make_shared<const surface::MapStatistics>(map, surface::Form::plane);
+std::shared_ptr<const surface::MapStatistics> measured(const heightmap::HeightMap& map) {
+    return std::make_shared<const surface::MapStatistics>(map, heightmap::Form::plane);
 }
 
 ModelOptions map_options(ModelKind model, std::shared_ptr<const surface::MapStatistics> stats,
@@ -43,12 +43,12 @@ ModelOptions map_options(ModelKind model, std::shared_ptr<const surface::MapStat
 }
 
 // A periodic 256^2 map at 0.05 um (12.8 um) of a Gaussian ACV with l = 0.5 um.
-surface::HeightMap gaussian_map(double sigma, std::uint64_t seed = 3) {
+heightmap::HeightMap gaussian_map(double sigma, std::uint64_t seed = 3) {
     return surface::synthesize_surface(surface::GaussianAcv(sigma, 0.5), {256, 256, 0.05}, seed);
 }
 
 // A periodic 256^2 map at 0.05 um of an elliptical KC surface (L_u 0.8 um, L_v 0.24 um, lay 25 deg).
-surface::HeightMap elliptical_map() {
+heightmap::HeightMap elliptical_map() {
     return surface::synthesize_surface(
         surface::EllipticalStatistics(std::make_shared<surface::KCorrelation>(0.06, 0.8, 3.0), 0.3, 25 * kDegree),
         {256, 256, 0.05}, 12);
@@ -59,12 +59,12 @@ Vec3 direction_deg(double theta, double phi) {
 }
 
 // The map turned by +90 deg about its centre: h'(i, j) = h(j, n - 1 - i), so that h'(R r) = h(r), R: (x, y) -> (-y, x).
-surface::HeightMap rotated(const surface::HeightMap& map) {
+heightmap::HeightMap rotated(const heightmap::HeightMap& map) {
     const std::size_t n = map.nx();
     std::vector<double> h(n * n);
     for (std::size_t j = 0; j < n; ++j)
         for (std::size_t i = 0; i < n; ++i) h[j * n + i] = map(j, n - 1 - i);
-    return surface::HeightMap(n, n, map.spacing_x(), map.spacing_y(), std::move(h), "rotated");
+    return heightmap::HeightMap(n, n, map.spacing_x(), map.spacing_y(), std::move(h), "rotated");
 }
 
 Vec3 turn(const Vec3& w) { return {-w.y, w.x, w.z}; }
@@ -132,7 +132,7 @@ TEST(MapGhs, AlbedoIsROverEveryIncidenceAzimuth) {
 // the Gaussian map, 7.4e-3 and 5.3e-3 on the elliptical one (sigma_rel is a lattice sum, stepped where lattice points
 // cross the visible disc's rim; twice the azimuth nodes only halve it).
 TEST(MapGhs, TablesMatchDirectValues) {
-    for (const surface::HeightMap& map : {gaussian_map(0.08, 4), elliptical_map()}) {
+    for (const heightmap::HeightMap& map : {gaussian_map(0.08, 4), elliptical_map()}) {
         const auto bsdf = make_bsdf(map_options(ModelKind::ghs, measured(map)));
         const auto& map_ghs = dynamic_cast<const MapGhsBsdf&>(*bsdf);
         double sigma_error = 0, norm_error = 0;
@@ -156,7 +156,7 @@ TEST(MapGhs, TablesMatchDirectValues) {
 // 1.7e-4, the h^2 of linear interpolation), where the cubic is 5.3e-3 and 3.8e-3 from direct() (sigma_rel's lattice
 // steps).
 TEST(MapGhs, RefinedAzimuthsFollowTheCubicThroughTheNodes) {
-    const surface::HeightMap map = elliptical_map();
+    const heightmap::HeightMap map = elliptical_map();
     const auto bsdf = make_bsdf(map_options(ModelKind::ghs, measured(map)));
     const auto& map_ghs = dynamic_cast<const MapGhsBsdf&>(*bsdf);
     const NodeAxis axis = ghs_incidence_axis();
@@ -207,7 +207,7 @@ TEST(MapGhs, RefinedAzimuthsFollowTheCubicThroughTheNodes) {
 }
 
 TEST(MapGhs, MapRotatedBy90DegreesGivesTheRotatedBrdf) {
-    const surface::HeightMap map = elliptical_map();
+    const heightmap::HeightMap map = elliptical_map();
     const auto a = make_bsdf(map_options(ModelKind::ghs, measured(map)));
     const auto b = make_bsdf(map_options(ModelKind::ghs, measured(rotated(map))));
     std::mt19937_64 rng(5);
@@ -243,7 +243,7 @@ TEST(MapGhs, IsotropicMapGivesTwoDCloseToRing) {
 // the ring average, blind to the lay, is 0.66 away).
 TEST(MapGhs, EllipticalMapFollowsTheAnisotropicGhs) {
     const double sigma = 0.06, lu = 1.0, lv = 0.35, lay = 30.0;
-    const surface::HeightMap map = surface::synthesize_surface(
+    const heightmap::HeightMap map = surface::synthesize_surface(
         surface::EllipticalStatistics(std::make_shared<surface::KCorrelation>(sigma, lu, 3.0), lv, lay * kDegree),
         {512, 512, 0.05}, 31);
     ModelOptions truth = test::kc_options(ModelKind::ghs, sigma, lu, 3.0);
@@ -263,7 +263,7 @@ TEST(MapGhs, EllipticalMapFollowsTheAnisotropicGhs) {
 // 512^2 realisation 25 LU wide); the ring route keeps the isotropic rms slope.
 TEST(MapGhs, GgxTakesTheSlopeCovariance) {
     const double sigma = 0.05, lu = 1.0, lv = 0.4, lay = 30.0;
-    const surface::HeightMap map = surface::synthesize_surface(
+    const heightmap::HeightMap map = surface::synthesize_surface(
         surface::EllipticalStatistics(std::make_shared<surface::GaussianAcv>(sigma, lu), lv, lay * kDegree),
         {512, 512, 0.05}, 17);
     ModelOptions truth;
@@ -277,7 +277,7 @@ TEST(MapGhs, GgxTakesTheSlopeCovariance) {
     ModelOptions o = map_options(ModelKind::ggx, nullptr);
     o.surface.measured_psd = nullptr;
     o.surface.surface_file = "elliptical map";
-    o.surface.height_map = std::make_shared<const surface::HeightMap>(map);
+    o.surface.height_map = std::make_shared<const heightmap::HeightMap>(map);
     std::vector<std::string> notes;
     const auto two_d = make_bsdf(o, &notes);
     const auto& g = dynamic_cast<const GgxBsdf&>(*two_d);

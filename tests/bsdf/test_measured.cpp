@@ -17,7 +17,7 @@
 #include "surfscatter/bsdf/ghs.hpp"
 #include "surfscatter/bsdf/scatter_core.hpp"
 #include "surfscatter/core/error.hpp"
-#include "surfscatter/surface/height_map_io.hpp"
+#include "surfscatter/heightmap/io.hpp"
 #include "surfscatter/surface/height_map_slope.hpp"
 #include "surfscatter/surface/synthesis.hpp"
 
@@ -35,7 +35,7 @@ fs::path synthesized(const surface::RadialStatistics& truth, const std::string& 
     const fs::path dir = fs::temp_directory_path() / "surfscatter_test_measured";
     fs::create_directories(dir);
     const fs::path path = dir / (name + ".gsf");
-    surface::write_gsf(surface::synthesize_surface(truth, {1024, 1024, 0.08}, 11), path);
+    heightmap::write_gsf(surface::synthesize_surface(truth, {1024, 1024, 0.08}, 11), path);
     return path;
 }
 
@@ -126,7 +126,7 @@ TEST(Measured, GgxKeepsTheMapsSlopeAndRefitNeedsKc) {
     o.model = ModelKind::ggx;
     o.alpha_from = AlphaFrom::measured;
     const auto ggx = make_bsdf(o);
-    const double alpha = surface::rms_slope(surface::read_height_map(path, std::nullopt));
+    const double alpha = surface::rms_slope(heightmap::read_height_map(path, std::nullopt));
     const Vec3 wi = spherical_direction(0.4, 0.0), wo = spherical_direction(0.5, kPi);
     o.alpha_from = AlphaFrom::none;
     o.alpha = alpha;

@@ -31,7 +31,7 @@ struct LatticeReference {
     std::vector<std::vector<std::pair<double, double>>> rings;  // per order m: {mean |zeta|, mean P-hat^{*m}}
     std::vector<double> dc;                          // P-hat^{*m}(0) on the lattice
 
-    LatticeReference(const surface::HeightMap& map, int orders) : n(map.nx()), dx(map.spacing_x()) {
+    LatticeReference(const heightmap::HeightMap& map, int orders) : n(map.nx()), dx(map.spacing_x()) {
         dzeta = 2.0 * kPi / (static_cast<double>(n) * dx);
         const auto spectrum = surface::forward_fft_2d(map.heights(), n, n);
         const std::size_t half = n / 2 + 1;
@@ -92,14 +92,14 @@ TEST(MeasuredReference, GhsMatchesEquationsOneAndTwoOnTheMapsOwnPeriodogram) {
     for (double g_target : {0.01, 0.3, 3.0, 30.0}) {
         const double lambda_g = 550.0, k_g = 2e3 * kPi / lambda_g;
         const double scale = std::sqrt(g_target) / (2.0 * k_g * 0.05);  // g0 = (2 k sigma)^2 at normal incidence
-        auto map = std::make_shared<const surface::HeightMap>(surface::test::exact_amplitude_map(truth, n, dx, 21, scale));
+        auto map = std::make_shared<const heightmap::HeightMap>(surface::test::exact_amplitude_map(truth, n, dx, 21, scale));
         const LatticeReference ref(*map, orders);
         ModelOptions o;
         o.model = ModelKind::ghs;
         o.surface.psd = PsdKind::measured;
         o.surface.measured_spectrum = MeasuredSpectrum::ring;  // the ring route is what eq. 1-2 is evaluated on here
         o.surface.surface_file = "exact-amplitude map";
-        o.surface.form = surface::Form::none;
+        o.surface.form = heightmap::Form::none;
         o.surface.height_map = map;
         const auto model = make_bsdf(o);
         for (double lambda : {450.0, 550.0, 700.0})
@@ -160,7 +160,7 @@ TEST(MeasuredReference, NonStationaryMapIsNamedInTheNotes) {
     const std::size_t n = 256;
     const double dx = 0.1;
     const surface::KCorrelation truth(0.05, 0.5, 4.0);
-    const surface::HeightMap base = surface::synthesize_surface(truth, {n, n, dx}, 7);
+    const heightmap::HeightMap base = surface::synthesize_surface(truth, {n, n, dx}, 7);
     std::vector<double> grown = base.heights();
     for (std::size_t y = 0; y < n; ++y)
         for (std::size_t x = 0; x < n; ++x) grown[y * n + x] *= 1.0 + 4.0 * std::pow(double(x) / double(n - 1), 4);
@@ -170,7 +170,7 @@ TEST(MeasuredReference, NonStationaryMapIsNamedInTheNotes) {
         o.surface.psd = PsdKind::measured;
         o.surface.measured_spectrum = MeasuredSpectrum::ring;  // the ring route is what eq. 1-2 is evaluated on here
         o.surface.surface_file = "map";
-        o.surface.height_map = std::make_shared<const surface::HeightMap>(n, n, dx, dx, std::move(heights), "map");
+        o.surface.height_map = std::make_shared<const heightmap::HeightMap>(n, n, dx, dx, std::move(heights), "map");
         std::vector<std::string> notes;
         make_bsdf(o, &notes);
         std::string all;

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "../surface/height_test_util.hpp"
+#include "heightmap/height_test_util.hpp"
 #include "hemisphere_albedo.hpp"
 #include "model_fixtures.hpp"
 #include "surfscatter/bsdf/albedo.hpp"
@@ -23,37 +23,38 @@
 #include "surfscatter/bsdf/ggx.hpp"
 #include "surfscatter/bsdf/slice.hpp"
 #include "surfscatter/core/error.hpp"
-#include "surfscatter/surface/height_map_form.hpp"
+#include "surfscatter/heightmap/form.hpp"
 #include "surfscatter/surface/kc_fit.hpp"
 #include "surfscatter/surface/synthesis.hpp"
 
 using namespace surfscatter;
 using namespace surfscatter::bsdf;
 namespace ss = surfscatter::surface;
+namespace hm = surfscatter::heightmap;
 
 namespace {
 
 constexpr double kSigma = 0.05, kLengthU = 8.0, kLengthV = 4.0, kLayDeg = 30.0, kGamma = 2.5, kLambda = 550.0;
 
-ss::HeightMap synthesised(double length_u, double length_v, std::size_t size, std::uint64_t seed) {
+hm::HeightMap synthesised(double length_u, double length_v, std::size_t size, std::uint64_t seed) {
     const ss::EllipticalStatistics stats(std::make_shared<ss::KCorrelation>(kSigma, length_u, kGamma), length_v,
                                          kLayDeg * kDegree);
     return ss::synthesize_surface(stats, {size, size, 1.0}, seed);
 }
 
-const ss::HeightMap& elliptical_map() {
-    static const ss::HeightMap map = synthesised(kLengthU, kLengthV, 512, 11);
+const hm::HeightMap& elliptical_map() {
+    static const hm::HeightMap map = synthesised(kLengthU, kLengthV, 512, 11);
     return map;
 }
 
-using ss::test::turned;
+using surfscatter::heightmap::test::turned;
 
-ModelOptions from_map(ModelKind model, const ss::HeightMap& map, PsdFit fit) {
+ModelOptions from_map(ModelKind model, const hm::HeightMap& map, PsdFit fit) {
     ModelOptions o;
     o.model = model;
     o.surface.psd = PsdKind::file;
     o.surface.surface_file = map.origin().empty() ? "synthetic" : map.origin();
-    o.surface.height_map = std::make_shared<const ss::HeightMap>(map);
+    o.surface.height_map = std::make_shared<const hm::HeightMap>(map);
     o.surface.psd_fit = fit;
     return o;
 }
@@ -132,7 +133,7 @@ TEST(PsdFit, EllipticalFitIsTheAnisotropicModelOfTheFittedStatistics) {
 // fitted lay axes (computed here), as the isotropic route takes the map's rms slope; kc_link from the fitted LU, LV.
 TEST(PsdFit, GgxStatsTakesTheMapSlopesAlongTheFittedLay) {
     const ss::EllipticalKcFit e = ss::fit_surface(elliptical_map()).elliptical;
-    const ss::HeightMap flat = ss::remove_form(elliptical_map(), ss::Form::plane);
+    const hm::HeightMap flat = hm::remove_form(elliptical_map(), hm::Form::plane);
     const double c = std::cos(e.lay_angle_deg * kDegree), s = std::sin(e.lay_angle_deg * kDegree);
     double su = 0, sv = 0;
     std::size_t n = 0;
@@ -163,7 +164,7 @@ TEST(PsdFit, GgxStatsTakesTheMapSlopesAlongTheFittedLay) {
 // standard error of each fitted parameter changes in the BRDF (summed: an upper bound ignoring their correlation).
 TEST(PsdFit, TurnedMapTurnsTheBrdf) {
     const ss::EllipticalKcFit e = ss::fit_surface(elliptical_map()).elliptical;
-    const ss::HeightMap map90 = turned(elliptical_map());
+    const hm::HeightMap map90 = turned(elliptical_map());
     const ss::EllipticalKcFit e90 = ss::fit_surface(map90).elliptical;
     ASSERT_TRUE(e90.failure.empty()) << e90.failure;
     EXPECT_NEAR(angle_difference(e90.lay_angle_deg, e.lay_angle_deg + 90), 0.0, e.lay_angle_error_deg);

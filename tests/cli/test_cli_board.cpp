@@ -19,7 +19,7 @@
 #include "surfscatter/photo/camera_model.hpp"
 #include "surfscatter/photo/markers.hpp"
 #include "surfscatter/photo/photo_io.hpp"
-#include "surfscatter/surface/height_map_io.hpp"
+#include "surfscatter/heightmap/io.hpp"
 
 namespace surfscatter::photo {
 namespace {
@@ -210,8 +210,8 @@ void expect_remade(const std::vector<std::string>& options, const std::string& n
     args.push_back((dir / name).string());
     const auto r = run_cli(args);
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    const surface::HeightMap made = surface::read_gsf(dir / name);
-    const surface::HeightMap committed = surface::read_gsf(kExampleData / name);
+    const heightmap::HeightMap made = heightmap::read_gsf(dir / name);
+    const heightmap::HeightMap committed = heightmap::read_gsf(kExampleData / name);
     ASSERT_EQ(made.nx(), committed.nx());
     ASSERT_EQ(made.ny(), committed.ny());
     EXPECT_EQ(made.spacing_x(), committed.spacing_x());

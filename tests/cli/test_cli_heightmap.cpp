@@ -12,12 +12,13 @@
 #include <string>
 
 #include "cli_runner.hpp"
-#include "surfscatter/surface/height_map_io.hpp"
+#include "surfscatter/heightmap/io.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
 #include "surfscatter/surface/synthesis.hpp"
 
 namespace fs = std::filesystem;
 namespace ss = surfscatter::surface;
+namespace hm = surfscatter::heightmap;
 using surfscatter::test::run_cli;
 
 namespace {
@@ -279,7 +280,7 @@ TEST(CliHeightmap, FitThroughInvalidPointsAndAFormWithTheTwoDimensionalPsdPlot) 
     // written as .gsf (NaN = invalid): --form poly2 recovers the parameters within 5 %.
     const fs::path dir = temp_dir();
     const ss::KCorrelation kc(0.05, 2.0, 3.0);
-    const ss::HeightMap surface = ss::synthesize_surface(kc, {1024, 1024, 0.5}, 9);
+    const hm::HeightMap surface = ss::synthesize_surface(kc, {1024, 1024, 0.5}, 9);
     std::vector<double> h = surface.heights();
     std::vector<std::uint8_t> valid(h.size(), 1);
     std::mt19937 engine(9);
@@ -290,7 +291,7 @@ TEST(CliHeightmap, FitThroughInvalidPointsAndAFormWithTheTwoDimensionalPsdPlot) 
         if (uniform(engine) < 0.05 || (i / 1024 >= 300 && i / 1024 < 351)) valid[i] = 0;
     }
     const std::string gsf = (dir / "holes.gsf").string();
-    ss::write_gsf(ss::HeightMap(1024, 1024, 0.5, 0.5, h, valid, "holes"), gsf);
+    hm::write_gsf(hm::HeightMap(1024, 1024, 0.5, 0.5, h, valid, "holes"), gsf);
     const std::string png = (dir / "holes_psd.png").string();
     fs::remove(png);
     const auto fit = run_cli({"surface", "fit", gsf, "--form", "poly2", "--max-zeta-fraction", "1", "--plot", png});

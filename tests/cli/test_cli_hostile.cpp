@@ -23,11 +23,11 @@
 #include <sys/wait.h>
 
 #include "cli_runner.hpp"
-#include "surface/zip_archive.hpp"
+#include "heightmap/zip_archive.hpp"
 #include "surfscatter/io/image.hpp"
 #include "surfscatter/photo/camera_model.hpp"
-#include "surfscatter/surface/height_map.hpp"
-#include "surfscatter/surface/height_map_io.hpp"
+#include "surfscatter/heightmap/height_map.hpp"
+#include "surfscatter/heightmap/io.hpp"
 
 namespace fs = std::filesystem;
 using surfscatter::test::CliResult;
@@ -135,7 +135,7 @@ void write_rule_files() {
         h = static_cast<double>(state >> 11) * 0x1.0p-53 - 0.5;
     }
     const fs::path noise_partial = dir() / ("noise.partial." + std::to_string(getpid()) + ".gsf");
-    surfscatter::surface::write_gsf(surfscatter::surface::HeightMap(64, 64, 0.1, 0.1, noise), noise_partial);
+    surfscatter::heightmap::write_gsf(surfscatter::heightmap::HeightMap(64, 64, 0.1, 0.1, noise), noise_partial);
     fs::rename(noise_partial, dir() / "white_noise.gsf");
 }
 
@@ -366,7 +366,7 @@ public:
         std::vector<double> heights(64 * 64);
         for (std::size_t i = 0; i < heights.size(); ++i) heights[i] = 0.01 * std::sin(0.3 * static_cast<double>(i % 64));
         const fs::path gsf_partial = dir() / ("h.partial." + std::to_string(getpid()) + ".gsf");
-        surfscatter::surface::write_gsf(surfscatter::surface::HeightMap(64, 64, 0.1, 0.1, heights), gsf_partial);
+        surfscatter::heightmap::write_gsf(surfscatter::heightmap::HeightMap(64, 64, 0.1, 0.1, heights), gsf_partial);
         fs::rename(gsf_partial, dir() / "h.gsf");
         // Found by fuzz_x3p: a value with a line break in main.xml was quoted raw (two lines of message).
         const fs::path x3p_partial = dir() / ("line_break.partial." + std::to_string(getpid()) + ".x3p");

@@ -14,7 +14,7 @@
 
 #include "cli_runner.hpp"
 #include "spectrum/test_data.hpp"
-#include "surfscatter/surface/height_map_io.hpp"
+#include "surfscatter/heightmap/io.hpp"
 #include "surfscatter/surface/synthesis.hpp"
 
 using surfscatter::test::read_whole_file;
@@ -264,7 +264,7 @@ TEST(CliValidityMap, DominantOutliersExitTwoUnlessFilled) {
     std::vector<double> h = clean.heights();
     for (std::size_t k = 0; k < 8; ++k) h[(9 + 13 * k) * clean.nx() + 7 + 14 * k] += k % 2 ? 0.1 : -0.1;
     const std::string spiked = map_out("spiked.gsf");
-    surfscatter::surface::write_height_map(clean.with_heights(h), spiked);
+    surfscatter::heightmap::write_height_map(clean.with_heights(h), spiked);
     const std::vector<std::string> args{"validity", "--surface-file", spiked, "--material", "perfect", "--wavelengths",
                                         "550", "--theta-i", "0", "--bin-deg", "6", "-o", map_out("spiked")};
     const auto kept = run_cli(args);

@@ -27,6 +27,7 @@ namespace {
 
 namespace sr = surfscatter::reference;
 namespace ss = surfscatter::surface;
+namespace hm = surfscatter::heightmap;
 using surfscatter::kDegree;
 using surfscatter::kPi;
 using surfscatter::material::Conductor;
@@ -74,13 +75,13 @@ double lobe_flux(double k, double theta_i, double phi_i, double ox, double oy, d
 TEST(KirchhoffMap, BandExpansionMatchesDirectSum) {
     // Two long waves (heights +-0.4 um over a sub-area, so several q_z bands) and fine roughness.
     const double dx = 0.025, lambda_um = 0.3;
-    const ss::HeightMap rough = ss::synthesize_surface(ss::GaussianAcv(0.05, 0.2), {256, 128, dx}, 3);
+    const hm::HeightMap rough = ss::synthesize_surface(ss::GaussianAcv(0.05, 0.2), {256, 128, dx}, 3);
     std::vector<double> h = rough.heights();
     for (std::size_t y = 0; y < 128; ++y)
         for (std::size_t x = 0; x < 256; ++x)
             h[y * 256 + x] += 0.25 * std::cos(2 * kPi * dx * static_cast<double>(x) / 3.2) +
                               0.15 * std::sin(2 * kPi * dx * static_cast<double>(y) / 1.6 + 0.3);
-    const ss::HeightMap map(256, 128, dx, dx, h, "waves");
+    const hm::HeightMap map(256, 128, dx, dx, h, "waves");
     const auto o = options(1e3 * lambda_um, 25, 3.2, 30);
     const auto result = sr::kirchhoff_brdf(map, Conductor::perfect(), o);
     ASSERT_EQ(result.subareas, 2u);
@@ -118,7 +119,7 @@ TEST(KirchhoffMap, BandExpansionMatchesDirectSum) {
 // A flat map is a mirror: all of it coherent, its flux the window's lobe about the specular direction exactly, and
 // that within 3 step^2 of the Fresnel reflectance at theta_i (the lobe's directions see other obliquities).
 TEST(KirchhoffMap, FlatMapIsTheFresnelMirror) {
-    const ss::HeightMap flat(256, 256, 0.1, 0.1, std::vector<double>(256 * 256, 0.0), "flat");
+    const hm::HeightMap flat(256, 256, 0.1, 0.1, std::vector<double>(256 * 256, 0.0), "flat");
     const double k = 2 * kPi / 0.55, phi_i = 20 * kDegree;
     for (const char* metal : {"perfect", "Ag", "Au"})
         for (double theta : {0.0, 30.0, 60.0}) {
@@ -145,7 +146,7 @@ TEST(KirchhoffMap, FlatMapIsTheFresnelMirror) {
 // (each pixel a mirror facet, weighted by the window squared as the Kirchhoff sum weights it).
 TEST(KirchhoffMap, GeometricLimitIsTheMapsSlopeDistribution) {
     const ss::GaussianAcv statistics(0.5, 4.0);  // g = (2 k sigma)^2 ~ 160, rms slope per axis 0.18
-    const ss::HeightMap map = ss::synthesize_surface(statistics, {1024, 1024, 0.1}, 11);
+    const hm::HeightMap map = ss::synthesize_surface(statistics, {1024, 1024, 0.1}, 11);
     const double lambda = 500, theta_i = 20 * kDegree;
     const Conductor gold = Conductor::from_name("Au");
     const auto r = sr::kirchhoff_brdf(map, gold, options(lambda, 20, 25.6));
@@ -206,13 +207,13 @@ TEST(KirchhoffMap, AgreesWithGhsNearNormalIncidence) {
     const double lambda = 500, length = 2.0, gamma = 4.0, theta_i = 5;
     for (double sigma : {0.01, 0.15}) {  // g = (2 k sigma cos)^2 = 0.06 and 14
         const ss::KCorrelation kc(sigma, length, gamma);
-        const ss::HeightMap map = ss::synthesize_surface(kc, {1024, 1024, 0.25}, 5);
+        const hm::HeightMap map = ss::synthesize_surface(kc, {1024, 1024, 0.25}, 5);
         const auto r = sr::kirchhoff_brdf(map, Conductor::perfect(), options(lambda, theta_i, 64));
         ASSERT_EQ(r.subareas, 16u);
         surfscatter::bsdf::ModelOptions model;  // GHS with the PSD measured on this map
         model.surface.psd = surfscatter::bsdf::PsdKind::measured;
         model.surface.measured_spectrum = surfscatter::bsdf::MeasuredSpectrum::ring;  // the tolerances are the ring route's
-        model.surface.measured_psd = std::make_shared<const ss::MapStatistics>(map, ss::Form::none);
+        model.surface.measured_psd = std::make_shared<const ss::MapStatistics>(map, hm::Form::none);
         const auto ghs = surfscatter::bsdf::make_bsdf(model);
         const surfscatter::Vec3 wi{std::sin(theta_i * kDegree), 0, std::cos(theta_i * kDegree)};
         const double sx = -wi.x;
@@ -253,7 +254,7 @@ TEST(KirchhoffMap, GratingOrdersFollowTheGratingEquation) {
     for (std::size_t y = 0; y < ny; ++y)
         for (std::size_t x = 0; x < nx; ++x)
             h[y * nx + x] = a * std::cos(2 * kPi * dx * static_cast<double>(x) / period);
-    const ss::HeightMap grating(nx, ny, dx, dx, h, "grating");
+    const hm::HeightMap grating(nx, ny, dx, dx, h, "grating");
     const auto r = sr::kirchhoff_brdf(grating, Conductor::perfect(), options(lambda, 10, 16));
     ASSERT_EQ(r.subareas, 2u);
     const double k = 2 * kPi / 0.5;
@@ -286,7 +287,7 @@ TEST(KirchhoffMap, GratingOrdersFollowTheGratingEquation) {
 
 TEST(KirchhoffMap, RefusesUntrustworthyInput) {
     const ss::GaussianAcv rough(1.0, 1.0);  // slopes ~1.4 on 0.2 um pixels: phase steps above pi at 400 nm
-    const ss::HeightMap map = ss::synthesize_surface(rough, {128, 128, 0.2}, 1);
+    const hm::HeightMap map = ss::synthesize_surface(rough, {128, 128, 0.2}, 1);
     EXPECT_THROW(sr::kirchhoff_brdf(map, Conductor::perfect(), options(400, 0, 12.8)), surfscatter::Error);
     EXPECT_THROW(sr::kirchhoff_brdf(map, Conductor::perfect(), options(400, 0, 2.0)), surfscatter::Error);   // 10 px
     EXPECT_THROW(sr::kirchhoff_brdf(map, Conductor::perfect(), options(400, 0, 25.6)), surfscatter::Error);  // 1 tile
@@ -302,24 +303,24 @@ bool has_warning(const sr::KirchhoffResult& r, const std::string& text) {
 // an invalid point are skipped; both said.
 TEST(KirchhoffMap, WarnsAboutUnresolvedLobesAndSkippedSubareas) {
     const ss::GaussianAcv wide(0.05, 10.0);
-    const ss::HeightMap map = ss::synthesize_surface(wide, {256, 256, 0.1}, 2);
+    const hm::HeightMap map = ss::synthesize_surface(wide, {256, 256, 0.1}, 2);
     const auto coarse = sr::kirchhoff_brdf(map, Conductor::perfect(), options(550, 10, 3.2));
     EXPECT_TRUE(has_warning(coarse, "too small to resolve it")) << coarse.warnings.size();
     std::vector<std::uint8_t> validity(256 * 256, 1);
     validity[3] = 0;  // in the first of the 64 sub-areas
-    const ss::HeightMap holed(256, 256, 0.1, 0.1, map.heights(), validity, "holed");
+    const hm::HeightMap holed(256, 256, 0.1, 0.1, map.heights(), validity, "holed");
     const auto skipped = sr::kirchhoff_brdf(holed, Conductor::perfect(), options(550, 10, 3.2));
     EXPECT_EQ(skipped.subareas, 63u);
     EXPECT_TRUE(has_warning(skipped, "1 of 64 sub-areas hold invalid points"));
     const ss::GaussianAcv narrow(0.05, 1.0);  // lobe ~ lambda / (pi l) = 0.18: 8 steps of 25.6 um sub-areas
-    const ss::HeightMap resolved = ss::synthesize_surface(narrow, {512, 512, 0.1}, 2);
+    const hm::HeightMap resolved = ss::synthesize_surface(narrow, {512, 512, 0.1}, 2);
     const auto fine = sr::kirchhoff_brdf(resolved, Conductor::perfect(), options(550, 10, 25.6));
     EXPECT_TRUE(fine.warnings.empty()) << fine.warnings.front();
 }
 
 // An interrupted run returns what it has: here nothing, since the request comes before the first sub-area.
 TEST(KirchhoffMap, InterruptReturnsTheSubareasDone) {
-    const ss::HeightMap flat(64, 64, 0.1, 0.1, std::vector<double>(64 * 64, 0.0), "flat");
+    const hm::HeightMap flat(64, 64, 0.1, 0.1, std::vector<double>(64 * 64, 0.0), "flat");
     surfscatter::request_interrupt();
     const auto r = sr::kirchhoff_brdf(flat, Conductor::perfect(), options(550, 0, 3.2));
     surfscatter::clear_interrupt();

@@ -6,7 +6,7 @@
 
 #include "render_test_util.hpp"
 #include "surfscatter/core/error.hpp"
-#include "surfscatter/surface/height_map_io.hpp"
+#include "surfscatter/heightmap/io.hpp"
 #include "surfscatter/surface/synthesis.hpp"
 
 using namespace surfscatter;
@@ -76,7 +76,7 @@ TEST(XmlLoader, IncludeAndReferences) {
 // the measured PSD reaches the user as a scene note with the bsdf's file and line.
 TEST(XmlLoader, MeasuredPsdFromASurfaceFile) {
     const fs::path dir = temp_dir("test_xml");
-    surface::write_gsf(surface::synthesize_surface(surface::KCorrelation(0.05, 1.0, 3.0), {256, 256, 0.1}, 5),
+    heightmap::write_gsf(surface::synthesize_surface(surface::KCorrelation(0.05, 1.0, 3.0), {256, 256, 0.1}, 5),
                        dir / "map.gsf");
     const std::string body = R"(<shape type="rectangle"><bsdf type="ghs"><string name="psd" value="measured"/>
             <string name="surface_file" value="map.gsf"/></bsdf></shape>)";

@@ -9,14 +9,14 @@
 #include <vector>
 
 #include "surfscatter/math/vec.hpp"
-#include "surfscatter/surface/height_map.hpp"
+#include "surfscatter/heightmap/height_map.hpp"
 #include "surfscatter/surface/height_map_fft.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
 
 namespace surfscatter::surface::test {
 
 // A periodic map whose periodogram |H_k|^2 dx dy / (4 pi^2 N) equals P(|zeta_k|) at every lattice point but DC.
-inline HeightMap exact_amplitude_map(const RadialStatistics& stats, std::size_t n, double dx, unsigned seed, double scale = 1.0) {
+inline heightmap::HeightMap exact_amplitude_map(const RadialStatistics& stats, std::size_t n, double dx, unsigned seed, double scale = 1.0) {
     const std::size_t half = n / 2 + 1;
     std::vector<std::complex<double>> spectrum(n * half);
     std::mt19937_64 rng(seed);
@@ -40,11 +40,11 @@ inline HeightMap exact_amplitude_map(const RadialStatistics& stats, std::size_t 
     spectrum[0] = 0.0;
     std::vector<double> h = inverse_fft_2d(std::move(spectrum), n, n);
     for (double& v : h) v *= scale / static_cast<double>(n * n);
-    return HeightMap(n, n, dx, dx, std::move(h), "exact-amplitude map");
+    return heightmap::HeightMap(n, n, dx, dx, std::move(h), "exact-amplitude map");
 }
 
 // Circular normalised ACV of a zero-mean periodic map, lags wrapped into [-n/2, n/2).
-inline std::vector<double> circular_rho(const HeightMap& map) {
+inline std::vector<double> circular_rho(const heightmap::HeightMap& map) {
     const std::size_t n = map.nx();
     double c0 = 0.0;
     for (double v : map.heights()) c0 += v * v;

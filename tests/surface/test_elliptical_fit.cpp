@@ -13,16 +13,17 @@
 
 #include <fmt/format.h>
 
-#include "height_test_util.hpp"
+#include "heightmap/height_test_util.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/math/vec.hpp"
 #include "surfscatter/surface/elliptical_fit.hpp"
-#include "surfscatter/surface/height_map_io.hpp"
+#include "surfscatter/heightmap/io.hpp"
 #include "surfscatter/surface/kc_fit.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
 #include "surfscatter/surface/synthesis.hpp"
 
 namespace ss = surfscatter::surface;
+namespace hm = surfscatter::heightmap;
 using surfscatter::kPi;
 
 namespace {
@@ -35,19 +36,19 @@ ss::EllipticalStatistics elliptical(double ratio, double angle_deg, double gamma
                                     angle_deg * kPi / 180.0);
 }
 
-ss::EllipticalKcFit fit_of(const ss::HeightMap& map) { return ss::fit_surface(map).elliptical; }
+ss::EllipticalKcFit fit_of(const hm::HeightMap& map) { return ss::fit_surface(map).elliptical; }
 
 // Signed difference of two lay angles modulo 180 deg, in [-90, 90).
 double angle_difference(double a, double b) { return std::remainder(a - b, 180.0); }
 
-using ss::test::turned;
+using surfscatter::heightmap::test::turned;
 
 }  // namespace
 
 TEST(EllipticalSynthesis, IsotropicEllipseIsTheRadialSynthesis) {
     const ss::KCorrelation kc(kSigma, kLengthU, kGamma);
-    const ss::HeightMap radial = ss::synthesize_surface(kc, {64, 48, 0.5}, 7);
-    const ss::HeightMap stretched = ss::synthesize_surface(elliptical(1.0, 0.0), {64, 48, 0.5}, 7);
+    const hm::HeightMap radial = ss::synthesize_surface(kc, {64, 48, 0.5}, 7);
+    const hm::HeightMap stretched = ss::synthesize_surface(elliptical(1.0, 0.0), {64, 48, 0.5}, 7);
     EXPECT_EQ(radial.heights(), stretched.heights());
 }
 
@@ -67,7 +68,7 @@ TEST(EllipticalSynthesis, GaussianAcvFollowsTheLayAngle) {
     double variance = 0.0;
     const int maps = 4;
     for (int seed = 1; seed <= maps; ++seed) {
-        const ss::HeightMap map = ss::synthesize_surface(stats, {n, n, 1.0}, static_cast<std::uint64_t>(seed));
+        const hm::HeightMap map = ss::synthesize_surface(stats, {n, n, 1.0}, static_cast<std::uint64_t>(seed));
         for (std::size_t i = 0; i < lags.size(); ++i) {
             // The lag on the grid nearest to (u, v) in the lay frame; the closed form is taken at that lag.
             const auto tx = static_cast<long>(std::lround(c * lags[i].u - s * lags[i].v));
@@ -98,7 +99,7 @@ TEST(EllipticalFit, RecoversLengthsAngleAndGamma) {
     double worst_length = 0.0, worst_angle = 0.0, worst_gamma = 0.0, worst_pull = 0.0;
     for (double ratio : {0.5, 0.2})
         for (double angle : {0.0, 30.0, 90.0, 135.0}) {
-            const ss::HeightMap map = ss::synthesize_surface(elliptical(ratio, angle), {kSize, kSize, kSpacing}, ++seed);
+            const hm::HeightMap map = ss::synthesize_surface(elliptical(ratio, angle), {kSize, kSize, kSpacing}, ++seed);
             const ss::EllipticalKcFit fit = fit_of(map);
             const std::string where = fmt::format("LV/LU {} A {}", ratio, angle);
             ASSERT_TRUE(fit.failure.empty()) << where << ": " << fit.failure;
@@ -137,7 +138,7 @@ TEST(EllipticalFit, RecoversLengthsAngleAndGamma) {
 
 TEST(EllipticalFit, TurnedMapTurnsTheLay) {
     for (double angle : {30.0, 135.0}) {
-        const ss::HeightMap map = ss::synthesize_surface(elliptical(0.5, angle), {kSize, kSize, kSpacing}, 3);
+        const hm::HeightMap map = ss::synthesize_surface(elliptical(0.5, angle), {kSize, kSize, kSpacing}, 3);
         const ss::EllipticalKcFit fit = fit_of(map), turned_fit = fit_of(turned(map));
         EXPECT_NEAR(angle_difference(turned_fit.lay_angle_deg, fit.lay_angle_deg + 90.0), 0.0, 0.5) << angle;
         EXPECT_NEAR(turned_fit.corr_length_u_um / fit.corr_length_u_um, 1.0, 0.01) << angle;
@@ -148,7 +149,7 @@ TEST(EllipticalFit, TurnedMapTurnsTheLay) {
 TEST(EllipticalFit, IsotropicMapIsNotSignificant) {
     int significant = 0;
     for (std::uint64_t seed : {21u, 22u, 23u, 24u}) {
-        const ss::HeightMap map = ss::synthesize_surface(elliptical(1.0, 0.0), {kSize, kSize, kSpacing}, seed);
+        const hm::HeightMap map = ss::synthesize_surface(elliptical(1.0, 0.0), {kSize, kSize, kSpacing}, seed);
         const ss::SurfaceFit fit = ss::fit_surface(map);
         const ss::EllipticalKcFit& e = fit.elliptical;
         ASSERT_TRUE(e.failure.empty()) << e.failure;
@@ -166,7 +167,7 @@ TEST(EllipticalFit, IsotropicMapIsNotSignificant) {
 TEST(EllipticalFit, RefusesAMapWithoutAKneeAlongTheLay) {
     // LU = 400 um on a 128 um map: along the lay the band holds only the tail.
     const ss::EllipticalStatistics stats(std::make_shared<ss::KCorrelation>(kSigma, 400.0, kGamma), 2.0, 0.5);
-    const ss::HeightMap map = ss::synthesize_surface(stats, {128, 128, kSpacing}, 5);
+    const hm::HeightMap map = ss::synthesize_surface(stats, {128, 128, kSpacing}, 5);
     const ss::EllipticalKcFit fit = fit_of(map);
     ASSERT_FALSE(fit.failure.empty());
     EXPECT_NE(fit.failure.find("LU (along the lay)"), std::string::npos) << fit.failure;
@@ -174,7 +175,7 @@ TEST(EllipticalFit, RefusesAMapWithoutAKneeAlongTheLay) {
 }
 
 TEST(EllipticalFit, ResultIsTheModelsStatistics) {
-    const ss::HeightMap map = ss::synthesize_surface(elliptical(0.5, 30.0), {kSize, kSize, kSpacing}, 9);
+    const hm::HeightMap map = ss::synthesize_surface(elliptical(0.5, 30.0), {kSize, kSize, kSpacing}, 9);
     const ss::EllipticalKcFit fit = fit_of(map);
     const ss::EllipticalStatistics stats = fit.statistics();
     EXPECT_DOUBLE_EQ(stats.corr_length_u(), fit.corr_length_u_um);
@@ -188,7 +189,7 @@ TEST(EllipticalFit, ResultIsTheModelsStatistics) {
 TEST(EllipticalFit, RealFilesResolveOrSayWhy) {
     for (const char* name : {"di-1.di", "metropro-1.dat", "opd-1.opd"}) {
         const auto path = std::filesystem::path(SURFSCATTER_SHARED_DATA) / "realdata" / "heightmaps" / name;
-        const ss::EllipticalKcFit fit = ss::fit_surface(ss::read_height_map(path, std::nullopt, std::nullopt)).elliptical;
+        const ss::EllipticalKcFit fit = ss::fit_surface(hm::read_height_map(path, std::nullopt, std::nullopt)).elliptical;
         if (!fit.failure.empty()) {
             fmt::print("{}: {}\n", name, fit.failure);
             EXPECT_EQ(fit.failure.rfind("elliptical KC fit: ", 0), 0u) << fit.failure;

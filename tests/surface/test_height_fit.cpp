@@ -15,12 +15,13 @@
 #include <fmt/format.h>
 
 #include "surfscatter/core/error.hpp"
-#include "surfscatter/surface/height_map_form.hpp"
+#include "surfscatter/heightmap/form.hpp"
 #include "surfscatter/surface/kc_fit.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
 #include "surfscatter/surface/synthesis.hpp"
 
 namespace ss = surfscatter::surface;
+namespace hm = surfscatter::heightmap;
 
 TEST(HeightFit, RecoversKcParametersOfSyntheticSurfaces) {
     const double sigma = 0.05, length = 2.0, spacing = 0.5;
@@ -31,7 +32,7 @@ TEST(HeightFit, RecoversKcParametersOfSyntheticSurfaces) {
     for (double gamma : {2.0, 2.5, 3.0, 4.0})
         for (std::uint64_t seed : {11u, 12u}) {
             const ss::KCorrelation kc(sigma, length, gamma);
-            const ss::HeightMap map = ss::synthesize_surface(kc, {1024, 1024, spacing}, seed);
+            const hm::HeightMap map = ss::synthesize_surface(kc, {1024, 1024, spacing}, seed);
             const ss::SurfaceFit fit = ss::fit_surface(map, options);
             EXPECT_NEAR(fit.kc.sigma_h_um / sigma, 1.0, 0.05) << "gamma " << gamma << " seed " << seed;
             EXPECT_NEAR(fit.kc.corr_length_um / length, 1.0, 0.05) << "gamma " << gamma << " seed " << seed;
@@ -54,7 +55,7 @@ namespace {
 
 // The surface plus a quadratic form (a bowl 40 sigma deep across the map, tilted), with invalid points: about
 // `random_fraction` at random and the rows [band_start, band_end) (a scratch or a stitching seam).
-ss::HeightMap with_form_and_holes(const ss::HeightMap& map, double depth, double random_fraction,
+hm::HeightMap with_form_and_holes(const hm::HeightMap& map, double depth, double random_fraction,
                                   std::size_t band_start, std::size_t band_end, unsigned seed) {
     std::mt19937 engine(seed);
     std::uniform_real_distribution<double> uniform(0.0, 1.0);
@@ -69,7 +70,7 @@ ss::HeightMap with_form_and_holes(const ss::HeightMap& map, double depth, double
             h[i] += depth * (x * x + 0.6 * y * y + 0.3 * x * y) / r2 + 1e-3 * x - 2e-3 * y;
             if (uniform(engine) < random_fraction || (iy >= band_start && iy < band_end)) valid[i] = 0;
         }
-    return ss::HeightMap(map.nx(), map.ny(), map.spacing_x(), map.spacing_y(), std::move(h), std::move(valid), "holes");
+    return hm::HeightMap(map.nx(), map.ny(), map.spacing_x(), map.spacing_y(), std::move(h), std::move(valid), "holes");
 }
 
 }  // namespace
@@ -81,7 +82,7 @@ TEST(HeightFit, RecoversKcParametersThroughInvalidPointsAndAForm) {
     const double sigma = 0.05, length = 2.0, spacing = 0.5;
     ss::KcFitOptions options;
     options.max_nyquist_fraction = 1.0;
-    options.form = ss::Form::poly2;
+    options.form = hm::Form::poly2;
     struct Holes {
         double random;
         std::size_t band_start, band_end;
@@ -89,7 +90,7 @@ TEST(HeightFit, RecoversKcParametersThroughInvalidPointsAndAForm) {
     for (const Holes holes : {Holes{0.10, 0, 0}, Holes{0.05, 700, 751}})
         for (double gamma : {2.0, 3.0, 4.0}) {
             const ss::KCorrelation kc(sigma, length, gamma);
-            const ss::HeightMap map = with_form_and_holes(ss::synthesize_surface(kc, {1024, 1024, spacing}, 11),
+            const hm::HeightMap map = with_form_and_holes(ss::synthesize_surface(kc, {1024, 1024, spacing}, 11),
                                                           40 * sigma, holes.random, holes.band_start, holes.band_end, 11);
             ASSERT_NEAR(map.valid_fraction(), 0.9, 0.005);
             const ss::SurfaceFit fit = ss::fit_surface(map, options);
@@ -102,13 +103,13 @@ TEST(HeightFit, RecoversKcParametersThroughInvalidPointsAndAForm) {
             // patch (0.93-1.02 sigma_h here, see FittedSigmaIncludesWavelengthsThePatchMisses); with only the plane
             // removed it is the bowl's.
             EXPECT_NEAR(fit.rms_height_um / sigma, 0.98, 0.06);
-            EXPECT_GT(ss::rms_height(map, ss::Form::plane), 5 * sigma);
+            EXPECT_GT(hm::rms_height(map, hm::Form::plane), 5 * sigma);
         }
 }
 
 TEST(HeightFit, TooFewValidPointsToFit) {
-    const ss::HeightMap map = ss::synthesize_surface(ss::KCorrelation(0.05, 2.0, 3.0), {64, 64, 0.5}, 1);
-    const ss::HeightMap holes = with_form_and_holes(map, 0.0, 0.0, 10, 50, 1);  // 62.5 % of the rows invalid
+    const hm::HeightMap map = ss::synthesize_surface(ss::KCorrelation(0.05, 2.0, 3.0), {64, 64, 0.5}, 1);
+    const hm::HeightMap holes = with_form_and_holes(map, 0.0, 0.0, 10, 50, 1);  // 62.5 % of the rows invalid
     try {
         ss::fit_surface(holes);
         FAIL() << "a 37.5 % valid map was fitted";
@@ -121,7 +122,7 @@ TEST(HeightFit, FittedSigmaIncludesWavelengthsThePatchMisses) {
     // gamma = 2 puts 8 % of the variance beyond the Nyquist frequency of a 4-pixel L_c: the map's rms misses it,
     // the fit extrapolates the model and does not.
     const ss::KCorrelation kc(0.05, 2.0, 2.0);
-    const ss::HeightMap map = ss::synthesize_surface(kc, {1024, 1024, 0.5}, 5);
+    const hm::HeightMap map = ss::synthesize_surface(kc, {1024, 1024, 0.5}, 5);
     ss::KcFitOptions options;
     options.max_nyquist_fraction = 1.0;
     const ss::SurfaceFit fit = ss::fit_surface(map, options);
@@ -159,7 +160,7 @@ TEST(HeightFit, UnresolvableDataGiveErrors) {
     std::normal_distribution<double> normal(0.0, 1.0);
     std::vector<double> noise(256 * 256);
     for (double& h : noise) h = normal(engine);
-    const ss::HeightMap white(256, 256, 1.0, 1.0, std::move(noise));
+    const hm::HeightMap white(256, 256, 1.0, 1.0, std::move(noise));
     EXPECT_THROW(ss::require_resolved(ss::fit_surface(white).kc), surfscatter::Error);
     // A 16 x 16 map has too few rings in the band.
     const ss::KCorrelation kc(0.05, 2.0, 3.0);

@@ -13,21 +13,22 @@
 #include "surfscatter/surface/synthesis.hpp"
 
 namespace ss = surfscatter::surface;
+namespace hm = surfscatter::heightmap;
 using surfscatter::kPi;
 
 namespace {
-ss::HeightMap noisy_map(std::size_t nx, std::size_t ny, double dx, double dy, unsigned seed) {
+hm::HeightMap noisy_map(std::size_t nx, std::size_t ny, double dx, double dy, unsigned seed) {
     std::mt19937 engine(seed);
     std::normal_distribution<double> normal(0.0, 0.3);
     std::vector<double> h(nx * ny);
     for (std::size_t i = 0; i < h.size(); ++i)
         h[i] = normal(engine) + 0.05 * static_cast<double>(i % nx) +
                0.5 * std::sin(0.3 * static_cast<double>(i / nx));
-    return ss::HeightMap(nx, ny, dx, dy, std::move(h));
+    return hm::HeightMap(nx, ny, dx, dy, std::move(h));
 }
 
 // A cos(2 pi (mx ix / nx + my iy / ny) + phase): integer numbers of periods along both axes.
-ss::HeightMap sinusoid_map(std::size_t nx, std::size_t ny, double dx, double dy, int mx, int my, double amplitude) {
+hm::HeightMap sinusoid_map(std::size_t nx, std::size_t ny, double dx, double dy, int mx, int my, double amplitude) {
     std::vector<double> h(nx * ny);
     for (std::size_t iy = 0; iy < ny; ++iy)
         for (std::size_t ix = 0; ix < nx; ++ix) {
@@ -35,19 +36,19 @@ ss::HeightMap sinusoid_map(std::size_t nx, std::size_t ny, double dx, double dy,
                                  my * static_cast<double>(iy) / static_cast<double>(ny);
             h[iy * nx + ix] = amplitude * std::cos(2.0 * kPi * phase + 0.7);
         }
-    return ss::HeightMap(nx, ny, dx, dy, std::move(h));
+    return hm::HeightMap(nx, ny, dx, dy, std::move(h));
 }
 }  // namespace
 
 TEST(HeightPsd, ParsevalHoldsForBothWindows) {
     for (auto [nx, ny] : {std::pair<std::size_t, std::size_t>{48, 40}, {33, 51}}) {
-        const ss::HeightMap map = noisy_map(nx, ny, 0.2, 0.35, 7);
+        const hm::HeightMap map = noisy_map(nx, ny, 0.2, 0.35, 7);
         for (ss::Window window : {ss::Window::rectangular, ss::Window::hann}) {
             const ss::Psd2d psd = ss::estimate_psd(map, window);
             EXPECT_NEAR(psd.integral() / ss::windowed_variance(map, window), 1.0, 1e-12);
         }
         // Rectangular window: the windowed variance is the plain variance of the tilt-removed map.
-        const double rms = ss::rms_height(map);
+        const double rms = hm::rms_height(map);
         EXPECT_NEAR(ss::windowed_variance(map, ss::Window::rectangular) / (rms * rms), 1.0, 1e-12);
     }
 }
@@ -64,7 +65,7 @@ TEST(HeightPsd, SinusoidEnergyLandsAtItsFrequency) {
     const std::size_t nx = 64, ny = 48;
     const double dx = 0.5, dy = 0.25, amplitude = 0.2;
     const int mx = 5, my = -3;
-    const ss::HeightMap map = sinusoid_map(nx, ny, dx, dy, mx, my, amplitude);
+    const hm::HeightMap map = sinusoid_map(nx, ny, dx, dy, mx, my, amplitude);
     // Rectangular window: the whole variance A^2/2 sits in the one half-plane bin (5, -3) (plus its mirror).
     const ss::Psd2d flat = ss::estimate_psd(map, ss::Window::rectangular);
     const std::size_t peak = (ny - 3) * flat.half_nx() + 5;
@@ -99,7 +100,7 @@ TEST(HeightPsd, SinusoidEnergyLandsAtItsFrequency) {
 }
 
 TEST(HeightPsd, RadialRingsCoverPlaneUpToNyquist) {
-    const ss::HeightMap map = noisy_map(64, 64, 0.1, 0.1, 3);
+    const hm::HeightMap map = noisy_map(64, 64, 0.1, 0.1, 3);
     const ss::RadialPsd radial = ss::radial_average(ss::estimate_psd(map));
     ASSERT_EQ(radial.zeta.size(), 31u);  // rings 1 .. 31 (ring 32 would cross pi/dx)
     EXPECT_NEAR(radial.dzeta, 2 * kPi / 6.4, 1e-12);
@@ -126,17 +127,17 @@ TEST(HeightPsd, MaskedEstimateHasTheUnmaskedMean) {
         const ss::KCorrelation kc(0.05, length, 3.0);
         std::vector<double> full_sum, masked_sum, naive_sum;
         for (std::uint64_t seed = 1; seed <= 16; ++seed) {
-            const ss::HeightMap map = ss::synthesize_surface(kc, {n, n, 0.5}, seed);
+            const hm::HeightMap map = ss::synthesize_surface(kc, {n, n, 0.5}, seed);
             std::mt19937 engine(static_cast<unsigned>(seed));
             std::uniform_real_distribution<double> uniform(0.0, 1.0);
             std::vector<std::uint8_t> valid(map.size(), 1);
             for (std::size_t i = 0; i < valid.size(); ++i)
                 if (uniform(engine) < 0.08 || (i / n >= 100 && i / n < 106)) valid[i] = 0;
-            const ss::HeightMap masked =
-                ss::remove_form(ss::HeightMap(n, n, 0.5, 0.5, map.heights(), valid, "masked"), ss::Form::plane);
+            const hm::HeightMap masked =
+                hm::remove_form(hm::HeightMap(n, n, 0.5, 0.5, map.heights(), valid, "masked"), hm::Form::plane);
             const ss::RadialPsd full = ss::radial_average(ss::estimate_psd(map));
             const ss::RadialPsd holes =
-                ss::radial_average(ss::estimate_psd(masked, ss::Window::hann, ss::Form::none));
+                ss::radial_average(ss::estimate_psd(masked, ss::Window::hann, hm::Form::none));
             std::vector<double> weighted(masked.size());
             double power = 0.0;
             for (std::size_t i = 0; i < masked.size(); ++i) {

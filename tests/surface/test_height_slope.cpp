@@ -11,12 +11,13 @@
 #include "surfscatter/surface/synthesis.hpp"
 
 namespace ss = surfscatter::surface;
+namespace hm = surfscatter::heightmap;
 using surfscatter::kPi;
 
 namespace {
 // A cos(qx (x + dx/2)) cos(qy (y + dy/2)) with qx = pi mx / (nx dx): even about every edge (a DCT-II basis
 // function), so that mirror extension continues it smoothly; even mx, my also make it orthogonal to any plane.
-ss::HeightMap cosine_map(std::size_t n, double dx, int mx, int my, double amplitude, double tilt = 0.0) {
+hm::HeightMap cosine_map(std::size_t n, double dx, int mx, int my, double amplitude, double tilt = 0.0) {
     std::vector<double> h(n * n);
     for (std::size_t iy = 0; iy < n; ++iy)
         for (std::size_t ix = 0; ix < n; ++ix) {
@@ -25,23 +26,23 @@ ss::HeightMap cosine_map(std::size_t n, double dx, int mx, int my, double amplit
             h[iy * n + ix] = amplitude * std::cos(kPi * mx * u) * std::cos(kPi * my * v) +
                              tilt * dx * (static_cast<double>(ix) - 2.0 * static_cast<double>(iy));
         }
-    return ss::HeightMap(n, n, dx, dx, std::move(h));
+    return hm::HeightMap(n, n, dx, dx, std::move(h));
 }
 
 // The same map with about 10 % of its points invalid at random (the heights there are never looked at).
-ss::HeightMap with_random_holes(const ss::HeightMap& map, unsigned seed) {
+hm::HeightMap with_random_holes(const hm::HeightMap& map, unsigned seed) {
     std::vector<std::uint8_t> valid(map.size(), 1);
     std::uint64_t state = seed;
     for (auto& v : valid) {
         state = state * 6364136223846793005ull + 1442695040888963407ull;
         if ((state >> 33) % 10 == 0) v = 0;
     }
-    return ss::HeightMap(map.nx(), map.ny(), map.spacing_x(), map.spacing_y(), map.heights(), valid, "holes");
+    return hm::HeightMap(map.nx(), map.ny(), map.spacing_x(), map.spacing_y(), map.heights(), valid, "holes");
 }
 }  // namespace
 
 TEST(HeightSlope, PlaneHasZeroSlope) {
-    const ss::HeightMap plane = cosine_map(32, 0.5, 2, 2, 0.0, 0.3);
+    const hm::HeightMap plane = cosine_map(32, 0.5, 2, 2, 0.0, 0.3);
     EXPECT_NEAR(ss::rms_slope(plane), 0.0, 1e-13);
     EXPECT_NEAR(ss::rms_slope_smoothed(plane, 1.0), 0.0, 1e-13);
 }
@@ -67,9 +68,9 @@ TEST(HeightSlope, GaussianSmoothingScalesSinusoidByItsTransferFunction) {
     const int mx = 10, my = 6;
     const double qx = kPi * mx / (n * dx), qy = kPi * my / (n * dx);
     const double transfer = std::exp(-0.5 * s * s * (qx * qx + qy * qy));
-    const ss::HeightMap map = cosine_map(n, dx, mx, my, amplitude, -0.1);
-    const ss::HeightMap flat = ss::remove_form(map, ss::Form::plane);
-    const ss::HeightMap smoothed = ss::gaussian_smooth(map, s);
+    const hm::HeightMap map = cosine_map(n, dx, mx, my, amplitude, -0.1);
+    const hm::HeightMap flat = hm::remove_form(map, hm::Form::plane);
+    const hm::HeightMap smoothed = ss::gaussian_smooth(map, s);
     for (std::size_t i = 0; i < map.size(); ++i)
         ASSERT_NEAR(smoothed.heights()[i], transfer * flat.heights()[i], 1e-13);
     EXPECT_NEAR(ss::rms_slope_smoothed(map, s) / ss::rms_slope(map), transfer, 1e-12);
@@ -79,8 +80,8 @@ TEST(HeightSlope, GaussianSmoothingScalesSinusoidByItsTransferFunction) {
 TEST(HeightSlope, InvalidPointsAreLeftOutNotFilled) {
     const std::size_t n = 256;
     const double dx = 0.1, amplitude = 0.05;
-    const ss::HeightMap full = cosine_map(n, dx, 10, 6, amplitude, 0.2);
-    const ss::HeightMap holes = with_random_holes(full, 4);
+    const hm::HeightMap full = cosine_map(n, dx, 10, 6, amplitude, 0.2);
+    const hm::HeightMap holes = with_random_holes(full, 4);
     // The slope over the points whose four neighbours are valid (~66 % of them, spread over the whole map) is
     // the full map's to the sampling scatter of a product of cosines (~1 %).
     EXPECT_NEAR(ss::rms_slope(holes) / ss::rms_slope(full), 1.0, 0.02);
@@ -92,9 +93,9 @@ TEST(HeightSlope, SmoothingWithInvalidPointsIsTheNormalisedConvolution) {
     // exp(-s^2 zeta^2 / 2) is that kernel up to aliasing, exp(-2 pi^2 (s/dx)^2) ~ 1e-17 for s = 2 px.
     const std::size_t n = 48;
     const double dx = 0.1, s = 0.2;
-    const ss::HeightMap holes = with_random_holes(cosine_map(n, dx, 5, 3, 0.05), 9);
-    const ss::HeightMap flat = ss::remove_form(holes, ss::Form::none);
-    const ss::HeightMap smoothed = ss::gaussian_smooth(holes, s, ss::Form::none);
+    const hm::HeightMap holes = with_random_holes(cosine_map(n, dx, 5, 3, 0.05), 9);
+    const hm::HeightMap flat = hm::remove_form(holes, hm::Form::none);
+    const hm::HeightMap smoothed = ss::gaussian_smooth(holes, s, hm::Form::none);
     auto reflect = [n](long i) { return static_cast<std::size_t>(i < 0 ? -i - 1 : i >= static_cast<long>(n) ? 2 * static_cast<long>(n) - i - 1 : i); };
     double worst = 0.0;
     for (std::size_t iy = 0; iy < n; ++iy)
@@ -116,7 +117,7 @@ TEST(HeightSlope, SmoothingWithInvalidPointsIsTheNormalisedConvolution) {
 }
 
 TEST(HeightSlope, RejectsNonPositiveSmoothingScale) {
-    const ss::HeightMap map = cosine_map(16, 1.0, 2, 2, 1.0);
+    const hm::HeightMap map = cosine_map(16, 1.0, 2, 2, 1.0);
     EXPECT_THROW(ss::gaussian_smooth(map, 0.0), surfscatter::Error);
     EXPECT_THROW(ss::rms_slope_smoothed(map, -1.0), surfscatter::Error);
     EXPECT_THROW(ss::rms_slope_smoothed(map, std::nan("")), surfscatter::Error);

@@ -12,12 +12,13 @@
 #include "surfscatter/surface/synthesis.hpp"
 
 namespace ss = surfscatter::surface;
+namespace hm = surfscatter::heightmap;
 
 TEST(HeightSynthesis, SameSeedSameSurface) {
     const ss::KCorrelation kc(0.2, 3.0, 2.5);
-    const ss::HeightMap a = ss::synthesize_surface(kc, {64, 48, 0.5}, 42);
-    const ss::HeightMap b = ss::synthesize_surface(kc, {64, 48, 0.5}, 42);
-    const ss::HeightMap c = ss::synthesize_surface(kc, {64, 48, 0.5}, 43);
+    const hm::HeightMap a = ss::synthesize_surface(kc, {64, 48, 0.5}, 42);
+    const hm::HeightMap b = ss::synthesize_surface(kc, {64, 48, 0.5}, 42);
+    const hm::HeightMap c = ss::synthesize_surface(kc, {64, 48, 0.5}, 43);
     EXPECT_EQ(a.heights(), b.heights());
     EXPECT_NE(a.heights(), c.heights());
     EXPECT_EQ(a.nx(), 64u);
@@ -39,7 +40,7 @@ TEST(HeightSynthesis, RejectsBadGrids) {
 TEST(HeightSynthesis, RadialPsdMatchesKcInResolvedBand) {
     for (double gamma : {2.0, 3.0, 4.0}) {
         const ss::KCorrelation kc(0.1, 2.0, gamma);  // L = 4 pixels of 0.5 um
-        const ss::HeightMap map = ss::synthesize_surface(kc, {512, 512, 0.5}, 7);
+        const hm::HeightMap map = ss::synthesize_surface(kc, {512, 512, 0.5}, 7);
         const ss::RadialPsd radial = ss::radial_average(ss::estimate_psd(map));
         // Groups of rings [4, 8), [8, 16), ..., [128, 256): plateau, knee and tail (zeta L from 0.2 to 6).
         for (std::size_t first = 4; first < 256; first *= 2) {

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "surfscatter/math/vec.hpp"
-#include "surfscatter/surface/height_map.hpp"
+#include "surfscatter/heightmap/height_map.hpp"
 #include "surfscatter/surface/map_statistics.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
 #include "surfscatter/surface/self_convolution_table.hpp"
@@ -20,7 +20,7 @@ using test::circular_rho;
 using test::exact_amplitude_map;
 using test::lattice_rings;
 
-double rms(const HeightMap& map) {
+double rms(const heightmap::HeightMap& map) {
     double s = 0.0;
     for (double v : map.heights()) s += v * v;
     return std::sqrt(s / static_cast<double>(map.size()));
@@ -38,8 +38,8 @@ std::vector<std::shared_ptr<const RadialStatistics>> test_surfaces() {
 
 TEST(MapStatistics, RmsAndRingMeansAreTheMapsOwn) {
     for (const auto& truth : test_surfaces()) {
-        const HeightMap map = exact_amplitude_map(*truth, 512, 0.1, 3);
-        const MapStatistics stats(map, Form::none);
+        const heightmap::HeightMap map = exact_amplitude_map(*truth, 512, 0.1, 3);
+        const MapStatistics stats(map, heightmap::Form::none);
         EXPECT_TRUE(stats.periodic());
         EXPECT_NEAR(stats.map_rms(), rms(map), 1e-12 * rms(map)) << truth->cache_key();
         // Parseval over the band: sigma^2 inside Nyquist is the lattice's sum over DC and the rings used (to the
@@ -75,8 +75,8 @@ TEST(MapStatistics, LobeCoreMatchesTheMapsOwnSelfConvolutions) {
     const std::size_t n = 512;
     const double dx = 0.1;
     for (const auto& truth : test_surfaces()) {
-        const HeightMap map = exact_amplitude_map(*truth, n, dx, 7);
-        const MapStatistics stats(map, Form::none);
+        const heightmap::HeightMap map = exact_amplitude_map(*truth, n, dx, 7);
+        const MapStatistics stats(map, heightmap::Form::none);
         const auto rho = circular_rho(map);
         const int orders = 90;
         const auto table = SelfConvolutionTable::get(stats, orders);
@@ -121,9 +121,9 @@ TEST(MapStatistics, LobeCoreMatchesTheMapsOwnSelfConvolutions) {
 
 TEST(MapStatistics, ScalingHeightsScalesSigmaNotTheShape) {
     const KCorrelation kc(0.05, 1.5, 3.0);
-    const HeightMap map = exact_amplitude_map(kc, 256, 0.1, 9);
-    const HeightMap scaled = exact_amplitude_map(kc, 256, 0.1, 9, 3.0);
-    const MapStatistics a(map, Form::plane), b(scaled, Form::plane);
+    const heightmap::HeightMap map = exact_amplitude_map(kc, 256, 0.1, 9);
+    const heightmap::HeightMap scaled = exact_amplitude_map(kc, 256, 0.1, 9, 3.0);
+    const MapStatistics a(map, heightmap::Form::plane), b(scaled, heightmap::Form::plane);
     EXPECT_NEAR(b.sigma_h() / a.sigma_h(), 3.0, 1e-9);
     for (double zeta : {0.1, 0.5, 1.0, 3.0, 10.0}) EXPECT_NEAR(b.psd_unit(zeta) / a.psd_unit(zeta), 1.0, 1e-9) << zeta;
 }
@@ -131,7 +131,7 @@ TEST(MapStatistics, ScalingHeightsScalesSigmaNotTheShape) {
 TEST(MapStatistics, PaddingWithInvalidPointsKeepsTheStatisticsWithinTheirUncertainty) {
     const KCorrelation kc(0.05, 1.0, 3.0);
     const std::size_t n = 256, pad = 32, m = n + 2 * pad;
-    const HeightMap map = exact_amplitude_map(kc, n, 0.1, 11);
+    const heightmap::HeightMap map = exact_amplitude_map(kc, n, 0.1, 11);
     std::vector<double> heights(m * m, 0.0);
     std::vector<std::uint8_t> valid(m * m, 0);
     for (std::size_t y = 0; y < n; ++y)
@@ -139,8 +139,8 @@ TEST(MapStatistics, PaddingWithInvalidPointsKeepsTheStatisticsWithinTheirUncerta
             heights[(y + pad) * m + x + pad] = map(x, y);
             valid[(y + pad) * m + x + pad] = 1;
         }
-    const HeightMap padded(m, m, 0.1, 0.1, heights, valid, "padded map");
-    const MapStatistics a(map, Form::plane), b(padded, Form::plane);
+    const heightmap::HeightMap padded(m, m, 0.1, 0.1, heights, valid, "padded map");
+    const MapStatistics a(map, heightmap::Form::plane), b(padded, heightmap::Form::plane);
     EXPECT_FALSE(b.periodic());
     EXPECT_NEAR(b.map_rms() / a.map_rms(), 1.0, 1e-12);
     // sigma within three of the padded estimate's stated standard errors (the Hann-weighted masked estimate of one

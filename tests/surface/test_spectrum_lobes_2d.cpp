@@ -66,8 +66,8 @@ TEST(SpectrumLobes2d, MatchesDirectPoissonSeriesOfConvolutions) {
     // 32^2 at 0.1 um, Gaussian ACV l = 0.4 um: the spectrum falls by e^-39 at Nyquist, the 2-fold lattice (p = 2,
     // out to 63 rad/um) holds every order that matters up to g = 5 without folding.
     const GaussianAcv truth(0.05, 0.4);
-    const HeightMap map = synthesize_surface(truth, {32, 32, 0.1}, 5);
-    const Psd2d spectrum = estimate_psd(map, Window::rectangular, Form::none);
+    const heightmap::HeightMap map = synthesize_surface(truth, {32, 32, 0.1}, 5);
+    const Psd2d spectrum = estimate_psd(map, Window::rectangular, heightmap::Form::none);
     const SpectrumLobes2d lobes(spectrum, 6.0);
     EXPECT_EQ(lobes.padding(), 2u);
     EXPECT_LT(lobes.edge_fraction(), 1e-4);  // the highest orders reach the outer quarter, folding nothing
@@ -101,8 +101,8 @@ TEST(SpectrumLobes2d, MatchesDirectPoissonSeriesOfConvolutions) {
 }
 
 TEST(SpectrumLobes2d, SamplerDensityIsNormalisedAndMatchesDraws) {
-    const HeightMap map = synthesize_surface(GaussianAcv(0.05, 0.4), {32, 32, 0.1}, 9);
-    const SpectrumLobes2d lobes(estimate_psd(map, Window::rectangular, Form::none), 6.0);
+    const heightmap::HeightMap map = synthesize_surface(GaussianAcv(0.05, 0.4), {32, 32, 0.1}, 9);
+    const SpectrumLobes2d lobes(estimate_psd(map, Window::rectangular, heightmap::Form::none), 6.0);
     for (double g : {0.0, 0.05, 1.3, 5.0}) {
         // The density integrates to 1 (midpoint sum on a grid 4x finer than any row's cells).
         const double h = 0.25 * 2 * kPi / 3.2 / 2, extent = 70;
@@ -119,8 +119,8 @@ TEST(SpectrumLobes2d, SamplerDensityIsNormalisedAndMatchesDraws) {
 }
 
 TEST(SpectrumLobes2d, RefusesBadInput) {
-    const HeightMap map = synthesize_surface(GaussianAcv(0.05, 0.4), {32, 32, 0.1}, 9);
-    const Psd2d spectrum = estimate_psd(map, Window::rectangular, Form::none);
+    const heightmap::HeightMap map = synthesize_surface(GaussianAcv(0.05, 0.4), {32, 32, 0.1}, 9);
+    const Psd2d spectrum = estimate_psd(map, Window::rectangular, heightmap::Form::none);
     EXPECT_THROW(SpectrumLobes2d(spectrum, 0.0), Error);
     const SpectrumLobes2d lobes(spectrum, 2.0);
     EXPECT_THROW(lobes.eval(3.0, {0, 0}), Error);

@@ -11,7 +11,7 @@
 #include "surfscatter/core/progress.hpp"
 #include "surfscatter/material/conductor.hpp"
 #include "surfscatter/math/vec.hpp"
-#include "surfscatter/surface/height_map.hpp"
+#include "surfscatter/heightmap/height_map.hpp"
 #include "surfscatter/validity/kirchhoff_validity.hpp"
 #include "surfscatter/validity/map_validity.hpp"
 
@@ -23,11 +23,11 @@ namespace {
 constexpr std::size_t kRows = 8;  // the closed-form maps are constant along y
 
 template <class Height>
-ss::surface::HeightMap map_along_x(std::size_t nx, double spacing_um, Height height) {
+ss::heightmap::HeightMap map_along_x(std::size_t nx, double spacing_um, Height height) {
     std::vector<double> h(nx * kRows);
     for (std::size_t y = 0; y < kRows; ++y)
         for (std::size_t x = 0; x < nx; ++x) h[y * nx + x] = height(static_cast<double>(x) * spacing_um);
-    return ss::surface::HeightMap(nx, kRows, spacing_um, spacing_um, std::move(h), "closed form");
+    return ss::heightmap::HeightMap(nx, kRows, spacing_um, spacing_um, std::move(h), "closed form");
 }
 
 // Triangle wave of slope s and period P: h = s |(x mod P) - P / 2|.
@@ -227,7 +227,7 @@ TEST(MapValidity, BinStandardErrorMatchesTheScatterBetweenMaps) {
     for (const bool rough : {false, true}) {
         const sv::MapSurface all = rough ? kc_maps(0.15, 4, 4, 8) : kc_maps(0.02, 2, 3, 8);
         std::vector<std::vector<double>> values, stderrs;
-        for (const ss::surface::HeightMap& map : all.maps) {
+        for (const ss::heightmap::HeightMap& map : all.maps) {
             sv::MapSurface one;
             one.maps = {map};
             one.models = {all.models.front()};

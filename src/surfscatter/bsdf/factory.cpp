@@ -15,8 +15,8 @@
 #include "surfscatter/bsdf/scatter_core.hpp"
 #include "surfscatter/bsdf/two_scale.hpp"
 #include "surfscatter/core/error.hpp"
-#include "surfscatter/surface/height_map_io.hpp"
-#include "surfscatter/surface/height_map_outliers.hpp"
+#include "surfscatter/heightmap/io.hpp"
+#include "surfscatter/heightmap/outliers.hpp"
 #include "surfscatter/surface/height_map_slope.hpp"
 #include "surfscatter/surface/elliptical_slopes.hpp"
 #include "surfscatter/surface/elliptical_statistics.hpp"
@@ -75,9 +75,9 @@ class SurfaceSource {
 public:
     explicit SurfaceSource(SurfaceOptions s) : options_(std::move(s)) { load_height_map(options_); }
 
-    const surface::HeightMap* map() const { return options_.height_map.get(); }
+    const heightmap::HeightMap* map() const { return options_.height_map.get(); }
     const SurfaceOptions& options() const { return options_; }
-    surface::Form form() const { return options_.form; }
+    heightmap::Form form() const { return options_.form; }
 
     // KC parameters: given, or fitted to the height map after form removal (kc_fit.hpp); with psd_fit elliptical the
     // elliptical fit's sigma, LU and gamma (its LV and lay angle: elliptical()).
@@ -275,7 +275,7 @@ std::function<double(double)> ggx_alpha(const ModelOptions& o, SurfaceSource& su
         case AlphaFrom::smoothed: {
             const double smoothing = slope_smoothing(o);
             double alpha = 0;  // alpha_GGX = alpha_Beckmann = rms slope (THEORY 4.2)
-            if (const surface::HeightMap* map = surface.map()) {  // its own slopes, whether the PSD is fitted or measured
+            if (const heightmap::HeightMap* map = surface.map()) {  // its own slopes, whether the PSD is fitted or measured
                 alpha = smoothing > 0 ? surface::rms_slope_smoothed(*map, smoothing, surface.form())
                                       : surface::rms_slope(*map, surface.form());
             } else {
@@ -311,11 +311,11 @@ std::unique_ptr<Bsdf> elliptical_ggx(const ModelOptions& o, SurfaceSource& surfa
     }
     const double smoothing = slope_smoothing(o);
     // A height map (psd_fit elliptical) gives its own slopes along the fitted lay axes, as the isotropic route does.
-    const surface::HeightMap* map = surface.map();
+    const heightmap::HeightMap* map = surface.map();
     const Vec2 variances =
         !map ? surface::smoothed_slope_variances_lay(elliptical, smoothing)
         : smoothing > 0
-            ? surface::slope_variances_lay(surface::gaussian_smooth(*map, smoothing, surface.form()), lay, surface::Form::none)
+            ? surface::slope_variances_lay(surface::gaussian_smooth(*map, smoothing, surface.form()), lay, heightmap::Form::none)
             : surface::slope_variances_lay(*map, lay, surface.form());
     if (!std::isfinite(variances.x) || !std::isfinite(variances.y)) fail_divergent_slope(o);
     const Vec2 alpha(checked_slope_alpha(o, smoothing, std::sqrt(2 * variances.x), "alpha_u"),
@@ -363,7 +363,7 @@ std::unique_ptr<Bsdf> map_slope_ggx(const ModelOptions& o, SurfaceSource& surfac
     const double smoothing = slope_smoothing(o);
     const surface::SlopeCovariance c =
         smoothing > 0 ? surface::slope_covariance(surface::gaussian_smooth(*surface.map(), smoothing, surface.form()),
-                                                  surface::Form::none)
+                                                  heightmap::Form::none)
                       : surface::slope_covariance(*surface.map(), surface.form());
     const auto axes = c.axes();
     const Vec2 alpha(checked_slope_alpha(o, smoothing, std::sqrt(2 * axes.along_u), "alpha_u"),
@@ -415,24 +415,24 @@ void load_height_map(SurfaceOptions& surface) {
     if (!(surface.psd == PsdKind::file || surface.psd == PsdKind::measured) || surface.measured_psd) return;
     if (!surface.height_map && !surface.surface_file.empty())
         surface.height_map =
-            std::make_shared<const surface::HeightMap>(surface::read_height_map(surface.surface_file, std::nullopt));
-    if (surface.height_map && surface.outliers == surface::OutlierPolicy::fill && !surface.filled_outliers) {
-        surface::Outliers found;
-        surface.height_map = std::make_shared<const surface::HeightMap>(
-            surface::apply_outlier_policy(*surface.height_map, surface::OutlierPolicy::fill, found));
+            std::make_shared<const heightmap::HeightMap>(heightmap::read_height_map(surface.surface_file, std::nullopt));
+    if (surface.height_map && surface.outliers == heightmap::OutlierPolicy::fill && !surface.filled_outliers) {
+        heightmap::Outliers found;
+        surface.height_map = std::make_shared<const heightmap::HeightMap>(
+            heightmap::apply_outlier_policy(*surface.height_map, heightmap::OutlierPolicy::fill, found));
         surface.filled_outliers = std::move(found);
     }
 }
 
-surface::Outliers outliers_of(const SurfaceOptions& surface) {
-    return surface.filled_outliers ? *surface.filled_outliers : surface::find_outliers(*surface.height_map);
+heightmap::Outliers outliers_of(const SurfaceOptions& surface) {
+    return surface.filled_outliers ? *surface.filled_outliers : heightmap::find_outliers(*surface.height_map);
 }
 
-std::optional<std::string> outlier_note(const SurfaceOptions& surface, const surface::Outliers& outliers) {
+std::optional<std::string> outlier_note(const SurfaceOptions& surface, const heightmap::Outliers& outliers) {
     if (outliers.count == 0) return std::nullopt;
     const std::string name = surface.surface_file.empty() ? surface.height_map->origin() : surface.surface_file;
-    return fmt::format("{}{}: {}", surface::kept_and_dominant(outliers, surface.outliers) ? "warning: " : "", name,
-                       surface::describe(outliers, surface.outliers));
+    return fmt::format("{}{}: {}", heightmap::kept_and_dominant(outliers, surface.outliers) ? "warning: " : "", name,
+                       heightmap::describe(outliers, surface.outliers));
 }
 
 void validate(const ModelOptions& o) {

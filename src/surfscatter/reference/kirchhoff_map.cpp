@@ -106,7 +106,7 @@ struct Geometry {
 };
 
 // The amplitudes I(q) of every direction for one sub-area (header: bands of q_z, Taylor terms within a band).
-std::vector<Complex> tile_amplitudes(const surface::HeightMap& map, const Tile& tile, const Geometry& g, TileFft& fft,
+std::vector<Complex> tile_amplitudes(const heightmap::HeightMap& map, const Tile& tile, const Geometry& g, TileFft& fft,
                                      std::size_t& fft_count, std::size_t& band_count) {
     const std::size_t n = g.nx * g.ny;
     std::vector<double> u(n);
@@ -235,7 +235,7 @@ void lattice_directions(Geometry& g, const material::Conductor& conductor, const
 }
 
 // Fraction of neighbouring pixel pairs inside the tiles whose phase step q_z,max |dh| exceeds pi.
-double aliased_fraction(const surface::HeightMap& map, const std::vector<Tile>& tiles, const Geometry& g) {
+double aliased_fraction(const heightmap::HeightMap& map, const std::vector<Tile>& tiles, const Geometry& g) {
     std::size_t pairs = 0, aliased = 0;
     for (const Tile& t : tiles)
         for (std::size_t y = 0; y < g.ny; ++y)
@@ -253,7 +253,7 @@ double aliased_fraction(const surface::HeightMap& map, const std::vector<Tile>& 
     return static_cast<double>(aliased) / static_cast<double>(pairs);
 }
 
-std::vector<Tile> usable_tiles(const surface::HeightMap& map, const Geometry& g, std::vector<std::string>& warnings) {
+std::vector<Tile> usable_tiles(const heightmap::HeightMap& map, const Geometry& g, std::vector<std::string>& warnings) {
     const std::size_t tx = map.nx() / g.nx, ty = map.ny() / g.ny;
     const std::size_t margin_x = (map.nx() - tx * g.nx) / 2, margin_y = (map.ny() - ty * g.ny) / 2;
     std::vector<Tile> tiles;
@@ -343,7 +343,7 @@ void reduce(const Geometry& g, const std::vector<std::vector<Complex>>& amplitud
 
 }  // namespace
 
-KirchhoffResult kirchhoff_brdf(const surface::HeightMap& map, const material::Conductor& conductor,
+KirchhoffResult kirchhoff_brdf(const heightmap::HeightMap& map, const material::Conductor& conductor,
                                const KirchhoffOptions& o) {
     check_options(o);
     KirchhoffResult out;

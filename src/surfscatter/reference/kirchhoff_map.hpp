@@ -40,7 +40,7 @@
 #include <vector>
 
 #include "surfscatter/material/conductor.hpp"
-#include "surfscatter/surface/height_map.hpp"
+#include "surfscatter/heightmap/height_map.hpp"
 
 namespace surfscatter::reference {
 
@@ -73,11 +73,11 @@ struct KirchhoffResult {
     std::vector<std::string> warnings;       // one line each
 };
 
-// The map's heights are used as they are: remove the form first (surface::remove_form). Throws Error for bad
+// The map's heights are used as they are: remove the form first (heightmap::remove_form). Throws Error for bad
 // options or a map that cannot be trusted at this wavelength (see above). Polls interrupt_requested() between
 // sub-areas: an interrupted run returns the sub-areas done (standard errors need 2; with fewer they are 0 and
 // `warnings` says so).
-KirchhoffResult kirchhoff_brdf(const surface::HeightMap& map, const material::Conductor& conductor,
+KirchhoffResult kirchhoff_brdf(const heightmap::HeightMap& map, const material::Conductor& conductor,
                                const KirchhoffOptions& options);
 
 }  // namespace surfscatter::reference

@@ -6,7 +6,7 @@
 
 namespace surfscatter::reference {
 
-// Heights are limited like a height map's (surface/height_map.hpp): squares and sums stay finite.
+// Heights are limited like a height map's (heightmap/height_map.hpp): squares and sums stay finite.
 inline constexpr double kMaxProfileHeightUm = 1e9;
 inline constexpr std::size_t kMinProfileSamples = 4;
 

@@ -18,7 +18,7 @@
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/input_file.hpp"
 #include "surfscatter/render/plugins.hpp"
-#include "surfscatter/surface/height_map.hpp"
+#include "surfscatter/heightmap/height_map.hpp"
 
 namespace surfscatter::render {
 
@@ -662,7 +662,7 @@ private:
             bsdf::load_height_map(surface);
             shared = {surface.height_map, surface.filled_outliers};
             const auto outliers = bsdf::outlier_note(surface, bsdf::outliers_of(surface));
-            scene_->notes.push_back(surface::describe(*shared.map) + (outliers ? "; " + *outliers : ""));
+            scene_->notes.push_back(heightmap::describe(*shared.map) + (outliers ? "; " + *outliers : ""));
         }
         surface.height_map = shared.map;
         surface.filled_outliers = shared.filled_outliers;
@@ -1077,10 +1077,10 @@ private:
     std::map<std::string, std::string> defines_;
     std::unique_ptr<Scene> scene_;
     struct SharedMap {
-        std::shared_ptr<const surface::HeightMap> map;
-        std::optional<surface::Outliers> filled_outliers;
+        std::shared_ptr<const heightmap::HeightMap> map;
+        std::optional<heightmap::Outliers> filled_outliers;
     };
-    std::map<std::pair<std::string, surface::OutlierPolicy>, SharedMap> height_maps_;  // by surface_file and outliers
+    std::map<std::pair<std::string, heightmap::OutlierPolicy>, SharedMap> height_maps_;  // by surface_file and outliers
     std::vector<std::unique_ptr<Source>> sources_;
     std::map<std::string, Object> objects_;
     std::set<std::string> names_;

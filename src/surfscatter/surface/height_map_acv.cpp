@@ -18,7 +18,7 @@ constexpr double kStepsPerPixel = 4.0;  // radial steps per (smaller) pixel spac
 // The normalised ACF on the lag grid |tx| <= nx/2, |ty| <= ny/2, with bilinear interpolation in between.
 class Acf {
 public:
-    explicit Acf(const HeightMap& flat) : nx_(flat.nx()), ny_(flat.ny()), dx_(flat.spacing_x()), dy_(flat.spacing_y()) {
+    explicit Acf(const heightmap::HeightMap& flat) : nx_(flat.nx()), ny_(flat.ny()), dx_(flat.spacing_x()), dy_(flat.spacing_y()) {
         std::vector<double> masked(flat.size()), mask(flat.size());
         for (std::size_t i = 0; i < flat.size(); ++i) {
             masked[i] = flat.valid(i) ? flat.heights()[i] : 0.0;
@@ -65,7 +65,7 @@ private:
 
 }  // namespace
 
-AcvMeasures acv_measures(const HeightMap& flat) {
+AcvMeasures acv_measures(const heightmap::HeightMap& flat) {
     const Acf acf(flat);
     const double step = std::min(flat.spacing_x(), flat.spacing_y()) / kStepsPerPixel;
     const double radial_limit = std::min(acf.max_lag_x(), acf.max_lag_y());

@@ -16,7 +16,7 @@
 //   Gaussian ACV exp(-r^2/l^2), the L of an exponential one); half the shorter side if it never does. The mean
 //   (form) removal makes every ACF estimate of a finite patch fall too early: the ACF of a patch only a few
 //   correlation lengths wide reads short (see kMinWidthInCorrelationLengths).
-#include "surfscatter/surface/height_map.hpp"
+#include "surfscatter/heightmap/height_map.hpp"
 
 namespace surfscatter::surface {
 
@@ -28,8 +28,8 @@ struct AcvMeasures {
     double slowest_direction_deg = 0.0;        // direction of max r(theta) from +x towards +y (the texture's lay)
 };
 
-// Of a map whose form is already removed (height_map_form.hpp).
-AcvMeasures acv_measures(const HeightMap& flat);
+// Of a map whose form is already removed (heightmap/form.hpp).
+AcvMeasures acv_measures(const heightmap::HeightMap& flat);
 
 // A correlation length longer than this fraction of the map's shorter side is reported with a warning: the patch
 // is too small to measure it (its ACF falls early, see above).

@@ -16,7 +16,7 @@ namespace {
 // f(gx, gy) for the central-difference gradient at every interior point of `flat` whose four neighbours are valid;
 // the number of such points. Error if there is none.
 template <typename F>
-std::size_t for_each_gradient(const HeightMap& flat, const std::string& origin, F&& f) {
+std::size_t for_each_gradient(const heightmap::HeightMap& flat, const std::string& origin, F&& f) {
     const double inv_2dx = 0.5 / flat.spacing_x(), inv_2dy = 0.5 / flat.spacing_y();
     std::size_t count = 0;
     for (std::size_t iy = 1; iy + 1 < flat.ny(); ++iy)
@@ -33,17 +33,17 @@ std::size_t for_each_gradient(const HeightMap& flat, const std::string& origin, 
 
 }  // namespace
 
-double rms_slope(const HeightMap& map, Form form) {
+double rms_slope(const heightmap::HeightMap& map, heightmap::Form form) {
     double sum = 0.0;
     const std::size_t count =
-        for_each_gradient(remove_form(map, form), map.origin(), [&](double gx, double gy) { sum += gx * gx + gy * gy; });
+        for_each_gradient(heightmap::remove_form(map, form), map.origin(), [&](double gx, double gy) { sum += gx * gx + gy * gy; });
     return std::sqrt(sum / static_cast<double>(count));
 }
 
-Vec2 slope_variances_lay(const HeightMap& map, double lay_angle_rad, Form form) {
+Vec2 slope_variances_lay(const heightmap::HeightMap& map, double lay_angle_rad, heightmap::Form form) {
     const double c = std::cos(lay_angle_rad), s = std::sin(lay_angle_rad);
     double sum_u = 0.0, sum_v = 0.0;
-    const std::size_t count = for_each_gradient(remove_form(map, form), map.origin(), [&](double gx, double gy) {
+    const std::size_t count = for_each_gradient(heightmap::remove_form(map, form), map.origin(), [&](double gx, double gy) {
         const double gu = c * gx + s * gy, gv = -s * gx + c * gy;
         sum_u += gu * gu;
         sum_v += gv * gv;
@@ -51,8 +51,8 @@ Vec2 slope_variances_lay(const HeightMap& map, double lay_angle_rad, Form form) 
     return {sum_u / static_cast<double>(count), sum_v / static_cast<double>(count)};
 }
 
-SlopeCovariance slope_covariance(const HeightMap& map, Form form) {
-    const HeightMap flat = remove_form(map, form);
+SlopeCovariance slope_covariance(const heightmap::HeightMap& map, heightmap::Form form) {
+    const heightmap::HeightMap flat = heightmap::remove_form(map, form);
     SlopeCovariance c;
     const std::size_t count = for_each_gradient(flat, map.origin(), [&](double gx, double gy) {
         c.xx += gx * gx;
@@ -105,10 +105,10 @@ std::vector<double> mirrored_gaussian_convolution(const std::vector<double>& v, 
 
 }  // namespace
 
-HeightMap gaussian_smooth(const HeightMap& map, double smoothing_um, Form form) {
+heightmap::HeightMap gaussian_smooth(const heightmap::HeightMap& map, double smoothing_um, heightmap::Form form) {
     if (!(std::isfinite(smoothing_um) && smoothing_um > 0.0))
         fail("Gaussian smoothing scale must be a positive number of um, got {}", smoothing_um);
-    const HeightMap flat = remove_form(map, form);
+    const heightmap::HeightMap flat = heightmap::remove_form(map, form);
     const std::size_t nx = flat.nx(), ny = flat.ny();
     std::vector<double> smoothed = mirrored_gaussian_convolution(flat.heights(), nx, ny, flat.spacing_x(),
                                                                  flat.spacing_y(), smoothing_um);
@@ -123,15 +123,15 @@ HeightMap gaussian_smooth(const HeightMap& map, double smoothing_um, Form form) 
     return flat.with_heights(std::move(smoothed));
 }
 
-void require_smoothing(double smoothing_um, const HeightMap& map, const char* what) {
+void require_smoothing(double smoothing_um, const heightmap::HeightMap& map, const char* what) {
     require_positive(smoothing_um, what);
     if (smoothing_um > std::max(map.width(), map.height()))
         fail("{} {} um is wider than the {:g} x {:g} um map (the smoothed map would be flat)", what, smoothing_um,
              map.width(), map.height());
 }
 
-double rms_slope_smoothed(const HeightMap& map, double smoothing_um, Form form) {
-    return rms_slope(gaussian_smooth(map, smoothing_um, form), Form::none);
+double rms_slope_smoothed(const heightmap::HeightMap& map, double smoothing_um, heightmap::Form form) {
+    return rms_slope(gaussian_smooth(map, smoothing_um, form), heightmap::Form::none);
 }
 
 }  // namespace surfscatter::surface

@@ -67,7 +67,7 @@ const char* search_box_end(double value, double lo, double hi) {
     return nullptr;
 }
 
-double nyquist_zeta(const HeightMap& map) { return kPi / std::max(map.spacing_x(), map.spacing_y()); }
+double nyquist_zeta(const heightmap::HeightMap& map) { return kPi / std::max(map.spacing_x(), map.spacing_y()); }
 
 KcFit fit_kc(const RadialPsd& radial, double nyquist, const KcFitOptions& options) {
     if (options.min_ring < 1) fail("KC fit: the first ring must be >= 1, got {}", options.min_ring);
@@ -159,19 +159,19 @@ void require_resolved(const KcFit& fit) {
     if (!fit.failure.empty()) fail("{}", fit.failure);
 }
 
-SurfaceFit fit_surface(const HeightMap& map, const KcFitOptions& options) {
-    require_valid_fraction(map, kMinFitValidFraction, "a KC fit");
+SurfaceFit fit_surface(const heightmap::HeightMap& map, const KcFitOptions& options) {
+    heightmap::require_valid_fraction(map, heightmap::kMinFitValidFraction, "a KC fit");
     SurfaceFit result;
-    const HeightMap flat = remove_form(map, options.form);
-    result.psd = estimate_psd(flat, Window::hann, Form::none);
+    const heightmap::HeightMap flat = heightmap::remove_form(map, options.form);
+    result.psd = estimate_psd(flat, Window::hann, heightmap::Form::none);
     const Psd2d& psd = result.psd;
     result.radial = radial_average(psd);
     result.kc = fit_kc(result.radial, nyquist_zeta(map), options);
-    result.spectrum = is_periodic(map) ? estimate_psd(flat, Window::rectangular, Form::none) : psd;
+    result.spectrum = is_periodic(map) ? estimate_psd(flat, Window::rectangular, heightmap::Form::none) : psd;
     result.elliptical = fit_elliptical_kc(result.spectrum, result.kc);
     result.acv = acv_measures(flat);
-    result.rms_height_um = height_moments(flat).rms;
-    result.rms_slope = rms_slope(flat, Form::none);
+    result.rms_height_um = heightmap::height_moments(flat).rms;
+    result.rms_slope = rms_slope(flat, heightmap::Form::none);
     result.rms_slope_from_psd = rms_slope_from_psd(psd);
     return result;
 }

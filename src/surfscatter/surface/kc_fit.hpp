@@ -23,9 +23,9 @@
 #include <cstddef>
 
 #include "surfscatter/surface/elliptical_fit.hpp"
-#include "surfscatter/surface/height_map.hpp"
+#include "surfscatter/heightmap/height_map.hpp"
 #include "surfscatter/surface/height_map_acv.hpp"
-#include "surfscatter/surface/height_map_form.hpp"
+#include "surfscatter/heightmap/form.hpp"
 #include "surfscatter/surface/psd_estimate.hpp"
 
 namespace surfscatter::surface {
@@ -33,7 +33,7 @@ namespace surfscatter::surface {
 struct KcFitOptions {
     std::size_t min_ring = 4;           // first ring used (1 = the lowest non-zero frequency)
     double max_nyquist_fraction = 0.5;  // zeta_max = this * pi / max(dx, dy), in (0, 1]
-    Form form = Form::plane;            // removed before everything (fit_surface)
+    heightmap::Form form = heightmap::Form::plane;            // removed before everything (fit_surface)
 };
 
 struct KcFit {
@@ -81,9 +81,9 @@ struct SurfaceFit {
 
 // Removes options.form once, then PSD, both fits, rms and slopes over the valid points. Error if fewer than
 // kMinFitValidFraction of the points are valid.
-SurfaceFit fit_surface(const HeightMap& map, const KcFitOptions& options = {});
+SurfaceFit fit_surface(const heightmap::HeightMap& map, const KcFitOptions& options = {});
 
 // Nyquist angular frequency pi / max(dx, dy) of a map (rad/um).
-double nyquist_zeta(const HeightMap& map);
+double nyquist_zeta(const heightmap::HeightMap& map);
 
 }  // namespace surfscatter::surface

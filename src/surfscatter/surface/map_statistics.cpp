@@ -53,7 +53,7 @@ private:
     double nyquist_, dc_, first_ = 0, edge_ = 0, spacing_ = 1;
 };
 
-double wrap_jump_ratio(const HeightMap& map) {
+double wrap_jump_ratio(const heightmap::HeightMap& map) {
     const std::size_t nx = map.nx(), ny = map.ny();
     double ratio = 0.0;
     for (int axis = 0; axis < 2; ++axis) {
@@ -75,16 +75,16 @@ double wrap_jump_ratio(const HeightMap& map) {
     return ratio;
 }
 
-bool is_periodic(const HeightMap& map) { return !map.has_invalid() && wrap_jump_ratio(map) <= kPeriodicJumpRatio; }
+bool is_periodic(const heightmap::HeightMap& map) { return !map.has_invalid() && wrap_jump_ratio(map) <= kPeriodicJumpRatio; }
 
-MapStatistics::MapStatistics(const HeightMap& map, Form form) {
-    require_valid_fraction(map, kMinFitValidFraction, "measured statistics");
-    const HeightMap flat = remove_form(map, form);
+MapStatistics::MapStatistics(const heightmap::HeightMap& map, heightmap::Form form) {
+    heightmap::require_valid_fraction(map, heightmap::kMinFitValidFraction, "measured statistics");
+    const heightmap::HeightMap flat = heightmap::remove_form(map, form);
     periodic_ = is_periodic(map);
-    map_rms_ = rms_height(flat, Form::none);
+    map_rms_ = heightmap::rms_height(flat, heightmap::Form::none);
     if (!(map_rms_ > 0.0))
         fail("{}: no roughness is left after removing the form ({}): rms height 0", map.origin(), to_string(form));
-    spectrum_ = estimate_psd(flat, periodic_ ? Window::rectangular : Window::hann, Form::none);
+    spectrum_ = estimate_psd(flat, periodic_ ? Window::rectangular : Window::hann, heightmap::Form::none);
     radial_ = radial_average(spectrum_);
     // P(0): the periodogram's own DC value, 0 for the rectangular window (the mean is removed), with the Hann window
     // the power its main lobe moved there from the first rings.

@@ -3,7 +3,7 @@
 // averaged over rings, within the band the map resolves, with no model fitted and no power law extrapolated.
 //
 // Construction (docs/HEIGHTMAPS.md, "Measured statistics for the models"):
-// 1. The form is removed (height_map_form.hpp) and the 2-D periodogram taken (psd_estimate.hpp). A map that wraps
+// 1. The form is removed (heightmap/form.hpp) and the 2-D periodogram taken (psd_estimate.hpp). A map that wraps
 //    around seamlessly (its jumps across opposite edges are no larger than its steps between neighbours, as for
 //    synthesised periodic maps: wrap_jump_ratio()) gets the rectangular window, under which its periodogram is
 //    exact and neighbouring bins do not mix; any other map (instrument data) the Hann window, which keeps the
@@ -33,8 +33,8 @@
 #include <string>
 #include <vector>
 
-#include "surfscatter/surface/height_map.hpp"
-#include "surfscatter/surface/height_map_form.hpp"
+#include "surfscatter/heightmap/height_map.hpp"
+#include "surfscatter/heightmap/form.hpp"
 #include "surfscatter/surface/psd_estimate.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
 
@@ -50,7 +50,7 @@ class MapRingPsd;
 class MapStatistics final : public RadialStatistics {
 public:
     // Error if fewer than kMinFitValidFraction of the points are valid or the form leaves no roughness.
-    MapStatistics(const HeightMap& map, Form form);
+    MapStatistics(const heightmap::HeightMap& map, heightmap::Form form);
 
     double sigma_h() const override;
     double psd_unit(double zeta) const override;
@@ -92,10 +92,10 @@ private:
 // kPeriodicJumpRatio), of a map without invalid points, as measured (differences do not see its mean): a plane fitted
 // to a periodic map raises it (measured 0.84 -> 2.3, poly2 4.0 on a 1024^2 Gaussian-ACV map 55 l wide); the real
 // instrument files give 50 to 10^4.
-double wrap_jump_ratio(const HeightMap& map);
+double wrap_jump_ratio(const heightmap::HeightMap& map);
 
 // Whether a map gets the rectangular window (no invalid points, wrap_jump_ratio() <= kPeriodicJumpRatio), judged on
 // the data before any form removal: a form fitted to a periodic map is noise that would break it.
-bool is_periodic(const HeightMap& map);
+bool is_periodic(const heightmap::HeightMap& map);
 
 }  // namespace surfscatter::surface

@@ -46,7 +46,7 @@ struct WindowedMap {
     double window_power = 0.0, valid_power = 0.0;
 };
 
-WindowedMap windowed(const HeightMap& flat, Window window) {
+WindowedMap windowed(const heightmap::HeightMap& flat, Window window) {
     WindowedMap out;
     out.wx = window_table(window, flat.nx());
     out.wy = window_table(window, flat.ny());
@@ -62,7 +62,7 @@ WindowedMap windowed(const HeightMap& flat, Window window) {
     return out;
 }
 
-Psd2d empty_psd(const HeightMap& map, Window window) {
+Psd2d empty_psd(const heightmap::HeightMap& map, Window window) {
     Psd2d psd;
     psd.window = window;
     psd.nx = map.nx();
@@ -85,7 +85,7 @@ std::vector<double> window_autocorrelation(const std::vector<double>& w) {
     return a;
 }
 
-Psd2d periodogram(const HeightMap& flat, Window window) {
+Psd2d periodogram(const heightmap::HeightMap& flat, Window window) {
     const WindowedMap weighted = windowed(flat, window);
     const auto spectrum = forward_fft_2d(weighted.values, flat.nx(), flat.ny());
     Psd2d psd = empty_psd(flat, window);
@@ -130,7 +130,7 @@ std::vector<double> masked_correlogram(const std::vector<double>& field, const s
 
 }  // namespace
 
-Psd2d masked_periodogram(const HeightMap& flat, Window window) {
+Psd2d masked_periodogram(const heightmap::HeightMap& flat, Window window) {
     const std::size_t nx = flat.nx(), ny = flat.ny();
     const WindowedMap weighted = windowed(flat, window);
     Psd2d psd = empty_psd(flat, window);
@@ -180,15 +180,15 @@ Psd2d masked_periodogram(const HeightMap& flat, Window window) {
     return psd;
 }
 
-double windowed_variance(const HeightMap& map, Window window, Form form) {
-    const WindowedMap weighted = windowed(remove_form(map, form), window);
+double windowed_variance(const heightmap::HeightMap& map, Window window, heightmap::Form form) {
+    const WindowedMap weighted = windowed(heightmap::remove_form(map, form), window);
     double sum = 0.0;
     for (double v : weighted.values) sum += v * v;
     return sum / weighted.valid_power;
 }
 
-Psd2d estimate_psd(const HeightMap& map, Window window, Form form) {
-    const HeightMap flat = remove_form(map, form);
+Psd2d estimate_psd(const heightmap::HeightMap& map, Window window, heightmap::Form form) {
+    const heightmap::HeightMap flat = heightmap::remove_form(map, form);
     return flat.has_invalid() ? masked_periodogram(flat, window) : periodogram(flat, window);
 }
 

@@ -2,7 +2,7 @@
 // PSD estimation from a height map, in the angular convention of THEORY.md section 0:
 // C(r) = integral of P(zeta) e^{i zeta.r} d2zeta, so the integral of P over the zeta-plane is the height variance.
 //
-// Estimator (windowed periodogram): remove the least-squares form (height_map_form.hpp; a plane by default),
+// Estimator (windowed periodogram): remove the least-squares form (heightmap/form.hpp; a plane by default),
 // multiply by a separable window w(ix, iy) = w_x(ix) w_y(iy), FFT, and
 //     P(zeta_k) = |FFT(w h)_k|^2 dx dy / (4 pi^2 sum_n w_n^2),
 // which is the cyclic periodogram |H|^2 dx dy / N divided by 4 pi^2 (P_angular = PSD_f / 4 pi^2) with the window's
@@ -28,8 +28,8 @@
 #include <cstddef>
 #include <vector>
 
-#include "surfscatter/surface/height_map.hpp"
-#include "surfscatter/surface/height_map_form.hpp"
+#include "surfscatter/heightmap/height_map.hpp"
+#include "surfscatter/heightmap/form.hpp"
 
 namespace surfscatter::surface {
 
@@ -55,18 +55,18 @@ struct Psd2d {
 
 // Removes the form, applies the window, and returns the periodogram described above (the masked correlogram if
 // the map has invalid points).
-Psd2d estimate_psd(const HeightMap& map, Window window = Window::hann, Form form = Form::plane);
+Psd2d estimate_psd(const heightmap::HeightMap& map, Window window = Window::hann, heightmap::Form form = heightmap::Form::plane);
 
 // Rings up to this one take the masked correlogram of the heights, the others that of the slopes (see above).
 inline constexpr double kMaskedDirectRings = 8;
 
 // The masked estimate of a map whose form is already removed (what estimate_psd() uses for a map with invalid
 // points).
-Psd2d masked_periodogram(const HeightMap& flat, Window window = Window::hann);
+Psd2d masked_periodogram(const heightmap::HeightMap& flat, Window window = Window::hann);
 
 // sum (w m h)^2 / sum (w m)^2 of the form-removed map: what Psd2d::integral() of estimate_psd() equals (without
 // invalid points exactly; with them approximately).
-double windowed_variance(const HeightMap& map, Window window = Window::hann, Form form = Form::plane);
+double windowed_variance(const heightmap::HeightMap& map, Window window = Window::hann, heightmap::Form form = heightmap::Form::plane);
 
 // Window value for sample i of n.
 double window_value(Window window, std::size_t i, std::size_t n);

@@ -33,10 +33,10 @@ std::vector<double> white_noise(std::size_t n, std::uint64_t seed) {
 
 // The spectral synthesis of a map whose PSD (um^4) at (zeta_x, zeta_y) is `psd`.
 template <class Psd>
-HeightMap synthesize_from_psd(const Psd& psd, const SynthesisGrid& grid, std::uint64_t seed) {
-    if (grid.nx < kMinHeightMapSize || grid.ny < kMinHeightMapSize)
-        fail("surface size must be at least {} samples per side, got {} x {}", kMinHeightMapSize, grid.nx, grid.ny);
-    require_valid_spacing(grid.spacing_um, "pixel spacing");
+heightmap::HeightMap synthesize_from_psd(const Psd& psd, const SynthesisGrid& grid, std::uint64_t seed) {
+    if (grid.nx < heightmap::kMinHeightMapSize || grid.ny < heightmap::kMinHeightMapSize)
+        fail("surface size must be at least {} samples per side, got {} x {}", heightmap::kMinHeightMapSize, grid.nx, grid.ny);
+    heightmap::require_valid_spacing(grid.spacing_um, "pixel spacing");
     // White noise, its half spectrum, FFTW's plan buffers and the map: about 48 bytes per sample at once.
     require_memory(48.0 * static_cast<double>(grid.nx) * static_cast<double>(grid.ny),
                    fmt::format("a {} x {} surface", grid.nx, grid.ny));
@@ -56,16 +56,16 @@ HeightMap synthesize_from_psd(const Psd& psd, const SynthesisGrid& grid, std::ui
             spectrum[ky * half + kx] *= scale * std::sqrt(p);
         }
     }
-    return HeightMap(nx, ny, grid.spacing_um, grid.spacing_um, inverse_fft_2d(std::move(spectrum), nx, ny),
+    return heightmap::HeightMap(nx, ny, grid.spacing_um, grid.spacing_um, inverse_fft_2d(std::move(spectrum), nx, ny),
                      "synthesized surface");
 }
 }  // namespace
 
-HeightMap synthesize_surface(const RadialStatistics& statistics, const SynthesisGrid& grid, std::uint64_t seed) {
+heightmap::HeightMap synthesize_surface(const RadialStatistics& statistics, const SynthesisGrid& grid, std::uint64_t seed) {
     return synthesize_from_psd([&](double zx, double zy) { return statistics.psd(std::hypot(zx, zy)); }, grid, seed);
 }
 
-HeightMap synthesize_surface(const EllipticalStatistics& statistics, const SynthesisGrid& grid, std::uint64_t seed) {
+heightmap::HeightMap synthesize_surface(const EllipticalStatistics& statistics, const SynthesisGrid& grid, std::uint64_t seed) {
     const double variance = statistics.sigma_h() * statistics.sigma_h();
     return synthesize_from_psd([&](double zx, double zy) { return variance * statistics.psd_unit({zx, zy}); }, grid,
                                seed);
@@ -86,7 +86,7 @@ double profile_psd(const RadialStatistics& statistics, double zeta_x) {
 std::vector<double> synthesize_profile(const RadialStatistics& statistics, std::size_t n, double spacing_um,
                                        std::uint64_t seed) {
     if (n < 4) fail("profile length must be at least 4 samples, got {}", n);
-    require_valid_spacing(spacing_um, "profile spacing");
+    heightmap::require_valid_spacing(spacing_um, "profile spacing");
     require_memory(48.0 * static_cast<double>(n), fmt::format("a profile of {} samples", n));
     auto spectrum = forward_fft_2d(white_noise(n, seed), n, 1);
     const double dz = 2.0 * kPi / (static_cast<double>(n) * spacing_um);

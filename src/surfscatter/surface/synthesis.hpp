@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "surfscatter/surface/elliptical_statistics.hpp"
-#include "surfscatter/surface/height_map.hpp"
+#include "surfscatter/heightmap/height_map.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
 
 namespace surfscatter::surface {
@@ -28,10 +28,10 @@ struct SynthesisGrid {
 };
 
 // A surface with the PSD statistics.psd(zeta) (um^4, zeta in rad/um, e.g. KCorrelation or GaussianAcv).
-HeightMap synthesize_surface(const RadialStatistics& statistics, const SynthesisGrid& grid, std::uint64_t seed);
+heightmap::HeightMap synthesize_surface(const RadialStatistics& statistics, const SynthesisGrid& grid, std::uint64_t seed);
 // The same with the 2-D PSD sigma_h^2 statistics.psd_unit(zeta) of an anisotropic surface (x along the map's rows);
 // with LV = LU bit-identical to the radial one's for the same seed.
-HeightMap synthesize_surface(const EllipticalStatistics& statistics, const SynthesisGrid& grid, std::uint64_t seed);
+heightmap::HeightMap synthesize_surface(const EllipticalStatistics& statistics, const SynthesisGrid& grid, std::uint64_t seed);
 
 // The PSD of a straight cut z = h(x, y0) through an isotropic surface: P1(zeta_x) = int P(sqrt(zeta_x^2 + zeta_y^2))
 // dzeta_y in um^3, so that int P1 dzeta_x = sigma_h^2 and the cut's ACV is C(|x|) (THEORY.md 2.1 has KC's closed

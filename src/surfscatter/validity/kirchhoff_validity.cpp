@@ -47,7 +47,7 @@ void convolve_axis(std::vector<double>& value, std::vector<double>& weight, std:
     weight.swap(w);
 }
 
-double bilinear(const surface::HeightMap& map, double fx, double fy, bool& inside) {
+double bilinear(const heightmap::HeightMap& map, double fx, double fy, bool& inside) {
     const double last_x = static_cast<double>(map.nx() - 1), last_y = static_cast<double>(map.ny() - 1);
     inside = fx >= 0 && fy >= 0 && fx <= last_x && fy <= last_y;
     if (!inside) return 0;
@@ -69,7 +69,7 @@ double median(std::vector<double> v) {
 
 }  // namespace
 
-surface::HeightMap smooth_map(const surface::HeightMap& map, double sigma_um) {
+heightmap::HeightMap smooth_map(const heightmap::HeightMap& map, double sigma_um) {
     require_positive(sigma_um, "smoothing width");
     std::vector<double> value(map.size()), weight(map.size());
     for (std::size_t j = 0; j < map.size(); ++j) {
@@ -82,7 +82,7 @@ surface::HeightMap smooth_map(const surface::HeightMap& map, double sigma_um) {
     return map.with_heights(std::move(value));
 }
 
-double shadowed_share(const surface::HeightMap& map, double theta_i_deg, double phi_i_deg) {
+double shadowed_share(const heightmap::HeightMap& map, double theta_i_deg, double phi_i_deg) {
     if (!(theta_i_deg >= 0 && theta_i_deg < 90)) fail("theta_i must be in [0, 90) degrees, got {}", theta_i_deg);
     require_finite(phi_i_deg, "phi_i");
     if (theta_i_deg == 0) return 0.0;
@@ -113,13 +113,13 @@ double shadowed_share(const surface::HeightMap& map, double theta_i_deg, double 
     return static_cast<double>(shadowed) / static_cast<double>(valid);
 }
 
-KirchhoffValidity kirchhoff_validity(const surface::HeightMap& flat, double lambda_nm, double theta_i_deg,
+KirchhoffValidity kirchhoff_validity(const heightmap::HeightMap& flat, double lambda_nm, double theta_i_deg,
                                      double phi_i_deg) {
     require_positive(lambda_nm, "wavelength");
     if (!(theta_i_deg >= 0 && theta_i_deg < 90)) fail("theta_i must be in [0, 90) degrees, got {}", theta_i_deg);
     const double lambda_um = lambda_nm * 1e-3;
     const double k = kTwoPi / lambda_um;
-    const surface::HeightMap map = smooth_map(flat, 1.0 / k);
+    const heightmap::HeightMap map = smooth_map(flat, 1.0 / k);
     KirchhoffValidity v;
     v.k_l = k * surface::acv_measures(flat).correlation_length_um;
 

@@ -23,7 +23,7 @@
 // last period of the infinite wave's s / (s + cot theta_i) (KirchhoffValidity tests).
 #include <string>
 
-#include "surfscatter/surface/height_map.hpp"
+#include "surfscatter/heightmap/height_map.hpp"
 
 namespace surfscatter::validity {
 
@@ -41,14 +41,14 @@ struct KirchhoffValidity {
 };
 
 // `flat`: the map with its form removed. Throws Error for a bad wavelength or incidence.
-KirchhoffValidity kirchhoff_validity(const surface::HeightMap& flat, double lambda_nm, double theta_i_deg,
+KirchhoffValidity kirchhoff_validity(const heightmap::HeightMap& flat, double lambda_nm, double theta_i_deg,
                                      double phi_i_deg);
 
 // The map smoothed by a Gaussian of standard deviation `sigma_um`, normalised over the valid points (exposed for the
 // tests' closed-form checks).
-surface::HeightMap smooth_map(const surface::HeightMap& map, double sigma_um);
+heightmap::HeightMap smooth_map(const heightmap::HeightMap& map, double sigma_um);
 
 // Share of the valid pixels of `map` in the shadow of light from (theta_i, phi_i) (header).
-double shadowed_share(const surface::HeightMap& map, double theta_i_deg, double phi_i_deg);
+double shadowed_share(const heightmap::HeightMap& map, double theta_i_deg, double phi_i_deg);
 
 }  // namespace surfscatter::validity

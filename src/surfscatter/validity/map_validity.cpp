@@ -15,7 +15,7 @@
 #include "surfscatter/math/vec.hpp"
 #include "surfscatter/reference/kirchhoff_map.hpp"
 #include "surfscatter/surface/elliptical_statistics.hpp"
-#include "surfscatter/surface/height_map_form.hpp"
+#include "surfscatter/heightmap/form.hpp"
 #include "surfscatter/surface/synthesis.hpp"
 
 namespace surfscatter::validity {
@@ -71,13 +71,13 @@ struct MapsReference {
 };
 
 // Empty when interrupted.
-std::optional<MapsReference> mean_reference(const std::vector<surface::HeightMap>& maps,
+std::optional<MapsReference> mean_reference(const std::vector<heightmap::HeightMap>& maps,
                                             const material::Conductor& conductor,
                                             const reference::KirchhoffOptions& options, Progress& progress) {
     MapsReference out;
     const double count = static_cast<double>(maps.size());
     double albedo_variance = 0;
-    for (const surface::HeightMap& map : maps) {
+    for (const heightmap::HeightMap& map : maps) {
         const reference::KirchhoffResult r = reference::kirchhoff_brdf(map, conductor, options);
         if (r.subareas_done < r.subareas) return std::nullopt;
         if (out.brdf.empty()) {
@@ -152,10 +152,10 @@ LatticeBins bin_lattice(const MapsReference& reference, const Vec3& wi, const st
 }  // namespace
 
 void require_outliers_not_dominant(const MapSurface& surface) {
-    if (surface::kept_and_dominant(surface.outliers, surface.outlier_policy))
+    if (heightmap::kept_and_dominant(surface.outliers, surface.outlier_policy))
         fail("nothing can be trusted: {}: {}: the Kirchhoff reference and the models describe them, not the surface; "
              "outliers fill replaces them by their neighbours' median (docs/HEIGHTMAPS.md \"Outliers\")",
-             surface.description, surface::describe(surface.outliers));
+             surface.description, heightmap::describe(surface.outliers));
 }
 
 MapSurface map_surface(const bsdf::SurfaceOptions& surface, const std::string& material,
@@ -170,18 +170,18 @@ MapSurface map_surface(const bsdf::SurfaceOptions& surface, const std::string& m
         out.outliers.mask.clear();
         if (auto note = bsdf::outlier_note(measured, out.outliers)) out.notes.push_back(*note);  // once, not per model
         measured.outliers_noted = true;
-        out.maps.push_back(surface::remove_form(*measured.height_map, surface.form));
+        out.maps.push_back(heightmap::remove_form(*measured.height_map, surface.form));
         measured.psd = bsdf::PsdKind::measured;
         add_models(out, measured, material, "/measured");
         measured.psd = bsdf::PsdKind::file;
         add_models(out, measured, material, "/file");
-        out.description = fmt::format("{} ({} removed)", surface::describe(out.maps.front()),
-                                      surface::to_string(surface.form));
+        out.description = fmt::format("{} ({} removed)", heightmap::describe(out.maps.front()),
+                                      heightmap::to_string(surface.form));
         return out;
     }
     surface::require_surface_length(synthesis.size_um, "map size");
-    if (synthesis.pixels < surface::kMinHeightMapSize)
-        fail("map pixels must be at least {}, got {}", surface::kMinHeightMapSize, synthesis.pixels);
+    if (synthesis.pixels < heightmap::kMinHeightMapSize)
+        fail("map pixels must be at least {}, got {}", heightmap::kMinHeightMapSize, synthesis.pixels);
     if (synthesis.realizations < 1) fail("realizations must be at least 1, got {}", synthesis.realizations);
     add_models(out, surface, material, "");
     const auto radial = radial_statistics(surface);
@@ -218,7 +218,7 @@ std::vector<MapCase> map_validity(const MapSurface& surface, const material::Con
         if (!(lambda > 0) || !std::isfinite(lambda)) fail("validity: wavelength must be > 0 nm, got {}", lambda);
     if (!(study.criteria.bin_deg >= 0 && study.criteria.bin_deg <= 30))
         fail("validity: bin width must be in [0, 30] degrees, got {}", study.criteria.bin_deg);
-    const surface::HeightMap& first = surface.maps.front();
+    const heightmap::HeightMap& first = surface.maps.front();
     const double subarea = study.subarea_um > 0 ? study.subarea_um : 0.25 * std::min(first.width(), first.height());
 
     const std::size_t total =

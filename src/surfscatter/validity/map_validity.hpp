@@ -29,8 +29,8 @@
 #include "surfscatter/bsdf/bsdf.hpp"
 #include "surfscatter/bsdf/model_options.hpp"
 #include "surfscatter/material/conductor.hpp"
-#include "surfscatter/surface/height_map.hpp"
-#include "surfscatter/surface/height_map_outliers.hpp"
+#include "surfscatter/heightmap/height_map.hpp"
+#include "surfscatter/heightmap/outliers.hpp"
 #include "surfscatter/validity/kirchhoff_validity.hpp"
 #include "surfscatter/validity/validity.hpp"
 
@@ -42,15 +42,15 @@ struct NamedModel {
 };
 
 struct MapSurface {
-    std::vector<surface::HeightMap> maps;  // form removed: the reference's input
+    std::vector<heightmap::HeightMap> maps;  // form removed: the reference's input
     std::vector<NamedModel> models;
     std::vector<std::string> refused;      // "two_scale: <why>": models the factory does not make for this surface
     std::vector<std::string> notes;        // the factory's notes (a measured PSD's range and extrapolation)
     std::string description;               // one line: the file or the statistics and the maps drawn
-    // A measured map's outliers (surface/height_map_outliers.hpp, without the mask): the ones filled with outliers
+    // A measured map's outliers (heightmap/outliers.hpp, without the mask): the ones filled with outliers
     // fill, else the ones kept. Kept and dominant, the reference and the models describe them, not the surface.
-    surface::Outliers outliers;
-    surface::OutlierPolicy outlier_policy = surface::OutlierPolicy::keep;
+    heightmap::Outliers outliers;
+    heightmap::OutlierPolicy outlier_policy = heightmap::OutlierPolicy::keep;
 };
 
 // Error when a measured map's outliers were kept and hold most of its pixel-scale roughness: the Kirchhoff reference

@@ -1,10 +1,10 @@
-#include "surfscatter/surface/height_map.hpp"
+#include "surfscatter/heightmap/height_map.hpp"
 
 #include <cmath>
 
 #include "surfscatter/core/error.hpp"
 
-namespace surfscatter::surface {
+namespace surfscatter::heightmap {
 
 void require_valid_spacing(double spacing_um, const std::string& what) {
     if (!(spacing_um >= kMinSpacingUm && spacing_um <= kMaxSpacingUm))
@@ -66,4 +66,4 @@ void require_valid_fraction(const HeightMap& map, double minimum, const std::str
              map.ny(), what, 100.0 * minimum);
 }
 
-}  // namespace surfscatter::surface
+}  // namespace surfscatter::heightmap

@@ -1,4 +1,4 @@
-#include "surfscatter/surface/height_map_form.hpp"
+#include "surfscatter/heightmap/form.hpp"
 
 #include <array>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include "surfscatter/core/error.hpp"
 
-namespace surfscatter::surface {
+namespace surfscatter::heightmap {
 
 namespace {
 
@@ -162,4 +162,4 @@ HeightMoments height_moments(const HeightMap& map) {
 
 double rms_height(const HeightMap& map, Form form) { return height_moments(remove_form(map, form)).rms; }
 
-}  // namespace surfscatter::surface
+}  // namespace surfscatter::heightmap

@@ -1,5 +1,5 @@
 // The Gwyddion binding: the only file that includes Gwyddion and GLib headers (gwyddion_file.hpp).
-#include "surfscatter/surface/gwyddion_file.hpp"
+#include "surfscatter/heightmap/gwyddion_file.hpp"
 
 #include <dlfcn.h>
 #include <link.h>
@@ -20,7 +20,7 @@
 
 #include "surfscatter/core/error.hpp"
 
-namespace surfscatter::surface {
+namespace surfscatter::heightmap {
 
 namespace {
 
@@ -250,4 +250,4 @@ std::size_t gwyddion_loader_count() {
     return count;
 }
 
-}  // namespace surfscatter::surface
+}  // namespace surfscatter::heightmap

@@ -19,16 +19,16 @@
 // Filling: each outlier takes the median of the midpoints of its 5 x 5 pairs of valid non-outliers (the neighbourhood
 // widened one pixel at a time until it holds 5 pairs), as Gwyddion's spot removal interpolates from the
 // surroundings.
-// Measured (tests/surface/test_height_map_outliers.cpp): no false alarm on those maps; spikes put on one found exactly,
+// Measured (tests/heightmap/test_height_map_outliers.cpp): no false alarm on those maps; spikes put on one found exactly,
 // and the filled map within 3.5 robust sigma of the map without them at every spike.
 #include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include "surfscatter/surface/height_map.hpp"
+#include "surfscatter/heightmap/height_map.hpp"
 
-namespace surfscatter::surface {
+namespace surfscatter::heightmap {
 
 inline constexpr double kOutlierThreshold = 8.0;       // robust standard deviations of the residual
 inline constexpr double kDominantOutlierShare = 0.5;   // of sum r^2
@@ -64,4 +64,4 @@ std::string describe(const Outliers& outliers);
 // The same with what `policy` did with them and, kept, what they do to the map's statistics.
 std::string describe(const Outliers& outliers, OutlierPolicy policy);
 
-}  // namespace surfscatter::surface
+}  // namespace surfscatter::heightmap

@@ -1,9 +1,9 @@
-#include "surfscatter/surface/height_map_parse.hpp"
+#include "surfscatter/heightmap/parse.hpp"
 
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/input_file.hpp"
 
-namespace surfscatter::surface::parse {
+namespace surfscatter::heightmap::parse {
 
 std::string_view trim(std::string_view s) {
     const auto first = s.find_first_not_of(" \t\r");
@@ -49,4 +49,4 @@ std::string file_bytes(const std::string& path) {
     return read_input_file(path, "height map file", kMaxHeightMapFileBytes);
 }
 
-}  // namespace surfscatter::surface::parse
+}  // namespace surfscatter::heightmap::parse

@@ -16,9 +16,9 @@
 #include <optional>
 #include <string>
 
-#include "surfscatter/surface/height_map.hpp"
+#include "surfscatter/heightmap/height_map.hpp"
 
-namespace surfscatter::surface {
+namespace surfscatter::heightmap {
 
 // Where an archive keeps main.xml and what its root element is called (namespace prefix removed).
 struct X3pLayout {
@@ -35,4 +35,4 @@ std::optional<X3pLayout> x3p_layout(const std::filesystem::path& path);
 
 HeightMap read_x3p(const std::filesystem::path& path);
 
-}  // namespace surfscatter::surface
+}  // namespace surfscatter::heightmap

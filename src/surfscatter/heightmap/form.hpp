@@ -10,9 +10,9 @@
 // on too few rows or columns) is an Error, not a guess.
 #include <string>
 
-#include "surfscatter/surface/height_map.hpp"
+#include "surfscatter/heightmap/height_map.hpp"
 
-namespace surfscatter::surface {
+namespace surfscatter::heightmap {
 
 // none: only the mean height is removed (a constant offset is never physical); plane: tilt; polyN: degree N.
 enum class Form { none, plane, poly2, poly3, poly4 };
@@ -38,4 +38,4 @@ HeightMoments height_moments(const HeightMap& map);
 // kc_fit.hpp).
 double rms_height(const HeightMap& map, Form form = Form::plane);
 
-}  // namespace surfscatter::surface
+}  // namespace surfscatter::heightmap

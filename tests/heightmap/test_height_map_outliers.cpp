@@ -7,10 +7,13 @@
 #include <vector>
 
 #include "surfscatter/core/error.hpp"
-#include "surfscatter/surface/height_map_outliers.hpp"
+#include "surfscatter/heightmap/outliers.hpp"
 #include "surfscatter/surface/synthesis.hpp"
 
-namespace surfscatter::surface {
+namespace surfscatter::heightmap {
+using surface::synthesize_surface;
+using surface::KCorrelation;
+using surface::GaussianAcv;
 namespace {
 
 HeightMap kc_map(std::size_t n, std::uint64_t seed) {
@@ -101,4 +104,4 @@ TEST(HeightMapOutliers, PolicyNames) {
 }
 
 }  // namespace
-}  // namespace surfscatter::surface
+}  // namespace surfscatter::heightmap

@@ -5,7 +5,7 @@
 #include <string>
 #include <string_view>
 
-namespace surfscatter::surface::parse {
+namespace surfscatter::heightmap::parse {
 
 // s without leading and trailing spaces, tabs and carriage returns.
 std::string_view trim(std::string_view s);
@@ -20,4 +20,4 @@ std::map<std::string, std::string> header_fields(std::string_view text, int firs
 // The file's contents; Error "<path>: cannot open height map file" if unreadable.
 std::string file_bytes(const std::string& path);
 
-}  // namespace surfscatter::surface::parse
+}  // namespace surfscatter::heightmap::parse

@@ -9,17 +9,17 @@
 #include <vector>
 
 #include "surfscatter/core/error.hpp"
-#include "surfscatter/surface/height_map.hpp"
+#include "surfscatter/heightmap/height_map.hpp"
 
-namespace surfscatter::surface::test {
+namespace surfscatter::heightmap::test {
 
 // The square map turned by +90 deg (from +x towards +y): h'(X, Y) = h(Y, N - 1 - X).
-inline HeightMap turned(const HeightMap& map) {
+inline heightmap::HeightMap turned(const heightmap::HeightMap& map) {
     const std::size_t n = map.nx();
     std::vector<double> heights(n * n);
     for (std::size_t y = 0; y < n; ++y)
         for (std::size_t x = 0; x < n; ++x) heights[y * n + x] = map(y, n - 1 - x);
-    return HeightMap(n, n, map.spacing_x(), map.spacing_y(), std::move(heights), "turned");
+    return heightmap::HeightMap(n, n, map.spacing_x(), map.spacing_y(), std::move(heights), "turned");
 }
 
 // Runs f and returns the Error message (fails the test if nothing is thrown).
@@ -46,4 +46,4 @@ inline void write_bytes(const std::filesystem::path& path, const std::string& by
     out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
 }
 
-}  // namespace surfscatter::surface::test
+}  // namespace surfscatter::heightmap::test

@@ -1,4 +1,4 @@
-#include "surfscatter/surface/height_map_outliers.hpp"
+#include "surfscatter/heightmap/outliers.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include "surfscatter/core/error.hpp"
 
-namespace surfscatter::surface {
+namespace surfscatter::heightmap {
 
 namespace {
 
@@ -181,4 +181,4 @@ std::string describe(const Outliers& o, OutlierPolicy policy) {
                                        : "; kept (outliers fill replaces them)");
 }
 
-}  // namespace surfscatter::surface
+}  // namespace surfscatter::heightmap

@@ -1,4 +1,4 @@
-#include "surfscatter/surface/height_map_io.hpp"
+#include "surfscatter/heightmap/io.hpp"
 
 #include <bit>
 #include <charconv>
@@ -14,11 +14,11 @@
 
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/input_file.hpp"
-#include "surfscatter/surface/gwyddion_file.hpp"
-#include "surfscatter/surface/height_map_parse.hpp"
-#include "surfscatter/surface/height_map_x3p.hpp"
+#include "surfscatter/heightmap/gwyddion_file.hpp"
+#include "surfscatter/heightmap/parse.hpp"
+#include "surfscatter/heightmap/x3p.hpp"
 
-namespace surfscatter::surface {
+namespace surfscatter::heightmap {
 
 namespace {
 
@@ -391,4 +391,4 @@ HeightMap read_height_map(const std::filesystem::path& file, std::optional<doubl
     return std::move(*map);
 }
 
-}  // namespace surfscatter::surface
+}  // namespace surfscatter::heightmap

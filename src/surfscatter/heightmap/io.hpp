@@ -16,7 +16,7 @@
 //   "# Value units: m". Width and Height state the pixel spacing (width / columns, height / rows) to the precision
 //   they are printed with, Value units the height unit. Without them the spacing must be given and the heights are
 //   in um unless a height unit is given.
-// * X3P: height_map_x3p.hpp. Everything else: Gwyddion's file modules (gwyddion_file.hpp).
+// * X3P: x3p.hpp. Everything else: Gwyddion's file modules (gwyddion_file.hpp).
 //
 // Every problem (missing file, unknown format, no height channel, bad zip or XML, truncated data, inconsistent
 // sizes, ragged rows, all points invalid, a given spacing or height unit that contradicts the file) throws
@@ -24,9 +24,9 @@
 #include <filesystem>
 #include <optional>
 
-#include "surfscatter/surface/height_map.hpp"
+#include "surfscatter/heightmap/height_map.hpp"
 
-namespace surfscatter::surface {
+namespace surfscatter::heightmap {
 
 // Reads any height map. `spacing_um` (um) and `height_unit_um` (um per height unit) are needed for a text grid
 // that does not state them; for every file that states its own they may be given only if they agree with it
@@ -50,4 +50,4 @@ HeightMap read_text_grid(const std::filesystem::path& path, std::optional<double
 // True if the file starts with the GSF magic line.
 bool is_gsf_file(const std::filesystem::path& path);
 
-}  // namespace surfscatter::surface
+}  // namespace surfscatter::heightmap

@@ -1,4 +1,4 @@
-#include "surfscatter/surface/height_map_x3p.hpp"
+#include "surfscatter/heightmap/x3p.hpp"
 
 #include <bit>
 #include <cmath>
@@ -12,9 +12,9 @@
 
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/input_file.hpp"
-#include "surfscatter/surface/height_map_parse.hpp"
+#include "surfscatter/heightmap/parse.hpp"
 
-namespace surfscatter::surface {
+namespace surfscatter::heightmap {
 
 namespace {
 
@@ -281,4 +281,4 @@ HeightMap read_x3p(const std::filesystem::path& file) {
     return map;
 }
 
-}  // namespace surfscatter::surface
+}  // namespace surfscatter::heightmap

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-namespace surfscatter::surface {
+namespace surfscatter::heightmap {
 
 // Smallest grid side accepted anywhere (a tilt fit and a PSD need a few samples per axis).
 inline constexpr std::size_t kMinHeightMapSize = 8;
@@ -98,4 +98,4 @@ void require_valid_fraction(const HeightMap& map, double minimum, const std::str
 // Smallest valid fraction a PSD fit (KC fit, tabulated PSD) accepts.
 inline constexpr double kMinFitValidFraction = 0.5;
 
-}  // namespace surfscatter::surface
+}  // namespace surfscatter::heightmap

@@ -12,9 +12,9 @@
 #include <filesystem>
 #include <string>
 
-#include "surfscatter/surface/height_map.hpp"
+#include "surfscatter/heightmap/height_map.hpp"
 
-namespace surfscatter::surface {
+namespace surfscatter::heightmap {
 
 // Name of the Gwyddion file module that recognises the file by its content ("metropro", "opdfile", ...), or "".
 std::string gwyddion_detect(const std::filesystem::path& path);
@@ -33,4 +33,4 @@ void gwyddion_write_gwy(const HeightMap& map, const std::filesystem::path& path)
 std::string gwyddion_version();
 std::size_t gwyddion_loader_count();
 
-}  // namespace surfscatter::surface
+}  // namespace surfscatter::heightmap

@@ -17,12 +17,12 @@
 
 #include "height_test_util.hpp"
 #include "surfscatter/core/error.hpp"
-#include "surfscatter/surface/gwyddion_file.hpp"
-#include "surfscatter/surface/height_map_form.hpp"
-#include "surfscatter/surface/height_map_io.hpp"
-#include "surfscatter/surface/height_map_x3p.hpp"
+#include "surfscatter/heightmap/gwyddion_file.hpp"
+#include "surfscatter/heightmap/form.hpp"
+#include "surfscatter/heightmap/io.hpp"
+#include "surfscatter/heightmap/x3p.hpp"
 
-namespace ss = surfscatter::surface;
+namespace hm = surfscatter::heightmap;
 namespace fs = std::filesystem;
 
 namespace {
@@ -31,11 +31,11 @@ constexpr std::size_t kNx = 20, kNy = 14;
 constexpr double kDxM = 6.25e-7, kDyM = 5e-7;  // metres
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-using surfscatter::surface::test::error_of;
-using surfscatter::surface::test::write_bytes;
+using surfscatter::heightmap::test::error_of;
+using surfscatter::heightmap::test::write_bytes;
 
 fs::path temp_path(const std::string& name) {
-    return surfscatter::surface::test::temp_path("surfscatter_test_height_files", name);
+    return surfscatter::heightmap::test::temp_path("surfscatter_test_height_files", name);
 }
 
 // The test surface, in metres: a few nanometres of ramps, representable exactly as int16 multiples of 0.1 nm.
@@ -135,7 +135,7 @@ void write_x3p(const fs::path& path, const X3pSpec& spec) {
 }
 
 // Grid, spacing, heights (um) and mask of a map read from an X3P written with `spec`.
-void expect_x3p_content(const ss::HeightMap& map, const X3pSpec& spec, double tolerance_um) {
+void expect_x3p_content(const hm::HeightMap& map, const X3pSpec& spec, double tolerance_um) {
     ASSERT_EQ(map.nx(), kNx);
     ASSERT_EQ(map.ny(), kNy);
     EXPECT_NEAR(map.spacing_x(), kDxM * 1e6, 1e-12);
@@ -178,9 +178,9 @@ TEST(HeightFiles, SdfTextAndBinaryThroughGwyddion) {
     const fs::path text_path = temp_path("text.sdf");
     write_bytes(text_path, text);
     const X3pSpec plain{.nan_point = false};
-    const ss::HeightMap from_text = ss::read_height_map(text_path, std::nullopt);
+    const hm::HeightMap from_text = hm::read_height_map(text_path, std::nullopt);
     expect_x3p_content(from_text, plain, 1e-12);
-    EXPECT_EQ(from_text.source.reader, "gwyddion " + ss::gwyddion_version() + ":sdfile-txt");
+    EXPECT_EQ(from_text.source.reader, "gwyddion " + hm::gwyddion_version() + ":sdfile-txt");
 
     // Binary double with a NaN (invalid), and int16 with the type's bad-data value -32768 (invalid).
     std::string doubles, shorts;
@@ -194,11 +194,11 @@ TEST(HeightFiles, SdfTextAndBinaryThroughGwyddion) {
     const fs::path double_path = temp_path("double.sdf"), short_path = temp_path("int16.sdf");
     write_bytes(double_path, sdf_binary(7, doubles, 1.0));
     write_bytes(short_path, sdf_binary(5, shorts, 1e-10));
-    const ss::HeightMap from_double = ss::read_height_map(double_path, std::nullopt);
+    const hm::HeightMap from_double = hm::read_height_map(double_path, std::nullopt);
     expect_x3p_content(from_double, with_nan, 1e-12);
     EXPECT_EQ(from_double.valid_count(), kNx * kNy - 1);
-    EXPECT_EQ(from_double.source.reader, "gwyddion " + ss::gwyddion_version() + ":sdfile-bin");
-    expect_x3p_content(ss::read_height_map(short_path, std::nullopt), with_nan, 1e-12);
+    EXPECT_EQ(from_double.source.reader, "gwyddion " + hm::gwyddion_version() + ":sdfile-bin");
+    expect_x3p_content(hm::read_height_map(short_path, std::nullopt), with_nan, 1e-12);
 }
 
 TEST(HeightFiles, StandardX3pEveryDataTypeThroughGwyddionAndNatively) {
@@ -208,11 +208,11 @@ TEST(HeightFiles, StandardX3pEveryDataTypeThroughGwyddionAndNatively) {
         const fs::path path = temp_path(fmt::format("standard_{}.x3p", type));
         write_x3p(path, spec);
         const double tolerance = type == 'F' ? 1e-9 : 1e-12;  // um; float32 rounding of nanometre heights
-        const ss::HeightMap gwyddion = ss::read_height_map(path, std::nullopt);
-        EXPECT_EQ(gwyddion.source.reader, "gwyddion " + ss::gwyddion_version() + ":opengps");
+        const hm::HeightMap gwyddion = hm::read_height_map(path, std::nullopt);
+        EXPECT_EQ(gwyddion.source.reader, "gwyddion " + hm::gwyddion_version() + ":opengps");
         expect_x3p_content(gwyddion, spec, tolerance);
         // The native reader reads the same file to the same numbers: two independent readers agree.
-        const ss::HeightMap native = ss::read_x3p(path);
+        const hm::HeightMap native = hm::read_x3p(path);
         EXPECT_EQ(native.source.reader, "native:x3p");
         expect_x3p_content(native, spec, tolerance);
         EXPECT_EQ(native.title, "ramps");
@@ -232,18 +232,18 @@ TEST(HeightFiles, X3pAsFoundInTheWildIsReadNatively) {
         SCOPED_TRACE(fmt::format("variant {}", i));
         const fs::path path = temp_path(fmt::format("wild_{}.x3p", i));
         write_x3p(path, specs[i]);
-        const auto layout = ss::x3p_layout(path);
+        const auto layout = hm::x3p_layout(path);
         ASSERT_TRUE(layout);
         EXPECT_FALSE(layout->standard());
-        EXPECT_THROW(ss::gwyddion_read(path), surfscatter::Error);  // what the native reader is for
-        const ss::HeightMap map = ss::read_height_map(path, std::nullopt);
+        EXPECT_THROW(hm::gwyddion_read(path), surfscatter::Error);  // what the native reader is for
+        const hm::HeightMap map = hm::read_height_map(path, std::nullopt);
         EXPECT_EQ(map.source.reader.rfind("native:x3p", 0), 0u) << map.source.reader;
         expect_x3p_content(map, specs[i], 1e-12);
     }
     // The standard layout with an inline DataList (empty Datum = invalid), read by Gwyddion.
     const X3pSpec list{.data_list = true};
     write_x3p(temp_path("list.x3p"), list);
-    expect_x3p_content(ss::read_height_map(temp_path("list.x3p"), std::nullopt), list, 1e-12);
+    expect_x3p_content(hm::read_height_map(temp_path("list.x3p"), std::nullopt), list, 1e-12);
 }
 
 TEST(HeightFiles, GwyFileWrittenThroughTheGwyddionLibrary) {
@@ -251,13 +251,13 @@ TEST(HeightFiles, GwyFileWrittenThroughTheGwyddionLibrary) {
     std::vector<std::uint8_t> valid(h.size(), 1);
     for (std::size_t i = 0; i < h.size(); ++i) h[i] = height_m(i % kNx, i / kNx) * 1e6;
     valid[7] = valid[100] = 0;
-    ss::HeightMap map(kNx, kNy, kDxM * 1e6, kDyM * 1e6, h, valid, "written");
+    hm::HeightMap map(kNx, kNy, kDxM * 1e6, kDyM * 1e6, h, valid, "written");
     map.title = "Topography";
     map.offset_x = 12.5;
     const fs::path path = temp_path("written.gwy");
-    ss::gwyddion_write_gwy(map, path);
-    const ss::HeightMap back = ss::read_height_map(path, std::nullopt);
-    EXPECT_EQ(back.source.reader, "gwyddion " + ss::gwyddion_version() + ":gwyfile");
+    hm::gwyddion_write_gwy(map, path);
+    const hm::HeightMap back = hm::read_height_map(path, std::nullopt);
+    EXPECT_EQ(back.source.reader, "gwyddion " + hm::gwyddion_version() + ":gwyfile");
     EXPECT_EQ(back.title, "Topography");
     EXPECT_DOUBLE_EQ(back.offset_x, 12.5);
     EXPECT_EQ(back.valid_count(), kNx * kNy - 2);
@@ -269,7 +269,7 @@ TEST(HeightFiles, GwyFileWrittenThroughTheGwyddionLibrary) {
         }
     EXPECT_NEAR(back.spacing_x(), kDxM * 1e6, 1e-15);
     // One --spacing cannot agree with non-square pixels.
-    EXPECT_NE(error_of([&] { ss::read_height_map(path, kDxM * 1e6); }).find("states dx = 0.625 um, dy = 0.5 um"),
+    EXPECT_NE(error_of([&] { hm::read_height_map(path, kDxM * 1e6); }).find("states dx = 0.625 um, dy = 0.5 um"),
               std::string::npos);
 }
 
@@ -278,25 +278,25 @@ TEST(HeightFiles, BadFilesGetOneClearError) {
     std::string bytes;
     for (int i = 0; i < 4000; ++i) bytes += static_cast<char>((i * 37) % 256);
     write_bytes(garbage, bytes);
-    EXPECT_EQ(error_of([&] { ss::read_height_map(garbage, std::nullopt); }),
+    EXPECT_EQ(error_of([&] { hm::read_height_map(garbage, std::nullopt); }),
               fmt::format("{}: unknown height map format: none of Gwyddion {}'s {} file modules recognises it, and "
                           "it is not a GSF, X3P or text grid",
-                          garbage.string(), ss::gwyddion_version(), ss::gwyddion_loader_count()));
-    EXPECT_GT(ss::gwyddion_loader_count(), 100u);
+                          garbage.string(), hm::gwyddion_version(), hm::gwyddion_loader_count()));
+    EXPECT_GT(hm::gwyddion_loader_count(), 100u);
 
     const fs::path zip = temp_path("broken.x3p");
     write_bytes(zip, "PK\x03\x04" + bytes);
-    EXPECT_NE(error_of([&] { ss::read_height_map(zip, std::nullopt); }).find("not a readable zip archive"),
+    EXPECT_NE(error_of([&] { hm::read_height_map(zip, std::nullopt); }).find("not a readable zip archive"),
               std::string::npos);
 
     const fs::path bad_xml = temp_path("bad_xml.x3p");
     write_x3p(bad_xml, {.folder = "s/", .main_xml_override = "<p:ISO5436_2><Record1><FeatureType>SUR</Record1>"});
-    EXPECT_NE(error_of([&] { ss::read_height_map(bad_xml, std::nullopt); }).find("'s/main.xml' is not well-formed XML"),
+    EXPECT_NE(error_of([&] { hm::read_height_map(bad_xml, std::nullopt); }).find("'s/main.xml' is not well-formed XML"),
               std::string::npos);
 
     const fs::path short_data = temp_path("short_data.x3p");
     write_x3p(short_data, {.folder = "s/", .data_bin_override = std::string(100, '\0')});
-    EXPECT_EQ(error_of([&] { ss::read_height_map(short_data, std::nullopt); }),
+    EXPECT_EQ(error_of([&] { hm::read_height_map(short_data, std::nullopt); }),
               short_data.string() + ": the point data hold 100 bytes, but 280 points of DataType D need 2240 "
                                     "(inconsistent sizes)");
 
@@ -304,14 +304,14 @@ TEST(HeightFiles, BadFilesGetOneClearError) {
     std::string nans;
     for (std::size_t i = 0; i < kNx * kNy; ++i) nans += little_endian(kNaN);
     write_x3p(all_nan, {.folder = "s/", .data_bin_override = nans});
-    EXPECT_EQ(error_of([&] { ss::read_height_map(all_nan, std::nullopt); }),
+    EXPECT_EQ(error_of([&] { hm::read_height_map(all_nan, std::nullopt); }),
               all_nan.string() + ": every one of the 20 x 14 points is invalid");
 
     const fs::path profile = temp_path("profile.x3p");
     std::string xml = x3p_main_xml({});
     xml.replace(xml.find("SUR"), 3, "PRF");
     write_x3p(profile, {.folder = "s/", .main_xml_override = xml});
-    EXPECT_EQ(error_of([&] { ss::read_height_map(profile, std::nullopt); }),
+    EXPECT_EQ(error_of([&] { hm::read_height_map(profile, std::nullopt); }),
               profile.string() + ": FeatureType PRF is not a surface (SUR): profiles are not height maps");
 
     // Found by fuzz_x3p: a value with a line break was quoted raw, breaking the one-line message.
@@ -320,17 +320,17 @@ TEST(HeightFiles, BadFilesGetOneClearError) {
     const std::size_t increment = xml.find("<Increment>") + std::string_view("<Increment>").size();
     xml.replace(increment, xml.find('<', increment) - increment, "1e\n06");
     write_x3p(line_break, {.folder = "s/", .main_xml_override = xml});
-    EXPECT_EQ(error_of([&] { ss::read_height_map(line_break, std::nullopt); }),
+    EXPECT_EQ(error_of([&] { hm::read_height_map(line_break, std::nullopt); }),
               line_break.string() + ": s/main.xml: Record1/Axes/CX/Increment = '1e\\x0a06' is not a finite number");
 
     // A photograph is an image Gwyddion reads, but it has no height channel.
     const fs::path photo = fs::path(SURFSCATTER_SHARED_DATA) / "realdata" / "photos" / "gboriginal.jpg";
-    const std::string no_heights = error_of([&] { ss::read_height_map(photo, std::nullopt); });
+    const std::string no_heights = error_of([&] { hm::read_height_map(photo, std::nullopt); });
     EXPECT_NE(no_heights.find("no height channel (x, y and z in metres)"), std::string::npos) << no_heights;
 
-    EXPECT_NE(error_of([&] { ss::read_height_map(temp_path("missing.dat"), std::nullopt); }).find("height map file not found"),
+    EXPECT_NE(error_of([&] { hm::read_height_map(temp_path("missing.dat"), std::nullopt); }).find("height map file not found"),
               std::string::npos);
-    EXPECT_NE(error_of([&] { ss::read_height_map(temp_path(""), std::nullopt); }).find("is a directory"),
+    EXPECT_NE(error_of([&] { hm::read_height_map(temp_path(""), std::nullopt); }).find("is a directory"),
               std::string::npos);
 }
 
@@ -345,36 +345,36 @@ fs::path real_file(const std::string& name) {
 // Figures from ../shared/data/realdata/README.md (SurfaceTopography's test suite and Gwyddion 2.62), to half a
 // unit in their last stated digit.
 TEST(HeightFiles, ZygoMetroProAsItsTestSuiteStates) {
-    const ss::HeightMap map = ss::read_height_map(real_file("metropro-1.dat"), std::nullopt);
+    const hm::HeightMap map = hm::read_height_map(real_file("metropro-1.dat"), std::nullopt);
     EXPECT_EQ(map.nx(), 640u);
     EXPECT_EQ(map.ny(), 480u);
     EXPECT_NEAR(map.width(), 702.8813, 0.00005);
     EXPECT_NEAR(map.height(), 527.1610, 0.00005);
     EXPECT_FALSE(map.has_invalid());
-    EXPECT_NEAR(ss::rms_height(map, ss::Form::none), 7.528822e-2, 0.0000005e-2);     // 7.528822e-8 m
-    EXPECT_NEAR(ss::rms_height(map, ss::Form::poly2), 3.911386e-3, 0.0000005e-3);    // after a curvature form
-    EXPECT_EQ(map.source.reader, "gwyddion " + ss::gwyddion_version() + ":metropro");
+    EXPECT_NEAR(hm::rms_height(map, hm::Form::none), 7.528822e-2, 0.0000005e-2);     // 7.528822e-8 m
+    EXPECT_NEAR(hm::rms_height(map, hm::Form::poly2), 3.911386e-3, 0.0000005e-3);    // after a curvature form
+    EXPECT_EQ(map.source.reader, "gwyddion " + hm::gwyddion_version() + ":metropro");
     // The stated spacing may be repeated (to 1e-6), not contradicted.
-    EXPECT_NO_THROW(ss::read_height_map(real_file("metropro-1.dat"), 702.8813 / 640));
-    EXPECT_THROW(ss::read_height_map(real_file("metropro-1.dat"), 1.1), surfscatter::Error);
+    EXPECT_NO_THROW(hm::read_height_map(real_file("metropro-1.dat"), 702.8813 / 640));
+    EXPECT_THROW(hm::read_height_map(real_file("metropro-1.dat"), 1.1), surfscatter::Error);
 }
 
 TEST(HeightFiles, WykoOpdWithInvalidPoints) {
-    const ss::HeightMap map = ss::read_height_map(real_file("opd-1.opd"), std::nullopt);
+    const hm::HeightMap map = hm::read_height_map(real_file("opd-1.opd"), std::nullopt);
     EXPECT_EQ(map.nx(), 640u);
     EXPECT_EQ(map.ny(), 480u);
     EXPECT_NEAR(map.width(), 125.909140, 0.0000005);
     EXPECT_NEAR(map.height(), 94.431855, 0.0000005);
     EXPECT_EQ(map.size() - map.valid_count(), 116u);
-    EXPECT_NEAR(ss::rms_height(map, ss::Form::none), 8.35645e-3, 0.000005e-3);  // valid points only
+    EXPECT_NEAR(hm::rms_height(map, hm::Form::none), 8.35645e-3, 0.000005e-3);  // valid points only
 }
 
 TEST(HeightFiles, BrukerNanoscopeFirstChannel) {
-    const ss::HeightMap map = ss::read_height_map(real_file("di-1.di"), std::nullopt);
+    const hm::HeightMap map = hm::read_height_map(real_file("di-1.di"), std::nullopt);
     EXPECT_EQ(map.nx(), 512u);
     EXPECT_EQ(map.ny(), 512u);
     EXPECT_NEAR(map.width(), 0.5, 1e-12);
     EXPECT_NEAR(map.height(), 0.5, 1e-12);
-    EXPECT_NEAR(ss::rms_height(map, ss::Form::none), 9.94599e-3, 0.000005e-3);
+    EXPECT_NEAR(hm::rms_height(map, hm::Form::none), 9.94599e-3, 0.000005e-3);
     EXPECT_EQ(map.source.channel, "0 'Height'");
 }
