@@ -14,6 +14,7 @@
 
 #include "command.hpp"
 #include "list_options.hpp"
+#include "preparation_options.hpp"
 #include "surfscatter/bsdf/albedo.hpp"
 #include "surfscatter/bsdf/factory.hpp"
 #include "surfscatter/bsdf/slice.hpp"
@@ -30,12 +31,12 @@ struct BrdfArgs {
     std::string ssa_form = "energy", alpha_from, macro_ndf = "ggx", material;  // alpha_from, material: not given
     double epsilon = 1e-6, alpha = 0, smoothing = 0, cutoff_wavelengths = 100;
     bool no_renormalization = false;
-    std::string psd, psd_fit, surface_file, form = "plane", outliers = "keep";  // psd_fit: not given
+    std::string psd, psd_fit, surface_file;  // psd_fit: not given
+    PreparationArgs preparation;
     std::string measured_spectrum = "2d";
     double sigma = 0, corr_length = 0, gamma = 0, corr_length_v = 0, lay_angle = 0;
-    // The --surface map, read when first needed and shared by every model of the command.
-    mutable std::shared_ptr<const heightmap::HeightMap> height_map;
-    mutable std::optional<heightmap::Outliers> filled_outliers;  // what --outliers fill filled in height_map
+    // The --surface map, read and prepared when first needed and shared by every model of the command.
+    mutable std::shared_ptr<const heightmap::PreparedMap> prepared;
     double wavelength = 0, phi_i = 0;
     std::vector<double> theta_i;
     // eval
@@ -125,19 +126,16 @@ bsdf::ModelOptions model_options(const BrdfArgs& a, const std::string& spec) {
     if (!a.surface_file.empty() && from_map) {
         o.surface.psd = psd.empty() ? bsdf::PsdKind::file : bsdf::parse_psd(psd, "--psd");
         o.surface.surface_file = a.surface_file;
-        o.surface.form = heightmap::parse_form(a.form, "--form");
-        o.surface.outliers = heightmap::parse_outlier_policy(a.outliers, "--outliers");
+        o.surface.preparation = parse_preparation(a.preparation);
         // Parsed for every map model, used by psd file only (slice --models ghs:file,ghs:measured).
         const bsdf::PsdFit fit = a.psd_fit.empty() ? bsdf::PsdFit::isotropic : bsdf::parse_psd_fit(a.psd_fit, "--psd-fit");
         if (o.surface.psd == bsdf::PsdKind::file) o.surface.psd_fit = fit;
         o.surface.measured_spectrum = bsdf::parse_measured_spectrum(a.measured_spectrum, "--measured-spectrum");
-        if (!a.height_map) {
+        if (!a.prepared) {
             bsdf::load_height_map(o.surface);
-            a.height_map = o.surface.height_map;
-            a.filled_outliers = o.surface.filled_outliers;
+            a.prepared = o.surface.prepared;
         }
-        o.surface.height_map = a.height_map;
-        o.surface.filled_outliers = a.filled_outliers;
+        o.surface.prepared = a.prepared;
     } else if (!a.surface_file.empty() && a.psd == psd) {
         fail("--surface takes --psd file (KC fitted to the map, the default) or measured (its own PSD), got --psd {}", psd);
     } else if (!psd.empty()) {
@@ -171,10 +169,10 @@ std::unique_ptr<bsdf::Bsdf> build_model(const bsdf::ModelOptions& options) {
     std::vector<std::string> notes;
     auto model = bsdf::make_bsdf(options, &notes);
     // The --surface map is described once the model is built from it: a map the model refuses gives the error alone.
-    static const heightmap::HeightMap* described = nullptr;
-    if (options.surface.height_map && options.surface.height_map.get() != described) {
-        described = options.surface.height_map.get();
-        std::fprintf(stderr, "surfscatter: brdf: %s\n", heightmap::describe(*described).c_str());
+    static const heightmap::PreparedMap* described = nullptr;
+    if (options.surface.prepared && options.surface.prepared.get() != described) {
+        described = options.surface.prepared.get();
+        std::fprintf(stderr, "surfscatter: brdf: %s\n", heightmap::describe(described->map).c_str());
     }
     for (const std::string& note : notes)
         if (std::find(printed.begin(), printed.end(), note) == printed.end()) {
@@ -304,10 +302,7 @@ void add_model_options(CLI::App* cmd, BrdfArgs& a, bool several_thetas) {
                                                 "docs/SURFACE.md \"Anisotropy\"");
     cmd->add_option("--surface", a.surface_file, "height map (any format `surface info` reads): KC fitted to it "
                                                  "(--psd file, default) or its own PSD (--psd measured)");
-    cmd->add_option("--form", a.form, "form removed from --surface: none | plane (default) | poly2 | poly3 | poly4");
-    cmd->add_option("--outliers", a.outliers,
-                    "--surface's outliers (points far from their 5 x 5 neighbourhood): keep (default; the notes count "
-                    "them) | fill (each replaced by its neighbours' median); docs/HEIGHTMAPS.md \"Outliers\"");
+    add_preparation_options(cmd, a.preparation, "--surface");
     cmd->add_option("--measured-spectrum", a.measured_spectrum,
                     "--psd measured: 2d (default: ghs and ghs_ssa on the map's 2-D spectrum) | ring (its ring "
                     "average, as before); docs/SURFACE.md \"The 2-D measured lobes\"");

@@ -17,7 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "command.hpp"
-#include "height_map_outliers_option.hpp"
+#include "preparation_options.hpp"
 #include "profile_surface_options.hpp"
 #include "surfscatter/bsdf/model_options.hpp"
 #include "surfscatter/bsdf/profile_lobes.hpp"
@@ -131,7 +131,8 @@ void run_exact_1d(const Exact1dArgs& a) {
 }
 
 struct KirchhoffArgs {
-    std::string surface_file, form = "plane", outliers = "keep", material, output, plot;
+    std::string surface_file, material, output, plot;
+    PreparationArgs preparation;
     double wavelength = 0, theta_i = 0, phi_i = 0, max_theta_o = 85;
     std::optional<double> subarea;
     int threads = 0;
@@ -158,10 +159,11 @@ void run_kirchhoff(const KirchhoffArgs& a) {
         fail("--max-theta-o must be in (0, 90) degrees, got {}", a.max_theta_o);
     if (a.subarea) require_positive(*a.subarea, "--subarea-um");
     require_thread_count(a.threads, "--threads");
-    const heightmap::Form form = heightmap::parse_form(a.form, "--form");
+    parse_preparation(a.preparation);  // its errors before the material's
     const auto conductor = material::Conductor::from_name(a.material);
-    const heightmap::HeightMap map =
-        heightmap::remove_form(read_height_map_with_outliers(a.surface_file, {}, {}, a.outliers), form);
+    const heightmap::PreparedMap prepared = read_prepared_map(a.surface_file, {}, {}, a.preparation);
+    const heightmap::HeightMap& map = prepared.map;
+    std::fprintf(stderr, "surfscatter: note: %s: %s\n", a.surface_file.c_str(), heightmap::describe(prepared).c_str());
     for (const std::string& warning : map.source.warnings)
         std::fprintf(stderr, "surfscatter: warning: %s: %s\n", a.surface_file.c_str(), warning.c_str());
     reference::KirchhoffOptions o;
@@ -199,8 +201,7 @@ void add_kirchhoff(CLI::App* reference_cmd) {
         "kirchhoff", "Kirchhoff (tangent-plane) BRDF of a height map by FFT over Hann-windowed sub-areas: CSV "
                      "theta_o_deg,phi_o_deg,brdf_per_sr,standard_error_per_sr,coherent_per_sr");
     sub->add_option("--surface", a->surface_file, "height map (any format `surface info` reads)")->required();
-    sub->add_option("--form", a->form, "form removed first: none (mean) | plane (default) | poly2 | poly3 | poly4");
-    add_outliers_option(sub, a->outliers);
+    add_preparation_options(sub, a->preparation);
     sub->add_option("--material", a->material,
                     "perfect, a built-in metal (Ag, Au, Al, Cu, ...) or a .yml/.csv refractive index file")
         ->required();

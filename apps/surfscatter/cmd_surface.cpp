@@ -13,7 +13,7 @@
 #include <fmt/format.h>
 
 #include "command.hpp"
-#include "height_map_outliers_option.hpp"
+#include "preparation_options.hpp"
 #include "statistics_options.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/paths.hpp"
@@ -49,7 +49,7 @@ struct SynthArgs {
 struct MapArgs {
     std::string input;
     std::optional<double> spacing, height_unit;
-    std::string form = "plane", outliers = "keep";
+    PreparationArgs preparation;
 };
 
 struct InfoArgs : MapArgs {
@@ -100,25 +100,23 @@ void add_map_options(CLI::App* cmd, MapArgs& a) {
         ->required();
     cmd->add_option("--spacing", a.spacing, "pixel spacing of a text grid without header (um)");
     cmd->add_option("--height-unit", a.height_unit, "um per height unit of a text grid without header (default 1)");
-    cmd->add_option("--form", a.form, "form removed first: none (mean) | plane (default) | poly2 | poly3 | poly4");
-    add_outliers_option(cmd, a.outliers);
+    add_preparation_options(cmd, a.preparation);
 }
 
-// The map (after checking the options, its outliers filled with --outliers fill) and the form to remove; the reader's
-// warnings go to stdout, the outliers to stderr as a note (a warning when kept and holding most of the pixel-scale
-// roughness).
-heightmap::HeightMap read_map(const MapArgs& args, heightmap::Form& form) {
+// The map prepared (after checking the options): the reader's warnings and the preparation go to stdout, the
+// outliers to stderr as a note (a warning when kept and holding most of the pixel-scale roughness).
+heightmap::PreparedMap read_map(const MapArgs& args) {
     if (args.spacing) heightmap::require_valid_spacing(*args.spacing, "--spacing");
     if (args.height_unit) require_positive(*args.height_unit, "--height-unit");
-    form = heightmap::parse_form(args.form, "--form");
-    heightmap::HeightMap map = read_height_map_with_outliers(args.input, args.spacing, args.height_unit, args.outliers);
-    for (const std::string& warning : map.source.warnings) std::printf("warning = %s\n", warning.c_str());
-    return map;
+    heightmap::PreparedMap prepared = read_prepared_map(args.input, args.spacing, args.height_unit, args.preparation);
+    for (const std::string& warning : prepared.map.source.warnings) std::printf("warning = %s\n", warning.c_str());
+    std::printf("preparation = %s\n", heightmap::describe(prepared).c_str());
+    return prepared;
 }
 
 void print_value(const char* name, double value) { std::printf("%s = %s\n", name, format_number(value).c_str()); }
 
-void write_measured_plot(const InfoArgs& args, const heightmap::HeightMap& map, heightmap::Form form);
+void write_measured_plot(const InfoArgs& args, const heightmap::HeightMap& map);
 
 // The rings of a radial PSD as CSV for psd_fit.py: zeta, psd, count, a model's value (column `model_column`), whether
 // the ring is in the band used, and its independent samples.
@@ -147,11 +145,10 @@ void write_ring_csv(const surface::RadialPsd& r, const char* model_column, const
 }
 
 void info(const InfoArgs& args) {
-    heightmap::Form form = heightmap::Form::plane;
-    const heightmap::HeightMap map = read_map(args, form);
-    const heightmap::HeightMap flat = heightmap::remove_form(map, form);
-    const heightmap::HeightMoments moments = heightmap::height_moments(flat);
-    const surface::AcvMeasures acv = surface::acv_measures(flat);
+    const heightmap::PreparedMap prepared = read_map(args);
+    const heightmap::HeightMap& map = prepared.map;
+    const heightmap::HeightMoments moments = heightmap::height_moments(map);
+    const surface::AcvMeasures acv = surface::acv_measures(map);
     const auto& source = map.source;
     std::printf("format = %s\n", source.format.c_str());
     std::printf("reader = %s%s\n", source.reader.c_str(),
@@ -161,7 +158,7 @@ void info(const InfoArgs& args) {
     print_value("dy_um", map.spacing_y());
     print_value("valid_fraction", map.valid_fraction());
     print_value("rms_height_um", moments.rms);
-    print_value("rms_slope", surface::rms_slope(flat, heightmap::Form::none));
+    print_value("rms_slope", surface::rms_slope(map, heightmap::Form::none));
     print_value("skewness", moments.skewness);
     print_value("kurtosis", moments.kurtosis);
     print_value("correlation_length_um", acv.correlation_length_um);
@@ -181,12 +178,12 @@ void info(const InfoArgs& args) {
         std::printf("warning = texture_aspect_ratio %.3g < 0.5: a directional texture (lay along %.1f deg); the "
                     "isotropic scattering models misrepresent this surface\n",
                     acv.texture_aspect_ratio, acv.slowest_direction_deg);
-    if (!args.plot.empty()) write_measured_plot(args, map, form);
+    if (!args.plot.empty()) write_measured_plot(args, map);
 }
 
 // What `--psd measured` uses (map_statistics.hpp), as name = value lines, a CSV of its rings and the PSD plot.
-void write_measured_plot(const InfoArgs& args, const heightmap::HeightMap& map, heightmap::Form form) {
-    const surface::MapStatistics stats(map, form);
+void write_measured_plot(const InfoArgs& args, const heightmap::HeightMap& map) {
+    const surface::MapStatistics stats(map, heightmap::Form::none);
     print_value("measured_sigma_um", stats.sigma_h());
     print_value("measured_sigma_standard_error", stats.sigma_relative_error());
     print_value("measured_band_min_zeta", stats.first_ring());
@@ -299,7 +296,9 @@ void print_elliptical(const surface::EllipticalKcFit& e) {
 void fit(const FitArgs& args) {
     if (args.smoothing) require_positive(*args.smoothing, "--smoothing");  // before reading the map
     surface::KcFitOptions options;
-    const heightmap::HeightMap map = read_map(args, options.form);
+    const heightmap::PreparedMap prepared = read_map(args);
+    const heightmap::HeightMap& map = prepared.map;
+    options.form = heightmap::Form::none;  // prepared
     if (args.smoothing) surface::require_smoothing(*args.smoothing, map, "--smoothing");
     options.min_ring = args.min_ring;
     options.max_nyquist_fraction = args.max_zeta_fraction;
@@ -316,13 +315,21 @@ void fit(const FitArgs& args) {
         write_outputs();
         surface::require_resolved(result.kc);
     }
+    // A fit whose rms on the map's own frequencies is off by more than kLatticeRmsRefusal is refused (its plot and CSV
+    // written), a smaller disagreement beyond the map's scatter is a warning.
+    const std::string lattice = surface::lattice_rms_check(result);
+    const double lattice_ratio = result.fit_lattice_rms_um / result.map_lattice_rms_um;
+    if (!lattice.empty() && (lattice_ratio > surface::kLatticeRmsRefusal || lattice_ratio < 1 / surface::kLatticeRmsRefusal)) {
+        write_outputs();
+        fail("{}: {}", args.input, lattice);
+    }
     std::printf("sigma_h = %s\n", format_number(result.kc.sigma_h_um).c_str());
     std::printf("corr_length = %s\n", format_number(result.kc.corr_length_um).c_str());
     std::printf("gamma = %s\n", format_number(result.kc.gamma).c_str());
     std::printf("rms_slope = %s\n", format_number(result.rms_slope).c_str());
     if (args.smoothing)
         std::printf("rms_slope_smoothed = %s\n",
-                    format_number(surface::rms_slope_smoothed(map, *args.smoothing, options.form)).c_str());
+                    format_number(surface::rms_slope_smoothed(map, *args.smoothing, heightmap::Form::none)).c_str());
     std::printf("rms_slope_psd = %s\n", format_number(result.rms_slope_from_psd).c_str());
     std::printf("rms_height_map = %s\n", format_number(result.rms_height_um).c_str());
     std::printf("zeta_min = %s\n", format_number(result.kc.zeta_min).c_str());
@@ -332,7 +339,10 @@ void fit(const FitArgs& args) {
     std::printf("texture_aspect_ratio = %s\n", format_number(result.acv.texture_aspect_ratio).c_str());
     std::printf("lay_direction_deg = %s\n", format_number(result.acv.slowest_direction_deg).c_str());
     print_value("valid_fraction", map.valid_fraction());
+    print_value("fit_lattice_rms", result.fit_lattice_rms_um);
+    print_value("map_lattice_rms", result.map_lattice_rms_um);
     print_elliptical(result.elliptical);
+    if (!lattice.empty()) std::printf("warning = %s\n", lattice.c_str());
     if (result.kc.log_residual_rms > surface::kPoorFitFactor * result.kc.statistical_floor)
         std::printf("warning = the KC model fits this PSD poorly (log_residual_rms %.3g, %.1f times its statistical "
                     "floor): use --psd measured for the map's own spectrum\n",

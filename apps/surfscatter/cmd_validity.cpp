@@ -18,6 +18,7 @@
 
 #include "command.hpp"
 #include "list_options.hpp"
+#include "preparation_options.hpp"
 #include "profile_surface_options.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/paths.hpp"
@@ -42,8 +43,8 @@ struct ValidityArgs {
     long long realizations = 0, seed = 1;
     int threads = 0;
     // the map route
-    std::string surface_file, form = "plane";
-    std::optional<std::string> outliers;
+    std::string surface_file;
+    PreparationArgs preparation;
     std::vector<double> phi_i;
     std::optional<double> map_size, corr_length_v, lay_angle, subarea;
     long long map_pixels = 256;
@@ -154,8 +155,11 @@ validity::Criteria criteria_from(const ValidityArgs& a) {
 
 void run_profile_validity(const ValidityArgs& a) {
     if (!a.surface.psd) fail("validity needs the surface: --psd kc|gaussian --sigma --corr-length [--gamma]");
-    if (!a.phi_i.empty() || a.corr_length_v || a.lay_angle || a.subarea || a.outliers)
-        fail("--phi-i, --corr-length-v, --lay-angle, --subarea-um and --outliers belong to the map route "
+    if (a.preparation.given())
+        fail("{} applies to a measured map (the map route's --surface-file), not to the profiles route",
+             a.preparation.first_given());
+    if (!a.phi_i.empty() || a.corr_length_v || a.lay_angle || a.subarea)
+        fail("--phi-i, --corr-length-v, --lay-angle and --subarea-um belong to the map route "
              "(--surface-file or --map-size-um); the profiles route (--length-um) takes isotropic statistics in the "
              "plane of incidence");
     const auto statistics = statistics_from(a.surface);
@@ -255,17 +259,17 @@ nlohmann::json map_json_report(const std::vector<validity::MapCase>& cases, cons
 
 bsdf::SurfaceOptions map_surface_options(const ValidityArgs& a) {
     bsdf::SurfaceOptions s;
-    s.form = heightmap::parse_form(a.form, "--form");
     if (!a.surface_file.empty()) {
         if (a.surface.psd || a.map_size)
             fail("--surface-file is the surface: --psd and --map-size-um synthesise one instead, give one or the other");
         if (a.corr_length_v || a.lay_angle) fail("--corr-length-v and --lay-angle describe a synthesised surface");
         s.psd = bsdf::PsdKind::measured;
         s.surface_file = a.surface_file;
-        s.outliers = heightmap::parse_outlier_policy(a.outliers.value_or("keep"), "--outliers");
+        s.preparation = parse_preparation(a.preparation);
         return s;
     }
-    if (a.outliers) fail("--outliers applies to a measured map (--surface-file); synthesised maps have none");
+    if (a.preparation.given())
+        fail("{} applies to a measured map (--surface-file), not to synthesised maps", a.preparation.first_given());
     if (!a.surface.psd) fail("--map-size-um synthesises maps from --psd kc|gaussian --sigma --corr-length [--gamma]");
     statistics_from(a.surface);  // checks the options, naming the bad one
     s.psd = *a.surface.psd == "kc" ? bsdf::PsdKind::kc : bsdf::PsdKind::gaussian;
@@ -375,12 +379,7 @@ const Command command("validity", [](CLI::App& app) {
     sub->add_option("--seed", a->seed, "seed of the first profile or map; number r uses seed + r (default 1)");
     sub->add_option("--surface-file", a->surface_file,
                     "map route: a measured height map (any format `surface info` reads) as the surface");
-    sub->add_option("--form", a->form,
-                    "map route: form removed from --surface-file: none (mean) | plane (default) | poly2 | poly3 | poly4");
-    sub->add_option("--outliers", a->outliers,
-                    "map route: --surface-file's outliers (points far from their 5 x 5 neighbourhood): keep "
-                    "(default; exit 2 when they hold most of its pixel-scale roughness) | fill (each replaced by its "
-                    "neighbours' median); docs/HEIGHTMAPS.md \"Outliers\"");
+    add_preparation_options(sub, a->preparation, "map route: --surface-file");
     sub->add_option("--map-size-um", a->map_size, "map route: side of the square maps synthesised from --psd (um)");
     sub->add_option("--map-pixels", a->map_pixels, "map route: pixels per side of the synthesised maps (default 256)");
     sub->add_option("--corr-length-v", a->corr_length_v,

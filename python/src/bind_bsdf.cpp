@@ -70,10 +70,10 @@ const std::map<std::string, Setter>& option_setters() {
         {"corr_length_v", [](ModelOptions& o, py::handle v, const char* n) { o.surface.corr_length_v = number_option(v, n); }},
         {"lay_angle_deg", [](ModelOptions& o, py::handle v, const char* n) { o.surface.lay_angle = number_option(v, n); }},
         {"surface_file", [](ModelOptions& o, py::handle v, const char* n) { o.surface.surface_file = path_string(v, n); }},
-        {"form", [](ModelOptions& o, py::handle v, const char* n) { o.surface.form = heightmap::parse_form(text_option(v, n), n); }},
+        {"form", [](ModelOptions& o, py::handle v, const char* n) { o.surface.preparation.form = heightmap::parse_form(text_option(v, n), n); }},
         {"outliers",
          [](ModelOptions& o, py::handle v, const char* n) {
-             o.surface.outliers = heightmap::parse_outlier_policy(text_option(v, n), n);
+             o.surface.preparation.outliers = heightmap::parse_outlier_policy(text_option(v, n), n);
          }},
         {"psd_fit",
          [](ModelOptions& o, py::handle v, const char* n) { o.surface.psd_fit = bsdf::parse_psd_fit(text_option(v, n), n); }},
@@ -198,8 +198,8 @@ py::dict options_dict(const ModelOptions& o) {
                     "psd"_a = to_string(o.surface.psd), "sigma"_a = o.surface.sigma,
                     "corr_length"_a = o.surface.corr_length, "gamma"_a = o.surface.gamma,
                     "corr_length_v"_a = o.surface.corr_length_v, "lay_angle_deg"_a = o.surface.lay_angle,
-                    "surface_file"_a = o.surface.surface_file, "form"_a = heightmap::to_string(o.surface.form),
-                    "outliers"_a = heightmap::to_string(o.surface.outliers),
+                    "surface_file"_a = o.surface.surface_file, "form"_a = heightmap::to_string(o.surface.preparation.form),
+                    "outliers"_a = heightmap::to_string(o.surface.preparation.outliers),
                     "psd_fit"_a = to_string(o.surface.psd_fit),
                     "measured_spectrum"_a = to_string(o.surface.measured_spectrum));
 }

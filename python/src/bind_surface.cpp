@@ -16,6 +16,7 @@
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/math/vec.hpp"
 #include "surfscatter/heightmap/height_map.hpp"
+#include "surfscatter/heightmap/prepare.hpp"
 #include "surfscatter/surface/height_map_acv.hpp"
 #include "surfscatter/heightmap/form.hpp"
 #include "surfscatter/heightmap/io.hpp"
@@ -438,6 +439,22 @@ void bind_height_maps(py::module_& m) {
             "'robust_sigma_um', 'largest_um' (the largest residual), 'share' (of the pixel-scale roughness), "
             "'dominant' (share > 0.5), 'text'}")
         .def(
+            "prepare",
+            [](const heightmap::HeightMap& h, const std::string& outliers, const std::string& form) {
+                heightmap::Preparation how;
+                how.outliers = heightmap::parse_outlier_policy(outliers, "outliers");
+                how.form = heightmap::parse_form(form, "form");
+                heightmap::PreparedMap p = heightmap::prepare(h, how);
+                const std::string text = heightmap::describe(p);
+                return py::dict("map"_a = std::make_shared<heightmap::HeightMap>(std::move(p.map)),
+                                "outliers"_a = p.outliers.count, "read_rms_um"_a = p.read_rms_um,
+                                "form_rms_um"_a = p.form_rms_um, "text"_a = text);
+            },
+            py::arg("outliers") = "keep", py::arg("form") = "plane",
+            "The map as the models and references prepare it (docs/HEIGHTMAPS.md \"Preparation\"): {'map' (the "
+            "prepared HeightMap, form removed), 'outliers' (points found), 'read_rms_um', 'form_rms_um' (the rms of "
+            "what each step removed), 'text' (the steps in one line)}")
+        .def(
             "fill_outliers", [](const heightmap::HeightMap& h) { return heightmap::fill_outliers(h, heightmap::find_outliers(h)); },
             "The map with each outlier replaced by the median of its neighbours that are not (what outliers='fill' "
             "does before the statistics)")
@@ -571,6 +588,11 @@ void bind_height_maps(py::module_& m) {
         .def_property_readonly("log_residual_rms", [](const SurfaceFit& f) { return f.kc.log_residual_rms; },
                                "weighted rms of ln(data / model)")
         .def_readonly("rms_height_map", &SurfaceFit::rms_height_um, "rms of the form-removed map (um, band-limited)")
+        .def_readonly("fit_lattice_rms", &SurfaceFit::fit_lattice_rms_um,
+                      "the fitted KC's rms summed over the map's own frequencies (um)")
+        .def_readonly("map_lattice_rms", &SurfaceFit::map_lattice_rms_um, "the map's periodogram's rms there (um)")
+        .def_property_readonly("lattice_warning", &lattice_rms_check,
+                               "why the fit's rms on the map's frequencies disagrees with the map's, or ''")
         .def_readonly("rms_slope", &SurfaceFit::rms_slope, "rms slope of the form-removed map (central differences)")
         .def_readonly("rms_slope_psd", &SurfaceFit::rms_slope_from_psd, "rms slope from the 2-D periodogram")
         .def_property_readonly(

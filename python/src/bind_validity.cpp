@@ -94,8 +94,8 @@ py::dict validity(const surface::RadialStatistics& surface, const std::string& m
 // surface=: KC / Gaussian statistics (with their lay) to synthesise maps from, or a height map (object or path).
 bsdf::SurfaceOptions map_surface_options(py::handle surface, const std::string& form, const std::string& outliers) {
     bsdf::SurfaceOptions s;
-    s.form = heightmap::parse_form(form, "form");
-    s.outliers = heightmap::parse_outlier_policy(outliers, "outliers");
+    s.preparation.form = heightmap::parse_form(form, "form");
+    s.preparation.outliers = heightmap::parse_outlier_policy(outliers, "outliers");
     if (py::isinstance<surface::KCorrelation>(surface) || py::isinstance<surface::GaussianAcv>(surface)) {
         const auto& radial = surface.cast<const surface::RadialStatistics&>();
         s.psd = py::isinstance<surface::KCorrelation>(surface) ? bsdf::PsdKind::kc : bsdf::PsdKind::gaussian;

@@ -99,7 +99,7 @@ TEST(MeasuredReference, GhsMatchesEquationsOneAndTwoOnTheMapsOwnPeriodogram) {
         o.surface.psd = PsdKind::measured;
         o.surface.measured_spectrum = MeasuredSpectrum::ring;  // the ring route is what eq. 1-2 is evaluated on here
         o.surface.surface_file = "exact-amplitude map";
-        o.surface.form = heightmap::Form::none;
+        o.surface.preparation.form = heightmap::Form::none;
         o.surface.height_map = map;
         const auto model = make_bsdf(o);
         for (double lambda : {450.0, 550.0, 700.0})

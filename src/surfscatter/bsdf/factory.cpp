@@ -16,7 +16,6 @@
 #include "surfscatter/bsdf/two_scale.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/heightmap/io.hpp"
-#include "surfscatter/heightmap/outliers.hpp"
 #include "surfscatter/surface/height_map_slope.hpp"
 #include "surfscatter/surface/elliptical_slopes.hpp"
 #include "surfscatter/surface/elliptical_statistics.hpp"
@@ -75,9 +74,9 @@ class SurfaceSource {
 public:
     explicit SurfaceSource(SurfaceOptions s) : options_(std::move(s)) { load_height_map(options_); }
 
-    const heightmap::HeightMap* map() const { return options_.height_map.get(); }
+    // The prepared map (its form removed: statistics take it with Form::none), or null.
+    const heightmap::HeightMap* map() const { return options_.prepared ? &options_.prepared->map : nullptr; }
     const SurfaceOptions& options() const { return options_; }
-    heightmap::Form form() const { return options_.form; }
 
     // KC parameters: given, or fitted to the height map after form removal (kc_fit.hpp); with psd_fit elliptical the
     // elliptical fit's sigma, LU and gamma (its LV and lay angle: elliptical()).
@@ -92,6 +91,9 @@ public:
         if (options_.psd == PsdKind::file) {
             const surface::KcFit& fit = map_fit().kc;
             surface::require_resolved(fit);
+            const double ratio = map_fit().fit_lattice_rms_um / map_fit().map_lattice_rms_um;
+            if (ratio > surface::kLatticeRmsRefusal || ratio < 1.0 / surface::kLatticeRmsRefusal)
+                fail("psd file{}: {}", of_file(), surface::lattice_rms_check(map_fit()));
             return surface::KCorrelation(fit.sigma_h_um, fit.corr_length_um, fit.gamma);
         }
         fail("this option needs a K-correlation surface (psd kc, or file for the KC fitted to a height map), got psd {}",
@@ -108,14 +110,19 @@ public:
                 // Estimated already (Python's measured_statistics), or from the map.
                 auto measured = options_.measured_psd
                                     ? options_.measured_psd
-                                    : std::make_shared<const surface::MapStatistics>(*map(), options_.form);
+                                    : std::make_shared<const surface::MapStatistics>(*map(), heightmap::Form::none);
                 check_measured_uncertainty(*measured, notes);
                 if (notes) notes->push_back(measured_note(*measured));
                 measured_ = measured;
                 statistics_ = std::move(measured);
                 break;
             }
-            default: statistics_ = std::make_shared<surface::KCorrelation>(kc()); break;
+            default:
+                statistics_ = std::make_shared<surface::KCorrelation>(kc());
+                if (options_.psd == PsdKind::file && notes)
+                    if (const std::string lattice = surface::lattice_rms_check(map_fit()); !lattice.empty())
+                        notes->push_back(fmt::format("warning: psd file{}: {}", of_file(), lattice));
+                break;
         }
         return statistics_;
     }
@@ -144,7 +151,7 @@ private:
     const surface::SurfaceFit& map_fit() {
         if (!map_fit_) {
             surface::KcFitOptions fit_options;
-            fit_options.form = options_.form;
+            fit_options.form = heightmap::Form::none;
             map_fit_ = std::make_unique<const surface::SurfaceFit>(surface::fit_surface(*map(), fit_options));
         }
         return *map_fit_;
@@ -194,21 +201,20 @@ private:
         check_stationarity(s, notes);
     }
 
-    // The Hann window weighs the map's centre (the rectangular one of a periodic map weighs it evenly): where the
-    // centre's variance and the whole map's differ by more than the long periods' scatter explains (twice sigma's
-    // standard error, and at least 10 %), the roughness varies across the map (or form is left at its edges), and
-    // g, sigma_rel and every lobe follow the centre. Measured: the Zygo file with poly2 gives 0.66 against its
-    // standard error of 11 %; the real files that are stationary give 0.99-1.0.
+    // The Hann window weighs the map's centre: the periodogram is scaled to the whole map's variance (map_statistics.hpp
+    // window_scale()). Where the factor departs from 1 by more than the long periods' scatter explains (twice sigma's
+    // standard error, and at least 10 %), the roughness varies across the map (or form is left at its edges): the
+    // spectrum's shape is the centre's, its level the whole map's, and the note says so.
     void check_stationarity(const surface::MapStatistics& s, std::vector<std::string>* notes) const {
-        const double ratio = s.sigma_h() / s.map_rms();
+        const double ratio = std::sqrt(1.0 / s.window_scale());  // the centre's rms over the whole map's
         if (!notes || std::abs(ratio - 1.0) <= std::max(0.1, 2.0 * s.sigma_relative_error())) return;
         notes->push_back(fmt::format(
-            "warning: the measured PSD{} gives sigma {:.3g} um, {:.0f} % {} the map's rms {:.3g} um: the {} window "
-            "weighs the map's centre, whose roughness differs from the whole map's by more than the long periods' "
-            "scatter ({:.2g} %) explains; the map is not stationary (or form is left at its edges: try a higher "
-            "--form), and the lobes follow its centre",
-            of_file(), s.sigma_h(), 100.0 * std::abs(ratio - 1.0), ratio < 1 ? "below" : "above", s.map_rms(),
-            s.periodic() ? "rectangular" : "Hann", 100.0 * s.sigma_relative_error()));
+            "warning: the Hann window weighs the centre of the map{}, whose rms is {:.0f} % {} the whole map's ({:.3g} "
+            "um), more than the long periods' scatter ({:.2g} %) explains: the map is not stationary (or form is left "
+            "at its edges: try a higher --form or --lambda-c); the spectrum's shape follows its centre, its level the "
+            "whole map (window correction)",
+            of_file(), 100.0 * std::abs(ratio - 1.0), ratio < 1 ? "below" : "above", s.map_rms(),
+            100.0 * s.sigma_relative_error()));
     }
 
     // What a measured PSD rests on (map_statistics.hpp): the band, the variance the model carries against the map's
@@ -276,8 +282,8 @@ std::function<double(double)> ggx_alpha(const ModelOptions& o, SurfaceSource& su
             const double smoothing = slope_smoothing(o);
             double alpha = 0;  // alpha_GGX = alpha_Beckmann = rms slope (THEORY 4.2)
             if (const heightmap::HeightMap* map = surface.map()) {  // its own slopes, whether the PSD is fitted or measured
-                alpha = smoothing > 0 ? surface::rms_slope_smoothed(*map, smoothing, surface.form())
-                                      : surface::rms_slope(*map, surface.form());
+                alpha = smoothing > 0 ? surface::rms_slope_smoothed(*map, smoothing, heightmap::Form::none)
+                                      : surface::rms_slope(*map, heightmap::Form::none);
             } else {
                 const double no_cutoff = std::numeric_limits<double>::infinity();
                 const double slope2 = surface.statistics(notes)->mean_square_slope(smoothing, no_cutoff);
@@ -315,8 +321,8 @@ std::unique_ptr<Bsdf> elliptical_ggx(const ModelOptions& o, SurfaceSource& surfa
     const Vec2 variances =
         !map ? surface::smoothed_slope_variances_lay(elliptical, smoothing)
         : smoothing > 0
-            ? surface::slope_variances_lay(surface::gaussian_smooth(*map, smoothing, surface.form()), lay, heightmap::Form::none)
-            : surface::slope_variances_lay(*map, lay, surface.form());
+            ? surface::slope_variances_lay(surface::gaussian_smooth(*map, smoothing, heightmap::Form::none), lay, heightmap::Form::none)
+            : surface::slope_variances_lay(*map, lay, heightmap::Form::none);
     if (!std::isfinite(variances.x) || !std::isfinite(variances.y)) fail_divergent_slope(o);
     const Vec2 alpha(checked_slope_alpha(o, smoothing, std::sqrt(2 * variances.x), "alpha_u"),
                      checked_slope_alpha(o, smoothing, std::sqrt(2 * variances.y), "alpha_v"));
@@ -362,9 +368,9 @@ std::unique_ptr<Bsdf> map_slope_ggx(const ModelOptions& o, SurfaceSource& surfac
     surface.measured(notes);  // the measured route's checks and notes, as for the other models
     const double smoothing = slope_smoothing(o);
     const surface::SlopeCovariance c =
-        smoothing > 0 ? surface::slope_covariance(surface::gaussian_smooth(*surface.map(), smoothing, surface.form()),
+        smoothing > 0 ? surface::slope_covariance(surface::gaussian_smooth(*surface.map(), smoothing, heightmap::Form::none),
                                                   heightmap::Form::none)
-                      : surface::slope_covariance(*surface.map(), surface.form());
+                      : surface::slope_covariance(*surface.map(), heightmap::Form::none);
     const auto axes = c.axes();
     const Vec2 alpha(checked_slope_alpha(o, smoothing, std::sqrt(2 * axes.along_u), "alpha_u"),
                      checked_slope_alpha(o, smoothing, std::sqrt(2 * axes.along_v), "alpha_v"));
@@ -413,26 +419,23 @@ std::unique_ptr<Bsdf> map_spectrum_bsdf(const ModelOptions& o, SurfaceSource& su
 
 void load_height_map(SurfaceOptions& surface) {
     if (!(surface.psd == PsdKind::file || surface.psd == PsdKind::measured) || surface.measured_psd) return;
-    if (!surface.height_map && !surface.surface_file.empty())
-        surface.height_map =
-            std::make_shared<const heightmap::HeightMap>(heightmap::read_height_map(surface.surface_file, std::nullopt));
-    if (surface.height_map && surface.outliers == heightmap::OutlierPolicy::fill && !surface.filled_outliers) {
-        heightmap::Outliers found;
-        surface.height_map = std::make_shared<const heightmap::HeightMap>(
-            heightmap::apply_outlier_policy(*surface.height_map, heightmap::OutlierPolicy::fill, found));
-        surface.filled_outliers = std::move(found);
-    }
+    if (surface.prepared) return;
+    if (surface.height_map)
+        surface.prepared =
+            std::make_shared<const heightmap::PreparedMap>(heightmap::prepare(*surface.height_map, surface.preparation));
+    else if (!surface.surface_file.empty())
+        surface.prepared = std::make_shared<const heightmap::PreparedMap>(heightmap::prepare(
+            heightmap::read_height_map(surface.surface_file, std::nullopt), surface.preparation));
 }
 
-heightmap::Outliers outliers_of(const SurfaceOptions& surface) {
-    return surface.filled_outliers ? *surface.filled_outliers : heightmap::find_outliers(*surface.height_map);
-}
-
-std::optional<std::string> outlier_note(const SurfaceOptions& surface, const heightmap::Outliers& outliers) {
-    if (outliers.count == 0) return std::nullopt;
-    const std::string name = surface.surface_file.empty() ? surface.height_map->origin() : surface.surface_file;
-    return fmt::format("{}{}: {}", heightmap::kept_and_dominant(outliers, surface.outliers) ? "warning: " : "", name,
-                       heightmap::describe(outliers, surface.outliers));
+std::vector<std::string> preparation_notes(const SurfaceOptions& surface) {
+    const heightmap::PreparedMap& p = *surface.prepared;
+    const std::string name = surface.surface_file.empty() ? p.map.origin() : surface.surface_file;
+    std::vector<std::string> notes{fmt::format("{}: {}", name, heightmap::describe(p))};
+    if (p.outliers.count > 0)
+        notes.push_back(fmt::format("{}{}: {}", heightmap::kept_and_dominant(p.outliers, p.applied.outliers) ? "warning: " : "",
+                                    name, heightmap::describe(p.outliers, p.applied.outliers)));
+    return notes;
 }
 
 void validate(const ModelOptions& o) {
@@ -454,8 +457,8 @@ std::unique_ptr<Bsdf> make_bsdf(const ModelOptions& o, std::vector<std::string>*
     validate(o);
     auto material = material::Conductor::from_name(o.material);
     SurfaceSource surface(needs_surface(o) ? o.surface : SurfaceOptions{});
-    if (notes && surface.options().height_map && !surface.options().measured_psd && !surface.options().outliers_noted)
-        if (auto note = outlier_note(surface.options(), outliers_of(surface.options()))) notes->push_back(*note);
+    if (notes && surface.options().prepared && !surface.options().measured_psd && !surface.options().preparation_noted)
+        for (std::string& note : preparation_notes(surface.options())) notes->push_back(std::move(note));
     if (needs_surface(o) && o.surface.psd == PsdKind::measured &&
         o.surface.measured_spectrum == MeasuredSpectrum::two_d)
         if (auto bsdf = map_spectrum_bsdf(o, surface, material, notes)) return bsdf;

@@ -16,15 +16,13 @@ namespace surfscatter::bsdf {
 void validate(const ModelOptions& options);
 std::unique_ptr<Bsdf> make_bsdf(const ModelOptions& options, std::vector<std::string>* notes = nullptr);
 
-// Reads surface.surface_file (if psd = file or measured and it is not read yet) into surface.height_map, so that a
-// front end can report on it (heightmap::describe) and make_bsdf does not read it again; with outliers fill, the map's
-// outliers are then filled (once: surface.filled_outliers says what was).
+// Reads surface.surface_file (if psd = file or measured and no map is prepared yet; or takes surface.height_map) and
+// prepares it as surface.preparation asks (heightmap/prepare.hpp) into surface.prepared, so that a front end can report on it and
+// make_bsdf does not read it again.
 void load_height_map(SurfaceOptions& surface);
 
-// A loaded height map's outliers (heightmap/outliers.hpp): those load_height_map filled, else found now.
-heightmap::Outliers outliers_of(const SurfaceOptions& surface);
-// The models' note on them: what outliers fill filled, or, kept, how many there are and their share of the map's
-// pixel-scale roughness (a warning when they hold most of it); nothing for a map without any.
-std::optional<std::string> outlier_note(const SurfaceOptions& surface, const heightmap::Outliers& outliers);
+// What the models say of a loaded map's preparation: its steps (heightmap::describe) and, when it has outliers, what
+// was done with them (a warning when kept ones hold most of its pixel-scale roughness).
+std::vector<std::string> preparation_notes(const SurfaceOptions& surface);
 
 }  // namespace surfscatter::bsdf

@@ -10,9 +10,7 @@
 #include <string>
 #include <string_view>
 
-#include "surfscatter/heightmap/height_map.hpp"
-#include "surfscatter/heightmap/form.hpp"
-#include "surfscatter/heightmap/outliers.hpp"
+#include "surfscatter/heightmap/prepare.hpp"
 #include "surfscatter/surface/map_statistics.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
 
@@ -41,19 +39,17 @@ struct SurfaceOptions {
     double corr_length_v = 0;
     double lay_angle = 0;
     std::string surface_file; // height map (psd = file or measured): any format read_height_map reads
-    heightmap::Form form = heightmap::Form::plane;  // removed from the height map before its statistics
-    // The height map's outliers (heightmap/outliers.hpp): kept (the models' notes say how many and what share
-    // of the map's pixel-scale roughness they hold), or filled from their neighbours before anything else is taken
-    // from the map. filled_outliers: what load_height_map() filled (without the mask), so that it is done once.
-    heightmap::OutlierPolicy outliers = heightmap::OutlierPolicy::keep;
-    std::optional<heightmap::Outliers> filled_outliers;
-    bool outliers_noted = false;  // the caller reported them itself (a scene, validity): make_bsdf's notes do not
+    // How the map is prepared (heightmap/prepare.hpp: outliers, form), once, before anything is taken from it.
+    heightmap::Preparation preparation;
+    bool preparation_noted = false;  // the caller reported the map's preparation (a scene, validity): make_bsdf does not
     // psd file only: the isotropic KC fit (kc_fit.hpp), or the elliptical one (elliptical_fit.hpp), whose LU, LV and
     // lay angle make the statistics elliptical as corr_length_v and lay_angle do for psd kc.
     PsdFit psd_fit = PsdFit::isotropic;
-    // The map read from surface_file when the caller has read it already (to report on it, load_height_map());
-    // make_bsdf reads surface_file itself otherwise.
+    // A map in memory (Python's HeightMap) to prepare instead of reading surface_file (which then names it).
     std::shared_ptr<const heightmap::HeightMap> height_map;
+    // The map prepared, when the caller has done it already (to report on it, load_height_map()); make_bsdf reads and
+    // prepares the map itself otherwise.
+    std::shared_ptr<const heightmap::PreparedMap> prepared;
     // psd measured only: a map's statistics estimated already (Python's measured_statistics()), used instead of a map.
     std::shared_ptr<const surface::MapStatistics> measured_psd;
     // psd measured only: 2d, the models ghs (exact) and ghs_ssa on the map's 2-D periodogram (bsdf/map_ghs.hpp) and

@@ -9,6 +9,7 @@
 // valid_fraction() says how much of the map they left.
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,9 @@ struct HeightMapSource {
     std::string channel;                // channel title when the file holds several (empty otherwise)
     std::vector<std::string> warnings;  // what the reader had to say about the file (one line each)
     double height_unit_um = 0.0;        // um per height unit the file states its heights in (0: states none)
+    // Whether the map wraps around seamlessly, as judged on it as read by heightmap::prepare() (prepare.hpp), for the
+    // statistics of the prepared map, whose form is removed since; unset: judge the map as it is.
+    std::optional<bool> periodic;
 };
 
 class HeightMap {

@@ -74,7 +74,7 @@ public:
     std::vector<MaterialPtr> take_bsdfs() override { return {}; }
     std::vector<TexturePtr> take_textures() override { return {}; }
     void share_height_map(bsdf::SurfaceOptions& surface) override {
-        if (surface.psd == bsdf::PsdKind::file && !surface.height_map) bsdf::load_height_map(surface);
+        if (surface.psd == bsdf::PsdKind::file && !surface.prepared) bsdf::load_height_map(surface);
     }
     void add_note(const std::string& note) override {
         if (notes_) notes_->push_back(note);

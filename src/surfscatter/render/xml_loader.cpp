@@ -653,20 +653,20 @@ private:
         return located(node, plugin + ": ", build_object);
     }
 
-    // Each surface_file is read once per scene and outliers policy (several BSDFs may use it) and reported in the
-    // scene's notes.
+    // Each surface_file is read and prepared once per scene and preparation (several BSDFs may use it) and reported in
+    // the scene's notes.
     void share_height_map(bsdf::SurfaceOptions& surface) {
         if (surface.psd != bsdf::PsdKind::file && surface.psd != bsdf::PsdKind::measured) return;
-        SharedMap& shared = height_maps_[{surface.surface_file, surface.outliers}];
-        if (!shared.map) {
+        std::shared_ptr<const heightmap::PreparedMap>& shared = height_maps_[{surface.surface_file, surface.preparation}];
+        if (!shared) {
             bsdf::load_height_map(surface);
-            shared = {surface.height_map, surface.filled_outliers};
-            const auto outliers = bsdf::outlier_note(surface, bsdf::outliers_of(surface));
-            scene_->notes.push_back(heightmap::describe(*shared.map) + (outliers ? "; " + *outliers : ""));
+            shared = surface.prepared;
+            std::string note = heightmap::describe(shared->map);
+            for (const std::string& line : bsdf::preparation_notes(surface)) note += "; " + line;
+            scene_->notes.push_back(std::move(note));
         }
-        surface.height_map = shared.map;
-        surface.filled_outliers = shared.filled_outliers;
-        surface.outliers_noted = true;  // in the map's note above, once
+        surface.prepared = shared;
+        surface.preparation_noted = true;  // in the map's note above, once
     }
 
     // ---------------------------------------------------------------- BSDFs
@@ -1076,11 +1076,8 @@ public:
 private:
     std::map<std::string, std::string> defines_;
     std::unique_ptr<Scene> scene_;
-    struct SharedMap {
-        std::shared_ptr<const heightmap::HeightMap> map;
-        std::optional<heightmap::Outliers> filled_outliers;
-    };
-    std::map<std::pair<std::string, heightmap::OutlierPolicy>, SharedMap> height_maps_;  // by surface_file and outliers
+    // Prepared maps by surface_file and preparation.
+    std::map<std::pair<std::string, heightmap::Preparation>, std::shared_ptr<const heightmap::PreparedMap>> height_maps_;
     std::vector<std::unique_ptr<Source>> sources_;
     std::map<std::string, Object> objects_;
     std::set<std::string> names_;

@@ -167,13 +167,43 @@ SurfaceFit fit_surface(const heightmap::HeightMap& map, const KcFitOptions& opti
     const Psd2d& psd = result.psd;
     result.radial = radial_average(psd);
     result.kc = fit_kc(result.radial, nyquist_zeta(map), options);
-    result.spectrum = is_periodic(map) ? estimate_psd(flat, Window::rectangular, heightmap::Form::none) : psd;
+    result.spectrum = heightmap::is_periodic(map) ? estimate_psd(flat, Window::rectangular, heightmap::Form::none) : psd;
     result.elliptical = fit_elliptical_kc(result.spectrum, result.kc);
     result.acv = acv_measures(flat);
     result.rms_height_um = heightmap::height_moments(flat).rms;
     result.rms_slope = rms_slope(flat, heightmap::Form::none);
     result.rms_slope_from_psd = rms_slope_from_psd(psd);
+    // The fitted KC summed over the periodogram's own lattice against the periodogram there: the variance the fit
+    // says the map should hold against what it holds, and the latter's relative standard error from its rings.
+    const KCorrelation model(result.kc.sigma_h_um, result.kc.corr_length_um, result.kc.gamma);
+    double fitted = 0.0;
+    for (std::size_t ky = 0; ky < psd.ny; ++ky)
+        for (std::size_t kx = 0; kx < psd.half_nx(); ++kx)
+            fitted += psd.multiplicity(kx) * model.psd(std::hypot(psd.zeta_x(kx), psd.zeta_y(ky)));
+    result.fit_lattice_rms_um = std::sqrt(fitted * psd.dzeta_x * psd.dzeta_y);
+    result.map_lattice_rms_um = std::sqrt(std::max(0.0, psd.integral()));
+    double mass = 0.0, variance = 0.0;
+    for (std::size_t i = 0; i < result.radial.psd.size(); ++i) {
+        const double m = std::max(result.radial.psd[i], 0.0) * result.radial.count[i];
+        mass += m;
+        variance += m * m / effective_samples(result.radial.window, result.radial.count[i], result.radial.valid_weight);
+    }
+    result.lattice_rms_error = mass > 0.0 ? 0.5 * std::sqrt(variance) / mass : 0.0;
     return result;
+}
+
+std::string lattice_rms_check(const SurfaceFit& f) {
+    if (!(f.map_lattice_rms_um > 0.0)) return "";
+    const double ratio = f.fit_lattice_rms_um / f.map_lattice_rms_um;
+    const double allowed = std::max(kLatticeRmsTolerance, 3.0 * f.lattice_rms_error);
+    if (std::abs(std::log(ratio)) <= std::log1p(allowed)) return "";
+    return fmt::format(
+        "the fitted KC (sigma_h {:.4g} um) holds an rms of {:.4g} um on the map's own frequencies, {:.3g} times the "
+        "map's {:.4g} um (the map's standard error {:.2g} %): its band {:.4g} .. {:.4g} rad/um misses where the map's "
+        "roughness lies (waviness below the band, a tail or noise above it); the KC parameters do not describe this "
+        "map: use --psd measured, or prepare the map (--form, --lambda-c)",
+        f.kc.sigma_h_um, f.fit_lattice_rms_um, ratio, f.map_lattice_rms_um, 100.0 * f.lattice_rms_error, f.kc.zeta_min,
+        f.kc.zeta_max);
 }
 
 }  // namespace surfscatter::surface

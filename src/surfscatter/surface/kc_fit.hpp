@@ -21,6 +21,7 @@
 // L_c only if the knee zeta ~ 1/L_c lies well inside the band: a fit that runs to the bounds of the search is
 // reported as an Error rather than returned.
 #include <cstddef>
+#include <string>
 
 #include "surfscatter/surface/elliptical_fit.hpp"
 #include "surfscatter/heightmap/height_map.hpp"
@@ -77,7 +78,20 @@ struct SurfaceFit {
     // (is_periodic(): rectangular for a periodic map), so not always `psd`.
     EllipticalKcFit elliptical;
     Psd2d spectrum;
+    // The fitted KC's rms summed over the periodogram's lattice (what it says the map should hold), the
+    // periodogram's (what the map holds, its windowed variance), and the latter's relative standard error.
+    double fit_lattice_rms_um = 0.0, map_lattice_rms_um = 0.0, lattice_rms_error = 0.0;
 };
+
+// The fit's rms on the map's lattice may differ from the map's by this fraction, or 3 standard errors if more, before
+// lattice_rms_check() objects.
+inline constexpr double kLatticeRmsTolerance = 0.1;
+// Beyond this factor either way the fit does not describe the map at all (`surface fit` and psd file refuse it).
+inline constexpr double kLatticeRmsRefusal = 2.0;
+
+// Empty when the fitted KC holds the map's variance on the map's own lattice within kLatticeRmsTolerance (or 3
+// standard errors), otherwise why not, in one line.
+std::string lattice_rms_check(const SurfaceFit& fit);
 
 // Removes options.form once, then PSD, both fits, rms and slopes over the valid points. Error if fewer than
 // kMinFitValidFraction of the points are valid.

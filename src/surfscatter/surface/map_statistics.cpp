@@ -53,38 +53,21 @@ private:
     double nyquist_, dc_, first_ = 0, edge_ = 0, spacing_ = 1;
 };
 
-double wrap_jump_ratio(const heightmap::HeightMap& map) {
-    const std::size_t nx = map.nx(), ny = map.ny();
-    double ratio = 0.0;
-    for (int axis = 0; axis < 2; ++axis) {
-        const std::size_t n = axis == 0 ? nx : ny, m = axis == 0 ? ny : nx;
-        auto h = [&](std::size_t i, std::size_t j) { return axis == 0 ? map(i, j) : map(j, i); };
-        double jump = 0.0, step = 0.0;
-        for (std::size_t j = 0; j < m; ++j) {
-            const double d = h(0, j) - h(n - 1, j);
-            jump += d * d;
-            for (std::size_t i = 0; i + 1 < n; ++i) {
-                const double s = h(i + 1, j) - h(i, j);
-                step += s * s;
-            }
-        }
-        jump /= static_cast<double>(m);
-        step /= static_cast<double>(m) * static_cast<double>(n - 1);
-        ratio = std::max(ratio, step > 0.0 ? jump / step : (jump > 0.0 ? HUGE_VAL : 1.0));
-    }
-    return ratio;
-}
-
-bool is_periodic(const heightmap::HeightMap& map) { return !map.has_invalid() && wrap_jump_ratio(map) <= kPeriodicJumpRatio; }
-
 MapStatistics::MapStatistics(const heightmap::HeightMap& map, heightmap::Form form) {
     heightmap::require_valid_fraction(map, heightmap::kMinFitValidFraction, "measured statistics");
     const heightmap::HeightMap flat = heightmap::remove_form(map, form);
-    periodic_ = is_periodic(map);
+    periodic_ = heightmap::is_periodic(map);
     map_rms_ = heightmap::rms_height(flat, heightmap::Form::none);
     if (!(map_rms_ > 0.0))
         fail("{}: no roughness is left after removing the form ({}): rms height 0", map.origin(), to_string(form));
     spectrum_ = estimate_psd(flat, periodic_ ? Window::rectangular : Window::hann, heightmap::Form::none);
+    // Window correction: the Hann periodogram carries the window-weighted variance, which weighs the map's centre;
+    // scaled to the map's own variance (every point alike), its shape stays the centre's and its level is the whole
+    // map's (1 to round-off for the rectangular window of a periodic map).
+    const double weighted = spectrum_.integral();
+    if (!(weighted > 0.0)) fail("{}: its periodogram holds no power", map.origin());
+    window_scale_ = map_rms_ * map_rms_ / weighted;
+    for (double& v : spectrum_.values) v *= window_scale_;
     radial_ = radial_average(spectrum_);
     // P(0): the periodogram's own DC value, 0 for the rectangular window (the mean is removed), with the Hann window
     // the power its main lobe moved there from the first rings.

@@ -21,6 +21,8 @@
 //    reading of the lattice does: 0 with the rectangular window (the mean is removed), with the Hann window the
 //    power its main lobe moved there from the first rings; nothing is held flat or extrapolated. Its share of
 //    the variance is reported (below_band_fraction()).
+// 1b. Window correction: the periodogram is scaled so that its total is the map's own variance (the Hann window's
+//    total is the centre-weighted variance): window_scale().
 // 4. sigma_h^2 is the integral of that P, which equals the periodogram's sum over the disc of the band (Parseval):
 //    the ring means are scaled by the one factor that makes it so (band_scale(), within 1 % of 1: the lowest rings
 //    hold more lattice points than their annuli's area), plus the small share rolled off; the map's own rms (all of its variance, corners of the lattice beyond the
@@ -35,15 +37,11 @@
 
 #include "surfscatter/heightmap/height_map.hpp"
 #include "surfscatter/heightmap/form.hpp"
+#include "surfscatter/heightmap/prepare.hpp"
 #include "surfscatter/surface/psd_estimate.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
 
 namespace surfscatter::surface {
-
-// Wrap-around test: a map is periodic when the mean square jump across each pair of opposite edges is at most this
-// many times the mean square step between neighbours along the same axis (a periodic random field gives 1 within
-// its scatter; an instrument's map, whose opposite edges are unrelated, gives about 2 sigma^2 / step^2 >> 1).
-inline constexpr double kPeriodicJumpRatio = 3.0;
 
 class MapRingPsd;
 
@@ -70,6 +68,9 @@ public:
     std::size_t skipped_rings() const { return skipped_rings_; }
     // The factor on the ring means that makes the continuous PSD carry the lattice's sum over the band (Parseval).
     double band_scale() const { return band_scale_; }
+    // The window correction on the periodogram: the map's variance over the periodogram's (Hann: centre-weighted)
+    // total, so that the spectrum carries the whole map's variance; 1 for the rectangular window of a periodic map.
+    double window_scale() const { return window_scale_; }
     const Psd2d& spectrum() const { return spectrum_; }       // the 2-D periodogram
     const RadialPsd& rings() const { return radial_; }        // its ring means
     // Independent periodogram samples of the ring holding zeta (relative standard error 1/sqrt of it).
@@ -80,22 +81,12 @@ public:
 
 private:
     bool periodic_ = false;
-    double map_rms_ = 0, band_scale_ = 1;
+    double map_rms_ = 0, band_scale_ = 1, window_scale_ = 1;
     std::size_t skipped_rings_ = 0;
     Psd2d spectrum_;
     RadialPsd radial_;
     std::shared_ptr<const MapRingPsd> rings_psd_;   // the ring means as a PSD, rolled off beyond the band
     double inverse_variance_ = 0, nyquist_ = 0;
 };
-
-// Mean square jump across opposite edges over mean square neighbour step, the larger of the two axes (see
-// kPeriodicJumpRatio), of a map without invalid points, as measured (differences do not see its mean): a plane fitted
-// to a periodic map raises it (measured 0.84 -> 2.3, poly2 4.0 on a 1024^2 Gaussian-ACV map 55 l wide); the real
-// instrument files give 50 to 10^4.
-double wrap_jump_ratio(const heightmap::HeightMap& map);
-
-// Whether a map gets the rectangular window (no invalid points, wrap_jump_ratio() <= kPeriodicJumpRatio), judged on
-// the data before any form removal: a form fitted to a periodic map is noise that would break it.
-bool is_periodic(const heightmap::HeightMap& map);
 
 }  // namespace surfscatter::surface

@@ -165,18 +165,17 @@ MapSurface map_surface(const bsdf::SurfaceOptions& surface, const std::string& m
         if (surface.surface_file.empty()) fail("validity: a height map needs its file (surface_file)");
         bsdf::SurfaceOptions measured = surface;
         bsdf::load_height_map(measured);
-        out.outlier_policy = surface.outliers;
-        out.outliers = bsdf::outliers_of(measured);
-        out.outliers.mask.clear();
-        if (auto note = bsdf::outlier_note(measured, out.outliers)) out.notes.push_back(*note);  // once, not per model
-        measured.outliers_noted = true;
-        out.maps.push_back(heightmap::remove_form(*measured.height_map, surface.form));
+        out.outlier_policy = surface.preparation.outliers;
+        out.outliers = measured.prepared->outliers;
+        for (std::string& note : bsdf::preparation_notes(measured)) out.notes.push_back(std::move(note));  // once
+        measured.preparation_noted = true;
+        out.maps.push_back(measured.prepared->map);
         measured.psd = bsdf::PsdKind::measured;
         add_models(out, measured, material, "/measured");
         measured.psd = bsdf::PsdKind::file;
         add_models(out, measured, material, "/file");
-        out.description = fmt::format("{} ({} removed)", heightmap::describe(out.maps.front()),
-                                      heightmap::to_string(surface.form));
+        out.description = fmt::format("{} ({})", heightmap::describe(out.maps.front()),
+                                      heightmap::describe(*measured.prepared));
         return out;
     }
     surface::require_surface_length(synthesis.size_um, "map size");

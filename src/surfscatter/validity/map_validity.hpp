@@ -42,7 +42,7 @@ struct NamedModel {
 };
 
 struct MapSurface {
-    std::vector<heightmap::HeightMap> maps;  // form removed: the reference's input
+    std::vector<heightmap::HeightMap> maps;  // prepared (heightmap/prepare.hpp): the reference's input
     std::vector<NamedModel> models;
     std::vector<std::string> refused;      // "two_scale: <why>": models the factory does not make for this surface
     std::vector<std::string> notes;        // the factory's notes (a measured PSD's range and extrapolation)
@@ -64,8 +64,8 @@ struct SynthesisSettings {
     std::uint64_t seed = 1;
 };
 
-// `surface`: psd measured or file with surface_file (both models' routes are built, form removed as surface.form
-// says), or psd kc / gaussian (then `synthesis` gives the maps). `material` as ModelOptions::material. Throws Error
+// `surface`: psd measured or file with surface_file (both models' routes are built, the map prepared as
+// surface.preparation says), or psd kc / gaussian (then `synthesis` gives the maps). `material` as ModelOptions::material. Throws Error
 // for bad input.
 MapSurface map_surface(const bsdf::SurfaceOptions& surface, const std::string& material,
                        const SynthesisSettings& synthesis);

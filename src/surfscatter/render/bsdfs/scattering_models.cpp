@@ -98,9 +98,9 @@ void read_surface_options(Properties& props, bsdf::ModelOptions& o) {
     }
     if (const auto fit = read_choice(props, "psd_fit", bsdf::parse_psd_fit)) o.surface.psd_fit = *fit;
     const std::string form = props.get_string("form", "");
-    if (!form.empty()) o.surface.form = heightmap::parse_form(form, "form");
+    if (!form.empty()) o.surface.preparation.form = heightmap::parse_form(form, "form");
     const std::string outliers = props.get_string("outliers", "");
-    if (!outliers.empty()) o.surface.outliers = heightmap::parse_outlier_policy(outliers, "outliers");
+    if (!outliers.empty()) o.surface.preparation.outliers = heightmap::parse_outlier_policy(outliers, "outliers");
     if (const auto spectrum = read_choice(props, "measured_spectrum", bsdf::parse_measured_spectrum))
         o.surface.measured_spectrum = *spectrum;
     if (const auto fresnel = read_choice(props, "fresnel", bsdf::parse_fresnel)) o.fresnel = *fresnel;

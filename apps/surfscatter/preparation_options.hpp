@@ -1,0 +1,32 @@
+#pragma once
+// The options of a height map's preparation (heightmap/prepare.hpp), one spelling for every command that reads a map
+// (`surface info | fit`, `brdf --surface`, `validity --surface-file`, `reference kirchhoff`): --outliers, --form.
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "surfscatter/heightmap/prepare.hpp"
+
+namespace surfscatter::cli {
+
+struct PreparationArgs {
+    std::optional<std::string> outliers, form;  // not given: the defaults of heightmap::Preparation
+
+    bool given() const { return outliers || form; }
+    // The first option given, for "applies to a measured map only" errors ("--form"), or empty.
+    std::string first_given() const;
+};
+
+// `map` names what the options apply to in the help texts ("the map", "--surface").
+void add_preparation_options(CLI::App* cmd, PreparationArgs& args, const std::string& map = "the map");
+
+// The options checked (an Error naming the option and its value).
+heightmap::Preparation parse_preparation(const PreparationArgs& args);
+
+// read_height_map(path, spacing_um, height_unit_um) prepared as `args` asks, its outliers reported on stderr (a
+// warning when kept ones hold most of the map's pixel-scale roughness).
+heightmap::PreparedMap read_prepared_map(const std::string& path, std::optional<double> spacing_um,
+                                         std::optional<double> height_unit_um, const PreparationArgs& args);
+
+}  // namespace surfscatter::cli
