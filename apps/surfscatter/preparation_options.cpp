@@ -8,7 +8,10 @@ namespace surfscatter::cli {
 
 std::string PreparationArgs::first_given() const {
     if (outliers) return "--outliers";
+    if (row_alignment) return "--row-alignment";
     if (form) return "--form";
+    if (lambda_s) return "--lambda-s";
+    if (lambda_c) return "--lambda-c";
     return "";
 }
 
@@ -16,14 +19,27 @@ void add_preparation_options(CLI::App* cmd, PreparationArgs& args, const std::st
     cmd->add_option("--outliers", args.outliers,
                     map + "'s outliers (points far from their 5 x 5 neighbourhood): keep (default) | fill (each "
                           "replaced by its neighbours' median); docs/HEIGHTMAPS.md \"Outliers\"");
+    cmd->add_option("--row-alignment", args.row_alignment,
+                    map + "'s row offsets (scanning instruments): auto (default: aligned when significant) | median "
+                          "(always) | none; docs/HEIGHTMAPS.md \"Row alignment\"");
     cmd->add_option("--form", args.form,
                     "form removed from " + map + ": none (mean) | plane (default) | poly2 | poly3 | poly4");
+    cmd->add_option("--lambda-s", args.lambda_s,
+                    "ISO 16610-61 S-filter on " + map + ": nesting index in um (periods shorter are removed) | none "
+                    "(default)");
+    cmd->add_option("--lambda-c", args.lambda_c,
+                    "ISO 16610-61 L-filter on " + map + ": nesting index in um (periods longer are the waviness) | "
+                    "none | auto (default: only when the map's longest periods make its rms uncertain); "
+                    "docs/HEIGHTMAPS.md \"Preparation\"");
 }
 
 heightmap::Preparation parse_preparation(const PreparationArgs& args) {
     heightmap::Preparation how;
     if (args.outliers) how.outliers = heightmap::parse_outlier_policy(*args.outliers, "--outliers");
+    if (args.row_alignment) how.rows = heightmap::parse_row_alignment(*args.row_alignment, "--row-alignment");
     if (args.form) how.form = heightmap::parse_form(*args.form, "--form");
+    if (args.lambda_s) how.lambda_s_um = heightmap::parse_lambda_s(*args.lambda_s, "--lambda-s");
+    if (args.lambda_c) how.lambda_c_um = heightmap::parse_lambda_c(*args.lambda_c, "--lambda-c");
     return how;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // The options of a height map's preparation (heightmap/prepare.hpp), one spelling for every command that reads a map
-// (`surface info | fit`, `brdf --surface`, `validity --surface-file`, `reference kirchhoff`): --outliers, --form.
+// (`surface info | fit`, `brdf --surface`, `validity --surface-file`, `reference kirchhoff`): --outliers,
+// --row-alignment, --form, --lambda-s, --lambda-c.
 #include <optional>
 #include <string>
 
@@ -11,9 +12,10 @@
 namespace surfscatter::cli {
 
 struct PreparationArgs {
-    std::optional<std::string> outliers, form;  // not given: the defaults of heightmap::Preparation
+    // Not given: the defaults of heightmap::Preparation.
+    std::optional<std::string> outliers, row_alignment, form, lambda_s, lambda_c;
 
-    bool given() const { return outliers || form; }
+    bool given() const { return !first_given().empty(); }
     // The first option given, for "applies to a measured map only" errors ("--form"), or empty.
     std::string first_given() const;
 };

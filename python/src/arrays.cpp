@@ -111,6 +111,12 @@ double real_scalar(py::handle value, const char* name, Domain domain) {
     return *a.data();
 }
 
+std::string nesting_index_text(py::handle value, const char* name) {
+    if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+    if (py::isinstance<py::bool_>(value)) fail("{} must be a number (um) or a string, got {}", name, py::repr(value).cast<std::string>());
+    return fmt::format("{:.17g}", real_scalar(value, name));
+}
+
 Batch::Batch(const std::vector<Arg>& args) {
     py::list shapes;
     std::vector<std::string> described;

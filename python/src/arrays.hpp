@@ -79,6 +79,10 @@ RealArray real_array(py::handle value, const char* name, Domain domain = Domain:
 // A Python float (or int) as a double, checked like real_array's elements.
 double real_scalar(py::handle value, const char* name, Domain domain = Domain::any);
 
+// A nesting index (lambda_s_um, lambda_c_um) as the CLI and XML take it: a number (um) as its text, or a string
+// ("none", "auto") as it is; heightmap::parse_lambda_s / parse_lambda_c check it.
+std::string nesting_index_text(py::handle value, const char* name);
+
 // body(i) for i in [0, n), in parallel on TBB's threads, with the GIL released (the body must not touch Python
 // objects). An exception thrown by the body (surfscatter::Error) reaches the caller.
 template <typename Body>

@@ -75,6 +75,18 @@ const std::map<std::string, Setter>& option_setters() {
          [](ModelOptions& o, py::handle v, const char* n) {
              o.surface.preparation.outliers = heightmap::parse_outlier_policy(text_option(v, n), n);
          }},
+        {"row_alignment",
+         [](ModelOptions& o, py::handle v, const char* n) {
+             o.surface.preparation.rows = heightmap::parse_row_alignment(text_option(v, n), n);
+         }},
+        {"lambda_s_um",
+         [](ModelOptions& o, py::handle v, const char* n) {
+             o.surface.preparation.lambda_s_um = heightmap::parse_lambda_s(nesting_index_text(v, n), n);
+         }},
+        {"lambda_c_um",
+         [](ModelOptions& o, py::handle v, const char* n) {
+             o.surface.preparation.lambda_c_um = heightmap::parse_lambda_c(nesting_index_text(v, n), n);
+         }},
         {"psd_fit",
          [](ModelOptions& o, py::handle v, const char* n) { o.surface.psd_fit = bsdf::parse_psd_fit(text_option(v, n), n); }},
         {"measured_spectrum",

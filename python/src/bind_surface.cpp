@@ -440,20 +440,36 @@ void bind_height_maps(py::module_& m) {
             "'dominant' (share > 0.5), 'text'}")
         .def(
             "prepare",
-            [](const heightmap::HeightMap& h, const std::string& outliers, const std::string& form) {
+            [](const heightmap::HeightMap& h, const std::string& outliers, const std::string& row_alignment,
+               const std::string& form, py::handle lambda_s_um, py::handle lambda_c_um) {
                 heightmap::Preparation how;
                 how.outliers = heightmap::parse_outlier_policy(outliers, "outliers");
+                how.rows = heightmap::parse_row_alignment(row_alignment, "row_alignment");
                 how.form = heightmap::parse_form(form, "form");
-                heightmap::PreparedMap p = heightmap::prepare(h, how);
+                how.lambda_s_um = heightmap::parse_lambda_s(nesting_index_text(lambda_s_um, "lambda_s_um"), "lambda_s_um");
+                how.lambda_c_um = heightmap::parse_lambda_c(nesting_index_text(lambda_c_um, "lambda_c_um"), "lambda_c_um");
+                heightmap::PreparedMap p = [&] {
+                    py::gil_scoped_release release;
+                    return heightmap::prepare(h, how);
+                }();
                 const std::string text = heightmap::describe(p);
+                py::object waviness = py::none();
+                if (p.waviness) waviness = py::cast(std::make_shared<heightmap::HeightMap>(std::move(*p.waviness)));
                 return py::dict("map"_a = std::make_shared<heightmap::HeightMap>(std::move(p.map)),
-                                "outliers"_a = p.outliers.count, "read_rms_um"_a = p.read_rms_um,
-                                "form_rms_um"_a = p.form_rms_um, "text"_a = text);
+                                "waviness"_a = waviness, "outliers"_a = p.outliers.count,
+                                "rows_aligned"_a = p.rows_aligned, "row_offsets_rms_um"_a = p.rows.rms_um,
+                                "lambda_c_um"_a = p.applied.lambda_c_um.value_or(0.0), "read_rms_um"_a = p.read_rms_um,
+                                "form_rms_um"_a = p.form_rms_um, "short_rms_um"_a = p.short_rms_um,
+                                "waviness_rms_um"_a = p.waviness_rms_um, "text"_a = text);
             },
-            py::arg("outliers") = "keep", py::arg("form") = "plane",
-            "The map as the models and references prepare it (docs/HEIGHTMAPS.md \"Preparation\"): {'map' (the "
-            "prepared HeightMap, form removed), 'outliers' (points found), 'read_rms_um', 'form_rms_um' (the rms of "
-            "what each step removed), 'text' (the steps in one line)}")
+            py::arg("outliers") = "keep", py::arg("row_alignment") = "auto", py::arg("form") = "plane",
+            py::arg("lambda_s_um") = "none", py::arg("lambda_c_um") = "auto",
+            "The map as the models and references prepare it (docs/HEIGHTMAPS.md \"Preparation\"): outliers "
+            "'keep' | 'fill', row_alignment 'auto' | 'median' | 'none', form, lambda_s_um (um or 'none'), lambda_c_um "
+            "(um, 'none' or 'auto'). Returns {'map' (the prepared HeightMap), 'waviness' (what the L-filter removed, "
+            "or None), 'outliers' (points found), 'rows_aligned', 'row_offsets_rms_um', 'lambda_c_um' (0: none), "
+            "'read_rms_um', 'form_rms_um', 'short_rms_um', 'waviness_rms_um' (the rms of what each step removed), "
+            "'text' (the steps in one line)}")
         .def(
             "fill_outliers", [](const heightmap::HeightMap& h) { return heightmap::fill_outliers(h, heightmap::find_outliers(h)); },
             "The map with each outlier replaced by the median of its neighbours that are not (what outliers='fill' "

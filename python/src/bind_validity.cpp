@@ -11,7 +11,7 @@
 #include "surfscatter/material/conductor.hpp"
 #include "surfscatter/math/vec.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
-#include "surfscatter/heightmap/form.hpp"
+#include "surfscatter/heightmap/prepare.hpp"
 #include "surfscatter/validity/map_validity.hpp"
 #include "surfscatter/validity/validity.hpp"
 
@@ -92,10 +92,9 @@ py::dict validity(const surface::RadialStatistics& surface, const std::string& m
 }
 
 // surface=: KC / Gaussian statistics (with their lay) to synthesise maps from, or a height map (object or path).
-bsdf::SurfaceOptions map_surface_options(py::handle surface, const std::string& form, const std::string& outliers) {
+bsdf::SurfaceOptions map_surface_options(py::handle surface, const heightmap::Preparation& preparation) {
     bsdf::SurfaceOptions s;
-    s.preparation.form = heightmap::parse_form(form, "form");
-    s.preparation.outliers = heightmap::parse_outlier_policy(outliers, "outliers");
+    s.preparation = preparation;
     if (py::isinstance<surface::KCorrelation>(surface) || py::isinstance<surface::GaussianAcv>(surface)) {
         const auto& radial = surface.cast<const surface::RadialStatistics&>();
         s.psd = py::isinstance<surface::KCorrelation>(surface) ? bsdf::PsdKind::kc : bsdf::PsdKind::gaussian;
@@ -124,14 +123,22 @@ bsdf::SurfaceOptions map_surface_options(py::handle surface, const std::string& 
 
 py::dict validity_map(py::handle surface_arg, const std::string& material, const std::vector<double>& wavelengths_nm,
                       const std::vector<double>& theta_i_deg, const std::vector<double>& phi_i_deg,
-                      const std::string& form, const std::string& outliers, double map_size_um,
+                      const std::string& form, const std::string& outliers, const std::string& row_alignment,
+                      py::handle lambda_s_um, py::handle lambda_c_um, double map_size_um,
                       std::size_t map_pixels, std::size_t realizations, std::uint64_t seed, double subarea_um,
                       double max_theta_o_deg, double bin_deg, double tolerance, double max_reference_stderr,
                       int threads) {
-    const bsdf::SurfaceOptions options = map_surface_options(surface_arg, form, outliers);
+    heightmap::Preparation preparation;
+    preparation.outliers = heightmap::parse_outlier_policy(outliers, "outliers");
+    preparation.rows = heightmap::parse_row_alignment(row_alignment, "row_alignment");
+    preparation.form = heightmap::parse_form(form, "form");
+    preparation.lambda_s_um = heightmap::parse_lambda_s(nesting_index_text(lambda_s_um, "lambda_s_um"), "lambda_s_um");
+    preparation.lambda_c_um = heightmap::parse_lambda_c(nesting_index_text(lambda_c_um, "lambda_c_um"), "lambda_c_um");
+    const bsdf::SurfaceOptions options = map_surface_options(surface_arg, preparation);
     const bool measured = options.psd == bsdf::PsdKind::measured;
-    if (!measured && outliers != "keep")
-        fail("outliers applies to a measured map (a HeightMap or a file); synthesised maps have none");
+    if (!measured && preparation != heightmap::Preparation{})
+        fail("outliers, row_alignment, form, lambda_s_um and lambda_c_um prepare a measured map (a HeightMap or a "
+             "file); synthesised maps take none of them");
     if (measured && (map_size_um != 0 || realizations != 1))
         fail("map_size_um and realizations synthesise maps from statistics: a height map is one realization");
     if (!(max_theta_o_deg > 0 && max_theta_o_deg < 90))
@@ -203,16 +210,17 @@ incidence in theta_i_deg (degrees) and polarisation ('s', 'p'). Returns {'table'
 the CSV's columns, 'verdicts': one dict per case (conclusive, trusted, best_model, within_tolerance, ruled_out, text)}.)");
     m.def("validity_map", &validity_map, py::arg("surface"), py::arg("material"), py::arg("wavelengths_nm"),
           py::arg("theta_i_deg"), py::arg("phi_i_deg") = std::vector<double>{0.0}, py::arg("form") = "plane",
-          py::arg("outliers") = "keep", py::arg("map_size_um") = 0.0, py::arg("map_pixels") = 256,
+          py::arg("outliers") = "keep", py::arg("row_alignment") = "auto", py::arg("lambda_s_um") = "none",
+          py::arg("lambda_c_um") = "auto", py::arg("map_size_um") = 0.0, py::arg("map_pixels") = 256,
           py::arg("realizations") = 1,
           py::arg("seed") = 1, py::arg("subarea_um") = 0.0, py::arg("max_theta_o_deg") = 80.0,
           py::arg("bin_deg") = 3.0, py::arg("tolerance") = 0.1, py::arg("max_reference_stderr") = 0.25,
           py::arg("threads") = 0,
           R"(Which 2-D model to trust for a height map, as `surfscatter validity --surface-file` / `--map-size-um`
 (docs/VALIDITY.md, "Height maps"): every model the factory makes for `surface` against the Kirchhoff BRDF of the
-map(s), with Kirchhoff's own validity. `surface`: a heightmap::HeightMap or a height map path (form removed as `form` says; its
-outliers kept or filled as `outliers` says, 'keep' or 'fill', an Error when kept ones dominate; the models from psd
-measured and psd file), or a KCorrelation / GaussianAcv, elliptical if made with corr_length_v /
+map(s), with Kirchhoff's own validity. `surface`: a HeightMap or a height map path, prepared as outliers ('keep' or
+'fill', an Error when kept ones dominate), row_alignment, form, lambda_s_um and lambda_c_um say (docs/HEIGHTMAPS.md
+"Preparation"; the models from psd measured and psd file), or a KCorrelation / GaussianAcv, elliptical if made with corr_length_v /
 lay_angle_deg (`realizations` square maps of map_size_um and map_pixels a side are synthesised, seeds seed,
 seed + 1, ...). Wavelengths in nm, angles in degrees, subarea_um 0: a quarter of the map. Returns {'table': one dict per
 model and case with the CSV's columns, 'verdicts': one dict per case (the verdict, its reference_validity and

@@ -97,5 +97,5 @@ def test_outliers_of_a_map_are_found_filled_and_decide_the_map_route():
     assert got["outliers"]["policy"] == "fill" and got["outliers"]["points"] == 8
     with pytest.raises(ss.Error, match="outliers must be keep or fill"):
         ss.validity_map(spiked, "perfect", [550], [0], outliers="drop")
-    with pytest.raises(ss.Error, match="outliers applies to a measured map"):
+    with pytest.raises(ss.Error, match="prepare a measured map"):
         ss.validity_map(ss.KCorrelation(0.02, 2.0, 3.0), "perfect", [550], [0], map_size_um=16, outliers="fill")

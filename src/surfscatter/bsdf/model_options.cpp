@@ -153,7 +153,8 @@ std::string inapplicable_option(const ModelOptions& o, std::string_view name) {
         return unless(psd == PsdKind::measured, "used with psd measured only");
     }
     if (name == "psd" || name == "sigma" || name == "corr_length" || name == "gamma" || name == "surface_file" ||
-        name == "form" || name == "outliers" || name == "corr_length_v" || name == "lay_angle" || name == "psd_fit") {
+        name == "form" || name == "outliers" || name == "row_alignment" || name == "lambda_s" || name == "lambda_c" ||
+        name == "corr_length_v" || name == "lay_angle" || name == "psd_fit") {
         if (!with_surface) return "model ggx_stats with alpha_from none takes no surface";
         if (name == "sigma" || name == "corr_length")
             return unless(!from_map, "a height map gives its own statistics (psd file or measured)");
@@ -164,7 +165,8 @@ std::string inapplicable_option(const ModelOptions& o, std::string_view name) {
             // 0 is every front end's default (scenes pass it through -D defaults): only a turned lay needs LV.
             return unless(o.surface.corr_length_v != 0 || o.surface.lay_angle == 0,
                           "used with corr_length_v only (without it the surface is isotropic)");
-        if (name == "surface_file" || name == "form" || name == "outliers")
+        if (name == "surface_file" || name == "form" || name == "outliers" || name == "row_alignment" ||
+            name == "lambda_s" || name == "lambda_c")
             return unless(from_map, "used with a height map (psd file or measured) only");
         if (name == "psd_fit") return unless(psd == PsdKind::file, "used with psd file (the KC fitted to a height map) only");
     }

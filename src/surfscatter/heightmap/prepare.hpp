@@ -1,14 +1,18 @@
 #pragma once
 // A measured map as metrology prepares it, once, for every consumer (the models, the references, `surface info | fit`,
-// scenes, studies, Python): outliers kept or filled, then the form removed. docs/HEIGHTMAPS.md "Preparation" states
-// each step, its default and why. What every statistic then reads is `PreparedMap::map`, whose form is already
-// removed (statistics take it with Form::none, which removes the mean only).
+// scenes, studies, Python): outliers kept or filled, rows aligned, the form removed, then ISO 16610-61's S- and
+// L-filters. docs/HEIGHTMAPS.md "Preparation" states each step, its default and why. What every statistic then reads
+// is `PreparedMap::map`, whose form is already removed (statistics take it with Form::none, which removes the mean
+// only); what the L-filter removed is the waviness, kept beside it.
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "surfscatter/heightmap/form.hpp"
 #include "surfscatter/heightmap/height_map.hpp"
+#include "surfscatter/heightmap/gaussian_filter.hpp"
 #include "surfscatter/heightmap/outliers.hpp"
+#include "surfscatter/heightmap/rows.hpp"
 
 namespace surfscatter::heightmap {
 
@@ -28,19 +32,35 @@ double wrap_jump_ratio(const HeightMap& map);
 // periodic map is noise that would break it): a prepared map says what prepare() judged (source.periodic).
 bool is_periodic(const HeightMap& map);
 
-// The options of a map's preparation, named alike at the CLI (--outliers, --form), in XML and in Python.
+// The options of a map's preparation, named alike at the CLI (--outliers, --row-alignment, --form, --lambda-s,
+// --lambda-c), in XML and studies (outliers, row_alignment, form, lambda_s, lambda_c) and in Python (outliers,
+// row_alignment, form, lambda_s_um, lambda_c_um).
 struct Preparation {
     OutlierPolicy outliers = OutlierPolicy::keep;
+    RowAlignment rows = RowAlignment::automatic;
     Form form = Form::plane;
+    double lambda_s_um = 0;               // S-filter nesting index; 0: none
+    std::optional<double> lambda_c_um;    // L-filter nesting index; unset: default_lambda_c(); 0: none
     auto operator<=>(const Preparation&) const = default;
 };
 
+// "auto" (unset), "none" (0) or a nesting index in um for --lambda-c; "none" (0) or um for --lambda-s. Error naming
+// `where` for anything else (a negative, non-finite or unparsable value).
+std::optional<double> parse_lambda_c(const std::string& text, const std::string& where);
+double parse_lambda_s(const std::string& text, const std::string& where);
+
 struct PreparedMap {
-    HeightMap map;          // what every statistic reads: outliers as asked, form removed
-    Preparation applied;    // the options as applied
-    Outliers outliers;      // found on the map as read (without the mask): filled, or kept
-    double read_rms_um = 0; // rms of the map as read about its mean (valid points)
-    double form_rms_um = 0; // rms of the form removed
+    HeightMap map;                // what every statistic reads: outliers as asked, rows aligned, form removed, filtered
+    Preparation applied;          // the options as applied (lambda_c_um set: the default resolved)
+    Outliers outliers;            // found on the map as read (without the mask): filled, or kept
+    RowOffsets rows;              // found and, if applied.rows says so or they are significant, removed
+    bool rows_aligned = false;
+    std::string lambda_c_reason;  // why the default L-filter is what it is (empty when lambda_c was given)
+    std::optional<HeightMap> waviness;  // what the L-filter removed (periods beyond lambda_c), form-free
+    double read_rms_um = 0;       // rms of the map as read about its mean (valid points)
+    double form_rms_um = 0;       // rms of the form removed
+    double short_rms_um = 0;      // rms of what the S-filter removed
+    double waviness_rms_um = 0;   // rms of the waviness
 };
 
 // The one preparation of a map read from a file or made in memory.

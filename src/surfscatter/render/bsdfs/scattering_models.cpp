@@ -7,19 +7,25 @@
 // `corr_length_v` and `lay_angle` (degrees; elliptical statistics, surface/elliptical_statistics.hpp: the lay
 // direction u is the shading frame's s = dp/du turned by lay_angle about the normal towards t, so the shape's
 // tangent frame orients the lay; docs/RENDERER.md lists each shape's dp/du), `gamma`, `surface_file` (any height map format, read once per scene and reported with its valid fraction),
-// `form`, `outliers` (keep | fill, the map's outliers: docs/HEIGHTMAPS.md "Outliers"), `psd_fit` (psd file: isotropic | elliptical, the KC fit of the map), `fresnel` (all but two_scale's macro part), ghs and two_scale: `method`, `truncation`,
+// `form`, `outliers` (keep | fill, the map's outliers: docs/HEIGHTMAPS.md "Outliers"), `row_alignment` (auto | median |
+// none), `lambda_s`, `lambda_c` (ISO 16610-61 nesting indices in um, or none; lambda_c auto by default:
+// docs/HEIGHTMAPS.md "Preparation"), `psd_fit` (psd file: isotropic | elliptical, the KC fit of the map), `fresnel` (all but two_scale's macro part), ghs and two_scale: `method`, `truncation`,
 // `epsilon`, `renormalization`; ghs_ssa: `ssa_form`; ggx_stats: `alpha_from`, `smoothing`,
 // `alpha`; two_scale: `cutoff_wavelengths`, `macro_ndf`. A parameter the model and modes chosen do not use is an
 // error at its line (bsdf::inapplicable_option: e.g. `smoothing` without alpha_from smoothed).
 // The models are evaluated for the four wavelengths of a path in one call (Bsdf::eval_packet). One-sided (use
 // twosided).
 #include <optional>
+#include <string>
+#include <variant>
+
+#include <fmt/format.h>
 
 #include "surfscatter/bsdf/factory.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/render/model_parameters.hpp"
 #include "surfscatter/render/plugins.hpp"
-#include "surfscatter/heightmap/form.hpp"
+#include "surfscatter/heightmap/prepare.hpp"
 
 namespace surfscatter::render {
 
@@ -101,6 +107,19 @@ void read_surface_options(Properties& props, bsdf::ModelOptions& o) {
     if (!form.empty()) o.surface.preparation.form = heightmap::parse_form(form, "form");
     const std::string outliers = props.get_string("outliers", "");
     if (!outliers.empty()) o.surface.preparation.outliers = heightmap::parse_outlier_policy(outliers, "outliers");
+    const std::string rows = props.get_string("row_alignment", "");
+    if (!rows.empty()) o.surface.preparation.rows = heightmap::parse_row_alignment(rows, "row_alignment");
+    // Nesting indices: <float> (um) or <string> ("none"; "auto" for lambda_c).
+    const auto nesting_text = [&](const char* name) -> std::optional<std::string> {
+        const auto value = props.get_float_or_string(name);
+        if (!value) return std::nullopt;
+        if (const double* number = std::get_if<double>(&*value)) return fmt::format("{:.17g}", *number);
+        return std::get<std::string>(*value);
+    };
+    if (const auto lambda_s = nesting_text("lambda_s"))
+        o.surface.preparation.lambda_s_um = heightmap::parse_lambda_s(*lambda_s, "lambda_s");
+    if (const auto lambda_c = nesting_text("lambda_c"))
+        o.surface.preparation.lambda_c_um = heightmap::parse_lambda_c(*lambda_c, "lambda_c");
     if (const auto spectrum = read_choice(props, "measured_spectrum", bsdf::parse_measured_spectrum))
         o.surface.measured_spectrum = *spectrum;
     if (const auto fresnel = read_choice(props, "fresnel", bsdf::parse_fresnel)) o.fresnel = *fresnel;
@@ -109,7 +128,8 @@ void read_surface_options(Properties& props, bsdf::ModelOptions& o) {
 // An option given in the scene that the model and modes chosen do not use is an error at its line (the CLI's rule).
 void check_applicable(Properties& props, const bsdf::ModelOptions& o, const std::string& type) {
     for (const char* name : {"material", "psd", "sigma", "corr_length", "corr_length_v", "lay_angle", "gamma",
-                             "surface_file", "form", "outliers", "psd_fit", "measured_spectrum", "fresnel",
+                             "surface_file", "form", "outliers", "row_alignment", "lambda_s", "lambda_c", "psd_fit",
+                             "measured_spectrum", "fresnel",
                              "method", "truncation", "epsilon", "renormalization", "ssa_form", "alpha_from",
                              "smoothing", "alpha", "cutoff_wavelengths", "macro_ndf"})
         if (props.has(name))
