@@ -75,6 +75,12 @@ public:
 
     // The prepared map (its form removed: statistics take it with Form::none), or null.
     const heightmap::HeightMap* map() const { return options_.prepared ? &options_.prepared->map : nullptr; }
+    // Mean square slope of the map's waviness (what its L-filter removed), 0 without one.
+    double waviness_slope2() const {
+        if (!options_.prepared || !options_.prepared->waviness) return 0.0;
+        const double s = surface::rms_slope(*options_.prepared->waviness, heightmap::Form::none);
+        return s * s;
+    }
     const SurfaceOptions& options() const { return options_; }
 
     // KC parameters: given, or fitted to the height map after form removal (kc_fit.hpp); with psd_fit elliptical the
@@ -456,6 +462,18 @@ std::unique_ptr<Bsdf> make_bsdf(const ModelOptions& o, std::vector<std::string>*
     SurfaceSource surface(needs_surface(o) ? o.surface : SurfaceOptions{});
     if (notes && surface.options().prepared && !surface.options().measured_psd && !surface.options().preparation_noted)
         for (std::string& note : preparation_notes(surface.options())) notes->push_back(std::move(note));
+    if (notes && needs_surface(o) && surface.options().prepared && surface.options().prepared->waviness) {
+        const double slope = std::sqrt(surface.waviness_slope2());
+        const double lambda_c = surface.options().prepared->applied.lambda_c_um.value_or(0.0);
+        notes->push_back(
+            o.model == ModelKind::two_scale
+                ? fmt::format("two_scale: the waviness (periods beyond lambda_c {:.4g} um, rms slope {:.3g}) is added "
+                              "to the macro NDF's slopes", lambda_c, slope)
+                : fmt::format("{}: the waviness (periods beyond lambda_c {:.4g} um, rms slope {:.3g}) is left out: the "
+                              "BRDF is that of the band the map resolves below lambda_c; across the sample the "
+                              "waviness tilts it by about +-{:.2g} deg (two_scale adds it to its macro slopes)",
+                              to_string(o.model), lambda_c, slope, std::atan(slope) / kDegree));
+    }
     if (needs_surface(o) && o.surface.psd == PsdKind::measured &&
         o.surface.measured_spectrum == MeasuredSpectrum::two_d)
         if (auto bsdf = map_spectrum_bsdf(o, surface, material, notes)) return bsdf;
@@ -489,7 +507,9 @@ std::unique_ptr<Bsdf> make_bsdf(const ModelOptions& o, std::vector<std::string>*
             settings.name = "two_scale_micro";
             if (elliptical) return elliptical_two_scale(o, *elliptical, zeta_c, std::move(material), std::move(settings));
             const auto split = surface::split_psd(surface.statistics(notes), zeta_c, surface::LowPassFilter::sharp);
-            const double alpha = macro_alpha(o, split.slope2_macro);  // the rms slope of the low-pass part
+            // The rms slope of the low-pass part, and of the map's waviness (what its L-filter removed), which is
+            // slope the macro NDF carries as well.
+            const double alpha = macro_alpha(o, split.slope2_macro + surface.waviness_slope2());
             auto micro = std::make_unique<GhsBsdf>(split.micro, std::make_shared<ExactScatterCore>(split.micro),
                                                    material, settings);
             return std::make_unique<TwoScaleBsdf>(std::move(material), o.macro_ndf, alpha, std::move(micro));
