@@ -21,7 +21,7 @@
 #include "surfscatter/surface/elliptical_fit.hpp"
 #include "surfscatter/surface/elliptical_statistics.hpp"
 #include "surfscatter/surface/height_map_acv.hpp"
-#include "surfscatter/surface/height_map_fft.hpp"
+#include "surfscatter/heightmap/height_map_fft.hpp"
 #include "surfscatter/heightmap/form.hpp"
 #include "surfscatter/heightmap/io.hpp"
 #include "surfscatter/surface/height_map_slope.hpp"
@@ -220,7 +220,7 @@ void write_psd_image(const surface::Psd2d& psd, std::size_t block, const std::st
     for (std::size_t ky = 0; ky < psd.ny; ++ky)
         for (std::size_t kx = 0; kx < psd.half_nx(); ++kx) {
             const double value = psd.values[ky * psd.half_nx() + kx];
-            const long sy = surface::signed_frequency_index(ky, psd.ny), sx = static_cast<long>(kx);
+            const long sy = heightmap::signed_frequency_index(ky, psd.ny), sx = static_cast<long>(kx);
             // The point and its Hermitian mirror (-kx, -ky) have the same PSD.
             for (int mirror = 0; mirror < (psd.multiplicity(kx) > 1.0 ? 2 : 1); ++mirror) {
                 const long x = (mirror ? -sx : sx) + static_cast<long>(psd.nx / 2);

@@ -14,7 +14,7 @@
 #include "../surface/exact_amplitude.hpp"
 #include "surfscatter/bsdf/factory.hpp"
 #include "surfscatter/math/vec.hpp"
-#include "surfscatter/surface/height_map_fft.hpp"
+#include "surfscatter/heightmap/height_map_fft.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
 #include "surfscatter/surface/synthesis.hpp"
 
@@ -33,7 +33,7 @@ struct LatticeReference {
 
     LatticeReference(const heightmap::HeightMap& map, int orders) : n(map.nx()), dx(map.spacing_x()) {
         dzeta = 2.0 * kPi / (static_cast<double>(n) * dx);
-        const auto spectrum = surface::forward_fft_2d(map.heights(), n, n);
+        const auto spectrum = heightmap::forward_fft_2d(map.heights(), n, n);
         const std::size_t half = n / 2 + 1;
         periodogram.assign(n * n, 0.0);
         variance = 0.0;
@@ -64,8 +64,8 @@ struct LatticeReference {
         double sum = 0.0;
         for (std::size_t ky = 0; ky < n; ++ky)
             for (std::size_t kx = 0; kx < n; ++kx) {
-                const double zx = static_cast<double>(surface::signed_frequency_index(kx, n)) * dzeta - k * sin_theta_i;
-                const double zy = static_cast<double>(surface::signed_frequency_index(ky, n)) * dzeta;
+                const double zx = static_cast<double>(heightmap::signed_frequency_index(kx, n)) * dzeta - k * sin_theta_i;
+                const double zy = static_cast<double>(heightmap::signed_frequency_index(ky, n)) * dzeta;
                 if (zx * zx + zy * zy <= k * k) sum += periodogram[ky * n + kx] * dzeta * dzeta;
             }
         return sum;

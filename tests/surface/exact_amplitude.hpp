@@ -10,7 +10,7 @@
 
 #include "surfscatter/math/vec.hpp"
 #include "surfscatter/heightmap/height_map.hpp"
-#include "surfscatter/surface/height_map_fft.hpp"
+#include "surfscatter/heightmap/height_map_fft.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
 
 namespace surfscatter::surface::test {
@@ -26,7 +26,7 @@ inline heightmap::HeightMap exact_amplitude_map(const RadialStatistics& stats, s
     for (std::size_t ky = 0; ky < n; ++ky)
         for (std::size_t kx = 0; kx < half; ++kx) {
             const double zx = static_cast<double>(kx) * dzeta;
-            const double zy = static_cast<double>(signed_frequency_index(ky, n)) * dzeta;
+            const double zy = static_cast<double>(heightmap::signed_frequency_index(ky, n)) * dzeta;
             const double amplitude = std::sqrt(norm * stats.psd(std::hypot(zx, zy)));
             spectrum[ky * half + kx] = std::polar(amplitude, phase(rng));
         }
@@ -38,7 +38,7 @@ inline heightmap::HeightMap exact_amplitude_map(const RadialStatistics& stats, s
             else if (mirror < ky) spectrum[ky * half + kx] = std::conj(spectrum[mirror * half + kx]);
         }
     spectrum[0] = 0.0;
-    std::vector<double> h = inverse_fft_2d(std::move(spectrum), n, n);
+    std::vector<double> h = heightmap::inverse_fft_2d(std::move(spectrum), n, n);
     for (double& v : h) v *= scale / static_cast<double>(n * n);
     return heightmap::HeightMap(n, n, dx, dx, std::move(h), "exact-amplitude map");
 }
@@ -49,9 +49,9 @@ inline std::vector<double> circular_rho(const heightmap::HeightMap& map) {
     double c0 = 0.0;
     for (double v : map.heights()) c0 += v * v;
     c0 /= static_cast<double>(map.size());
-    auto spectrum = forward_fft_2d(map.heights(), n, n);
+    auto spectrum = heightmap::forward_fft_2d(map.heights(), n, n);
     for (auto& c : spectrum) c = std::norm(c);
-    std::vector<double> rho = inverse_fft_2d(std::move(spectrum), n, n);
+    std::vector<double> rho = heightmap::inverse_fft_2d(std::move(spectrum), n, n);
     for (double& v : rho) v /= static_cast<double>(n * n) * static_cast<double>(n * n) * c0;
     return rho;
 }
@@ -62,14 +62,14 @@ inline std::vector<double> circular_rho(const heightmap::HeightMap& map) {
 inline std::vector<std::pair<double, double>> lattice_rings(const std::vector<double>& rho, std::size_t n, double dx, int m) {
     std::vector<double> power(rho.size());
     for (std::size_t i = 0; i < rho.size(); ++i) power[i] = std::pow(rho[i], m);
-    const auto spectrum = forward_fft_2d(power, n, n);
+    const auto spectrum = heightmap::forward_fft_2d(power, n, n);
     const std::size_t half = n / 2 + 1;
     const double dzeta = 2.0 * kPi / (static_cast<double>(n) * dx);
     std::vector<double> sum_z(n / 2, 0.0), sum_v(n / 2, 0.0), count(n / 2, 0.0);
     for (std::size_t ky = 0; ky < n; ++ky)
         for (std::size_t kx = 0; kx < half; ++kx) {
             const double zx = static_cast<double>(kx) * dzeta;
-            const double zy = static_cast<double>(signed_frequency_index(ky, n)) * dzeta;
+            const double zy = static_cast<double>(heightmap::signed_frequency_index(ky, n)) * dzeta;
             const double z = std::hypot(zx, zy);
             const std::size_t ring = static_cast<std::size_t>(std::lround(z / dzeta));
             if (ring == 0 || ring >= n / 2) continue;

@@ -8,7 +8,7 @@
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/math/vec.hpp"
 #include "surfscatter/surface/height_map_acv.hpp"
-#include "surfscatter/surface/height_map_fft.hpp"
+#include "surfscatter/heightmap/height_map_fft.hpp"
 #include "surfscatter/heightmap/form.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
 #include "surfscatter/surface/synthesis.hpp"
@@ -26,16 +26,16 @@ hm::HeightMap anisotropic_surface(std::size_t n, double dx, double lx, double ly
     std::normal_distribution<double> normal(0.0, 1.0);
     std::vector<double> noise(n * n);
     for (double& v : noise) v = normal(engine);
-    auto spectrum = ss::forward_fft_2d(noise, n, n);
+    auto spectrum = hm::forward_fft_2d(noise, n, n);
     const double dzeta = 2.0 * kPi / (static_cast<double>(n) * dx), c = std::cos(angle), s = std::sin(angle);
     for (std::size_t ky = 0; ky < n; ++ky)
         for (std::size_t kx = 0; kx <= n / 2; ++kx) {
             const double zx = static_cast<double>(kx) * dzeta;
-            const double zy = static_cast<double>(ss::signed_frequency_index(ky, n)) * dzeta;
+            const double zy = static_cast<double>(hm::signed_frequency_index(ky, n)) * dzeta;
             const double u = c * zx + s * zy, v = -s * zx + c * zy;
             spectrum[ky * (n / 2 + 1) + kx] *= std::exp(-(u * u * lx * lx + v * v * ly * ly) / 8.0) / static_cast<double>(n);
         }
-    return hm::HeightMap(n, n, dx, dx, ss::inverse_fft_2d(std::move(spectrum), n, n));
+    return hm::HeightMap(n, n, dx, dx, hm::inverse_fft_2d(std::move(spectrum), n, n));
 }
 
 hm::HeightMap with_holes(const hm::HeightMap& map, double fraction, unsigned seed) {

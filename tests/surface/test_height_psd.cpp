@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 
 #include "surfscatter/math/vec.hpp"
-#include "surfscatter/surface/height_map_fft.hpp"
+#include "surfscatter/heightmap/height_map_fft.hpp"
 #include "surfscatter/surface/psd_estimate.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
 #include "surfscatter/surface/synthesis.hpp"
@@ -85,7 +85,7 @@ TEST(HeightPsd, SinusoidEnergyLandsAtItsFrequency) {
         for (std::size_t kx = 0; kx < hann.half_nx(); ++kx) {
             const double e = hann.multiplicity(kx) * hann.values[ky * hann.half_nx() + kx];
             total += e;
-            if (std::abs(static_cast<long>(kx) - 5) <= 2 && std::abs(ss::signed_frequency_index(ky, ny) + 3) <= 2)
+            if (std::abs(static_cast<long>(kx) - 5) <= 2 && std::abs(hm::signed_frequency_index(ky, ny) + 3) <= 2)
                 near += e;
         }
     EXPECT_GT(near / total, 0.999);
@@ -147,7 +147,7 @@ TEST(HeightPsd, MaskedEstimateHasTheUnmaskedMean) {
                 power += w * w;
             }
             ss::Psd2d naive = ss::estimate_psd(map);  // for its grid; values replaced
-            const auto spectrum = ss::forward_fft_2d(weighted, n, n);
+            const auto spectrum = hm::forward_fft_2d(weighted, n, n);
             for (std::size_t i = 0; i < spectrum.size(); ++i)
                 naive.values[i] = std::norm(spectrum[i]) * 0.5 * 0.5 / (4 * kPi * kPi * power);
             const ss::RadialPsd plain = ss::radial_average(naive);

@@ -13,7 +13,7 @@
 #include "surfscatter/core/resources.hpp"
 #include "surfscatter/math/vec.hpp"
 #include "surfscatter/reference/parallel_jobs.hpp"
-#include "surfscatter/surface/fftw_planner.hpp"
+#include "surfscatter/heightmap/fftw_planner.hpp"
 
 namespace surfscatter::reference {
 
@@ -66,7 +66,7 @@ public:
             release();
             fail("cannot allocate the Kirchhoff FFT arrays ({} points)", size_);
         }
-        std::lock_guard<std::mutex> lock(surface::fftw_planner_mutex());
+        std::lock_guard<std::mutex> lock(heightmap::fftw_planner_mutex());
         plan_ = fftw_plan_dft_2d(static_cast<int>(ny), static_cast<int>(nx), in_, out_, FFTW_BACKWARD, FFTW_ESTIMATE);
         if (plan_ == nullptr) {
             release();
@@ -82,7 +82,7 @@ public:
 
 private:
     void release() {
-        std::lock_guard<std::mutex> lock(surface::fftw_planner_mutex());
+        std::lock_guard<std::mutex> lock(heightmap::fftw_planner_mutex());
         if (plan_ != nullptr) fftw_destroy_plan(plan_);
         fftw_free(in_);
         fftw_free(out_);

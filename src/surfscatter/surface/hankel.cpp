@@ -6,7 +6,7 @@
 #include <fftw3.h>
 
 #include "surfscatter/core/error.hpp"
-#include "surfscatter/surface/fftw_planner.hpp"
+#include "surfscatter/heightmap/fftw_planner.hpp"
 #include "surfscatter/math/vec.hpp"
 
 namespace surfscatter::surface {
@@ -56,13 +56,13 @@ FftLogHankel::FftLogHankel(double r_min, double r_max, int n) : n_(n), plans_(st
     }
     std::vector<double> real(n);
     std::vector<fftw_complex> spectrum(half + 1);
-    std::lock_guard lock(fftw_planner_mutex());
+    std::lock_guard lock(heightmap::fftw_planner_mutex());
     plans_->forward = fftw_plan_dft_r2c_1d(n, real.data(), spectrum.data(), FFTW_ESTIMATE | FFTW_UNALIGNED);
     plans_->backward = fftw_plan_dft_c2r_1d(n, spectrum.data(), real.data(), FFTW_ESTIMATE | FFTW_UNALIGNED);
 }
 
 FftLogHankel::~FftLogHankel() {
-    std::lock_guard lock(fftw_planner_mutex());
+    std::lock_guard lock(heightmap::fftw_planner_mutex());
     fftw_destroy_plan(plans_->forward);
     fftw_destroy_plan(plans_->backward);
 }

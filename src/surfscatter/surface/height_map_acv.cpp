@@ -6,7 +6,7 @@
 
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/math/vec.hpp"
-#include "surfscatter/surface/height_map_fft.hpp"
+#include "surfscatter/heightmap/height_map_fft.hpp"
 
 namespace surfscatter::surface {
 
@@ -24,8 +24,8 @@ public:
             masked[i] = flat.valid(i) ? flat.heights()[i] : 0.0;
             mask[i] = flat.valid(i) ? 1.0 : 0.0;
         }
-        products_ = linear_autocorrelation(masked, nx_, ny_);
-        pairs_ = flat.has_invalid() ? linear_autocorrelation(mask, nx_, ny_) : std::vector<double>{};
+        products_ = heightmap::linear_autocorrelation(masked, nx_, ny_);
+        pairs_ = flat.has_invalid() ? heightmap::linear_autocorrelation(mask, nx_, ny_) : std::vector<double>{};
         zero_ = lag(0, 0);
         if (!(zero_ > 0.0)) fail("{}: the map is flat after form removal; it has no ACF", flat.origin());
     }

@@ -7,7 +7,7 @@
 
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/math/vec.hpp"
-#include "surfscatter/surface/height_map_fft.hpp"
+#include "surfscatter/heightmap/height_map_fft.hpp"
 
 namespace surfscatter::surface {
 
@@ -84,19 +84,19 @@ std::vector<double> mirrored_gaussian_convolution(const std::vector<double>& v, 
         for (std::size_t ix = 0; ix < ex; ++ix)
             extended[iy * ex + ix] = v[(iy < ny ? iy : ey - 1 - iy) * nx + (ix < nx ? ix : ex - 1 - ix)];
 
-    auto spectrum = forward_fft_2d(extended, ex, ey);
+    auto spectrum = heightmap::forward_fft_2d(extended, ex, ey);
     const double dzx = 2.0 * kPi / (static_cast<double>(ex) * dx);
     const double dzy = 2.0 * kPi / (static_cast<double>(ey) * dy);
     const std::size_t half = ex / 2 + 1;
     const double norm = 1.0 / static_cast<double>(ex * ey);
     for (std::size_t ky = 0; ky < ey; ++ky) {
-        const double zy = static_cast<double>(signed_frequency_index(ky, ey)) * dzy;
+        const double zy = static_cast<double>(heightmap::signed_frequency_index(ky, ey)) * dzy;
         for (std::size_t kx = 0; kx < half; ++kx) {
             const double zx = static_cast<double>(kx) * dzx;
             spectrum[ky * half + kx] *= norm * std::exp(-0.5 * smoothing_um * smoothing_um * (zx * zx + zy * zy));
         }
     }
-    const std::vector<double> smoothed_extended = inverse_fft_2d(std::move(spectrum), ex, ey);
+    const std::vector<double> smoothed_extended = heightmap::inverse_fft_2d(std::move(spectrum), ex, ey);
     std::vector<double> smoothed(nx * ny);
     for (std::size_t iy = 0; iy < ny; ++iy)
         for (std::size_t ix = 0; ix < nx; ++ix) smoothed[iy * nx + ix] = smoothed_extended[iy * ex + ix];

@@ -6,13 +6,13 @@
 
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/math/vec.hpp"
-#include "surfscatter/surface/height_map_fft.hpp"
+#include "surfscatter/heightmap/height_map_fft.hpp"
 
 namespace surfscatter::surface {
 
 double Psd2d::zeta_x(std::size_t kx) const { return static_cast<double>(kx) * dzeta_x; }
 
-double Psd2d::zeta_y(std::size_t ky) const { return static_cast<double>(signed_frequency_index(ky, ny)) * dzeta_y; }
+double Psd2d::zeta_y(std::size_t ky) const { return static_cast<double>(heightmap::signed_frequency_index(ky, ny)) * dzeta_y; }
 
 double Psd2d::multiplicity(std::size_t kx) const {
     // Columns 0 and (for even nx) nx/2 are their own Hermitian mirror; every other column also stands for -kx.
@@ -87,7 +87,7 @@ std::vector<double> window_autocorrelation(const std::vector<double>& w) {
 
 Psd2d periodogram(const heightmap::HeightMap& flat, Window window) {
     const WindowedMap weighted = windowed(flat, window);
-    const auto spectrum = forward_fft_2d(weighted.values, flat.nx(), flat.ny());
+    const auto spectrum = heightmap::forward_fft_2d(weighted.values, flat.nx(), flat.ny());
     Psd2d psd = empty_psd(flat, window);
     const double scale = flat.spacing_x() * flat.spacing_y() / (4.0 * kPi * kPi * weighted.window_power);
     psd.values.resize(spectrum.size());
@@ -107,8 +107,8 @@ std::vector<double> masked_correlogram(const std::vector<double>& field, const s
     const std::size_t ex = 2 * nx, ey = 2 * ny;
     std::vector<double> weighted(field.size());
     for (std::size_t i = 0; i < field.size(); ++i) weighted[i] = weights[i] * field[i];
-    const std::vector<double> products = linear_autocorrelation(weighted, nx, ny);  // sum (wmg)(wmg)
-    const std::vector<double> pairs = linear_autocorrelation(weights, nx, ny);      // sum (wm)(wm)
+    const std::vector<double> products = heightmap::linear_autocorrelation(weighted, nx, ny);  // sum (wmg)(wmg)
+    const std::vector<double> pairs = heightmap::linear_autocorrelation(weights, nx, ny);      // sum (wm)(wm)
     const std::vector<double> lx = window_autocorrelation(window.wx), ly = window_autocorrelation(window.wy);
     // Lags with pair weight below 1e-12 of the zero lag's (no valid pair; FFT rounding is ~1e-16) contribute 0.
     const double min_pairs = 1e-12 * pairs[0];
@@ -122,7 +122,7 @@ std::vector<double> masked_correlogram(const std::vector<double>& field, const s
             folded[(ty % ny) * nx + tx % nx] += products[lag] / pairs[lag] * lx[tx] * ly[ty] / window.window_power;
         }
     }
-    const auto spectrum = forward_fft_2d(folded, nx, ny);
+    const auto spectrum = heightmap::forward_fft_2d(folded, nx, ny);
     std::vector<double> real(spectrum.size());
     for (std::size_t i = 0; i < spectrum.size(); ++i) real[i] = spectrum[i].real();
     return real;

@@ -13,8 +13,8 @@
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/math/fast_math.hpp"
 #include "surfscatter/math/lagrange.hpp"
-#include "surfscatter/surface/fftw_planner.hpp"
-#include "surfscatter/surface/height_map_fft.hpp"
+#include "surfscatter/heightmap/fftw_planner.hpp"
+#include "surfscatter/heightmap/height_map_fft.hpp"
 
 namespace surfscatter::surface {
 
@@ -121,7 +121,7 @@ struct PlanGuard {
         if (!plan) fail("FFTW could not create a plan");
     }
     ~PlanGuard() {
-        std::lock_guard lock(fftw_planner_mutex());
+        std::lock_guard lock(heightmap::fftw_planner_mutex());
         fftw_destroy_plan(plan);
     }
     PlanGuard(const PlanGuard&) = delete;
@@ -184,7 +184,7 @@ SpectrumLobes2d::SpectrumLobes2d(const Psd2d& spectrum, double g_max) : g_max_(g
     {
         fftw_plan raw;
         {
-            std::lock_guard lock(fftw_planner_mutex());
+            std::lock_guard lock(heightmap::fftw_planner_mutex());
             raw = fftw_plan_dft_c2r_2d(int(fy), int(fx), reinterpret_cast<fftw_complex*>(padded.data()), rho.data(),
                                        FFTW_ESTIMATE);
         }
@@ -236,7 +236,7 @@ SpectrumLobes2d::SpectrumLobes2d(const Psd2d& spectrum, double g_max) : g_max_(g
         {
             fftw_plan raw;
             {
-                std::lock_guard lock(fftw_planner_mutex());
+                std::lock_guard lock(heightmap::fftw_planner_mutex());
                 raw = fftw_plan_dft_r2c_2d(int(wy), int(wx), f.data(), reinterpret_cast<fftw_complex*>(out.data()),
                                            FFTW_ESTIMATE);
             }

@@ -10,7 +10,7 @@
 #include "surfscatter/core/resources.hpp"
 #include "surfscatter/math/quadrature.hpp"
 #include "surfscatter/math/vec.hpp"
-#include "surfscatter/surface/height_map_fft.hpp"
+#include "surfscatter/heightmap/height_map_fft.hpp"
 
 namespace surfscatter::surface {
 
@@ -41,7 +41,7 @@ heightmap::HeightMap synthesize_from_psd(const Psd& psd, const SynthesisGrid& gr
     require_memory(48.0 * static_cast<double>(grid.nx) * static_cast<double>(grid.ny),
                    fmt::format("a {} x {} surface", grid.nx, grid.ny));
     const std::size_t nx = grid.nx, ny = grid.ny, total = nx * ny;
-    auto spectrum = forward_fft_2d(white_noise(total, seed), nx, ny);
+    auto spectrum = heightmap::forward_fft_2d(white_noise(total, seed), nx, ny);
 
     const double dzx = 2.0 * kPi / (static_cast<double>(nx) * grid.spacing_um);
     const double dzy = 2.0 * kPi / (static_cast<double>(ny) * grid.spacing_um);
@@ -49,15 +49,16 @@ heightmap::HeightMap synthesize_from_psd(const Psd& psd, const SynthesisGrid& gr
     const double scale = std::sqrt(dzx * dzy / static_cast<double>(total));
     const std::size_t half = nx / 2 + 1;
     for (std::size_t ky = 0; ky < ny; ++ky) {
-        const double zy = static_cast<double>(signed_frequency_index(ky, ny)) * dzy;
+        const double zy = static_cast<double>(heightmap::signed_frequency_index(ky, ny)) * dzy;
         for (std::size_t kx = 0; kx < half; ++kx) {
             const double zx = static_cast<double>(kx) * dzx;
             const double p = (kx == 0 && ky == 0) ? 0.0 : psd(zx, zy);
             spectrum[ky * half + kx] *= scale * std::sqrt(p);
         }
     }
-    return heightmap::HeightMap(nx, ny, grid.spacing_um, grid.spacing_um, inverse_fft_2d(std::move(spectrum), nx, ny),
-                     "synthesized surface");
+    return heightmap::HeightMap(nx, ny, grid.spacing_um, grid.spacing_um,
+                                heightmap::inverse_fft_2d(std::move(spectrum), nx, ny),
+                                "synthesized surface");
 }
 }  // namespace
 
@@ -88,12 +89,12 @@ std::vector<double> synthesize_profile(const RadialStatistics& statistics, std::
     if (n < 4) fail("profile length must be at least 4 samples, got {}", n);
     heightmap::require_valid_spacing(spacing_um, "profile spacing");
     require_memory(48.0 * static_cast<double>(n), fmt::format("a profile of {} samples", n));
-    auto spectrum = forward_fft_2d(white_noise(n, seed), n, 1);
+    auto spectrum = heightmap::forward_fft_2d(white_noise(n, seed), n, 1);
     const double dz = 2.0 * kPi / (static_cast<double>(n) * spacing_um);
     const double scale = std::sqrt(dz / static_cast<double>(n));  // A_k / N with A_k = sqrt(N P1 dzeta)
     for (std::size_t kx = 0; kx < spectrum.size(); ++kx)
         spectrum[kx] *= kx == 0 ? 0.0 : scale * std::sqrt(profile_psd(statistics, static_cast<double>(kx) * dz));
-    return inverse_fft_2d(std::move(spectrum), n, 1);
+    return heightmap::inverse_fft_2d(std::move(spectrum), n, 1);
 }
 
 }  // namespace surfscatter::surface

@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <vector>
 
-namespace surfscatter::surface {
+namespace surfscatter::heightmap {
 
 std::vector<std::complex<double>> forward_fft_2d(const std::vector<double>& data, std::size_t nx, std::size_t ny);
 
@@ -23,4 +23,4 @@ inline long signed_frequency_index(std::size_t k, std::size_t n) {
     return k <= n / 2 ? static_cast<long>(k) : static_cast<long>(k) - static_cast<long>(n);
 }
 
-}  // namespace surfscatter::surface
+}  // namespace surfscatter::heightmap

@@ -1,11 +1,11 @@
-#include "surfscatter/surface/height_map_fft.hpp"
+#include "surfscatter/heightmap/height_map_fft.hpp"
 
 #include <fftw3.h>
 
 #include "surfscatter/core/error.hpp"
-#include "surfscatter/surface/fftw_planner.hpp"
+#include "surfscatter/heightmap/fftw_planner.hpp"
 
-namespace surfscatter::surface {
+namespace surfscatter::heightmap {
 
 namespace {
 
@@ -63,4 +63,4 @@ std::vector<double> linear_autocorrelation(const std::vector<double>& values, st
     return inverse_fft_2d(std::move(spectrum), ex, ey);
 }
 
-}  // namespace surfscatter::surface
+}  // namespace surfscatter::heightmap

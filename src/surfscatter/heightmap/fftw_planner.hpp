@@ -3,8 +3,8 @@
 // library holds this one mutex while planning or destroying plans.
 #include <mutex>
 
-namespace surfscatter::surface {
+namespace surfscatter::heightmap {
 
 std::mutex& fftw_planner_mutex();
 
-}  // namespace surfscatter::surface
+}  // namespace surfscatter::heightmap
