@@ -1,0 +1,50 @@
+#pragma once
+// Row alignment: a scanning instrument gives each row (x, one scan line) its own height offset, a bright line on the
+// zeta_x = 0 axis of the 2-D spectrum. Offsets: running sums of the median differences between neighbouring rows'
+// common valid points, minus their cubic in y (a tilt or curvature across the rows is form, left for form removal).
+// They also take the surface's own row-mean profile, so `auto` aligns only when the rows' mean steps scatter more
+// than the rows' own roughness explains: R > max(kRowOffsetRatio, the chi^2 quantile at 1 - kRowOffsetFalseAlarm).
+// It assumes no lay along the rows (grooves along x look like offsets: use `none`). Derivation, measured false alarms
+// and accuracy: docs/HEIGHTMAPS.md "Row alignment".
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "surfscatter/heightmap/height_map.hpp"
+
+namespace surfscatter::heightmap {
+
+inline constexpr double kRowOffsetRatio = 4.0;        // R above which `auto` may align (the floor of the threshold)
+inline constexpr double kRowOffsetFalseAlarm = 1e-4;  // P(R > threshold) for a surface without offsets
+inline constexpr double kRowOffsetFalseAlarmZ = 3.719;  // the standard normal's quantile 1 - kRowOffsetFalseAlarm
+inline constexpr std::size_t kMinRowOverlap = 8;      // valid points two rows must share to be compared
+
+// none: the map as it is; median: always aligned; automatic ("auto"): aligned when the offsets are significant.
+enum class RowAlignment { none, median, automatic };
+// "none" | "median" | "auto"; anything else is an Error naming `where` ("--row-alignment", a scene line).
+RowAlignment parse_row_alignment(const std::string& name, const std::string& where);
+std::string to_string(RowAlignment a);
+
+struct RowOffsets {
+    std::vector<double> offset_um;  // per row (ny), the level subtracted from it; 0 on rows with no valid point
+    double rms_um = 0;              // rms of the offsets over the rows with valid points
+    double ratio = 0;               // R above (0 when it could not be taken)
+    double independent_rows = 0;    // nu: the rows' count over their correlation along y
+    double threshold = 0;           // max(kRowOffsetRatio, chi^2_nu / nu quantile at 1 - kRowOffsetFalseAlarm)
+    bool detected = false;          // R > threshold
+    std::size_t unlinked_rows = 0;  // rows with valid points sharing fewer than kMinRowOverlap with every row above
+    std::string reason;             // one line: R, the rows it rests on, and the verdict
+};
+
+// The offsets and their significance. Never fails on a valid map; a map with fewer than 8 comparable rows gets
+// ratio 0, detected false and the reason.
+RowOffsets find_row_offsets(const HeightMap& map);
+
+// The map with its rows aligned: `none` returns it unchanged (found gets an empty offset_um and reason "none");
+// `median` subtracts the offsets; `automatic` subtracts them when detected. `found` gets what find_row_offsets found.
+HeightMap align_rows(const HeightMap& map, RowAlignment how, RowOffsets& found);
+
+// One line: what was found and done ("row offsets rms 0.012 um (R = 37 over 479 rows): aligned").
+std::string describe(const RowOffsets& found, RowAlignment how);
+
+}  // namespace surfscatter::heightmap
