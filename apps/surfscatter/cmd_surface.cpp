@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <functional>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <optional>
 
@@ -105,10 +106,11 @@ void add_map_options(CLI::App* cmd, MapArgs& a) {
 
 // The map prepared (after checking the options): the reader's warnings and the preparation go to stdout, the
 // outliers to stderr as a note (a warning when kept and holding most of the pixel-scale roughness).
-heightmap::PreparedMap read_map(const MapArgs& args) {
+heightmap::PreparedMap read_map(const MapArgs& args, std::optional<heightmap::HeightMap>* as_read = nullptr) {
     if (args.spacing) heightmap::require_valid_spacing(*args.spacing, "--spacing");
     if (args.height_unit) require_positive(*args.height_unit, "--height-unit");
-    heightmap::PreparedMap prepared = read_prepared_map(args.input, args.spacing, args.height_unit, args.preparation);
+    heightmap::PreparedMap prepared =
+        read_prepared_map(args.input, args.spacing, args.height_unit, args.preparation, as_read);
     for (const std::string& warning : prepared.map.source.warnings) std::printf("warning = %s\n", warning.c_str());
     std::printf("preparation = %s\n", heightmap::describe(prepared).c_str());
     return prepared;
@@ -144,8 +146,11 @@ void write_ring_csv(const surface::RadialPsd& r, const char* model_column, const
     if (!out) fail("{}: write error on '{}'", option, path);
 }
 
+void write_preparation_plot(const InfoArgs& args, const heightmap::HeightMap& read, const heightmap::PreparedMap& p);
+
 void info(const InfoArgs& args) {
-    const heightmap::PreparedMap prepared = read_map(args);
+    std::optional<heightmap::HeightMap> read;
+    const heightmap::PreparedMap prepared = read_map(args, args.plot.empty() ? nullptr : &read);
     const heightmap::HeightMap& map = prepared.map;
     const heightmap::HeightMoments moments = heightmap::height_moments(map);
     const surface::AcvMeasures acv = surface::acv_measures(map);
@@ -178,7 +183,10 @@ void info(const InfoArgs& args) {
         std::printf("warning = texture_aspect_ratio %.3g < 0.5: a directional texture (lay along %.1f deg); the "
                     "isotropic scattering models misrepresent this surface\n",
                     acv.texture_aspect_ratio, acv.slowest_direction_deg);
-    if (!args.plot.empty()) write_measured_plot(args, map);
+    if (!args.plot.empty()) {
+        write_measured_plot(args, map);
+        write_preparation_plot(args, *read, prepared);
+    }
 }
 
 // What `--psd measured` uses (map_statistics.hpp), as name = value lines, a CSV of its rings and the PSD plot.
@@ -209,6 +217,28 @@ void write_psd_csv(const surface::SurfaceFit& fit, const std::string& path) {
                    {{"elliptical_fit", elliptical.psd}});
 }
 
+// `values` (height rows of width) as a little-endian float32 .npy array for a plot script.
+void write_npy(const std::vector<double>& values, std::size_t width, std::size_t height, const std::string& path) {
+    std::string header = fmt::format("{{'descr': '<f4', 'fortran_order': False, 'shape': ({}, {}), }}", height, width);
+    header.append(63 - (10 + header.size()) % 64, ' ');
+    header += '\n';
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    if (!out) fail("--plot: cannot open '{}' for writing", path);
+    out.write("\x93NUMPY\x01\x00", 8);
+    const auto header_size = static_cast<std::uint16_t>(header.size());
+    const char size_bytes[2] = {static_cast<char>(header_size & 0xff), static_cast<char>(header_size >> 8)};
+    out.write(size_bytes, 2);
+    out << header;
+    for (double value : values) {
+        const auto word = std::bit_cast<std::uint32_t>(static_cast<float>(value));
+        const char bytes[4] = {static_cast<char>(word & 0xff), static_cast<char>((word >> 8) & 0xff),
+                               static_cast<char>((word >> 16) & 0xff), static_cast<char>(word >> 24)};
+        out.write(bytes, 4);
+    }
+    out.flush();
+    if (!out) fail("--plot: write error on '{}'", path);
+}
+
 // The 2-D PSD over the full zeta-plane, centred (zeta = 0 in the middle), averaged over blocks of
 // `block` x `block` frequencies, as a float32 .npy array [row = zeta_y][column = zeta_x] for the plot script.
 void write_psd_image(const surface::Psd2d& psd, std::size_t block, const std::string& path) {
@@ -226,24 +256,65 @@ void write_psd_image(const surface::Psd2d& psd, std::size_t block, const std::st
                 if (x >= 0 && y >= 0 && bx < width && by < height) sums[by * width + bx] += value;
             }
         }
-    std::string header = fmt::format("{{'descr': '<f4', 'fortran_order': False, 'shape': ({}, {}), }}", height, width);
-    header.append(63 - (10 + header.size()) % 64, ' ');
-    header += '\n';
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    if (!out) fail("--plot: cannot open '{}' for writing", path);
-    out.write("\x93NUMPY\x01\x00", 8);
-    const auto header_size = static_cast<std::uint16_t>(header.size());
-    const char size_bytes[2] = {static_cast<char>(header_size & 0xff), static_cast<char>(header_size >> 8)};
-    out.write(size_bytes, 2);
-    out << header;
     const double norm = 1.0 / static_cast<double>(block * block);
-    for (double sum : sums) {
-        const auto word = std::bit_cast<std::uint32_t>(static_cast<float>(sum * norm));
-        const char bytes[4] = {static_cast<char>(word & 0xff), static_cast<char>((word >> 8) & 0xff),
-                               static_cast<char>((word >> 16) & 0xff), static_cast<char>(word >> 24)};
-        out.write(bytes, 4);
+    for (double& sum : sums) sum *= norm;
+    write_npy(sums, width, height, path);
+}
+
+// The prepared map's heights (um) averaged over blocks of `block` x `block` points (NaN where a block holds no valid
+// point), rows = y, as a float32 .npy array.
+void write_height_image(const heightmap::HeightMap& map, std::size_t block, const std::string& path) {
+    const std::size_t width = map.nx() / block, height = map.ny() / block;
+    std::vector<double> sums(width * height, 0.0), counts(width * height, 0.0);
+    for (std::size_t iy = 0; iy < height * block; ++iy)
+        for (std::size_t ix = 0; ix < width * block; ++ix)
+            if (map.valid(iy * map.nx() + ix)) {
+                sums[(iy / block) * width + ix / block] += map(ix, iy);
+                counts[(iy / block) * width + ix / block] += 1.0;
+            }
+    for (std::size_t i = 0; i < sums.size(); ++i)
+        sums[i] = counts[i] > 0 ? sums[i] / counts[i] : std::numeric_limits<double>::quiet_NaN();
+    write_npy(sums, width, height, path);
+}
+
+// What the preparation did (prepared_map.py): the prepared map, the 2-D PSDs as read and prepared, and their rings
+// with the waviness's, the band and the nesting indices: <plot>_prepared.png.
+void write_preparation_plot(const InfoArgs& args, const heightmap::HeightMap& read, const heightmap::PreparedMap& p) {
+    std::filesystem::path stem = args.plot;
+    stem.replace_extension();
+    const std::string heights = stem.string() + "_prepared_heights.npy", before = stem.string() + "_psd2d_read.npy",
+                      after = stem.string() + "_psd2d_prepared.npy", csv = stem.string() + "_prepared.csv",
+                      png = stem.string() + "_prepared.png";
+    const std::size_t block = std::max<std::size_t>(1, (std::max(read.nx(), read.ny()) + 255) / 256);
+    const surface::Psd2d psd_read = surface::estimate_psd(read, surface::Window::hann, heightmap::Form::none);
+    const surface::Psd2d psd_prepared = surface::estimate_psd(p.map, surface::Window::hann, heightmap::Form::none);
+    write_height_image(p.map, block, heights);
+    write_psd_image(psd_read, block, before);
+    write_psd_image(psd_prepared, block, after);
+    const surface::RadialPsd rings_read = surface::radial_average(psd_read);
+    const surface::RadialPsd rings_prepared = surface::radial_average(psd_prepared);
+    std::vector<double> waviness(rings_read.zeta.size(), 0.0);
+    if (p.waviness) {
+        const surface::RadialPsd w =
+            surface::radial_average(surface::estimate_psd(*p.waviness, surface::Window::hann, heightmap::Form::none));
+        for (std::size_t i = 0; i < std::min(w.psd.size(), waviness.size()); ++i) waviness[i] = w.psd[i];
     }
-    if (!out) fail("--plot: write error on '{}'", path);
+    std::string rows = "zeta,read,prepared,waviness\n";
+    for (std::size_t i = 0; i < std::min(rings_read.zeta.size(), rings_prepared.zeta.size()); ++i)
+        rows += fmt::format("{},{},{},{}\n", format_number(rings_read.zeta[i]), format_number(rings_read.psd[i]),
+                            format_number(rings_prepared.psd[i]), format_number(waviness[i]));
+    write_file_atomically(csv, rows);
+    const double left = psd_image_edge(read.nx(), psd_read.dzeta_x), bottom = psd_image_edge(read.ny(), psd_read.dzeta_y);
+    run_plot_script(
+        "prepared_map.py",
+        {csv, heights, before, after, png,
+         fmt::format("{}: {}", std::filesystem::path(args.input).filename().string(), heightmap::describe(p)),
+         format_number(p.map.width()), format_number(p.map.height()), format_number(left),
+         format_number(left + psd_read.dzeta_x * static_cast<double>(block * (read.nx() / block))), format_number(bottom),
+         format_number(bottom + psd_read.dzeta_y * static_cast<double>(block * (read.ny() / block))),
+         format_number(p.applied.lambda_s_um), format_number(p.applied.lambda_c_um.value_or(0.0)),
+         format_number(surface::nyquist_zeta(p.map))});
+    std::printf("preparation_plot = %s\n", png.c_str());
 }
 
 // zeta at the outer edge of the image's first column (or row): write_psd_image puts signed index -n/2 there.

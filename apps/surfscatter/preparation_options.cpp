@@ -44,10 +44,12 @@ heightmap::Preparation parse_preparation(const PreparationArgs& args) {
 }
 
 heightmap::PreparedMap read_prepared_map(const std::string& path, std::optional<double> spacing_um,
-                                         std::optional<double> height_unit_um, const PreparationArgs& args) {
+                                         std::optional<double> height_unit_um, const PreparationArgs& args,
+                                         std::optional<heightmap::HeightMap>* as_read) {
     const heightmap::Preparation how = parse_preparation(args);
-    heightmap::PreparedMap prepared =
-        heightmap::prepare(heightmap::read_height_map(path, spacing_um, height_unit_um), how);
+    heightmap::HeightMap read = heightmap::read_height_map(path, spacing_um, height_unit_um);
+    heightmap::PreparedMap prepared = heightmap::prepare(read, how);
+    if (as_read) *as_read = std::move(read);
     const heightmap::Outliers& found = prepared.outliers;
     if (found.count > 0)
         std::fprintf(stderr, "surfscatter: %s: %s: %s\n",

@@ -28,7 +28,9 @@ heightmap::Preparation parse_preparation(const PreparationArgs& args);
 
 // read_height_map(path, spacing_um, height_unit_um) prepared as `args` asks, its outliers reported on stderr (a
 // warning when kept ones hold most of the map's pixel-scale roughness).
+// `as_read`, if given, gets the map as read (for pictures of what the preparation did).
 heightmap::PreparedMap read_prepared_map(const std::string& path, std::optional<double> spacing_um,
-                                         std::optional<double> height_unit_um, const PreparationArgs& args);
+                                         std::optional<double> height_unit_um, const PreparationArgs& args,
+                                         std::optional<heightmap::HeightMap>* as_read = nullptr);
 
 }  // namespace surfscatter::cli

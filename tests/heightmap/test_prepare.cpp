@@ -19,6 +19,7 @@
 #include "surfscatter/heightmap/form.hpp"
 #include "surfscatter/heightmap/io.hpp"
 #include "surfscatter/heightmap/gaussian_filter.hpp"
+#include "surfscatter/heightmap/prepare.hpp"
 #include "surfscatter/heightmap/rows.hpp"
 #include "surfscatter/surface/synthesis.hpp"
 
@@ -63,15 +64,16 @@ TEST(Prepare, SynthesisedMapRecoversItsStatistics) {
         }
     const HeightMap measured = surface.with_heights(std::move(h));
 
-    RowOffsets found;
-    const HeightMap aligned = align_rows(measured, RowAlignment::automatic, found);
-    ASSERT_TRUE(found.detected) << found.reason;
-    const HeightMap flat = remove_form(aligned, Form::plane);
-    std::string reason;
-    const double lc = default_lambda_c(flat, &reason);
+    // The one preparation every consumer uses, with its defaults (outliers kept, rows auto, plane, lambda_c auto).
+    const PreparedMap prepared = prepare(measured, Preparation{});
+    const RowOffsets& found = prepared.rows;
+    ASSERT_TRUE(found.detected && prepared.rows_aligned) << found.reason;
+    const std::string& reason = prepared.lambda_c_reason;
+    const double lc = prepared.applied.lambda_c_um.value_or(0.0);
     ASSERT_GT(lc, 0.0) << reason;
-    const Filtered prepared = l_filter(flat, lc);
-    const double stated = sigma_relative_error(prepared.kept);
+    ASSERT_TRUE(prepared.waviness.has_value());
+    EXPECT_FALSE(is_periodic(prepared.map)) << "filtered: the statistics take the Hann window";
+    const double stated = sigma_relative_error(prepared.map);
 
     // Truth. The KC surface's variance kept and removed by the filter: its PSD times the power transmissions over
     // the lattice's band (midpoint rule in zeta up to Nyquist), the sinusoids' exactly, the noise's kept whole (the
@@ -92,7 +94,8 @@ TEST(Prepare, SynthesisedMapRecoversItsStatistics) {
     }
     const double rms_truth = std::sqrt(kept + waves_kept + noise * noise);
     const double waviness_truth = std::sqrt(removed + waves_removed);
-    const double rms = rms_of(prepared.kept), waviness = rms_of(prepared.removed);
+    const double rms = rms_of(prepared.map), waviness = rms_of(*prepared.waviness);
+    EXPECT_NEAR(prepared.waviness_rms_um, waviness, 1e-12);
     RecordProperty("lambda_c_um", std::to_string(lc));
     RecordProperty("prepared_rms_um", std::to_string(rms));
     RecordProperty("truth_rms_um", std::to_string(rms_truth));
@@ -111,6 +114,36 @@ TEST(Prepare, SynthesisedMapRecoversItsStatistics) {
     RecordProperty("row_profile_um", std::to_string(test::rms(profile)));
     EXPECT_LT(std::sqrt(err / double(n)), 1.5 * test::rms(profile)) << found.reason;
     EXPECT_NEAR(found.rms_um, test::rms(expected), 1.5 * test::rms(profile));
+}
+
+// A synthesised periodic map stays periodic through the outliers and the form (judged as read), not through a filter.
+TEST(Prepare, PeriodicityIsJudgedAsRead) {
+    const HeightMap map = synthesize_surface(KCorrelation(0.05, 2.0, 3.0), {256, 256, 0.25}, 3);
+    ASSERT_TRUE(is_periodic(map));
+    Preparation poly2;
+    poly2.form = Form::poly2;
+    poly2.lambda_c_um = 0.0;
+    EXPECT_FALSE(is_periodic(remove_form(map, Form::poly2))) << "the form fitted to it breaks the wrap-around";
+    EXPECT_TRUE(is_periodic(prepare(map, poly2).map));
+    Preparation filtered = poly2;
+    filtered.lambda_c_um = 20.0;
+    EXPECT_FALSE(is_periodic(prepare(map, filtered).map));
+}
+
+TEST(Prepare, NestingIndicesAreParsedOrNamed) {
+    EXPECT_FALSE(parse_lambda_c("auto", "--lambda-c").has_value());
+    EXPECT_EQ(parse_lambda_c("none", "--lambda-c"), 0.0);
+    EXPECT_EQ(parse_lambda_c("25", "--lambda-c"), 25.0);
+    EXPECT_EQ(parse_lambda_s("2.5", "--lambda-s"), 2.5);
+    EXPECT_EQ(parse_lambda_s("none", "--lambda-s"), 0.0);
+    for (const char* bad : {"", "-1", "0", "nan", "inf", "25um", "auto"})
+        EXPECT_EQ(test::error_of([&] { parse_lambda_s(bad, "--lambda-s"); }).find("--lambda-s must be a nesting index"), 0u)
+            << bad;
+    const HeightMap map = synthesize_surface(KCorrelation(0.05, 2.0, 3.0), {64, 64, 0.25}, 3);
+    Preparation crossed;
+    crossed.lambda_s_um = 4.0;
+    crossed.lambda_c_um = 2.0;
+    EXPECT_NE(test::error_of([&] { prepare(map, crossed); }).find("must be longer than lambda_s"), std::string::npos);
 }
 
 // ---------------------------------------------------------------- real instrument files

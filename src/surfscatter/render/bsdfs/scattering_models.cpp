@@ -109,12 +109,14 @@ void read_surface_options(Properties& props, bsdf::ModelOptions& o) {
     if (!outliers.empty()) o.surface.preparation.outliers = heightmap::parse_outlier_policy(outliers, "outliers");
     const std::string rows = props.get_string("row_alignment", "");
     if (!rows.empty()) o.surface.preparation.rows = heightmap::parse_row_alignment(rows, "row_alignment");
-    // Nesting indices: <float> (um) or <string> ("none"; "auto" for lambda_c).
+    // Nesting indices: <float> (um) or <string> ("none"; "auto" for lambda_c; empty: the default).
     const auto nesting_text = [&](const char* name) -> std::optional<std::string> {
         const auto value = props.get_float_or_string(name);
         if (!value) return std::nullopt;
         if (const double* number = std::get_if<double>(&*value)) return fmt::format("{:.17g}", *number);
-        return std::get<std::string>(*value);
+        const std::string& text = std::get<std::string>(*value);
+        if (text.empty()) return std::nullopt;  // a scene's empty default: the library's
+        return text;
     };
     if (const auto lambda_s = nesting_text("lambda_s"))
         o.surface.preparation.lambda_s_um = heightmap::parse_lambda_s(*lambda_s, "lambda_s");
