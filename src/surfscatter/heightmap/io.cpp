@@ -375,7 +375,7 @@ HeightMap read_height_map(const std::filesystem::path& file, std::optional<doubl
     const std::string head = file_head(path, 65536);
 
     std::optional<HeightMap> map;
-    // The native binary formats first: Gwyddion 2.62 lacks them or misdetects them (NMS as Quesant).
+    // The native formats first: Gwyddion 2.62 lacks them, or its modules claim them and fail (NMS, OPDx profiles).
     if (head.compare(0, kGsfMagic.size(), kGsfMagic) == 0) {
         map = read_gsf(file);
     } else if (is_tmd(head)) {

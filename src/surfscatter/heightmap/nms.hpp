@@ -3,7 +3,7 @@
 // format name "OM_MS_2.0" at byte 32, the height range zmin, zmax (float64, um) at byte 16, the data offset and
 // bytes per height (uint32) at byte 1352, nx, ny (uint32) at 1368 and the spacings dx, dy (float64, nm) at 1376;
 // at the data offset nx * ny uint16 heights row by row, zmin + q (zmax - zmin) / 65535, optionally followed by an
-// 8-bit intensity image of the same size. Gwyddion 2.62 misdetects these files as Quesant AFM.
+// 8-bit intensity image of the same size. Gwyddion 2.62's quesant module claims these files and fails on them.
 #include <filesystem>
 #include <string_view>
 

@@ -3,7 +3,8 @@
 // then a tree of named, typed items (containers, integers, doubles, strings, quantities with units, arrays). The
 // item /MetaData/DataKind says what the file holds: "Surface Height" (an areal map: /2D_Data/<channel>/Matrix of
 // float32, Dimension1/2Points and Extent, DataScale) or "Surface Profile" (a stylus line scan: /1D_Data/<channel>/
-// Array of float64, NumPoints, Extent, DataScale). Gwyddion 2.62 misdetects some of these files.
+// Array of float64, NumPoints, Extent from the first point to the last, DataScale). Gwyddion 2.62 reads a profile
+// as a curve and then finds no image channel.
 #include <filesystem>
 #include <string_view>
 #include <variant>
