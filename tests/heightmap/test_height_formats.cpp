@@ -197,6 +197,7 @@ TEST(HeightFormats, NmsSyntheticFileScalesCodesToTheStatedRange) {
         EXPECT_FALSE(map.has_invalid());
         EXPECT_EQ(map.source.reader, "native:nms");
         EXPECT_EQ(map.title, "Confocal Height Image");
+        EXPECT_EQ(map.source.channel, "Confocal Height Image");
     }
 }
 

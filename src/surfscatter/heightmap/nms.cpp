@@ -62,6 +62,7 @@ HeightMap read_nms(const std::filesystem::path& file) {
     HeightMap map(nx, ny, dx_nm * kNmInUm, dy_nm * kNmInUm, std::move(heights), path);
     const std::string_view title = std::string_view(bytes).substr(kTitleAt, kTitleBytes);
     map.title = std::string(parse::trim(title.substr(0, title.find('\0'))));  // "Confocal Height Image"
+    map.source.channel = map.title;  // the file holds an intensity image too
     map.source.format = "NanoFocus NMS (.nms)";
     map.source.reader = "native:nms";
     map.source.height_unit_um = 1.0;
