@@ -441,8 +441,8 @@ TEST(HeightFormats, RealTmdFileAsItsHeaderStates) {
     EXPECT_EQ(map.source.reader, "native:tmd");
 }
 
-// nms-1.nms: 512 x 512 points (SurfaceTopography's test_nms.py), 312.49999 nm apart (160 um: the field of NanoFocus'
-// 100x objective), heights 2.689 to 6.007 um; rms from scripts/height-format-figures: 7.187076315e-01 um (a tilted
+// nms-1.nms: 512 x 512 points (SurfaceTopography's test_nms.py), 312.49999 nm apart (a 160 um confocal field),
+// heights 2.689 to 6.007 um; rms from scripts/height-format-figures: 7.187076315e-01 um (a tilted
 // sample), 3.351440318e-02 um after a plane (7.187076314682e-01 and 3.351440318403e-02 to 13 digits).
 TEST(HeightFormats, RealNmsFileAsItsHeaderStates) {
     const hm::HeightMap map = hm::read_height_map(real_file("nms-1.nms"), std::nullopt);
