@@ -277,6 +277,9 @@ void write_height_image(const heightmap::HeightMap& map, std::size_t block, cons
     write_npy(sums, width, height, path);
 }
 
+// zeta at the outer edge of the image's first column (or row): write_psd_image puts signed index -n/2 there.
+double psd_image_edge(std::size_t n, double dzeta) { return -(static_cast<double>(n / 2) + 0.5) * dzeta; }
+
 // What the preparation did (prepared_map.py): the prepared map, the 2-D PSDs as read and prepared, and their rings
 // with the waviness's, the band and the nesting indices: <plot>_prepared.png.
 void write_preparation_plot(const InfoArgs& args, const heightmap::HeightMap& read, const heightmap::PreparedMap& p) {
@@ -316,9 +319,6 @@ void write_preparation_plot(const InfoArgs& args, const heightmap::HeightMap& re
          format_number(surface::nyquist_zeta(p.map))});
     std::printf("preparation_plot = %s\n", png.c_str());
 }
-
-// zeta at the outer edge of the image's first column (or row): write_psd_image puts signed index -n/2 there.
-double psd_image_edge(std::size_t n, double dzeta) { return -(static_cast<double>(n / 2) + 0.5) * dzeta; }
 
 void write_fit_plot(const FitArgs& args, const heightmap::HeightMap& map, const surface::SurfaceFit& result,
                     const std::string& csv);
