@@ -131,6 +131,8 @@ Filtered l_filter(const HeightMap& map, double lambda_c_um) {
 }
 
 double sigma_relative_error(const HeightMap& map, double lambda_c_um) {
+    if (!(std::isfinite(lambda_c_um) && lambda_c_um >= 0))
+        fail("lambda_c {} um for {}: must be a finite length >= 0 (0: no L-filter)", lambda_c_um, map.origin());
     const std::size_t nx = map.nx(), ny = map.ny();
     double mean = 0;
     for (std::size_t i = 0; i < map.size(); ++i) mean += map.valid(i) ? map.heights()[i] : 0.0;
