@@ -193,6 +193,9 @@ TEST(GaussianFilter, SigmaStandardErrorMatchesTheScatterOverSurfaces) {
     const double mean = sum / double(maps);
     const double scatter = std::sqrt((sum2 / double(maps) - mean * mean) * double(maps) / double(maps - 1)) / mean;
     EXPECT_GT(predicted, 0.05);
+    EXPECT_NE(error_of([] { sigma_relative_error(synthesize_surface(KCorrelation(0.05, 1.0, 3.0), {64, 64, 0.25}, 1),
+                                                 -1.0); }).find("must be a finite length >= 0"),
+              std::string::npos);
     EXPECT_NEAR(scatter / predicted, 1.0, 0.3) << "scatter " << scatter << " predicted " << predicted;
 }
 

@@ -47,27 +47,28 @@ HeightMap lowpass(const HeightMap& map, double lc) {
     const std::size_t ky = std::min(ny - 1, static_cast<std::size_t>(std::ceil(kReach * b / map.spacing_y())));
     // Zero-padded by the reach: the cyclic convolution of size (px, py) is the linear one on the map.
     const std::size_t px = fft_size(nx + kx), py = fft_size(ny + ky);
-    std::vector<double> weighted(px * py, 0.0), mask(px * py, 0.0), kernel(px * py, 0.0);
+    std::vector<double> weighted(px * py, 0.0), mask(px * py, 0.0);
     for (std::size_t iy = 0; iy < ny; ++iy)
         for (std::size_t ix = 0; ix < nx; ++ix)
             if (map.valid(ix, iy)) {
                 weighted[iy * px + ix] = map(ix, iy);
                 mask[iy * px + ix] = 1.0;
             }
-    // s sampled at lags -k .. k along each axis (separable), at index lag mod p.
+    // s sampled at lags -k .. k along each axis, at index lag mod p. It is separable and even, so its 2-D DFT is the
+    // product of the two axes' real 1-D DFTs.
     auto axis = [&](std::size_t reach, std::size_t p, double spacing) {
         std::vector<double> s(p, 0.0);
         for (std::size_t t = 0; t <= reach; ++t) {
             const double x = static_cast<double>(t) * spacing / b;
             s[t] = s[(p - t) % p] = std::exp(-kPi * x * x);
         }
-        return s;
+        return forward_fft_2d(s, p, 1);  // bins 0 .. p/2; bin p - k equals bin k
     };
-    const std::vector<double> sx = axis(kx, px, map.spacing_x()), sy = axis(ky, py, map.spacing_y());
+    const auto sx = axis(kx, px, map.spacing_x()), sy = axis(ky, py, map.spacing_y());
+    const std::size_t half = px / 2 + 1;
+    std::vector<double> sk(half * py);
     for (std::size_t iy = 0; iy < py; ++iy)
-        if (sy[iy] != 0.0)
-            for (std::size_t ix = 0; ix < px; ++ix) kernel[iy * px + ix] = sy[iy] * sx[ix];
-    const auto sk = forward_fft_2d(kernel, px, py);
+        for (std::size_t ix = 0; ix < half; ++ix) sk[iy * half + ix] = sx[ix].real() * sy[std::min(iy, py - iy)].real();
     auto sh = forward_fft_2d(weighted, px, py);
     auto sm = forward_fft_2d(mask, px, py);
     for (std::size_t i = 0; i < sk.size(); ++i) {
@@ -131,6 +132,8 @@ Filtered l_filter(const HeightMap& map, double lambda_c_um) {
 }
 
 double sigma_relative_error(const HeightMap& map, double lambda_c_um) {
+    if (!(std::isfinite(lambda_c_um) && lambda_c_um >= 0))
+        fail("lambda_c {} um for {}: must be a finite length >= 0 (0: no L-filter)", lambda_c_um, map.origin());
     const std::size_t nx = map.nx(), ny = map.ny();
     double mean = 0;
     for (std::size_t i = 0; i < map.size(); ++i) mean += map.valid(i) ? map.heights()[i] : 0.0;

@@ -37,7 +37,7 @@ inline constexpr double kLambdaCSigmaError = 0.10;
 // (2 (35/18)^2) independent samples for its N_k lattice points (the 2-D Hann window correlates each bin with its
 // 5 x 5 neighbours, sum rho^2 = (35/18)^2; measured against the scatter over 48 synthesised maps, within 10 %).
 // With lambda_c > 0 each ring's variance is first multiplied by the L-filter's power transmission
-// (1 - exp(-pi (alpha lambda_c zeta_k / 2 pi)^2))^2.
+// (1 - exp(-pi (alpha lambda_c zeta_k / 2 pi)^2))^2. Error unless lambda_c is finite and >= 0.
 double sigma_relative_error(const HeightMap& map, double lambda_c_um = 0.0);
 
 // The default L-filter nesting index for a form-removed map (um), 0 for none: 0 when the map resolves its spectrum
