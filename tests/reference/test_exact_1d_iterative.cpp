@@ -6,6 +6,7 @@
 #include <complex>
 #include <cstdio>
 #include <random>
+#include <string>
 
 #include "reference_test_util.hpp"
 #include "surfscatter/core/error.hpp"
@@ -76,10 +77,10 @@ TEST(FarInteraction, MatchesDirectSum) {
     EXPECT_THROW(sr::FarInteraction(step, h, dh, k, 5, 1e-10), surfscatter::Error);
 }
 
-// Whole solves: the iterative route equals the dense LU within 1e-6 of the peak intensity at every direction, for
-// the perfect conductor and silver, s and p, at normal and oblique incidence, on a rough cosine profile (rms height
-// 0.15 lambda at 1 um) and on a cut through the supplemental rough surface (KC sigma 0.15 um, L 4 um, gamma 4, at
-// 550 nm: k sigma 1.7).
+// Whole solves: the iterative route equals the dense LU within 1e-6 of the peak intensity at every direction (measured
+// 1e-11 to 8e-10: GMRES stops at a relative residual of 1e-9), for the perfect conductor at normal incidence and
+// silver at 50 deg, s and p, on a rough cosine profile (rms height 0.15 lambda at 1 um, 601 nodes) and on a cut
+// through the supplemental rough surface (KC sigma 0.15 um, L 4 um, gamma 4, at 550 nm: k sigma 1.7; 546 nodes).
 TEST(Exact1dIterative, MatchesDenseLu) {
     const auto cosines = sample_profile(random_cosines(0.15, 1.0, 6.0, 12, 7), 30.0, 0.25);
     const surfscatter::surface::KCorrelation kc(0.15, 4.0, 4.0);
@@ -88,11 +89,11 @@ TEST(Exact1dIterative, MatchesDenseLu) {
         double lambda, g;
     };
     auto kc_options = solver_options(550, 0, sr::Polarisation::s, 8);
-    const auto kc_profile = sr::random_profile(kc, kc_options, 40.0, 11);
-    for (const Case& c : {Case{&cosines, 1000, 10}, Case{&kc_profile, 550, 8}})
+    const auto kc_profile = sr::random_profile(kc, kc_options, 30.0, 11);
+    for (const Case& c : {Case{&cosines, 1000, 10}, Case{&kc_profile, 550, 6}})
         for (const char* metal : {"perfect", "Ag"})
-            for (double theta_i : {0.0, 50.0})
-                for (auto pol : {sr::Polarisation::s, sr::Polarisation::p}) {
+            for (auto pol : {sr::Polarisation::s, sr::Polarisation::p}) {
+                    const double theta_i = std::string(metal) == "perfect" ? 0.0 : 50.0;
                     auto o = solver_options(c.lambda, theta_i, pol, c.g);
                     const auto conductor = sm::Conductor::from_name(metal);
                     o.solver = sr::Exact1dSolver::dense;

@@ -29,22 +29,16 @@ void hankel_orders(double z, int count, std::vector<Complex>& out) {
 }
 
 std::size_t fft_size(std::size_t at_least) {
-    std::size_t best = 1;
-    while (best < at_least) best *= 2;
-    for (std::size_t p3 = 1; p3 < best; p3 *= 3)
-        for (std::size_t p5 = p3; p5 < best; p5 *= 5) {
-            std::size_t v = p5;
-            while (v < at_least) v *= 2;
-            best = std::min(best, v);
-        }
-    return best;
+    std::size_t size = 1;
+    while (size < at_least) size *= 2;
+    return size;
 }
 
 // y += c * a .* b without libgcc's NaN-recovering complex multiply.
 void multiply_add(Complex* y, const Complex* a, const Complex* b, double c, std::size_t n) {
-    auto* yd = reinterpret_cast<double*>(y);
-    const auto* ad = reinterpret_cast<const double*>(a);
-    const auto* bd = reinterpret_cast<const double*>(b);
+    auto* __restrict yd = reinterpret_cast<double*>(y);
+    const auto* __restrict ad = reinterpret_cast<const double*>(a);
+    const auto* __restrict bd = reinterpret_cast<const double*>(b);
     for (std::size_t q = 0; q < n; ++q) {
         yd[2 * q] += c * (ad[2 * q] * bd[2 * q] - ad[2 * q + 1] * bd[2 * q + 1]);
         yd[2 * q + 1] += c * (ad[2 * q] * bd[2 * q + 1] + ad[2 * q + 1] * bd[2 * q]);
@@ -67,20 +61,35 @@ int FarInteraction::terms_needed(double step, std::size_t nodes, double range, d
     std::vector<Complex> h;
     std::vector<double> s_terms(kEstimateTerms), d_terms(kEstimateTerms);
     int needed = 1;
-    for (std::size_t d = near + 1; d < nodes; ++d) {
+    // The terms shrink with the separation (a falls as 1/dx, and |H_m / H_0| with it): every separation within 32
+    // nodes of the band's edge, then steps of 5 %.
+    for (std::size_t d = near + 1; d < nodes; d = std::max(d + 1, std::min(near + 33, d + d / 20))) {
         const double dx = step * static_cast<double>(d);
         if (range >= 0.8 * dx) return 0;
         const double a = k * range * range / (2.0 * dx);
         hankel_orders(k * dx, kEstimateTerms + 1, h);
+        // Terms until they are below tolerance / 100 and falling by 0.64 or more per order (beyond m = k dx they fall
+        // at least as fast as (range / dx)^2 <= 0.64, below it the factorial wins): the rest sums to less than 3
+        // times the last.
         double power = 1.0;  // a^m / m!
+        int count = 0;
+        bool settled = false;
+        const double z = k * dx;
         for (int m = 0; m < kEstimateTerms; ++m) {
             s_terms[m] = power * std::abs(h[m]) / std::abs(h[0]);
             d_terms[m] = power * std::abs(h[m + 1]) / std::abs(h[1]);
             power *= a / (m + 1);
+            count = m + 1;
+            const bool falling = m > 0 && s_terms[m] <= 0.64 * s_terms[m - 1] && d_terms[m] <= 0.64 * d_terms[m - 1];
+            if ((m > z || falling) && s_terms[m] < 1e-2 * tolerance && d_terms[m] < 1e-2 * tolerance) {
+                settled = true;
+                break;
+            }
         }
+        if (!settled) return 0;
         double s_tail = 0.0, d_tail = 0.0;
-        int m = kEstimateTerms;
-        while (m > 1) {  // the smallest count whose tail (terms m .. end) is within the tolerance
+        int m = count;
+        while (m > 1) {  // the smallest count whose tail (terms m .. count - 1) is within the tolerance
             if (s_tail + s_terms[m - 1] > tolerance || d_tail + d_terms[m - 1] > tolerance) break;
             --m;
             s_tail += s_terms[m];
@@ -105,11 +114,12 @@ FarInteraction::FarInteraction(double step, const std::vector<double>& h, const 
              near);
     {
         const std::lock_guard lock(surface::fftw_planner_mutex());
-        std::vector<Complex> buffer(size_);
-        auto* raw = reinterpret_cast<fftw_complex*>(buffer.data());
+        std::vector<Complex> in(size_), out(size_);  // out of place: in place, FFTW_ESTIMATE transposes at 4096
+        auto* raw_in = reinterpret_cast<fftw_complex*>(in.data());
+        auto* raw_out = reinterpret_cast<fftw_complex*>(out.data());
         const int size = static_cast<int>(size_);
-        plans_->forward = fftw_plan_dft_1d(size, raw, raw, FFTW_FORWARD, FFTW_ESTIMATE | FFTW_UNALIGNED);
-        plans_->backward = fftw_plan_dft_1d(size, raw, raw, FFTW_BACKWARD, FFTW_ESTIMATE | FFTW_UNALIGNED);
+        plans_->forward = fftw_plan_dft_1d(size, raw_in, raw_out, FFTW_FORWARD, FFTW_ESTIMATE | FFTW_UNALIGNED);
+        plans_->backward = fftw_plan_dft_1d(size, raw_in, raw_out, FFTW_BACKWARD, FFTW_ESTIMATE | FFTW_UNALIGNED);
     }
     const auto count = static_cast<std::size_t>(terms_);
     single_.assign(count, Eigen::VectorXcd::Zero(static_cast<Eigen::Index>(size_)));
@@ -131,10 +141,13 @@ FarInteraction::FarInteraction(double step, const std::vector<double>& h, const 
             power *= -k / (2.0 * dx) / static_cast<double>(m + 1);
         }
     }
+    Eigen::VectorXcd spectrum(static_cast<Eigen::Index>(size_));
     for (auto* family : {&single_, &odd_, &slope_})
-        for (auto& v : *family)
+        for (auto& v : *family) {
             fftw_execute_dft(plans_->forward, reinterpret_cast<fftw_complex*>(v.data()),
-                             reinterpret_cast<fftw_complex*>(v.data()));
+                             reinterpret_cast<fftw_complex*>(spectrum.data()));
+            v = spectrum;
+        }
 }
 
 FarInteraction::~FarInteraction() = default;
@@ -153,29 +166,32 @@ Eigen::VectorXcd FarInteraction::apply(const Eigen::VectorXcd& v, bool double_la
     else families = {{&single_, 0, false}};
     const int max_power = 2 * (terms_ - 1) + 1;
     const auto size = static_cast<Eigen::Index>(size_);
-    auto fft = [&](fftw_plan plan, Eigen::VectorXcd& x) {
-        fftw_execute_dft(plan, reinterpret_cast<fftw_complex*>(x.data()), reinterpret_cast<fftw_complex*>(x.data()));
+    auto fft = [](fftw_plan plan, const Eigen::VectorXcd& in, Eigen::VectorXcd& out) {
+        fftw_execute_dft(plan, reinterpret_cast<fftw_complex*>(const_cast<Complex*>(in.data())),
+                         reinterpret_cast<fftw_complex*>(out.data()));
     };
-    std::vector<Eigen::VectorXcd> out_spectra(static_cast<std::size_t>(max_power + 1),
-                                              Eigen::VectorXcd::Zero(size));
+    if (out_spectra_.empty()) {
+        out_spectra_.assign(static_cast<std::size_t>(max_power + 1), Eigen::VectorXcd(size));
+        density_.assign(static_cast<std::size_t>(max_power + 1), Eigen::VectorXcd(size));
+        padded_ = Eigen::VectorXcd::Zero(size);
+    }
     std::vector<bool> used(static_cast<std::size_t>(max_power + 1), false);
     for (const Family& family : families) {
         const int top = 2 * (terms_ - 1) + family.offset;
-        std::vector<Eigen::VectorXcd> density(static_cast<std::size_t>(top + 1));  // FFT of h^b w v
-        Eigen::VectorXcd weighted = v;
+        padded_.head(static_cast<Eigen::Index>(n_)) = v;
+        padded_.tail(size - static_cast<Eigen::Index>(n_)).setZero();
         if (family.slope)
-            for (std::size_t j = 0; j < n_; ++j) weighted[static_cast<Eigen::Index>(j)] *= dh_[j];
-        for (int b = 0; b <= top; ++b) {
-            density[b] = Eigen::VectorXcd::Zero(size);
-            density[b].head(static_cast<Eigen::Index>(n_)) = weighted;
-            fft(plans_->forward, density[b]);
-            for (std::size_t j = 0; j < n_; ++j) weighted[static_cast<Eigen::Index>(j)] *= h_[j];
+            for (std::size_t j = 0; j < n_; ++j) padded_[static_cast<Eigen::Index>(j)] *= dh_[j];
+        for (int b = 0; b <= top; ++b) {  // FFT of h^b w v
+            fft(plans_->forward, padded_, density_[b]);
+            for (std::size_t j = 0; j < n_; ++j) padded_[static_cast<Eigen::Index>(j)] *= h_[j];
         }
         for (int m = 0; m < terms_; ++m) {
             const int p = 2 * m + family.offset;
             double c = 1.0;  // C(p, a) (-1)^a
             for (int a = 0; a <= p; ++a) {
-                multiply_add(out_spectra[a].data(), (*family.kernels)[m].data(), density[p - a].data(), c, size_);
+                if (!used[a]) out_spectra_[a].setZero();
+                multiply_add(out_spectra_[a].data(), (*family.kernels)[m].data(), density_[p - a].data(), c, size_);
                 used[a] = true;
                 c *= -static_cast<double>(p - a) / static_cast<double>(a + 1);
             }
@@ -185,8 +201,8 @@ Eigen::VectorXcd FarInteraction::apply(const Eigen::VectorXcd& v, bool double_la
     std::vector<double> power(n_, 1.0 / static_cast<double>(size_));  // h^a / size (FFTW does not normalise)
     for (int a = 0; a <= max_power; ++a) {
         if (used[a]) {
-            fft(plans_->backward, out_spectra[a]);
-            for (std::size_t j = 0; j < n_; ++j) out[static_cast<Eigen::Index>(j)] += power[j] * out_spectra[a][static_cast<Eigen::Index>(j)];
+            fft(plans_->backward, out_spectra_[a], padded_);
+            for (std::size_t j = 0; j < n_; ++j) out[static_cast<Eigen::Index>(j)] += power[j] * padded_[static_cast<Eigen::Index>(j)];
         }
         for (std::size_t j = 0; j < n_; ++j) power[j] *= h_[j];
     }

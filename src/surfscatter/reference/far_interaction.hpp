@@ -45,6 +45,9 @@ private:
     // Kernel spectra: single_[m], odd_[m] (f_m for dz^(2m+1)) and slope_[m] (-f_m dx for h'_j dz^(2m)).
     std::vector<Eigen::VectorXcd> single_, odd_, slope_;
     std::unique_ptr<Plans> plans_;
+    // Workspace of apply, kept between products (a solve applies the operators tens of times).
+    mutable std::vector<Eigen::VectorXcd> density_, out_spectra_;
+    mutable Eigen::VectorXcd padded_;
 };
 
 }  // namespace surfscatter::reference
