@@ -394,7 +394,7 @@ constexpr double kFarTolerance = 1e-10;         // tail of the far series agains
 constexpr int kFarTermsWanted = 10;             // widen the near band until the series needs no more terms
 constexpr double kPreconditionerWavelengths = 1.5;
 constexpr double kGmresTolerance = 1e-9;         // relative residual
-constexpr int kGmresRestart = 80, kGmresMaxIterations = 400;
+constexpr int kGmresRestart = 200, kGmresMaxIterations = 600;
 
 // The near band for the profile's height range, or 0 when none short of the whole matrix keeps the series short.
 std::size_t near_band(const Surface& s, double k, double lambda_um) {
