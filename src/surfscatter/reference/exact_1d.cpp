@@ -454,7 +454,7 @@ std::optional<Densities> solve_iterative_route(const Surface& surface, double k,
     const std::size_t n = surface.n;
     const std::size_t near = near_band(surface, k, lambda_um);
     if (near == 0) {
-        why = "the profile's height range needs the far series over the whole profile";
+        why = fmt::format("no near band short of the whole profile keeps the far series within {} terms", kFarTermsWanted);
         return std::nullopt;
     }
     const FarInteraction far(surface.step, surface.h, surface.dh, k, near, kFarTolerance);
