@@ -393,7 +393,7 @@ Densities solve_dense_route(const Surface& surface, double k, const material::Co
 constexpr double kFarTolerance = 1e-10;         // tail of the far series against its first term, per entry
 constexpr int kFarTermsWanted = 10;             // widen the near band until the series needs no more terms
 constexpr double kPreconditionerWavelengths = 1.5;
-constexpr double kGmresTolerance = 1e-9;         // relative residual
+constexpr double kGmresTolerance = 1e-8;         // relative residual
 constexpr int kGmresRestart = 200, kGmresMaxIterations = 600;
 
 // The near band for the profile's height range, or 0 when none short of the whole matrix keeps the series short.
