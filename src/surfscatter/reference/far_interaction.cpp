@@ -16,7 +16,7 @@ namespace {
 
 using Complex = std::complex<double>;
 constexpr Complex kI{0.0, 1.0};
-// Terms up to this order enter the tail estimate; beyond, they fall at least as (range/|dx|)^2 <= 0.64 per order.
+// Terms up to this order enter the tail estimate; a separation whose terms have not settled by then is refused.
 constexpr int kEstimateTerms = 160;
 
 // H_0 .. H_count-1 (first kind) at real z > 0 by upward recurrence: stable for Y, and J's error stays at rounding
