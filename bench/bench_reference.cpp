@@ -1,5 +1,6 @@
 // The exact 1-D solver: one solve of a KC profile (sigma 0.05 um, L 2 um, gamma 3) at 550 nm, 10 points per
-// wavelength, against profile length, for the perfect conductor (s, p) and silver (s, p); and the statistical mode's
+// wavelength, against profile length, for the perfect conductor (s, p) and silver (s, p), dense LU against the
+// iterative route (and at 100 um on the supplemental rough surface, KC sigma 0.15 um, L 4 um, gamma 4); and the statistical mode's
 // realizations on 1 and 2 threads. The dense solve alone at 1,820 unknowns: Eigen's PartialPivLU against LAPACK's
 // zgetrf/zgetrs (reference/dense_solve.hpp), like with like in one run. The Kirchhoff BRDF of a KC map (sigma 0.1 or 0.5 um, L 2 um, gamma 4, 0.1 um
 // pixels) of 512^2 and 1024^2 points at 550 nm, theta_i 30 deg, gold, 16 sub-areas, on 1 and 2 threads. CPU and wall time are reported separately (docs/PERFORMANCE.md).
@@ -27,13 +28,17 @@ sr::Exact1dOptions bench_options(sr::Polarisation pol) {
     return o;
 }
 
-// range(0): profile length in um (beam width a fifth of it); range(1): 0 perfect s, 1 perfect p, 2 Ag s, 3 Ag p.
+// range(0): profile length in um (beam width a fifth of it); range(1): 0 perfect s, 1 perfect p, 2 Ag s, 3 Ag p;
+// range(2): 0 dense LU, 1 iterative (docs/REFERENCE.md, "Solve"); range(3): 0 the KC profile above, 1 the
+// supplemental rough surface (KC sigma 0.15 um, L 4 um, gamma 4: k sigma 1.7 at 550 nm).
 void BM_Exact1dSolve(benchmark::State& state) {
     const double length = static_cast<double>(state.range(0));
     const int mode = static_cast<int>(state.range(1));
     auto o = bench_options(mode % 2 == 0 ? sr::Polarisation::s : sr::Polarisation::p);
     o.beam_width_um = length / 5;
-    const surfscatter::surface::KCorrelation kc(0.05, 2.0, 3.0);
+    o.solver = state.range(2) == 0 ? sr::Exact1dSolver::dense : sr::Exact1dSolver::iterative;
+    const surfscatter::surface::KCorrelation kc = state.range(3) == 0 ? surfscatter::surface::KCorrelation(0.05, 2.0, 3.0)
+                                                                      : surfscatter::surface::KCorrelation(0.15, 4.0, 4.0);
     const auto profile = sr::random_profile(kc, o, length, 1);
     const auto metal = mode < 2 ? surfscatter::material::Conductor::perfect()
                                 : surfscatter::material::Conductor::from_name("Ag");
@@ -41,7 +46,8 @@ void BM_Exact1dSolve(benchmark::State& state) {
     state.counters["unknowns"] = static_cast<double>(profile.h_um.size());
 }
 BENCHMARK(BM_Exact1dSolve)
-    ->ArgsProduct({{25, 50, 100}, {0, 1, 2, 3}})
+    ->ArgsProduct({{25, 50, 100}, {0, 1, 2, 3}, {0, 1}, {0}})
+    ->ArgsProduct({{100}, {0, 1, 2, 3}, {0, 1}, {1}})
     ->Iterations(2)
     ->Unit(benchmark::kMillisecond)
     ->MeasureProcessCPUTime()

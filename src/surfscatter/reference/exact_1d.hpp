@@ -5,6 +5,7 @@
 // Geometry: light in the x-z plane arriving from negative x, so that theta_o = +theta_i is specular; the beam is
 // centred at x = 0 with its taper width g along x. Time dependence exp(-i omega t).
 #include <complex>
+#include <cstddef>
 #include <vector>
 
 #include "surfscatter/material/conductor.hpp"
@@ -13,6 +14,13 @@
 namespace surfscatter::reference {
 
 enum class Polarisation { s, p };  // s (TE): E along y; p (TM): H along y
+
+// How the boundary system is solved (docs/REFERENCE.md, "Solve"): dense LU; GMRES with an FFT far part and a banded
+// near-field preconditioner (O(N log N) per product); or automatic: iterative from kIterativeFromUnknowns
+// unknowns, dense below and wherever the iterative route declines (a height range its far series cannot span, or
+// no convergence).
+enum class Exact1dSolver { automatic, dense, iterative };
+inline constexpr std::size_t kIterativeFromUnknowns = 500;
 
 struct Exact1dOptions {
     double lambda_nm = 0.0;
@@ -23,6 +31,7 @@ struct Exact1dOptions {
     // A metal's interior kernels are kept within this many decay lengths 1/Im(k N) of each node (their size there is
     // exp(-interior_reach) of the nearest ones): 10..100.
     double interior_reach = 30;
+    Exact1dSolver solver = Exact1dSolver::automatic;
 };
 
 // The scattered far field on the grid theta_o = -90, -89.9, ..., 90 deg: amplitude[j] with |amplitude|^2 the
