@@ -12,6 +12,7 @@
 
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/io/image.hpp"
+#include "surfscatter/render/scene_parameters.hpp"
 #include "surfscatter/study/jobs.hpp"
 #include "surfscatter/study/manifest.hpp"
 #include "surfscatter/study/run_job.hpp"
