@@ -179,3 +179,17 @@ TEST(CliRender, PhotoSetupRendersAHeightMap) {
     EXPECT_EQ(result.exit_code, 2);
     EXPECT_NE(result.err.find("-D form"), std::string::npos) << result.err;
 }
+
+// A study whose surface names a height map that is not there: one line naming the study file and key, exit 2, before
+// any job runs (the scene's own line is what `render -D surface_file=` reports, above).
+TEST(CliStudy, AMissingHeightMapIsOneLineNamingTheStudyKey) {
+    const fs::path study = write("map_study.json", R"({"scene": ")" + std::string(SURFSCATTER_SOURCE_DIR) +
+                                                       R"(/scenes/photo-setup/scene.xml", "views": [1],
+        "models": [{"name": "ggx", "model": "ggx_stats"}], "surfaces": [{"name": "map", "surface_file": "absent.gsf"}],
+        "render": {"spp": 1, "width": 8, "height": 6}})");
+    const auto result = run_cli({"study", study.string(), "-o", (temp_dir() / "map_study").string()});
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_EQ(result.err, "surfscatter: error: " + study.string() + ": surfaces[0].surface_file: file not found: " +
+                              (temp_dir() / "absent.gsf").string() + "\n");
+    EXPECT_FALSE(fs::exists(temp_dir() / "map_study" / "manifest.json"));
+}
