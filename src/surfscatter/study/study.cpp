@@ -232,7 +232,8 @@ Study parse_study(const std::string& text, const std::filesystem::path& base, co
     // A height map that is not there is named with its key here, not when a job reads it.
     const auto check_files = [&](const Parameters& values, const std::string& where) {
         if (const auto it = values.find("surface_file"); it != values.end() && !std::filesystem::is_regular_file(s.resolve(it->second)))
-            throw Error(fmt::format("{}.surface_file: file not found: {}", where, s.resolve(it->second).string()));
+            throw Error(fmt::format("{}.surface_file: file not found: {}", where,
+                                    printable(s.resolve(it->second).string(), kShownPathChars)));
     };
     check_files(s.parameters, origin + ": parameters");
     if (s.render) check_files(s.render->parameters, origin + ": render.parameters");
