@@ -11,6 +11,7 @@
 #include "surfscatter/core/resources.hpp"
 #include "surfscatter/distributed/render.hpp"
 #include "surfscatter/render/integrator.hpp"
+#include "surfscatter/render/scene_parameters.hpp"
 #include "surfscatter/render/xml_loader.hpp"
 
 namespace surfscatter::cli {
@@ -41,7 +42,7 @@ void run(const RenderArgs& args) {
         if (args.seed && *args.seed < 0) fail("--seed must be >= 0, got {}", *args.seed);
         if (output.extension() != ".exr")
             fail("-o must name an .exr file (the .png is written beside it), got {}", printable(output.string()));
-        scene = render::load_scene(args.scene, parse_defines(args.defines));
+        scene = render::load_scene(args.scene, render::implied_scene_parameters(args.scene, parse_defines(args.defines)));
         // The scene's film was checked when it was loaded: what can fail now is the command line's.
         if (args.exposure) {
             scene->film.exposure = *args.exposure;

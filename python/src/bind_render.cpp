@@ -17,6 +17,7 @@
 #include "surfscatter/core/progress.hpp"
 #include "surfscatter/core/resources.hpp"
 #include "surfscatter/render/integrator.hpp"
+#include "surfscatter/render/scene_parameters.hpp"
 #include "surfscatter/render/xml_loader.hpp"
 
 namespace surfscatter::python {
@@ -119,7 +120,7 @@ py::dict render_scene(py::handle scene_path, std::optional<int> spp, py::handle 
     std::unique_ptr<render::Scene> scene;
     {
         py::gil_scoped_release release;
-        scene = render::load_scene(path, defines, nullptr, render::ParameterSyntax::python);
+        scene = render::load_scene(path, render::implied_scene_parameters(path, defines), nullptr, render::ParameterSyntax::python);
     }
     // The scene's film was checked when it was loaded: what can fail now is the caller's overrides.
     if (exposure) {

@@ -82,3 +82,16 @@ def test_ctrl_c_stops_the_render_and_keeps_what_it_has():
 def test_bad_input_raises_error_naming_it(kwargs, message):
     with pytest.raises(ss.Error, match=message):
         ss.render(**kwargs)
+
+
+def test_a_height_map_renders_the_plate_as_the_cli_does(tmp_path):
+    # params surface_file alone makes photo-setup's metal read the map (render/scene_parameters.hpp), as -D does.
+    params = {"width": 24, "height": 18, "model": "ggx_stats", "form": "poly2",
+              "surface_file": str(SOURCE_DIR / "examples" / "data" / "kc_surface.gsf")}
+    exr = tmp_path / "map.exr"
+    run_cli("render", SCENE, *sum((["-D", f"{k}={v}"] for k, v in params.items()), []), "--spp", 1, "--seed", 3,
+            "--quiet", "-o", exr)
+    rgb = ss.render(SCENE, spp=1, params=params, seed=3)["rgb"]
+    np.testing.assert_array_equal(rgb.astype(np.float16).astype(np.float32), ss.read_photo(exr))
+    with pytest.raises(ss.Error, match=r"surface_map\.xml:\d+: file not found: .*absent\.gsf"):
+        ss.render(SCENE, spp=1, params={**params, "surface_file": str(tmp_path / "absent.gsf")})

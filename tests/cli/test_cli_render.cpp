@@ -146,3 +146,50 @@ TEST(CliRender, ProgressIntoAPipeIsOneLine) {
     EXPECT_EQ(result.err.find('\r'), std::string::npos) << result.err;
     EXPECT_NE(result.err.find("render: started\nrender: 100.0% done in"), std::string::npos) << result.err;
 }
+
+// scenes/photo-setup with a height map (issue 33 item 6): -D surface_file alone makes the plate's metal read it (psd
+// measured, the preparation's form and outliers passed through) and the render differs from the scene's KC plate; a
+// map that is not there is one line naming the file and the scene file's line, and a preparation option without a
+// map is an error, exit 2 both.
+TEST(CliRender, PhotoSetupRendersAHeightMap) {
+    const std::string source = SURFSCATTER_SOURCE_DIR;
+    const std::string scene = source + "/scenes/photo-setup/scene.xml", map = source + "/examples/data/kc_surface.gsf";
+    const auto args = [&](std::vector<std::string> defines, const fs::path& out) {
+        std::vector<std::string> a = {"render", scene, "-D", "model=ggx_stats", "-D", "width=24", "-D", "height=18",
+                                      "--spp", "1", "--quiet", "--threads", "1", "-o", out.string()};
+        for (const std::string& d : defines) a.insert(a.end(), {"-D", d});
+        return a;
+    };
+    auto result = run_cli(args({"surface_file=" + map, "form=poly2", "outliers=fill"}, temp_dir() / "map.exr"));
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_NE(result.err.find("surfscatter: render: " + map), std::string::npos) << result.err;  // the map's note
+    result = run_cli(args({}, temp_dir() / "kc.exr"));
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_NE(surfscatter::io::read_image(temp_dir() / "map.exr").pixels,
+              surfscatter::io::read_image(temp_dir() / "kc.exr").pixels);
+
+    const std::string missing = (temp_dir() / "no_such_map.gsf").string();
+    result = run_cli(args({"surface_file=" + missing}, temp_dir() / "x.exr"));
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_EQ(result.err.rfind("surfscatter: error: " + source + "/scenes/photo-setup/surface_map.xml:", 0), 0u) << result.err;
+    EXPECT_NE(result.err.find("file not found: " + missing), std::string::npos) << result.err;
+    EXPECT_EQ(result.err.find('\n'), result.err.size() - 1) << result.err;  // one line
+
+    result = run_cli(args({"form=poly2"}, temp_dir() / "x.exr"));
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_NE(result.err.find("-D form"), std::string::npos) << result.err;
+}
+
+// A study whose surface names a height map that is not there: one line naming the study file and key, exit 2, before
+// any job runs (the scene's own line is what `render -D surface_file=` reports, above).
+TEST(CliStudy, AMissingHeightMapIsOneLineNamingTheStudyKey) {
+    const fs::path study = write("map_study.json", R"({"scene": ")" + std::string(SURFSCATTER_SOURCE_DIR) +
+                                                       R"(/scenes/photo-setup/scene.xml", "views": [1],
+        "models": [{"name": "ggx", "model": "ggx_stats"}], "surfaces": [{"name": "map", "surface_file": "absent.gsf"}],
+        "render": {"spp": 1, "width": 8, "height": 6}})");
+    const auto result = run_cli({"study", study.string(), "-o", (temp_dir() / "map_study").string()});
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_EQ(result.err, "surfscatter: error: " + study.string() + ": surfaces[0].surface_file: file not found: " +
+                              (temp_dir() / "absent.gsf").string() + "\n");
+    EXPECT_FALSE(fs::exists(temp_dir() / "map_study" / "manifest.json"));
+}

@@ -12,6 +12,7 @@
 
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/io/image.hpp"
+#include "surfscatter/render/scene_parameters.hpp"
 #include "surfscatter/study/jobs.hpp"
 #include "surfscatter/study/manifest.hpp"
 #include "surfscatter/study/run_job.hpp"
@@ -246,9 +247,9 @@ TEST(StudyJobs, SheetColumnsFollowThePanelCountAndUncroppedSheetsCropToTheSample
         }
     }
     EXPECT_EQ(sheets, 2);
-    EXPECT_EQ(scene_default(kScene, "sigma"), "0.15");
-    EXPECT_EQ(scene_default(kScene, "no_such_parameter"), "");
-    EXPECT_EQ(scene_default("/no/such/scene.xml", "sigma"), "");
+    EXPECT_EQ(render::scene_default(kScene, "sigma"), "0.15");
+    EXPECT_EQ(render::scene_default(kScene, "no_such_parameter"), "");
+    EXPECT_EQ(render::scene_default("/no/such/scene.xml", "sigma"), "");
 }
 
 TEST(StudyJobs, TablesOnlyWhereSeveralJobsShareThem) {
@@ -310,6 +311,50 @@ TEST(StudyRun, AlbedoOfAnAnisotropicModelOverIncidenceAzimuths) {
     }
     // At 60 deg the albedo along the lay (phi_i 10 + 15 k nearest 20 deg) and across it (110 deg) differ.
     EXPECT_GT(std::abs(lay[1][1] - lay[13][1]), 1e-3);
+}
+
+// A surface from a height map (issue 33 item 6): surface_file and its preparation pass to the shipped scene, which
+// reads the map (scenes/photo-setup/surface_map.xml); the sheet's caption names the map; a map that is not there is an
+// error naming the study key, before any job runs.
+TEST(StudyRun, AHeightMapSurfaceRendersWithTheShippedSceneAndTheCaptionNamesIt) {
+    const fs::path dir = scratch("height_map");
+    const std::string map = std::string(SURFSCATTER_SOURCE_DIR) + "/examples/data/kc_surface.gsf";
+    const auto study = [&](const std::string& file) {
+        return R"({"scene": ")" + kScene + R"(", "views": [1], "parameters": {"material": "Au"},
+        "models": [{"name": "ggx", "label": "GGX", "model": "ggx_stats"}, {"name": "ssa", "model": "ghs_ssa"}],
+        "surfaces": [{"name": "map", "surface_file": ")" + file + R"(", "form": "poly2"}],
+        "render": {"spp": 1, "width": 16, "height": 12}})";
+    };
+    const Study s = parse_study(study(map), dir, "s.json");
+    int renders = 0, sheets = 0;
+    for (const Job& job : expand(s)) {
+        if (job.kind == JobKind::render && job.id == "render/map/view1/ggx") {
+            ++renders;
+            EXPECT_EQ(job.parameters["defines"]["surface_file"], map);
+            EXPECT_EQ(job.parameters["defines"]["form"], "poly2");
+            const nlohmann::json report = run_job(s, job, JobContext{1, false, "testhost"});
+            ASSERT_EQ(report["status"], "done") << report.dump();
+            // The scene read the map (its note names the file) and rendered the plate.
+            bool noted = false;
+            for (const auto& note : report["notes"]) noted = noted || note.get<std::string>().find("kc_surface.gsf") != std::string::npos;
+            EXPECT_TRUE(noted) << report.dump();
+            EXPECT_EQ(io::read_image(dir / "renders/map/view1/ggx.exr").width, 16);
+        } else if (job.kind == JobKind::sheet) {
+            ++sheets;
+            EXPECT_EQ(job.parameters["panels"][0][0], "GGX\nheight map kc_surface.gsf");
+            EXPECT_EQ(job.parameters["panels"][1][0], "ssa\nheight map kc_surface.gsf");
+        }
+    }
+    EXPECT_EQ(renders, 1);
+    EXPECT_EQ(sheets, 1);
+
+    const std::string missing = (dir / "no_such_map.gsf").string();
+    try {
+        parse_study(study(missing), dir, "s.json");
+        ADD_FAILURE() << "a missing map was accepted";
+    } catch (const Error& e) {
+        EXPECT_EQ(std::string(e.what()), "s.json: surfaces[0].surface_file: file not found: " + missing);
+    }
 }
 
 // BRDF jobs run in process: the outputs, the report, the manifest's resume rule.

@@ -18,6 +18,7 @@
 #include "surfscatter/render/camera.hpp"
 #include "surfscatter/render/integrator.hpp"
 #include "surfscatter/render/model_parameters.hpp"
+#include "surfscatter/render/scene_parameters.hpp"
 #include "surfscatter/render/xml_loader.hpp"
 #include "surfscatter/spectrum/color.hpp"
 #include "surfscatter/study/manifest.hpp"
@@ -130,8 +131,8 @@ private:
     }
 
     std::unique_ptr<render::Scene> load(const json& defines_json) {
-        const auto defines = defines_json.get<std::map<std::string, std::string>>();
-        auto scene = render::load_scene(s_.resolve(job_.parameters["scene"].get<std::string>()), defines);
+        const fs::path path = s_.resolve(job_.parameters["scene"].get<std::string>());
+        auto scene = render::load_scene(path, render::implied_scene_parameters(path, defines_json.get<Parameters>()));
         for (const std::string& note : scene->notes) notes_.push_back(note);
         return scene;
     }

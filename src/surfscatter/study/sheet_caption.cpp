@@ -5,24 +5,22 @@
 #include <numbers>
 
 #include <fmt/format.h>
-#include <pugixml.hpp>
+
+#include "surfscatter/render/scene_parameters.hpp"
 
 namespace surfscatter::study {
-
-std::string scene_default(const std::filesystem::path& scene, const std::string& name) {
-    pugi::xml_document document;
-    if (!document.load_file(scene.c_str())) return "";
-    for (const pugi::xml_node node : document.child("scene").children("default"))
-        if (name == node.attribute("name").value()) return node.attribute("value").value();
-    return "";
-}
 
 PanelCaption panel_caption(const Parameters& parameters, const std::filesystem::path& scene) {
     const auto get = [&](const std::string& key) {
         const auto it = parameters.find(key);
-        return it != parameters.end() ? it->second : scene_default(scene, key);
+        return it != parameters.end() ? it->second : render::scene_default(scene, key);
     };
     PanelCaption caption;
+    // A height map gives the surface (render/scene_parameters.hpp); its roughness is known once it is prepared.
+    if (const auto map = parameters.find("surface_file"); map != parameters.end()) {
+        caption.surface = "height map " + std::filesystem::path(map->second).filename().string();
+        return caption;
+    }
     const std::string sigma_text = get("sigma");
     char* end = nullptr;
     const double sigma = std::strtod(sigma_text.c_str(), &end);

@@ -23,12 +23,8 @@ struct PanelCaption {
 inline constexpr double kCaptionWavelengthNm = 550.0;
 
 // `parameters`: the render's scene parameters (model, sigma, ...); `scene`: its scene file, whose top-level
-// <default name="sigma"> gives sigma when the parameters do not.
+// <default name="sigma"> gives sigma when the parameters do not. With a surface_file the caption names the map.
 PanelCaption panel_caption(const Parameters& parameters, const std::filesystem::path& scene);
-
-// The value of a top-level <default name="..." value="..."/> of a scene file; "" when it has none or cannot be read
-// (the render reports that).
-std::string scene_default(const std::filesystem::path& scene, const std::string& name);
 
 // Columns of a sheet of `panels` panels: `requested` if positive, else all in one row up to 4, else rows of at most 4
 // as even as they can be (5 -> 3 + 2, 8 -> 4 + 4, 9 -> 3 x 3).

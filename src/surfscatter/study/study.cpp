@@ -229,6 +229,16 @@ Study parse_study(const std::string& text, const std::filesystem::path& base, co
             if (root.has(key)) root[key].error("is only used by renders: add \"render\" or remove it");
         if (root.has("lamps")) root["lamps"].error("lamps only apply to renders: add \"render\" or remove them");
     }
+    // A height map that is not there is named with its key here, not when a job reads it.
+    const auto check_files = [&](const Parameters& values, const std::string& where) {
+        if (const auto it = values.find("surface_file"); it != values.end() && !std::filesystem::is_regular_file(s.resolve(it->second)))
+            throw Error(fmt::format("{}.surface_file: file not found: {}", where,
+                                    printable(s.resolve(it->second).string(), kShownPathChars)));
+    };
+    check_files(s.parameters, origin + ": parameters");
+    if (s.render) check_files(s.render->parameters, origin + ": render.parameters");
+    for (const std::vector<Variant>* list : {&s.models, &s.surfaces, &s.lamps})
+        for (const Variant& v : *list) check_files(v.parameters, v.origin);
     if (s.slices || s.albedo) {
         if (!root.has("wavelengths")) throw Error(fmt::format("{}: BRDF slices and albedo tables need \"wavelengths\" (nm)", origin));
         s.wavelengths = root["wavelengths"].numbers();
