@@ -43,9 +43,9 @@ struct Wave { double amplitude; int mx, my; };  // A cos(2 pi (mx x / W + my y /
 
 TEST(Prepare, SynthesisedMapRecoversItsStatistics) {
     const std::size_t n = 512;
-    const double spacing = 0.25, width = double(n) * spacing;
+    const double spacing = 1.0, width = double(n) * spacing;
     const double sigma = 0.05, noise = 0.005, offsets_rms = 0.01;
-    const KCorrelation kc(sigma, 0.5, 3.0);
+    const KCorrelation kc(sigma, 2.0, 3.0);
     const HeightMap surface = synthesize_surface(kc, {n, n, spacing}, 77);
     const std::vector<Wave> waves = {{0.2, 1, 1}, {0.1, 2, -1}};
     std::mt19937_64 rng(13);
@@ -58,7 +58,7 @@ TEST(Prepare, SynthesisedMapRecoversItsStatistics) {
     for (std::size_t iy = 0; iy < n; ++iy)
         for (std::size_t ix = 0; ix < n; ++ix) {
             const double x = double(ix) * spacing, y = double(iy) * spacing;
-            double v = offsets[iy] + 0.002 * x + 0.001 * y;
+            double v = offsets[iy] + 0.0005 * x + 0.00025 * y;
             for (const Wave& w : waves) v += w.amplitude * std::cos(2 * kPi * (w.mx * x + w.my * y) / width);
             h[iy * n + ix] += v;
         }

@@ -180,7 +180,7 @@ double sigma_relative_error(const HeightMap& map, double lambda_c_um) {
     return mass > 0 ? 0.5 * std::sqrt(variance) / mass : 0.0;
 }
 
-double default_lambda_c(const HeightMap& map, std::string* reason) {
+double default_lambda_c(const HeightMap& map, std::string* reason, double shortest_um) {
     auto say = [&](std::string text) {
         if (reason) *reason = std::move(text);
     };
@@ -191,7 +191,8 @@ double default_lambda_c(const HeightMap& map, std::string* reason) {
         return 0.0;
     }
     const double spacing = std::max(map.spacing_x(), map.spacing_y());
-    const std::vector<double> series = series_125(kMinNestingPixels * spacing, std::max(map.width(), map.height()));
+    const std::vector<double> series =
+        series_125(std::max(kMinNestingPixels * spacing, shortest_um), std::max(map.width(), map.height()));
     // The longest candidate whose rings, times the filter's power transmission, reach the error starts the search;
     // the filtered map's own error decides (it is the lower of the two on the real files: the Hann window's leakage
     // from the removed periods goes with them): longer ones while it holds, else shorter ones until it does.
@@ -217,8 +218,8 @@ double default_lambda_c(const HeightMap& map, std::string* reason) {
         return series[chosen];
     }
     say(fmt::format("no L-filter: sigma's standard error is {:.2g} % and no nesting index of the 1-2-5 series from {:g} "
-                    "spacings to the map's size brings it to {:g} %", 100 * error, kMinNestingPixels,
-                    100 * kLambdaCSigmaError));
+                    "um to the map's size brings it to {:g} %", 100 * error,
+                    std::max(kMinNestingPixels * spacing, shortest_um), 100 * kLambdaCSigmaError));
     return 0.0;
 }
 

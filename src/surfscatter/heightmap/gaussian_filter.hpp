@@ -45,6 +45,7 @@ double sigma_relative_error(const HeightMap& map, double lambda_c_um = 0.0);
 // the filtered map's sigma has that standard error (the 1-2-5 series of ISO 25178-3 Table 1: 1, 2, 5, 10, 20 ..
 // um), and 0 if none from kMinNestingPixels spacings to the map's longer side does. `reason` (if given) gets one line
 // saying which and why.
-double default_lambda_c(const HeightMap& form_removed_map, std::string* reason);
+// `shortest_um` bounds the nesting indices tried from below (prepare() passes kShortestWavinessUm).
+double default_lambda_c(const HeightMap& form_removed_map, std::string* reason, double shortest_um = 0.0);
 
 }  // namespace surfscatter::heightmap

@@ -82,7 +82,7 @@ PreparedMap prepare(const HeightMap& read, const Preparation& how) {
         p.short_rms_um = rms_of(s.removed);
         map = std::move(s.kept);
     }
-    const double lambda_c = how.lambda_c_um ? *how.lambda_c_um : default_lambda_c(map, &p.lambda_c_reason);
+    const double lambda_c = how.lambda_c_um ? *how.lambda_c_um : default_lambda_c(map, &p.lambda_c_reason, kShortestWavinessUm);
     p.applied.lambda_c_um = lambda_c;
     if (lambda_c > 0) {
         if (how.lambda_s_um > 0 && !(lambda_c > how.lambda_s_um))
@@ -101,7 +101,7 @@ PreparedMap prepare(const HeightMap& read, const Preparation& how) {
 }
 
 std::string describe(const PreparedMap& p) {
-    std::string text = fmt::format("prepared: outliers {} ({} points); rows {}; form {} (removed rms {:.4g} um)",
+    std::string text = fmt::format("prepared: outliers {} ({} points); {}; form {} (removed rms {:.4g} um)",
                                    to_string(p.applied.outliers), p.outliers.count,
                                    describe(p.rows, p.applied.rows), to_string(p.applied.form), p.form_rms_um);
     text += p.applied.lambda_s_um > 0

@@ -32,6 +32,13 @@ double wrap_jump_ratio(const HeightMap& map);
 // periodic map is noise that would break it): a prepared map says what prepare() judged (source.periodic).
 bool is_periodic(const HeightMap& map);
 
+// The shortest period the default L-filter may take for waviness (um): a period Lambda turns light of wavelength
+// lambda by about lambda / Lambda from the specular direction, and at the renderer's longest wavelength (1 um) a
+// period of 100 um or more turns it by at most 0.6 deg, within a lamp's or a camera pixel's angular size: it tilts the
+// surface locally rather than scattering. Shorter periods are the BRDF's own and are never removed by default
+// (docs/HEIGHTMAPS.md "Preparation").
+inline constexpr double kShortestWavinessUm = 100.0;
+
 // The options of a map's preparation, named alike at the CLI (--outliers, --row-alignment, --form, --lambda-s,
 // --lambda-c), in XML and studies (outliers, row_alignment, form, lambda_s, lambda_c) and in Python (outliers,
 // row_alignment, form, lambda_s_um, lambda_c_um).
@@ -40,7 +47,7 @@ struct Preparation {
     RowAlignment rows = RowAlignment::automatic;
     Form form = Form::plane;
     double lambda_s_um = 0;               // S-filter nesting index; 0: none
-    std::optional<double> lambda_c_um;    // L-filter nesting index; unset: default_lambda_c(); 0: none
+    std::optional<double> lambda_c_um;    // L-filter nesting index; unset: default_lambda_c() from 100 um; 0: none
     auto operator<=>(const Preparation&) const = default;
 };
 

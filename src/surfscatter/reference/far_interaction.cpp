@@ -8,7 +8,7 @@
 #include <fftw3.h>
 
 #include "surfscatter/core/error.hpp"
-#include "surfscatter/surface/fftw_planner.hpp"
+#include "surfscatter/heightmap/fftw_planner.hpp"
 
 namespace surfscatter::reference {
 
@@ -50,7 +50,7 @@ void multiply_add(Complex* y, const Complex* a, const Complex* b, double c, std:
 struct FarInteraction::Plans {
     fftw_plan forward = nullptr, backward = nullptr;
     ~Plans() {
-        const std::lock_guard lock(surface::fftw_planner_mutex());
+        const std::lock_guard lock(heightmap::fftw_planner_mutex());
         if (forward) fftw_destroy_plan(forward);
         if (backward) fftw_destroy_plan(backward);
     }
@@ -113,7 +113,7 @@ FarInteraction::FarInteraction(double step, const std::vector<double>& h, const 
         fail("exact-1d: the far-field expansion does not converge for a height range of {} um beyond {} nodes", range,
              near);
     {
-        const std::lock_guard lock(surface::fftw_planner_mutex());
+        const std::lock_guard lock(heightmap::fftw_planner_mutex());
         std::vector<Complex> in(size_), out(size_);  // out of place: in place, FFTW_ESTIMATE transposes at 4096
         auto* raw_in = reinterpret_cast<fftw_complex*>(in.data());
         auto* raw_out = reinterpret_cast<fftw_complex*>(out.data());
