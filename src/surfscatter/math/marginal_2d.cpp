@@ -12,7 +12,7 @@ namespace {
 // Root t in [0, 1] of a0 t + (a1 - a0) t^2 / 2 = target: where the integral of the linear density a0 -> a1 over a
 // unit cell reaches `target`.
 double solve_linear_cdf(double a0, double a1, double target) {
-    if (std::abs(a0 - a1) < 1e-4 * (a0 + a1)) {
+    if (std::abs(a0 - a1) <= 1e-4 * (a0 + a1)) {  // <=: a0 = a1 = 0 too
         const double mean = 0.5 * (a0 + a1);
         return mean > 0 ? std::clamp(target / mean, 0.0, 1.0) : 0.0;
     }
