@@ -123,23 +123,22 @@ RglData export_rgl(const Bsdf& model, const RglExportOptions& o, const std::stri
     if (!(peak > 0)) fail("brdf export: the model's retro-reflection is 0 everywhere at {} nm", o.reference_lambda_nm);
     for (double& v : d.ndf) v = std::max(v, 1e-4 * peak);
     const Marginal2D ndf_raw(d.ndf, nt, np, {}, false);
-    // Projected area of the NDF's own interpolant: Gauss-Legendre per u cell (6 nodes) and 96 x 4 azimuth nodes.
-    const math::GaussLegendreRule rule(6);
+    // Projected area of the NDF's own interpolant: 3-node Gauss-Legendre per u cell, 128 azimuth midpoints (sigma
+    // only shapes the sampling density and cancels from f: the exported f uses the reader's own interpolated sigma).
+    const math::GaussLegendreRule rule(3);
     auto projected = [&](const Vec3& wi) {
+        constexpr int kAzimuths = 128;
         double sum = 0;
         for (std::size_t cell = 0; cell + 1 < nt; ++cell)
             for (std::size_t a = 0; a < rule.nodes.size(); ++a) {
                 const double u = (double(cell) + 0.5 + 0.5 * rule.nodes[a]) / double(nt - 1);
                 const double theta = rgl_u_to_theta(u);
                 double ring = 0;
-                for (int b = 0; b < 96; ++b)
-                    for (std::size_t e = 0; e < 4; ++e) {
-                        const double phi = (b + 0.5 + 0.5 * rule.nodes[e * rule.nodes.size() / 4]) * kTwoPi / 96;
-                        const Vec3 m = spherical_direction(theta, phi);
-                        const double uphi = rgl_phi_to_u(phi > kPi ? phi - kTwoPi : phi);
-                        ring += 0.25 * ndf_raw.eval({u, uphi}) * std::max(0.0, dot(wi, m));
-                    }
-                sum += rule.weights[a] * 0.5 / double(nt - 1) * ring * (kTwoPi / 96) * std::sin(theta) * u * kPi;
+                for (int b = 0; b < kAzimuths; ++b) {
+                    const double uphi = (b + 0.5) / kAzimuths;
+                    ring += ndf_raw.eval({u, uphi}) * std::max(0.0, dot(wi, spherical_direction(theta, rgl_u_to_phi(uphi))));
+                }
+                sum += rule.weights[a] * 0.5 / double(nt - 1) * ring * (kTwoPi / kAzimuths) * std::sin(theta) * u * kPi;
             }
         return sum;
     };
