@@ -1,4 +1,4 @@
-// surfscatter brdf eval | albedo | sample | slice: the scattering models of docs/MODELS.md from the command line.
+// surfscatter brdf eval | albedo | sample | slice | export: the scattering models of docs/MODELS.md from the command line.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -17,9 +17,11 @@
 #include "preparation_options.hpp"
 #include "surfscatter/bsdf/albedo.hpp"
 #include "surfscatter/bsdf/factory.hpp"
+#include "surfscatter/bsdf/rgl_export.hpp"
 #include "surfscatter/bsdf/slice.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/paths.hpp"
+#include "surfscatter/core/resources.hpp"
 
 namespace surfscatter::cli {
 
@@ -44,6 +46,9 @@ struct BrdfArgs {
     // sample
     long long count = 1000;
     long long seed = 1;
+    // export
+    std::string format, output;
+    bsdf::RglExportOptions export_options;
     // slice
     std::vector<std::string> models;
     std::string plot, csv;
@@ -273,7 +278,54 @@ void slice(const BrdfArgs& a) {
     std::printf("wrote %s%s%s\n", csv.c_str(), a.plot.empty() ? "" : " and ", a.plot.c_str());
 }
 
-void add_model_options(CLI::App* cmd, BrdfArgs& a, bool several_thetas) {
+// The surface and material options shared by every brdf subcommand.
+// brdf export: the model tabulated in the RGL measured format (bsdf/rgl_export.hpp) and, if it has a coherent
+// specular part, that part's reflectance beside it (FILE.specular.csv), which the file cannot hold.
+void export_rgl_file(const BrdfArgs& a) {
+    if (a.format != "rgl-spectral" && a.format != "rgl-rgb")
+        fail("--format must be one of rgl-spectral | rgl-rgb, got '{}'", printable(a.format));
+    if (a.output.empty()) fail("-o FILE.bsdf is required");
+    const std::filesystem::path out(a.output);
+    if (!a.surface_file.empty() && std::filesystem::exists(out) &&
+        std::filesystem::equivalent(out, std::filesystem::path(a.surface_file)))
+        fail("-o {} is the input --surface map; choose another output", printable(a.output, kShownPathChars));
+    const auto model = single_model(a);
+    bsdf::RglExportOptions o = a.export_options;
+    o.rgb = a.format == "rgl-rgb";
+    if (model->isotropic() && given(a, "phi_i_count")) fail("--phi-i-count applies to anisotropic surfaces only");
+    if (o.rgb && (given(a, "lambda_step"))) fail("--lambda-step applies to --format rgl-spectral only");
+    const std::string description = fmt::format("surfscatter {} export ({})", model->name(), a.format);
+    const bsdf::RglData data = bsdf::export_rgl(*model, o, description);
+    // The delta part: its reflectance over incidence and wavelength, written only if the model has one.
+    std::vector<double> thetas, lambdas;
+    for (int t = 0; t <= 89; ++t) thetas.push_back(t);
+    for (double l = 360; l <= 830 + 1e-9; l += 10) lambdas.push_back(l);
+    const bsdf::DeltaTable delta = bsdf::delta_table(*model, thetas, lambdas);
+    const double delta_peak = *std::max_element(delta.reflectance.begin(), delta.reflectance.end());
+    bsdf::write_rgl(out, data);
+    std::printf("wrote %s (%zu incidences x %zu azimuths, %zu x %zu samples, %s)\n", a.output.c_str(),
+                data.theta_i.size(), data.phi_i.size(), data.rows, data.cols,
+                o.rgb ? "rgb" : fmt::format("{} wavelengths {}-{} nm", data.wavelengths.size(), data.wavelengths.front(),
+                                            data.wavelengths.back()).c_str());
+    if (delta_peak > 0) {
+        std::string csv = "theta_deg";
+        for (double l : lambdas) csv += fmt::format(",R_{}nm", format_number(l));
+        csv += "\n";
+        for (std::size_t i = 0; i < thetas.size(); ++i) {
+            csv += format_number(thetas[i]);
+            for (std::size_t k = 0; k < lambdas.size(); ++k)
+                csv += "," + format_number(delta.reflectance[i * lambdas.size() + k]);
+            csv += "\n";
+        }
+        const std::string side = a.output + ".specular.csv";
+        write_file_atomically(side, csv);
+        std::printf("wrote %s: the coherent specular (delta) reflectance, up to %s, which the file leaves out "
+                    "(docs/RENDERER.md \"Exporting to Mitsuba 3 and pbrt-v4\")\n",
+                    side.c_str(), format_number(delta_peak).c_str());
+    }
+}
+
+void add_model_options(CLI::App* cmd, BrdfArgs& a) {
     cmd->add_option("--model", a.model, bsdf::choices("model") + " (default ghs; docs/MODELS.md)");
     cmd->add_option("--method", a.method, "GHS lobe: exact (tabulated S_g, default) | refit (paper's KC series)");
     cmd->add_option("--truncation", a.truncation, "refit orders: three_sigma (default) | poisson_mass");
@@ -306,6 +358,11 @@ void add_model_options(CLI::App* cmd, BrdfArgs& a, bool several_thetas) {
     cmd->add_option("--measured-spectrum", a.measured_spectrum,
                     "--psd measured: 2d (default: ghs and ghs_ssa on the map's 2-D spectrum) | ring (its ring "
                     "average, as before); docs/SURFACE.md \"The 2-D measured lobes\"");
+}
+
+// Those and the wavelength and incidence of eval, albedo, sample and slice.
+void add_model_options(CLI::App* cmd, BrdfArgs& a, bool several_thetas) {
+    add_model_options(cmd, a);
     cmd->add_option("--wavelength", a.wavelength, "wavelength (nm)")->required();
     if (several_thetas)
         add_number_list(cmd, "--theta-i", a.theta_i, "incidence angles (deg), comma separated")->required();
@@ -342,6 +399,28 @@ const Command command("brdf", [](CLI::App& app) {
     sample_cmd->callback([a, sample_cmd] {
         a->given = given_options(sample_cmd);
         sample(*a);
+    });
+
+    CLI::App* export_cmd = brdf_cmd->add_subcommand(
+        "export", "the model as an RGL measured BSDF file for Mitsuba 3 / pbrt-v4 `measured` (docs/RENDERER.md)");
+    add_model_options(export_cmd, *a);
+    export_cmd->add_option("--format", a->format, "rgl-spectral (360-1000 nm; Mitsuba 3 and pbrt-v4) | rgl-rgb "
+                                                  "(linear sRGB; Mitsuba 3)")->required();
+    export_cmd->add_option("-o,--output", a->output, "output FILE.bsdf")->required();
+    export_cmd->add_option("--theta-i-count", a->export_options.theta_i_count, "incidences over 0-88 deg (default 16)");
+    export_cmd->add_option("--phi-i-count", a->export_options.phi_i_count,
+                           "anisotropic surfaces: incidence azimuths over 180 deg (default 9)");
+    export_cmd->add_option("--sample-resolution", a->export_options.sample_resolution,
+                           "nodes per side of the spectral table (default 64)");
+    export_cmd->add_option("--ndf-resolution", a->export_options.ndf_resolution,
+                           "nodes per side of the NDF and VNDF tables (default 128)");
+    export_cmd->add_option("--lambda-step", a->export_options.lambda_step_nm,
+                           "rgl-spectral: wavelength step over 360-1000 nm (default 3.2 nm)");
+    export_cmd->add_option("--threads", a->export_options.threads, "worker threads (default 0: all)");
+    export_cmd->callback([a, export_cmd] {
+        a->given = given_options(export_cmd);
+        require_thread_count(a->export_options.threads, "--threads");
+        export_rgl_file(*a);
     });
 
     CLI::App* slice_cmd = brdf_cmd->add_subcommand("slice", "in-plane log-scale slices of several models (CSV + PNG)");

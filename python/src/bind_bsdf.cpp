@@ -1,5 +1,6 @@
 // surfscatter.bsdf(...) -> Bsdf: bsdf/factory.hpp and bsdf/model_options.hpp, with eval/sample/pdf/albedo over
 // numpy arrays on TBB's threads.
+#include <cstring>
 #include <functional>
 #include <map>
 #include <memory>
@@ -12,6 +13,8 @@
 #include "bindings.hpp"
 #include "surfscatter/bsdf/albedo.hpp"
 #include "surfscatter/bsdf/factory.hpp"
+#include "surfscatter/bsdf/rgl_export.hpp"
+#include "surfscatter/bsdf/rgl_measured.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/heightmap/height_map.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
@@ -390,6 +393,64 @@ void bind_bsdf(py::module_& m) {
 
     m.def("bsdf", &make, py::arg("model") = "ghs", py::arg("surface") = py::none(), py::arg("material") = "perfect",
           kBsdfDoc);
+
+    m.def(
+        "export_rgl",
+        [](const PyBsdf& b, const std::string& path, const std::string& format, int theta_i_count, int phi_i_count,
+           int sample_resolution, int ndf_resolution, double lambda_step_nm) {
+            if (format != "rgl-spectral" && format != "rgl-rgb")
+                fail("format must be one of rgl-spectral | rgl-rgb, got '{}'", printable(format));
+            bsdf::RglExportOptions o;
+            o.rgb = format == "rgl-rgb";
+            o.theta_i_count = theta_i_count, o.phi_i_count = phi_i_count;
+            o.sample_resolution = sample_resolution, o.ndf_resolution = ndf_resolution;
+            o.lambda_step_nm = lambda_step_nm;
+            py::gil_scoped_release release;
+            bsdf::write_rgl(path, bsdf::export_rgl(*b.model, o, fmt::format("surfscatter {} export ({})",
+                                                                           b.model->name(), format)));
+        },
+        py::arg("model"), py::arg("path"), py::arg("format") = "rgl-spectral", py::arg("theta_i_count") = 16,
+        py::arg("phi_i_count") = 9, py::arg("sample_resolution") = 64, py::arg("ndf_resolution") = 128,
+        py::arg("lambda_step_nm") = 3.2,
+        "Writes the model's continuous part as an RGL measured BSDF file (Mitsuba 3 / pbrt-v4 `measured`), as "
+        "`surfscatter brdf export`: format 'rgl-spectral' (360-1000 nm) or 'rgl-rgb'; the coherent specular part is "
+        "not in the file (model.delta_reflectance gives it; docs/RENDERER.md).");
+
+    m.def(
+        "read_rgl",
+        [](const std::string& path) {
+            io::TensorFile file = io::read_tensor_file(path);
+            bsdf::rgl_from_tensor(file, path);  // checks the fields as a reader of the format does
+            py::dict out;
+            for (const auto& f : file.fields) {
+                if (f.name == "description") {
+                    out["description"] = py::str(f.bytes);
+                    continue;
+                }
+                std::vector<py::ssize_t> shape(f.shape.begin(), f.shape.end());
+                py::dtype dtype;
+                switch (f.dtype) {
+                    case io::TensorDtype::UInt8: dtype = py::dtype::of<std::uint8_t>(); break;
+                    case io::TensorDtype::UInt32: dtype = py::dtype::of<std::uint32_t>(); break;
+                    case io::TensorDtype::Float32: dtype = py::dtype::of<float>(); break;
+                    default: {
+                        const auto values = f.values();
+                        py::array_t<double> a(shape);
+                        std::copy(values.begin(), values.end(), a.mutable_data());
+                        out[py::str(f.name)] = a;
+                        continue;
+                    }
+                }
+                py::array a(dtype, shape);
+                std::memcpy(a.mutable_data(), f.bytes.data(), f.bytes.size());
+                out[py::str(f.name)] = a;
+            }
+            return out;
+        },
+        py::arg("path"),
+        "The fields of an RGL measured BSDF file (checked as Mitsuba 3's reader checks them) as a dict of numpy "
+        "arrays in the file's dtypes and shapes (theta_i, phi_i in radians; ndf, sigma, vndf, luminance, rgb or "
+        "wavelengths (nm) + spectra, jacobian, valid, version) and 'description' as a str.");
 }
 
 }  // namespace surfscatter::python

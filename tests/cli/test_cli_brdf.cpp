@@ -1,4 +1,4 @@
-// End-to-end tests of `surfscatter brdf eval | albedo | sample | slice` (exit codes, CSV headers, values).
+// End-to-end tests of `surfscatter brdf eval | albedo | sample | slice | export` (exit codes, CSV headers, values).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,7 +9,10 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "cli_runner.hpp"
+#include "surfscatter/bsdf/rgl_measured.hpp"
 
 using surfscatter::test::run_cli;
 
@@ -371,4 +374,41 @@ TEST(CliBrdf, EllipticalSurfaceOptions) {
                               "--gamma", "4", "--corr-length-v", "1", "--material", "Au", "--wavelength", "633",
                               "--theta-i", "40", "--theta-o", "10"});
     EXPECT_EQ(ggx.exit_code, 0) << ggx.err;
+}
+
+// brdf export: a small spectral file of a GHS model, read back with the format's shapes, and its delta part's
+// reflectance beside it; options that do not apply are errors.
+TEST(CliBrdf, ExportWritesAnRglFileAndTheDeltaTable) {
+    const auto dir = std::filesystem::temp_directory_path() / ("cli_export_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const std::string out = (dir / "ghs.bsdf").string();
+    const std::vector<std::string> base = {"brdf", "export", "--model", "ghs", "--sigma", "0.02", "--corr-length", "2",
+                                           "--gamma", "3", "--material", "Au", "--format", "rgl-spectral", "-o", out,
+                                           "--theta-i-count", "3", "--sample-resolution", "6", "--ndf-resolution", "12",
+                                           "--lambda-step", "40"};
+    const auto r = run_cli(base);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const surfscatter::bsdf::RglData d = surfscatter::bsdf::read_rgl(out);
+    EXPECT_EQ(d.theta_i.size(), 3u);
+    EXPECT_EQ(d.wavelengths.front(), 360.0);
+    EXPECT_EQ(d.wavelengths.back(), 1000.0);
+    EXPECT_EQ(d.rows, 6u);
+    // g0 = (4 pi 0.02 / 0.55)^2 = 0.21 at 550 nm: most of the light is in the delta, written beside the file.
+    ASSERT_TRUE(std::filesystem::exists(out + ".specular.csv"));
+    EXPECT_NE(r.out.find("specular.csv"), std::string::npos) << r.out;
+    auto with = [&](std::vector<std::string> extra) {
+        std::vector<std::string> args = base;
+        args.insert(args.end(), extra.begin(), extra.end());
+        return run_cli(args);
+    };
+    const auto aniso_only = with({"--phi-i-count", "5"});
+    EXPECT_EQ(aniso_only.exit_code, 2);
+    EXPECT_NE(aniso_only.err.find("--phi-i-count applies to anisotropic surfaces only"), std::string::npos)
+        << aniso_only.err;
+    auto bad_format = base;
+    bad_format[13] = "exr";
+    const auto bad = run_cli(bad_format);
+    EXPECT_EQ(bad.exit_code, 2);
+    EXPECT_NE(bad.err.find("--format must be one of rgl-spectral | rgl-rgb, got 'exr'"), std::string::npos) << bad.err;
+    std::filesystem::remove_all(dir);
 }

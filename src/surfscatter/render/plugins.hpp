@@ -28,6 +28,7 @@ MaterialPtr blendbsdf(Properties& props);
 MaterialPtr mask(Properties& props);
 MaterialPtr bumpmap(Properties& props);
 MaterialPtr normalmap(Properties& props);
+MaterialPtr measured(Properties& props);  // RGL measured BSDF files (bsdfs/measured.cpp)
 // surfscatter's scattering models (bsdfs/scattering_models.cpp): `type` is ghs, ghs_ssa, ggx_stats or two_scale.
 MaterialPtr scattering_model(Properties& props, const std::string& type);
 

@@ -84,7 +84,7 @@ public:
 [[noreturn]] void unknown_plugin(const Node& node, const std::string& kind, const std::string& type,
                                  const std::string& known) {
     static const std::map<std::string, std::set<std::string>> mitsuba_only = {
-        {"bsdf", {"hair", "measured", "measured_polarized", "pplastic", "principled", "principledthin", "polarizer",
+        {"bsdf", {"hair", "measured_polarized", "pplastic", "principled", "principledthin", "polarizer",
                   "retarder", "circular"}},
         {"texture", {"mesh_attribute", "volume"}}};
     const auto it = mitsuba_only.find(kind);
@@ -683,7 +683,7 @@ private:
             {"plastic", plugins::plastic},         {"roughplastic", plugins::roughplastic},
             {"twosided", plugins::twosided},       {"blendbsdf", plugins::blendbsdf},
             {"mask", plugins::mask},               {"bumpmap", plugins::bumpmap},
-            {"normalmap", plugins::normalmap}};
+            {"normalmap", plugins::normalmap},     {"measured", plugins::measured}};
         const auto it = factories.find(type);
         // A scattering model is built under its canonical name (an old spelling is reported once, here).
         std::optional<bsdf::ModelKind> model;
@@ -691,7 +691,7 @@ private:
         if (!model && it == factories.end())
             unknown_plugin(node, "bsdf", type, "diffuse, conductor, roughconductor, dielectric, thindielectric, "
                                                "roughdielectric, plastic, roughplastic, twosided, blendbsdf, mask, "
-                                               "bumpmap, normalmap, " + bsdf::choices("model"));
+                                               "bumpmap, normalmap, measured, " + bsdf::choices("model"));
         const std::string plugin = model ? bsdf::to_string(*model) : type;
         ElementProperties props(*this, node);
         MaterialPtr material = build(node, "bsdf '" + plugin + "'", [&] {
