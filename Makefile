@@ -1,11 +1,12 @@
 # Two commands do everything on a fresh Debian 12 machine:
-#   make demo   install dependencies, build (Release), run the main job (outputs under out/)
-#   make test   install dependencies, build, run the whole test suite through ctest
+#   make demo   install dependencies, build what the main job runs (library, CLI, Python package; no tests or
+#               benchmarks), run it (outputs under out/)
+#   make test   install dependencies, build everything, run the whole test suite through ctest
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: all deps configure build test test-fast test-sanitize fuzz fuzz-build demo bench clean
+.PHONY: all deps configure build build-demo test test-fast test-sanitize fuzz fuzz-build demo bench clean
 
 all: build
 
@@ -17,6 +18,12 @@ configure: deps
 
 build: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS)
+
+# What the demo runs: the library (linked into both), the surfscatter CLI and the Python package.
+DEMO_TARGETS = surfscatter _surfscatter
+
+build-demo: configure
+	cmake --build $(BUILD_DIR) -j $(JOBS) --target $(DEMO_TARGETS)
 
 # Tests keep their lobe tables in the build tree, never in the user's cache, so a stale cache cannot hide a bug.
 TEST_ENV = SURFSCATTER_CACHE_DIR=$(abspath $(BUILD_DIR))/test-table-cache
@@ -58,7 +65,7 @@ test-sanitize: deps
 	cmake --build $(SANITIZE_BUILD_DIR) -j $(JOBS)
 	cd $(SANITIZE_BUILD_DIR) && $(SANITIZE_ENV) ctest --output-on-failure -j $(JOBS) -LE slow
 
-demo: build
+demo: build-demo
 	scripts/demo $(BUILD_DIR)
 
 bench: build

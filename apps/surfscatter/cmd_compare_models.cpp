@@ -2,6 +2,8 @@
 // every scattering model and laid out as one sheet per view - as a preset of `surfscatter study` (same jobs, MPI,
 // manifest and resume; the study it runs is written to <output>/study.json).
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 
 #include <fmt/format.h>
@@ -21,6 +23,7 @@ namespace {
 struct CompareArgs {
     std::string scene = "scenes/photo-setup/scene.xml";  // relative to the working directory (the repository root)
     std::vector<double> views{1, 2, 3};
+    std::vector<std::string> surfaces{"rough", "smooth"};
     std::vector<std::string> defines;
     int spp = 16;
     int width = 1280;   // the full film; only the crop around --focus is rendered
@@ -51,6 +54,32 @@ std::vector<study::Variant> supplemental_models(double smoothing) {
     };
 }
 
+// The supplemental's two KC surfaces, as photo-setup scene parameters (um): the rough one (the scene's default), where
+// every model but SSA (first order in g) agrees that the plate is matte, and the smooth one, where they differ.
+// "scene" is the scene's own surface with the -D values, one sheet without a surface in its name.
+std::vector<study::Variant> supplemental_surfaces(const std::vector<std::string>& names) {
+    std::vector<study::Variant> surfaces;
+    for (const std::string& name : names) {
+        for (const study::Variant& s : surfaces)
+            if (s.name == name || (s.name.empty() && name == "scene")) fail("--surfaces names {} twice", name);
+        const auto surface = [&](std::string label, std::string sigma, std::string corr_length, std::string gamma) {
+            return study::Variant{name, std::move(label),
+                                  {{"sigma", std::move(sigma)}, {"corr_length", std::move(corr_length)},
+                                   {"gamma", std::move(gamma)}},
+                                  "compare-models --surfaces"};
+        };
+        if (name == "rough") surfaces.push_back(surface("rough KC (sigma 0.15 um, L 4 um, gamma 4)", "0.15", "4", "4"));
+        else if (name == "smooth") surfaces.push_back(surface("smooth KC (sigma 0.02 um, L 2 um, gamma 3)", "0.02", "2", "3"));
+        else if (name == "scene") surfaces.push_back(study::Variant{});
+        else fail("--surfaces: unknown surface '{}' (rough, smooth or scene)", printable(name));
+    }
+    if (surfaces.empty()) fail("--surfaces needs at least one of rough, smooth, scene");
+    if (surfaces.size() > 1)
+        for (const study::Variant& s : surfaces)
+            if (s.name.empty()) fail("--surfaces scene cannot be combined with the named surfaces (one sheet per view)");
+    return surfaces;
+}
+
 study::Study preset(const CompareArgs& args) {
     for (const double v : args.views)
         if (v != 1 && v != 2 && v != 3) fail("--view must be 1, 2 or 3, got {}", v);
@@ -72,7 +101,7 @@ study::Study preset(const CompareArgs& args) {
     s.scene = args.scene;
     for (const double v : args.views) s.views.push_back(fmt::format("{}", v));
     s.models = supplemental_models(args.smoothing);
-    s.surfaces = {study::Variant{}};
+    s.surfaces = supplemental_surfaces(args.surfaces);
     s.lamps = {study::Variant{}};
     study::RenderSettings r;
     r.spp = args.spp;
@@ -81,16 +110,39 @@ study::Study preset(const CompareArgs& args) {
     // Every render gets the -D parameters; each scene must use them (a job whose scene does not fails, naming it).
     r.parameters = parse_defines(args.defines);
     for (const auto& [name, value] : r.parameters) {
-        bool set_by_model = false;
+        bool set_by_model = false, set_by_surface = false;
         for (const study::Variant& model : s.models) set_by_model = set_by_model || model.parameters.count(name);
+        for (const study::Variant& surface : s.surfaces) set_by_surface = set_by_surface || surface.parameters.count(name);
         if (name == "view" || name == "width" || name == "height" || set_by_model)
             fail("-D {}: compare-models sets this parameter itself (see --view, --width, --height, --smoothing)", name);
+        if (set_by_surface)
+            fail("-D {}: --surfaces {} sets this parameter (--surfaces scene takes the scene's surface with -D)", name,
+                 fmt::join(args.surfaces, ","));
     }
     if (args.focus_radius > 0) {
         r.crop = study::Crop{{args.focus[0], args.focus[1], args.focus[2]}, args.focus_radius};
         r.overview = true;
     }
     s.render = r;
+    // GGX (measured) takes alpha from the surface's rms slope, which diverges for a KC gamma <= 3 (the smooth surface's
+    // gamma is 3): its renders would fail, so it is left out of every sheet, and the command says so.
+    // (A -D gamma that is no number is left to the scene, which names it.)
+    std::vector<const study::Parameters*> gammas{&s.render->parameters};
+    for (const study::Variant& surface : s.surfaces) gammas.push_back(&surface.parameters);
+    const auto at_most_3 = [](const std::string& text) {
+        char* end = nullptr;
+        const double value = std::strtod(text.c_str(), &end);
+        return !text.empty() && *end == '\0' && value <= 3.0;
+    };
+    for (const study::Parameters* parameters : gammas)
+        if (const auto g = parameters->find("gamma"); g != parameters->end() && at_most_3(g->second)) {
+            std::erase_if(s.models, [](const study::Variant& m) { return m.name == "ggx_measured"; });
+            std::fprintf(stderr,
+                         "surfscatter: compare-models: GGX (measured) left out: a surface has KC gamma %s <= 3, where "
+                         "the rms slope it takes alpha from diverges (GGX smoothed stands for it)\n",
+                         g->second.c_str());
+            break;
+        }
     return s;
 }
 
@@ -101,7 +153,10 @@ const Command command("compare-models", [](CLI::App& app) {
                           "GHS, GHS and two-scale (50/100/150 lambda), one labelled sheet per view (a study preset)");
     sub->add_option("--scene", args->scene, "Scene with $model, $alpha_from, $smoothing, $cutoff_wavelengths, $view parameters");
     add_number_list(sub, "--view", args->views, "Camera views: 1 (near-normal), 2, 3 (grazing); default 1,2,3");
-    sub->add_option("-D", args->defines, "Extra scene parameter name=value (e.g. sigma=0.2)")->allow_extra_args(false);
+    add_string_list(sub, "--surfaces", args->surfaces,
+                    "Surfaces, one sheet per view each: rough (KC sigma 0.15 um, L 4 um, gamma 4), smooth (sigma 0.02 "
+                    "um, L 2 um, gamma 3), or scene (the scene's, with -D); default rough,smooth");
+    sub->add_option("-D", args->defines, "Extra scene parameter name=value (e.g. material=Au; sigma=0.2 with --surfaces scene)")->allow_extra_args(false);
     sub->add_option("--spp", args->spp, "Samples per pixel");
     sub->add_option("--width", args->width, "Image width");
     sub->add_option("--height", args->height, "Image height");

@@ -7,6 +7,7 @@ import csv
 import sys
 from collections import defaultdict
 
+from plotting import run, save  # this folder: atomic writes, one-line failures
 import matplotlib
 
 matplotlib.use("Agg")
@@ -43,12 +44,12 @@ def main():
     ax.set_ylabel("directional albedo")
     ax.set_xlim(0, 90)
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=7)
+    ax.legend()
     if title:
         ax.set_title(title, fontsize=10)
     fig.tight_layout()
-    fig.savefig(out, dpi=90)
+    save(fig, out, dpi=90)
 
 
 if __name__ == "__main__":
-    main()
+    run(main)

@@ -6,6 +6,7 @@ import csv
 import sys
 from collections import defaultdict
 
+from plotting import run, save  # this folder: atomic writes, one-line failures
 import matplotlib
 
 matplotlib.use("Agg")
@@ -42,12 +43,12 @@ def main():
         ax.set_ylim(peak * 1e-9, peak * 3)  # nine decades below the peak: deeper tails are not visible anyway
         ax.grid(True, which="major", alpha=0.3)
     axes[0][0].set_ylabel("BRDF (1/sr)")
-    axes[0][-1].legend(fontsize=7)
+    axes[0][-1].legend()
     if title:
         fig.suptitle(title, fontsize=10)
     fig.tight_layout()
-    fig.savefig(out, dpi=90)
+    save(fig, out, dpi=90)
 
 
 if __name__ == "__main__":
-    main()
+    run(main)

@@ -7,6 +7,7 @@ import csv
 import math
 import sys
 
+from plotting import run, save  # this folder: atomic writes, one-line failures
 import matplotlib
 
 matplotlib.use("Agg")
@@ -54,12 +55,12 @@ def main():
     right.set_ylim(peak * 1e-8, peak * 3)
     right.set_xlabel("theta_o in the plane of incidence (deg, + = specular side)")
     right.set_ylabel("BRDF (1/sr)")
-    right.legend(fontsize=7)
+    right.legend()
     right.grid(True, alpha=0.3)
     fig.suptitle(f"Kirchhoff on the map: theta_i = {math.degrees(theta_i):g} deg, {title}", fontsize=10)
     fig.tight_layout()
-    fig.savefig(out, dpi=90)
+    save(fig, out, dpi=90)
 
 
 if __name__ == "__main__":
-    main()
+    run(main)

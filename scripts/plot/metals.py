@@ -7,6 +7,7 @@ white-balanced to the lamp (srgb8) and as lit (srgb8_as_lit), see `surfscatter m
 import json
 import sys
 
+from plotting import run, save  # this folder: atomic writes, one-line failures
 import matplotlib
 
 matplotlib.use("Agg")
@@ -29,7 +30,7 @@ def plot_reflectance(csv_path, png_path):
     ax.legend(ncol=2, fontsize=9, loc="lower right")
     ax.set_title("Metals, Lorentz-Drude model (Rakic et al. 1998): R = |(N-1)/(N+1)|$^2$", fontsize=10)
     fig.tight_layout()
-    fig.savefig(png_path, dpi=120)
+    save(fig, png_path, dpi=120)
 
 
 def plot_swatches(json_path, png_path):
@@ -52,7 +53,7 @@ def plot_swatches(json_path, png_path):
     ax.axis("off")
     ax.set_title(f"Specular colour at normal incidence under a {info['illuminant']} lamp (sRGB)", fontsize=10)
     fig.tight_layout()
-    fig.savefig(png_path, dpi=150, facecolor="0.5")
+    save(fig, png_path, dpi=150, facecolor="0.5")
 
 
 def main():
@@ -63,4 +64,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    run(main)

@@ -4,8 +4,10 @@ incoherent part of `surfscatter reference exact-1d`'s statistical mode and its M
 Usage: models_1d.py models.csv models.json out.png [title] [exact.csv]"""
 import csv
 import json
+import re
 import sys
 
+from plotting import PlotError, run, save, wrap  # this folder: atomic writes, one-line failures
 import matplotlib
 
 matplotlib.use("Agg")
@@ -16,6 +18,19 @@ def columns(path):
     with open(path) as f:
         rows = list(csv.DictReader(f))
     return {key: [float(r[key]) for r in rows] for key in rows[0]}
+
+
+def surface_text(meta):
+    """The surface under the title, from the JSON's statistics key: kc(L=2,gamma=3) or gauss(l=2), and sigma_h."""
+    key = meta["surface"]
+    numbers = {name: float(value) for name, value in re.findall(r"(\w+)=([^,)]+)", key)}
+    if key.startswith("kc(") and {"L", "gamma"} <= numbers.keys():
+        shape = f"KC, L {numbers['L']:.4g} um, gamma {numbers['gamma']:.4g}"
+    elif key.startswith("gauss(") and "l" in numbers:
+        shape = f"Gaussian ACV, l {numbers['l']:.4g} um"
+    else:
+        shape = key
+    return f"surface: {shape}, sigma_h {meta['sigma_h_um']:.4g} um"
 
 
 def main():
@@ -30,7 +45,7 @@ def main():
     if exact_path:
         exact = columns(exact_path)
         if exact["theta_o_deg"] != theta:
-            sys.exit(f"models_1d.py: {exact_path} is not on the theta_o grid of {models_path}")
+            raise PlotError(f"{exact_path} is not on the theta_o grid of {models_path}")
         y, e = exact["incoherent_per_rad"], exact["incoherent_stderr_per_rad"]
         ax.fill_between(theta, [max(a - b, 1e-30) for a, b in zip(y, e)], [a + b for a, b in zip(y, e)],
                         color="0.8", label="exact-1d +- standard error")
@@ -50,12 +65,12 @@ def main():
     ax.set_xlabel("theta_o (deg, + = specular side)")
     ax.set_ylabel("incoherent intensity (1/rad)")
     ax.grid(True, which="major", alpha=0.3)
-    ax.legend(fontsize=7)
-    if title:
-        ax.set_title(title, fontsize=9)
+    ax.legend()
+    heading = "\n".join(filter(None, [title, surface_text(meta)]))
+    ax.set_title(wrap(heading, 0.9 * fig.get_figwidth(), 10), fontsize=10)
     fig.tight_layout()
-    fig.savefig(out, dpi=90)
+    save(fig, out, dpi=90)
 
 
 if __name__ == "__main__":
-    main()
+    run(main)

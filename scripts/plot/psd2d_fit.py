@@ -8,6 +8,7 @@ PSD is elongated across it). The ratio is shown after 4 x 4 block means (a singl
 """
 import sys
 
+from plotting import run, save, wrap  # this folder: atomic writes, one-line failures
 import matplotlib
 
 matplotlib.use("Agg")
@@ -59,11 +60,11 @@ def main():
     decorate(axes[2], zeta_min, zeta_max, lay, extent)
     axes[2].set_title("data / fit (4 x 4 bin means)", fontsize=9)
     fig.colorbar(shown, ax=axes[2], label=r"$\log_2$(data / fit)", shrink=0.8)
-    axes[0].legend(loc="upper right", fontsize=7)
-    fig.suptitle(sys.argv[4], fontsize=9)
+    axes[0].legend(loc="upper right")
+    fig.suptitle(wrap(sys.argv[4], 0.95 * fig.get_figwidth(), 10), fontsize=10)
     fig.tight_layout()
-    fig.savefig(sys.argv[3], dpi=110)
+    save(fig, sys.argv[3], dpi=110)
 
 
 if __name__ == "__main__":
-    main()
+    run(main)

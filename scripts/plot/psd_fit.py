@@ -10,6 +10,7 @@ edges (rad/um). A directional texture shows as a streak through the origin, perp
 """
 import sys
 
+from plotting import run, save, wrap  # this folder: atomic writes, one-line failures
 import matplotlib
 
 matplotlib.use("Agg")
@@ -38,9 +39,9 @@ def radial_panels(fig, spec, data, title):
     ax.text(3.0 * ring_width, ax.get_ylim()[0], " periods > map / 3", fontsize=7, color="0.4", va="bottom")
     ax.set_ylabel(r"$P(\zeta)$ [$\mu$m$^4$]")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(loc="lower left")
+    ax.legend(loc="upper right")  # the PSD falls to the right: its upper right is empty
     if title:
-        ax.set_title(title, fontsize=9)
+        ax.set_title(wrap(title, 0.9 * fig.get_figwidth() / spec.get_geometry()[1], 9), fontsize=9)
     ratio = psd / fit
     ax_res.semilogx(zeta[~band], ratio[~band], ".", color="0.6", ms=3)
     ax_res.semilogx(zeta[band], ratio[band], ".", color="C0", ms=3)
@@ -77,8 +78,8 @@ def main():
     if with_image:
         image_panel(fig, spec, np.load(sys.argv[4]), [float(v) for v in sys.argv[5:9]])
     fig.tight_layout()
-    fig.savefig(sys.argv[2], dpi=120)
+    save(fig, sys.argv[2], dpi=120)
 
 
 if __name__ == "__main__":
-    main()
+    run(main)

@@ -8,6 +8,7 @@ fitted power law L m^-x.
 """
 import sys
 
+from plotting import run, save  # this folder: atomic writes, one-line failures
 import matplotlib
 
 matplotlib.use("Agg")
@@ -31,7 +32,7 @@ def main():
     ax.set_xlabel(r"$\zeta$ [rad/$\mu$m]")
     ax.set_ylabel(r"$\hat P^{*m}(\zeta)$ [$\mu$m$^2$]  (solid: exact, dashed: KC refit)")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(loc="lower left", fontsize=8)
+    ax.legend(loc="lower left")
     positive = np.concatenate([curves[f"true_{m}"] for m in orders])
     positive = positive[positive > 0]
     ax.set_ylim(max(positive.min(), positive.max() * 1e-14), positive.max() * 3)
@@ -49,10 +50,10 @@ def main():
     inset.set_ylabel(r"$L_m$ [$\mu$m]", fontsize=8)
     inset.yaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
     inset.tick_params(labelsize=7)
-    inset.legend(fontsize=7)
+    inset.legend()
     fig.tight_layout()
-    fig.savefig(sys.argv[3], dpi=150)
+    save(fig, sys.argv[3], dpi=150)
 
 
 if __name__ == "__main__":
-    main()
+    run(main)

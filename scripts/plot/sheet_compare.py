@@ -14,6 +14,7 @@ differ, differ nearly everywhere, or there is one such panel.
 import os
 import sys
 
+from plotting import run, save  # this folder: atomic writes, one-line failures
 import matplotlib
 
 matplotlib.use("Agg")
@@ -106,8 +107,8 @@ def main(argv):
                     fontweight="bold" if warning else "normal")
     fig.suptitle(title, fontsize=11)
     fig.tight_layout()
-    fig.savefig(output, dpi=110)
+    save(fig, output, dpi=110)
 
 
 if __name__ == "__main__":
-    main(sys.argv)
+    run(main, sys.argv)

@@ -7,6 +7,7 @@ import json
 import math
 import sys
 
+from plotting import run, save  # this folder: atomic writes, one-line failures
 import matplotlib
 
 matplotlib.use("Agg")
@@ -37,7 +38,7 @@ def slices(report, out):
         ax.set_xlim(-90, 90)
         ax.set_title(f"{case['wavelength_nm']:g} nm, {case['theta_i_deg']:g} deg, {case['polarisation']}", fontsize=8)
         ax.tick_params(labelsize=7)
-        ax.legend(fontsize=6)
+        ax.legend()
     finish_slices(fig, axes, len(cases), "theta_o (deg)", "incoherent intensity (1/rad)", report, out)
 
 
@@ -45,11 +46,11 @@ def finish_slices(fig, axes, panels, xlabel, ylabel, report, out):
     """Blank unused panels, labels, the title and the file of a slices figure (this script's and validity_map.py's)."""
     for ax in list(axes.flat)[panels:]:
         ax.axis("off")
-    fig.supxlabel(xlabel, fontsize=8)
-    fig.supylabel(ylabel, fontsize=8)
-    fig.suptitle(f"{report['surface']}, {report['material']}", fontsize=9)
-    fig.tight_layout()
-    fig.savefig(out, dpi=80)
+    fig.supxlabel(xlabel, fontsize=9)
+    fig.supylabel(ylabel, fontsize=9)
+    fig.suptitle(f"{report['surface']}, {report['material']}", fontsize=10)
+    fig.tight_layout(rect=(0.02, 0.03, 1, 1))  # room for the figure's axis labels beside the panels' ticks
+    save(fig, out, dpi=80)
 
 
 def error_map(report, out):
@@ -86,14 +87,16 @@ def error_map(report, out):
 
 def finish_error_map(fig, axes, image, xlabel, colour_label, out):
     """Labels, the colour bar and the file of an error map (this script's and validity_map.py's)."""
-    fig.supxlabel(xlabel, fontsize=8)
-    fig.supylabel("theta_i (deg, rows)", fontsize=8)
-    fig.tight_layout()
-    fig.colorbar(image, ax=axes, shrink=0.8, label=colour_label)
-    fig.savefig(out, dpi=80)
+    fig.supxlabel(xlabel, fontsize=9)
+    fig.supylabel("theta_i (deg, rows)", fontsize=9)
+    fig.tight_layout(rect=(0.02, 0.03, 1, 1))  # room for the figure's axis labels beside the panels' ticks
+    # Clipped at 50 % (an arrow: larger errors are drawn black); white bins are those the comparison did not use.
+    bar = fig.colorbar(image, ax=axes, shrink=0.8, extend="max")
+    bar.set_label(f"{colour_label}, |model - exact| / exact\n(black: 50 % or more; white: bin not compared)", fontsize=9)
+    save(fig, out, dpi=80)
 
 
-def run(slices_plot, error_map_plot):
+def plot_report(slices_plot, error_map_plot):
     """Usage: script OUT.json slices.png error_map.png"""
     report = json.load(open(sys.argv[1]))
     slices_plot(report, sys.argv[2])
@@ -101,4 +104,4 @@ def run(slices_plot, error_map_plot):
 
 
 if __name__ == "__main__":
-    run(slices, error_map)
+    run(plot_report, slices, error_map)

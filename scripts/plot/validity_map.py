@@ -7,12 +7,13 @@ one panel per model and (wavelength, phi_i).
 Usage: validity_map.py OUT.json slices.png error_map.png"""
 import math
 
+from plotting import run  # this folder: one-line failures
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from validity import finish_error_map, finish_slices, positive, run  # noqa: E402  (the profiles route's plots, same directory)
+from validity import finish_error_map, finish_slices, plot_report, positive  # noqa: E402  (the profiles route's plots, same directory)
 
 RING_DEG = 5.0
 
@@ -53,7 +54,7 @@ def slices(report, out):
         ax.set_title(f"{case['wavelength_nm']:g} nm, theta_i {case['theta_i_deg']:g}, phi_i {case['phi_i_deg']:g}"
                      f" deg: {valid}", fontsize=7)
         ax.tick_params(labelsize=7)
-        ax.legend(fontsize=5)
+        ax.legend()
     finish_slices(fig, axes, len(cases), "theta_o in the plane of incidence (deg, specular side positive)",
                   "diffuse BRDF (1/sr)", report, out)
 
@@ -94,4 +95,4 @@ def error_map(report, out):
 
 
 if __name__ == "__main__":
-    run(slices, error_map)
+    run(plot_report, slices, error_map)

@@ -1,5 +1,6 @@
 #include "surfscatter/core/paths.hpp"
 
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -84,6 +85,12 @@ std::filesystem::path plot_script_directory() {
 void run_plot_script(const std::string& script, const std::vector<std::string>& args) {
     const auto path = plot_script_directory() / script;
     if (!std::filesystem::exists(path)) fail("plot script not found: {}", path.string());
+    // The script's stderr goes to a file: on failure its last line (scripts/plot/plotting.py makes it the one line
+    // naming the output and the reason) becomes the Error's message, instead of reaching the terminal raw.
+    std::string log = (std::filesystem::temp_directory_path() / "surfscatter-plot-XXXXXX").string();
+    const int fd = mkstemp(log.data());
+    if (fd < 0) fail("cannot create a temporary file for plot script {}: {}", script, std::strerror(errno));
+    close(fd);
     // Appended piece by piece: `" " + std::string` trips g++ 12's false -Wrestrict warning.
     std::string cmd = "/usr/bin/python3 ";
     cmd += shell_quote(path.string());
@@ -91,8 +98,22 @@ void run_plot_script(const std::string& script, const std::vector<std::string>& 
         cmd += ' ';
         cmd += shell_quote(a);
     }
+    cmd += " 2>";
+    cmd += shell_quote(log);
     const int status = std::system(cmd.c_str());
-    if (status != 0) fail("plot script {} failed (status {}); is python3-matplotlib installed?", script, status);
+    std::string last;
+    {
+        std::ifstream in(log);
+        for (std::string line; std::getline(in, line);)
+            if (line.find_first_not_of(" \t\r") != std::string::npos) last = line;
+    }
+    std::error_code ec;
+    std::filesystem::remove(log, ec);
+    if (status == 0) return;
+    if (status == -1) fail("cannot run plot script {}: {}", script, std::strerror(errno));
+    if (WIFSIGNALED(status)) fail("plot script {} was stopped by signal {}", script, WTERMSIG(status));
+    if (!last.empty()) fail("{}", printable(last, 2 * kShownPathChars));
+    fail("plot script {} failed with exit status {}", script, WEXITSTATUS(status));
 }
 
 }  // namespace surfscatter

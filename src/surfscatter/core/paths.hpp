@@ -23,7 +23,8 @@ void write_file_atomically(const std::filesystem::path& file, const std::string&
 // Directory holding the matplotlib scripts (scripts/plot of the source tree, or $SURFSCATTER_PLOT_SCRIPTS).
 std::filesystem::path plot_script_directory();
 
-// Runs /usr/bin/python3 <plot_script_directory()/script> args...; throws Error naming the script if it fails.
+// Runs /usr/bin/python3 <plot_script_directory()/script> args...; if it fails, throws Error with the last line the
+// script wrote to stderr (scripts/plot/plotting.py: "script: cannot write OUT: reason"), else one naming the script.
 void run_plot_script(const std::string& script, const std::vector<std::string>& args);
 
 }  // namespace surfscatter

@@ -120,7 +120,17 @@ private:
     void write_atomically(const fs::path& path, Write&& write, bool with_png = false) {
         fs::create_directories(path.parent_path());
         const fs::path tmp = temporary_beside(path);
-        write(tmp);
+        try {
+            write(tmp);
+        } catch (const Error& e) {  // a plot script's or writer's message names the temporary file: name the output
+            std::error_code ec;
+            fs::remove(tmp, ec);
+            std::string message = e.what();
+            for (std::size_t at = message.find(tmp.string()); at != std::string::npos;
+                 at = message.find(tmp.string(), at + path.string().size()))
+                message.replace(at, tmp.string().size(), path.string());
+            throw Error(message);
+        }
         if (with_png) {
             fs::path png = path, tmp_png = tmp;
             png.replace_extension(".png");
