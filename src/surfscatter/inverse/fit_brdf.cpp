@@ -6,6 +6,7 @@
 #include <ctime>
 #include <limits>
 #include <numeric>
+#include <utility>
 
 #include <Eigen/Core>
 #include <Eigen/SVD>
@@ -255,8 +256,18 @@ ModelFit fit_model(const BrdfData& data, const FitOptions& options, bsdf::ModelK
         best = Eigen::VectorXd(0);
         best_cost = problem.residuals(best).squaredNorm();
     }
-    if (free_count > 0)
-        for (Eigen::VectorXd x : starting_points(data, problem, std::max(1, options.starts))) {
+    if (free_count > 0) {
+        // Several starts, screened by their misfit (one model each); the solver runs from the best `refined` of them
+        // (a GHS model costs ~0.5 CPU s to build, the solver ~50 of them per start).
+        std::vector<std::pair<double, Eigen::VectorXd>> starts;
+        for (const Eigen::VectorXd& x : starting_points(data, problem, std::max(1, options.starts))) {
+            const double cost = problem.residuals(x).squaredNorm();
+            starts.emplace_back(std::isfinite(cost) ? cost : std::numeric_limits<double>::max(), x);
+        }
+        std::stable_sort(starts.begin(), starts.end(),
+                         [](const auto& a, const auto& b) { return a.first < b.first; });
+        starts.resize(std::min<std::size_t>(starts.size(), static_cast<std::size_t>(std::max(1, options.refined))));
+        for (auto& [start_cost, x] : starts) {
             Functor functor;
             functor.problem = &problem;
             functor.rows = static_cast<int>(data.size());
@@ -272,6 +283,7 @@ ModelFit fit_model(const BrdfData& data, const FitOptions& options, bsdf::ModelK
                 best = x;
             }
         }
+    }
     if (!std::isfinite(best_cost)) fail("{}: the {} fit found no finite misfit", data.source, bsdf::to_string(kind));
 
     fit.fitted = problem.model_values(best);
@@ -372,6 +384,8 @@ FitResult fit_brdf(const BrdfData& data, const FitOptions& options) {
     if (options.psd != bsdf::PsdKind::kc && options.psd != bsdf::PsdKind::gaussian)
         fail("psd must be kc or gaussian for a fit, got {}", bsdf::to_string(options.psd));
     if (options.starts < 1 || options.starts > 3) fail("starts must be 1, 2 or 3, got {}", options.starts);
+    if (options.refined < 1 || options.refined > options.starts)
+        fail("refined must be between 1 and starts ({}), got {}", options.starts, options.refined);
     if (options.max_evaluations_per_start < 1)
         fail("max_evaluations_per_start must be >= 1, got {}", options.max_evaluations_per_start);
     for (const auto& [name, value] : options.fixed) {

@@ -1,7 +1,7 @@
 #pragma once
 // Fits each scattering model's surface statistics to a measured BRDF (docs/FIT.md): non-linear least squares
 // (Eigen's Levenberg-Marquardt, forward differences: the models are built from tables, not templated code) in
-// ln sigma, ln L, ln(gamma - 1) (and ln LV, lay angle), inside bounds, from several starts; standard errors and
+// ln sigma, ln L, ln(gamma - 1) (and ln LV, lay angle), inside bounds, from the best of several starts; standard errors and
 // correlations from the Jacobian at the optimum, (J^T W J)^-1, scaled by chi2/dof when the data carry no errors;
 // parameters the data do not constrain are reported as such, never given a number.
 #include <cstddef>
@@ -26,8 +26,9 @@ struct FitOptions {
     bsdf::PsdKind psd = bsdf::PsdKind::kc;  // kc or gaussian (gaussian has no gamma)
     bool anisotropic = false;               // also corr_length_v_um and lay_angle_deg
     std::map<std::string, double> fixed;    // parameters held at a value (kParameterNames)
-    int starts = 3;                          // sigma starts at g0 = 0.5, 3, 15 (the first `starts` of them)
-    int max_evaluations_per_start = 40;      // model evaluations of the residuals per start (Jacobians apart)
+    int starts = 3;                          // sigma starts at g0 = 3, 0.5, 15 (the first `starts` of them)
+    int refined = 1;                         // the solver runs from the `refined` starts of smallest misfit
+    int max_evaluations_per_start = 30;      // model evaluations of the residuals per start (Jacobians apart)
 };
 
 struct ParameterEstimate {
