@@ -1,6 +1,7 @@
-// fit_brdf against data the fitted models did not make: the Kirchhoff BRDF (reference/kirchhoff_map) of synthesised
-// KC maps of known statistics, at three wavelengths, with 3 % multiplicative Gaussian noise; the smooth case against
-// the Rayleigh-Rice inversion written here; a narrow range that cannot constrain gamma; bad data.
+// fit_brdf against data the fitted models did not make: the Kirchhoff BRDF (reference/kirchhoff_map) of a synthesised
+// KC map of known statistics, at three wavelengths, with 3 % multiplicative Gaussian noise, over a narrow range that
+// cannot constrain gamma; bad data. (The rough-map recovery and the smooth case against Rayleigh-Rice are not here yet:
+// docs/FIT.md "Left to do".)
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -69,8 +70,6 @@ BrdfData kirchhoff_data(const MapSpec& m, const std::string& material, Keep keep
     return data;
 }
 
-double relative(double value, double truth) { return std::abs(value - truth) / truth; }
-
 const ss::inverse::ParameterEstimate& parameter(const ss::inverse::ModelFit& fit, const std::string& name) {
     for (const auto& p : fit.parameters)
         if (p.name == name) return p;
@@ -78,70 +77,6 @@ const ss::inverse::ParameterEstimate& parameter(const ss::inverse::ModelFit& fit
 }
 
 }  // namespace
-
-// Rough (g0 3.5 to 8.4 over 700 to 450 nm): GHS recovers the synthesis sigma within 5 % and L within 10 %, and fits
-// better than GGX from statistics (a geometric lobe) there.
-TEST(FitBrdf, GhsRecoversTheStatisticsOfARoughKcMap) {
-    const MapSpec spec{0.12, 2.0, 2.5, 512, 0.25, 16.0};
-    // The diffuse lobe down to 1 % of its peak, away from the specular window (where the coherent part lies).
-    const BrdfData data = kirchhoff_data(
-        spec, "Au",
-        [](double, double, double f, double peak, double coherent) { return f > 1e-2 * peak && coherent < 1e-2 * f; },
-        3, 7);
-    ASSERT_GT(data.size(), 100u);
-    FitOptions options;
-    options.material = "Au";
-    options.models = {ss::bsdf::ModelKind::ghs, ss::bsdf::ModelKind::ggx};
-    const auto result = ss::inverse::fit_brdf(data, options);
-    const auto& ghs = result.fits[0];
-    for (const auto& p : ghs.parameters) std::printf("ghs %s = %g\n", p.name.c_str(), p.value);
-    std::printf("ghs misfit %g, ggx misfit %g, %d + %d evaluations, %g + %g CPU s\n", ghs.misfit,
-                result.fits[1].misfit, ghs.evaluations, result.fits[1].evaluations, ghs.cpu_seconds,
-                result.fits[1].cpu_seconds);
-    EXPECT_LT(relative(parameter(ghs, "sigma_um").value, spec.sigma), 0.05);
-    EXPECT_LT(relative(parameter(ghs, "corr_length_um").value, spec.corr_length), 0.10);
-    EXPECT_TRUE(parameter(ghs, "sigma_um").constrained);
-    EXPECT_LT(ghs.misfit, result.fits[1].misfit);
-}
-
-// Smooth (sigma 0.005 um, L 0.5 um, gamma 2.5; g0 0.015 at 450 nm): the PSD the GHS fit implies against the
-// Rayleigh-Rice inversion of the data written here, P(zeta) = f / (4 k^4 cos i cos o R(theta_i)) at
-// zeta = k |i_xy + o_xy| (perfect conductor: R = 1), over the data's directions with 0.16 < |i_xy + o_xy| < 0.6
-// (zeta L 0.7 to 4.2: the knee and the tail; inside 0.16, the Hann window's main lobe about the specular direction,
-// where the coherent part is spread, is left out at every wavelength). Kirchhoff and GHS differ from Rayleigh-Rice by
-// geometric factors that are 1 at the specular direction and up to 8 % at 0.6 (docs/FIT.md).
-TEST(FitBrdf, SmoothSurfaceMatchesTheRayleighRiceInversion) {
-    const MapSpec spec{0.005, 0.5, 2.5, 512, 0.1, 12.8};
-    const auto wide = [](double ox, double oy, double, double, double) {
-        const double q = std::hypot(ox + std::sin(kThetaI * ss::kDegree), oy);
-        return q > 0.16 && q < 0.6;
-    };
-    const BrdfData data = kirchhoff_data(spec, "perfect", wide, 2, 11);
-    ASSERT_GT(data.size(), 60u);
-    FitOptions options;
-    options.material = "perfect";
-    options.models = {ss::bsdf::ModelKind::ghs};
-    const auto fit = ss::inverse::fit_brdf(data, options).fits[0];
-    const ss::surface::KCorrelation fitted(parameter(fit, "sigma_um").value, parameter(fit, "corr_length_um").value,
-                                           parameter(fit, "gamma").value);
-    std::vector<double> ratio;
-    for (std::size_t j = 0; j < data.size(); ++j) {
-        const double k = 2 * ss::kPi / (data.wavelength_nm[j] * 1e-3);
-        const double ti = data.theta_i_deg[j] * ss::kDegree, to = data.theta_o_deg[j] * ss::kDegree;
-        const double po = data.phi_o_deg[j] * ss::kDegree;
-        const double zeta = k * std::hypot(std::sin(ti) + std::sin(to) * std::cos(po), std::sin(to) * std::sin(po));
-        const double rr = data.brdf[j] / (4 * std::pow(k, 4) * std::cos(ti) * std::cos(to));
-        ratio.push_back(fitted.psd(zeta) / rr);
-    }
-    std::sort(ratio.begin(), ratio.end());
-    const double median = ratio[ratio.size() / 2];
-    std::printf("fitted PSD / Rayleigh-Rice PSD: median %g, 10th %g, 90th %g; sigma %g L %g gamma %g\n", median,
-                ratio[ratio.size() / 10], ratio[9 * ratio.size() / 10], fitted.sigma_h(), parameter(fit, "corr_length_um").value,
-                parameter(fit, "gamma").value);
-    EXPECT_LT(std::abs(median - 1.0), 0.10);
-    EXPECT_LT(ratio[9 * ratio.size() / 10] / ratio[ratio.size() / 10], 1.5);
-
-}
 
 // A narrow range: a smooth surface of L 0.1 um seen at 0.16 < |i_xy + o_xy| < 0.35 (zeta L 0.14 to 0.49), near the
 // PSD's flat top, where ln P = ln(sigma^2 L^2 (gamma - 1) / pi) - gamma zeta^2 L^2 + ... holds two numbers for three
