@@ -38,6 +38,8 @@ constexpr double kLogStep = 2e-3, kLayStep = 0.1;
 // A free parameter whose standard error in the solver's variable exceeds this (a factor e in a length, 57 degrees
 // of lay) is reported as unconstrained.
 constexpr double kUnconstrainedLogError = 1.0, kUnconstrainedLayError = 45.0;
+// The residual of every row where the model refuses the parameters: far beyond any fit's.
+constexpr double kRefusedResidual = 1e6;
 
 bool is_log(int p) { return p != kLay; }
 
@@ -143,7 +145,18 @@ public:
         return r;
     }
 
-    Eigen::VectorXd residuals(const Eigen::VectorXd& x) const { return residuals(model_values(x)); }
+    // A parameter set the model refuses (make_bsdf throws: GGX's alpha beyond its range, ...) is a wall for the
+    // solver: residuals of kRefusedResidual each, counted and the first reason kept for the fit's notes.
+    Eigen::VectorXd residuals(const Eigen::VectorXd& x) const {
+        try {
+            return residuals(model_values(x));
+        } catch (const Error& e) {
+            if (refused_++ == 0) first_refusal_ = e.what();
+            return Eigen::VectorXd::Constant(static_cast<Eigen::Index>(data_.size()), kRefusedResidual);
+        }
+    }
+    int refused() const { return refused_; }
+    const std::string& first_refusal() const { return first_refusal_; }
 
     Eigen::MatrixXd jacobian(const Eigen::VectorXd& x, const Eigen::VectorXd& r0) const {
         Eigen::MatrixXd j(r0.size(), x.size());
@@ -167,6 +180,8 @@ private:
     std::array<double, kParameterCount> value_{};
     std::vector<int> active_, free_;
     mutable int evaluations_ = 0;
+    mutable int refused_ = 0;
+    mutable std::string first_refusal_;
 };
 
 struct Functor : surface::DynamicLeastSquaresFunctor {
@@ -286,6 +301,9 @@ ModelFit fit_model(const BrdfData& data, const FitOptions& options, bsdf::ModelK
     }
     if (!std::isfinite(best_cost)) fail("{}: the {} fit found no finite misfit", data.source, bsdf::to_string(kind));
 
+    if (best_cost >= 0.5 * static_cast<double>(data.size()) * kRefusedResidual * kRefusedResidual)
+        fail("{}: the {} model refused every parameter set tried, e.g.: {}", data.source, bsdf::to_string(kind),
+             problem.first_refusal());
     fit.fitted = problem.model_values(best);
     const Eigen::VectorXd r = problem.residuals(fit.fitted);
     fit.residual.assign(r.data(), r.data() + r.size());
@@ -371,6 +389,9 @@ ModelFit fit_model(const BrdfData& data, const FitOptions& options, bsdf::ModelK
             const double d = std::sqrt(covariance(ia, ia) * covariance(ib, ib));
             if (d > 0) fit.correlation[a][b] = std::clamp(covariance(ia, ib) / d, -1.0, 1.0);
         }
+    if (problem.refused() > 0)
+        fit.notes.push_back(fmt::format("the model refused {} of the parameter sets tried, e.g.: {}", problem.refused(),
+                                        problem.first_refusal()));
     fit.evaluations = problem.evaluations();
     fit.cpu_seconds = cpu_seconds() - cpu_start;
     return fit;
