@@ -10,6 +10,7 @@ void bind_surface(pybind11::module_& m);
 void bind_bsdf(pybind11::module_& m);
 void bind_profile_lobes(pybind11::module_& m);
 void bind_validity(pybind11::module_& m);
+void bind_inverse(pybind11::module_& m);
 void bind_render(pybind11::module_& m);
 void bind_photo(pybind11::module_& m);
 

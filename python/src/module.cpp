@@ -93,6 +93,7 @@ PYBIND11_MODULE(_surfscatter, m) {
     surfscatter::python::bind_bsdf(m);
     surfscatter::python::bind_profile_lobes(m);
     surfscatter::python::bind_validity(m);
+    surfscatter::python::bind_inverse(m);
     surfscatter::python::bind_render(m);
     surfscatter::python::bind_photo(m);
 }

@@ -1,5 +1,6 @@
 #include "surfscatter/core/table_cache.hpp"
 
+#include <atomic>
 #include <cmath>
 #include <fstream>
 
@@ -19,7 +20,12 @@ std::uint64_t fnv1a(const void* data, std::size_t bytes, std::uint64_t h = 14695
     return h;
 }
 
+std::atomic<int> writes_paused{0};
+
 }  // namespace
+
+TableCacheWritesPaused::TableCacheWritesPaused() { ++writes_paused; }
+TableCacheWritesPaused::~TableCacheWritesPaused() { --writes_paused; }
 
 std::filesystem::path table_cache_file(const std::string& kind, std::uint32_t version, const std::string& key) {
     return cache_directory() / fmt::format("{}-v{}-{:016x}.bin", kind, version, fnv1a(key.data(), key.size()));
@@ -27,6 +33,7 @@ std::filesystem::path table_cache_file(const std::string& kind, std::uint32_t ve
 
 void save_cached_table(const std::filesystem::path& file, std::uint32_t version, const std::string& key,
                        const std::vector<double>& payload) {
+    if (writes_paused.load() > 0) return;
     std::string bytes;
     auto append = [&bytes](const void* data, std::size_t size) { bytes.append(static_cast<const char*>(data), size); };
     const std::uint64_t key_size = key.size(), count = payload.size();

@@ -11,6 +11,16 @@
 
 namespace surfscatter {
 
+// While one of these lives (in any thread), save_cached_table writes nothing: a fit (inverse/) builds tables for
+// hundreds of one-off parameter sets that no later run asks for again, megabytes each. Reads go on.
+class TableCacheWritesPaused {
+public:
+    TableCacheWritesPaused();
+    ~TableCacheWritesPaused();
+    TableCacheWritesPaused(const TableCacheWritesPaused&) = delete;
+    TableCacheWritesPaused& operator=(const TableCacheWritesPaused&) = delete;
+};
+
 // The file for `key` of a table kind (a file-name prefix) at a format version.
 std::filesystem::path table_cache_file(const std::string& kind, std::uint32_t version, const std::string& key);
 void save_cached_table(const std::filesystem::path& file, std::uint32_t version, const std::string& key,

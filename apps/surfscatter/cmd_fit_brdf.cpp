@@ -1,0 +1,103 @@
+// surfscatter fit-brdf: each model's surface statistics fitted to a measured BRDF (docs/FIT.md); OUT.json, OUT.csv,
+// OUT_residuals.png, one summary line per model and the verdict on stdout.
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "command.hpp"
+#include "list_options.hpp"
+#include "surfscatter/bsdf/model_options.hpp"
+#include "surfscatter/core/error.hpp"
+#include "surfscatter/core/input_file.hpp"
+#include "surfscatter/core/paths.hpp"
+#include "surfscatter/inverse/fit_report.hpp"
+
+namespace surfscatter::cli {
+
+namespace {
+
+struct FitArgs {
+    std::string data, material, psd = "kc", output;
+    std::vector<std::string> models, fixes;
+    bool anisotropic = false;
+};
+
+std::map<std::string, double> parse_fixes(const std::vector<std::string>& fixes) {
+    std::map<std::string, double> fixed;
+    for (const std::string& item : fixes) {
+        const auto eq = item.find('=');
+        const auto value = eq == std::string::npos ? std::nullopt : to_double(std::string_view(item).substr(eq + 1));
+        if (!value) fail("--fix must be NAME=VALUE (e.g. gamma=3), got '{}'", printable(item));
+        if (!fixed.emplace(item.substr(0, eq), *value).second)
+            fail("--fix {} is given twice", printable(item.substr(0, eq)));
+    }
+    return fixed;
+}
+
+// No output may replace the input.
+void require_not_input(const std::filesystem::path& output, const std::string& input) {
+    std::error_code ec;
+    if (std::filesystem::equivalent(output, input, ec) || output == std::filesystem::path(input))
+        fail("-o would overwrite the input {}: choose another name", printable(output.string(), kShownPathChars));
+}
+
+void run(const FitArgs& a) {
+    const std::filesystem::path data_path(a.data);
+    if (data_path.extension() == ".bsdf")
+        fail("--data {}: RGL .bsdf files are not supported by fit-brdf yet; give a CSV "
+             "(wavelength_nm,theta_i_deg,phi_i_deg,theta_o_deg,phi_o_deg,brdf[,brdf_stderr])",
+             printable(a.data, kShownPathChars));
+    inverse::FitOptions options;
+    options.material = a.material;
+    options.psd = bsdf::parse_psd(a.psd, "--psd");
+    if (options.psd != bsdf::PsdKind::kc && options.psd != bsdf::PsdKind::gaussian)
+        fail("--psd must be kc or gaussian for a fit, got '{}'", printable(a.psd));
+    options.anisotropic = a.anisotropic;
+    options.fixed = parse_fixes(a.fixes);
+    if (!a.models.empty()) {
+        options.models.clear();
+        for (const std::string& m : a.models) options.models.push_back(bsdf::parse_model(m, "--model"));
+    }
+    const std::string out = a.output;
+    const std::filesystem::path json_path = out + ".json", csv_path = out + ".csv", png_path = out + "_residuals.png";
+    for (const auto& p : {json_path, csv_path, png_path}) require_not_input(p, a.data);
+    const inverse::BrdfData data = inverse::read_brdf_csv(a.data);
+    const inverse::FitResult result = inverse::fit_brdf(data, options);
+    write_file_atomically(json_path, inverse::fit_json(data, options, result).dump(2) + "\n");
+    write_file_atomically(csv_path, inverse::fit_csv(data, result));
+    run_plot_script("fit_brdf.py", {csv_path.string(), json_path.string(), png_path.string()});
+    for (const auto& fit : result.fits) std::printf("%s\n", inverse::summary_line(fit).c_str());
+    std::printf("%s\n", result.verdict.c_str());
+    std::printf("wrote %s, %s and %s\n", json_path.c_str(), csv_path.c_str(), png_path.c_str());
+}
+
+const Command command("fit-brdf", [](CLI::App& app) {
+    auto a = std::make_shared<FitArgs>();
+    auto* sub = app.add_subcommand(
+        "fit-brdf", "Fit each model's surface statistics (sigma, L, gamma) to a measured BRDF: estimates, standard "
+                    "errors, correlations, misfit, the best model (docs/FIT.md)");
+    sub->add_option("--data", a->data,
+                    "measured BRDF: CSV wavelength_nm,theta_i_deg,phi_i_deg,theta_o_deg,phi_o_deg,brdf[,brdf_stderr] "
+                    "(1/sr, no cosine)")
+        ->required();
+    sub->add_option("--material", a->material,
+                    "perfect, a built-in metal (Ag, Au, Al, Cu, ...) or a .yml/.csv refractive index file")
+        ->required();
+    add_string_list(sub, "--model", a->models,
+                    "models to fit, comma separated: " + bsdf::choices("model") + " (default all)");
+    sub->add_option("--psd", a->psd, "surface statistics fitted: kc (sigma, L, gamma; default) | gaussian (sigma, L)");
+    sub->add_flag("--anisotropic", a->anisotropic, "also fit corr_length_v_um and lay_angle_deg (elliptical)");
+    sub->add_option("--fix", a->fixes,
+                    "hold a parameter: NAME=VALUE with NAME sigma_um, corr_length_um, gamma, corr_length_v_um or "
+                    "lay_angle_deg (repeatable)");
+    sub->add_option("-o", a->output, "output prefix: OUT.json, OUT.csv and OUT_residuals.png")->required();
+    sub->callback([a] { run(*a); });
+});
+
+}  // namespace
+
+}  // namespace surfscatter::cli

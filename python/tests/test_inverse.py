@@ -1,0 +1,51 @@
+"""surfscatter.fit_brdf: the same estimates as `surfscatter fit-brdf` on the same data, from a path or from arrays;
+bad data raises surfscatter.Error naming the row."""
+import csv
+import json
+import subprocess
+
+import numpy as np
+import pytest
+
+import surfscatter as ss
+from conftest import CLI, SOURCE_DIR
+
+EXAMPLE = SOURCE_DIR / "examples" / "data" / "fit_brdf_au.csv"
+
+
+def columns():
+    with open(EXAMPLE) as f:
+        rows = list(csv.DictReader(f))
+    return {key: np.array([float(r[key]) for r in rows]) for key in rows[0]}
+
+
+def test_fit_brdf_matches_the_cli(tmp_path):
+    from_path = ss.fit_brdf(EXAMPLE, "Au", models=["ggx_stats"])
+    from_arrays = ss.fit_brdf(columns(), "Au", models=["ggx_stats"])
+    out = tmp_path / "fit"
+    r = subprocess.run([CLI, "fit-brdf", "--data", str(EXAMPLE), "--material", "Au", "--model", "ggx_stats",
+                        "-o", str(out)], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    cli = json.load(open(f"{out}.json"))
+    for got in (from_path, from_arrays):
+        fit = got["models"][0]
+        assert fit["model"] == "ggx_stats"
+        for name in ("sigma_um", "corr_length_um", "gamma"):
+            assert fit["parameters"][name]["value"] == pytest.approx(
+                cli["models"][0]["parameters"][name]["value"], rel=1e-12)
+        assert fit["fitted"].shape == (len(columns()["brdf"]),)
+        assert np.all(np.isfinite(fit["residual"]))
+        assert got["verdict"] == cli["verdict"]
+
+
+def test_bad_data_names_the_row():
+    data = columns()
+    data["brdf"][3] = -1.0
+    with pytest.raises(ss.Error, match=r"data row 4: brdf must be finite and >= 0"):
+        ss.fit_brdf(data, "Au", models=["ggx_stats"])
+    data = columns()
+    del data["phi_o_deg"]
+    with pytest.raises(ss.Error, match=r"data has no 'phi_o_deg'"):
+        ss.fit_brdf(data, "Au", models=["ggx_stats"])
+    with pytest.raises(ss.Error, match=r"fix gamma applies to psd kc only"):
+        ss.fit_brdf(columns(), "Au", models=["ggx_stats"], psd="gaussian", fix={"gamma": 3.0})
