@@ -557,7 +557,7 @@ void bind_height_maps(py::module_& m) {
     py::class_<MapStatistics, RadialStatistics, std::shared_ptr<MapStatistics>>(
         m, "MapStatistics",
         "A height map's own statistics, what psd 'measured' uses (map_statistics.hpp): its periodogram's ring means "
-        "from the first ring to Nyquist (rolled off beyond), linear from the DC value below the first ring.")
+        "from the first ring to Nyquist (rolled off beyond), linear below the first ring from the DC bin, which is continued from the lattice's lowest ring.")
         .def_property_readonly("map_rms", &MapStatistics::map_rms, "rms of the form-removed map (um)")
         .def_property_readonly("sigma_standard_error", &MapStatistics::sigma_relative_error,
                                "relative standard error of sigma_h for a random surface of this spectrum")

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <vector>
 
 #include <fmt/format.h>
@@ -18,6 +19,7 @@
 #include "surfscatter/bsdf/ghs.hpp"
 #include "surfscatter/bsdf/scatter_core.hpp"
 #include "surfscatter/bsdf/wedge_sampling.hpp"
+#include "surfscatter/core/paths.hpp"
 #include "surfscatter/material/conductor.hpp"
 #include "surfscatter/surface/elliptical_statistics.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
@@ -313,6 +315,40 @@ TEST(AnisotropicGhs, RelabellingAndRotation) {
     EXPECT_LT(worst_rotation, 1e-3);
     EXPECT_LT(worst_swap, 5e-3);
     fmt::print("rotation {:.2g}, relabelling {:.2g} relative\n", worst_rotation, worst_swap);
+}
+
+// A new lay angle is a rotation of the local frame: its BSDF reads the incidence tables the first lay angle built
+// (same file in the disk cache, none written) and gives the first one's values at the rotated directions (round-off).
+TEST(AnisotropicGhs, NewLayAngleReusesTheTables) {
+    const double lambda = 617.0;  // a wavelength no other test here builds first
+    auto table_files = [] {
+        std::size_t n = 0;
+        for (const auto& e : std::filesystem::directory_iterator(cache_directory()))
+            n += e.path().filename().string().starts_with("ghs-anisotropic-incidence-v4-");
+        return n;
+    };
+    const auto base = make_bsdf(elliptical_kc(ModelKind::ghs, 0.08, 1.7, 0.6, 2.6, 0.0));
+    const Vec3 wi0 = direction_deg(40, 25);
+    ASSERT_GT(base->eval(wi0, direction_deg(35, 200), lambda), 0.0);  // builds (or loads) this wavelength's tables
+    const std::size_t before = table_files();
+    const double a = 50.0 * kDegree;
+    const auto rotated = make_bsdf(elliptical_kc(ModelKind::ghs, 0.08, 1.7, 0.6, 2.6, 50.0));
+    auto rotate = [&](const Vec3& w) {  // by -A about the normal: the lay frame of `rotated` onto that of `base`
+        return Vec3(w.x * std::cos(a) + w.y * std::sin(a), -w.x * std::sin(a) + w.y * std::cos(a), w.z);
+    };
+    double worst = 0;
+    for (const Vec3& wi : {direction_deg(20, 10), direction_deg(55, 150), direction_deg(75, -70)})
+        for (double theta_o : {5.0, 40.0, 70.0})
+            for (double phi_o : {0.0, 100.0, 190.0, 300.0}) {
+                const Vec3 wo = direction_deg(theta_o, phi_o);
+                const double f = rotated->eval(wi, wo, lambda), f0 = base->eval(rotate(wi), rotate(wo), lambda);
+                ASSERT_GT(f0, 0.0);
+                worst = std::max(worst, std::abs(f / f0 - 1));
+            }
+    EXPECT_EQ(table_files(), before);
+    EXPECT_LT(worst, 1e-9);
+    fmt::print("new lay angle: {} table files before and {} after, rotation {:.2g} relative\n", before, table_files(),
+               worst);
 }
 
 // eval_packet is eval and the reverse pdf per wavelength; extreme directions and uniforms give finite values.

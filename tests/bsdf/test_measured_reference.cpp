@@ -1,6 +1,6 @@
 // Exact GHS on the measured route (psd measured, MapStatistics) against eq. 1-2 evaluated in this test from the map's
-// own periodogram alone: periodic maps with exact spectral amplitudes (tests/surface/exact_amplitude.hpp), the
-// self-convolutions as discrete ones on the map's lattice (DFT of rho^m), sigma_rel as the lattice sum of the
+// own periodogram alone (its DC bin continued from the 8 bins around it, the models' convention since issue 33): periodic
+// maps with exact spectral amplitudes (tests/surface/exact_amplitude.hpp), the self-convolutions as discrete ones on the map's lattice (DFT of rho^m), sigma_rel as the lattice sum of the
 // periodogram over the visible disc (THEORY.md 1.1 eq. 7-8), and K = (1 - e^{-g0}) / (integral of the lobe over the
 // visible disc) (eq. 20) by quadrature here. Perfect conductor (R = 1), in-plane directions on the specular side.
 #include <gtest/gtest.h>
@@ -44,7 +44,17 @@ struct LatticeReference {
                 periodogram[ky * n + kx] = p;
                 variance += p * dzeta * dzeta;
             }
-        const auto rho = surface::test::circular_rho(map);
+        // The DC bin continued from the lowest ring, the 8 bins around DC, as MapStatistics does (issue 33; removing
+        // the mean left 0 there): a constant c added to the map's ACV, so rho -> (rho var + c) / (var + c).
+        double ring1 = 0.0;
+        for (std::size_t jy : {n - 1, std::size_t(0), std::size_t(1)})
+            for (std::size_t jx : {n - 1, std::size_t(0), std::size_t(1)})
+                if (jx != 0 || jy != 0) ring1 += periodogram[jy * n + jx] / 8.0;
+        const double c = ring1 * dzeta * dzeta;
+        variance += c - periodogram[0] * dzeta * dzeta;
+        periodogram[0] = ring1;
+        auto rho = surface::test::circular_rho(map);
+        for (double& r : rho) r = (r * (variance - c) + c) / variance;
         for (int m = 1; m <= orders; ++m) {
             rings.push_back(surface::test::lattice_rings(rho, n, dx, m));
             dc.push_back(surface::test::lattice_dc(rho, dx, m));

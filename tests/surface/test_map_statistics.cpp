@@ -43,10 +43,11 @@ TEST(MapStatistics, RmsAndRingMeansAreTheMapsOwn) {
         EXPECT_TRUE(stats.periodic());
         EXPECT_NEAR(stats.map_rms(), rms(map), 1e-12 * rms(map)) << truth->cache_key();
         // Parseval over the band: sigma^2 inside Nyquist is the lattice's sum over DC and the rings used (to the
-        // quadrature's 1e-9), and the scale that makes it so is within 1 % of 1.
+        // quadrature's 1e-9), and the scale that makes it so is within 1 % of 1. The DC bin, where removing the mean
+        // left 0, counts with its continuation from the lowest ring (ring 1: the 8 bins around DC).
         const auto rings = lattice_rings(circular_rho(map), 512, 0.1, 1);
         const std::size_t used = stats.rings().zeta.size();
-        double band_sum = 0.0;
+        double band_sum = rings[0].second;
         for (std::size_t r = 0; r < used; ++r)
             band_sum += rings[r].second * stats.rings().count[r];  // P-hat ring mean times its points
         band_sum *= std::pow(2.0 * kPi / (512 * 0.1), 2) * rms(map) * rms(map);

@@ -100,6 +100,117 @@ TEST(SpectrumLobes2d, MatchesDirectPoissonSeriesOfConvolutions) {
     EXPECT_LT(worst, 5e-4);
 }
 
+// The lobe's core at specular (issue 33 item 5): MapStatistics continues the DC bin, where removing the mean left 0,
+// from the lattice's lowest ring. Checked here against a direct DFT of the map at those 8 frequencies (the ratio of
+// the DC bin to the bin (1, 0), free of the periodogram's normalisation), then the 2-D lobe at zeta = 0 against the
+// Poisson series of direct convolutions on that lattice, and the core against its neighbours: no hole at specular
+// for any g (before, S_g(0) was 0.0 of its neighbours' mean at g -> 0), and the ring route's P(0) continuous too.
+TEST(SpectrumLobes2d, CoreAtSpecularFollowsTheLowestRings) {
+    const heightmap::HeightMap map = synthesize_surface(GaussianAcv(0.05, 0.4), {32, 32, 0.1}, 5);
+    const MapStatistics stats(map, heightmap::Form::none);
+    ASSERT_TRUE(stats.periodic());
+    const Psd2d& spectrum = stats.spectrum();
+    // Direct DFT of the mean-removed heights.
+    double mean = 0;
+    for (std::size_t j = 0; j < 32; ++j)
+        for (std::size_t i = 0; i < 32; ++i) mean += map(i, j) / 1024.0;
+    auto power = [&](int kx, int ky) {
+        double re = 0, im = 0;
+        for (std::size_t j = 0; j < 32; ++j)
+            for (std::size_t i = 0; i < 32; ++i) {
+                const double phase = -kTwoPi * (kx * double(i) + ky * double(j)) / 32.0;
+                re += (map(i, j) - mean) * std::cos(phase);
+                im += (map(i, j) - mean) * std::sin(phase);
+            }
+        return re * re + im * im;
+    };
+    double ring = 0;
+    for (int ky = -1; ky <= 1; ++ky)
+        for (int kx = -1; kx <= 1; ++kx)
+            if (kx != 0 || ky != 0) ring += power(kx, ky) / 8;
+    EXPECT_NEAR(spectrum.values[0] / spectrum.values[1], ring / power(1, 0), 1e-9 * ring / power(1, 0));
+    EXPECT_LT(power(0, 0), 1e-20 * ring);  // the DC bin itself is empty: what the continuation replaces
+
+    const SpectrumLobes2d lobes(spectrum, 6.0);
+    const Lattice p1 = unit_periodogram(spectrum);
+    constexpr long kHalf = 40;
+    constexpr int kOrders = 16;  // g <= 1: the series' tail beyond is below 1e-14
+    std::vector<Lattice> orders{p1};
+    for (int m = 2; m <= kOrders; ++m) orders.push_back(convolve(orders.back(), p1, kHalf));
+    const double dz2 = spectrum.dzeta_x * spectrum.dzeta_y;
+    auto direct = [&](double g, long i, long j) {
+        double sum = 0, term = std::exp(-g);
+        for (int m = 1; m <= kOrders; ++m) {
+            term *= g / m;
+            sum += term * orders[std::size_t(m - 1)].get(i, j);
+        }
+        return sum / dz2;
+    };
+    for (double g : {0.001, 0.01, 0.1, 1.0}) {
+        const double at_zero = direct(g, 0, 0);
+        double neighbours = 0;
+        for (long j = -1; j <= 1; ++j)
+            for (long i = -1; i <= 1; ++i)
+                if (i != 0 || j != 0) neighbours += direct(g, i, j) / 8;
+        std::printf("g = %.3g: S_g(0) %.4g (direct %.4g), its 8 neighbours' mean %.4g\n", g, lobes.eval(g, {0, 0}),
+                    at_zero, neighbours);
+        EXPECT_NEAR(lobes.eval(g, {0, 0}), at_zero, 1e-6 * at_zero) << g;
+        EXPECT_GT(at_zero, 0.9 * neighbours) << g;  // no hole: the core is at least its neighbours' level
+    }
+    EXPECT_NEAR(lobes.first_order({0, 0}) / lobes.first_order({spectrum.dzeta_x, 0}), ring / power(1, 0), 1e-9);
+    // The ring route: P(0) is the continued DC bin, within the range of the first rings, not 0.
+    const double p0 = stats.psd_unit(0.0), p_first = stats.psd_unit(stats.first_ring());
+    std::printf("ring route: P(0) / P(first ring) = %.3g\n", p0 / p_first);
+    EXPECT_GT(p0, 0.3 * p_first);
+    EXPECT_LT(p0, 3.0 * p_first);
+}
+
+// The rough-surface limit against the full computation where both run: a 128^2 map at 0.025 um of a Gaussian ACV
+// (l = 0.8 um), whose lobes stay inside the lattice (out to 126 rad/um, 7 standard deviations at g = 110). Every
+// node of the full rows
+// at g >= rough_limit_g() (the stated criterion: K / (8 g) <= 1 % at the peak) against the limit's rows, relative to
+// the peak: within 2 % (measured in the test output); below the switch the limit would be worse (K / 8 g > 1 %).
+TEST(SpectrumLobes2d, RoughSurfaceLimitMatchesTheFullLobes) {
+    const heightmap::HeightMap map = synthesize_surface(GaussianAcv(0.05, 0.8), {128, 128, 0.025}, 3);
+    const Psd2d spectrum = estimate_psd(map, Window::rectangular, heightmap::Form::none);
+    const SpectrumLobes2d full(spectrum, 110.0, false), limit(spectrum, 110.0);
+    EXPECT_TRUE(std::isinf(full.rough_limit_g()));
+    EXPECT_EQ(full.rough_rows(), 0u);
+    std::printf("K %.4g, switch at g = %.4g, %zu rows in the limit\n", limit.kurtosis(), limit.rough_limit_g(),
+                limit.rough_rows());
+    ASSERT_GT(limit.rough_rows(), 0u);
+    ASSERT_LT(limit.rough_limit_g(), 120.0);
+    // The moments written here: M2 from the periodogram's lattice (unit mass).
+    double total = 0, mxx = 0, myy = 0;
+    for (std::size_t ky = 0; ky < spectrum.ny; ++ky)
+        for (std::size_t kx = 0; kx < spectrum.half_nx(); ++kx) {
+            const double w = spectrum.values[ky * spectrum.half_nx() + kx] * spectrum.multiplicity(kx);
+            const double zx = spectrum.zeta_x(kx), zy = spectrum.zeta_y(ky);
+            total += w;
+            mxx += w * zx * zx;
+            myy += w * zy * zy;
+        }
+    EXPECT_NEAR(limit.slope_moment()[0], mxx / total, 0.02 * mxx / total);  // Nyquist bins split differently
+    EXPECT_NEAR(limit.slope_moment()[2], myy / total, 0.02 * myy / total);
+    double worst = 0;
+    for (std::size_t r = 0; r < full.rows(); ++r) {
+        const double g = full.row_g(r);
+        if (g < limit.rough_limit_g() || g > full.g_max()) continue;
+        double peak = 0, error = 0;
+        const double reach = 4.0 * std::sqrt(g * std::max(mxx, myy) / total), step = reach / 40;
+        for (double y = -reach; y <= reach; y += step)
+            for (double x = -reach; x <= reach; x += step) {
+                const double f = full.eval(g, {x, y});
+                peak = std::max(peak, f);
+                error = std::max(error, std::abs(limit.eval(g, {x, y}) - f));
+            }
+        std::printf("g = %.4g: max |limit - full| / peak = %.3g (criterion K / 8g = %.3g)\n", g, error / peak,
+                    limit.kurtosis() / (8 * g));
+        worst = std::max(worst, error / peak);
+    }
+    EXPECT_LT(worst, 0.02);
+}
+
 TEST(SpectrumLobes2d, SamplerDensityIsNormalisedAndMatchesDraws) {
     const heightmap::HeightMap map = synthesize_surface(GaussianAcv(0.05, 0.4), {32, 32, 0.1}, 9);
     const SpectrumLobes2d lobes(estimate_psd(map, Window::rectangular, heightmap::Form::none), 6.0);

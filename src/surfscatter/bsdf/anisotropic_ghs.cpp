@@ -163,11 +163,13 @@ std::optional<BsdfSample> AnisotropicGhsBsdf::sample(const Vec3& wi, double lamb
 }
 
 AnisotropicGhsBsdf::AzimuthTables AnisotropicGhsBsdf::cached_tables(double lambda_nm) const {
-    constexpr std::uint32_t kVersion = 3;  // of build_tables' construction and the layout
+    // The tables are over phi_i - A (build_tables, lookup): a new lay angle is a rotation of the local frame that
+    // they already hold, so the key leaves A out (shape_key) and every lay angle of a surface shares them.
+    constexpr std::uint32_t kVersion = 4;  // of build_tables' construction and the layout
     const std::string key = fmt::format(
         "ghs-anisotropic-incidence:{}:sigma_h={:.17g}:{}:normalization={}:relevant={}:lambda={:.17g}:nodes={}x{}"
         ":azimuth=cos2(phi-A)",
-        stats_->cache_key(), stats_->sigma_h(), core_->cache_key(), int(settings_.normalization),
+        stats_->shape_key(), stats_->sigma_h(), core_->cache_key(), int(settings_.normalization),
         settings_.relevant_roughness, lambda_nm, kGhsThetaNodes, kAzimuthNodes);
     return cached_incidence_table<AzimuthTables>("ghs-anisotropic-incidence", kVersion, key,
                                                  [&] { return build_tables(lambda_nm); });

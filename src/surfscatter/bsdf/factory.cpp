@@ -228,7 +228,7 @@ private:
         return fmt::format(
             "measured PSD{} ({}{}): band zeta {:.3g} .. {:.3g} rad/um (lateral periods {:.3g} .. {:.3g} um), rolled "
             "off as zeta^-200 beyond ({:.2g} % of sigma^2 there); model sigma {:.6g} um against the map's rms {:.6g} "
-            "um ({:.2g} % of sigma^2 below the first ring, continued linearly from the DC value; standard error of "
+            "um ({:.2g} % of sigma^2 below the first ring, continued from the DC bin, itself continued from the lowest ring; standard error of "
             "sigma {:.2g} %); rings 1-3 rest on {:.3g}, {:.3g}, {:.3g} independent samples; lobes draw on periods "
             "longer than a third of the map (> {:.3g} um) where |zeta| < {:.3g} rad/um, within about {:.2g} deg of "
             "the specular direction at 550 nm; lobes reach beyond the band at wavelengths below {:.0f} nm (below "
@@ -409,9 +409,15 @@ std::unique_ptr<Bsdf> map_spectrum_bsdf(const ModelOptions& o, SurfaceSource& su
         notes->push_back(fmt::format(
             "measured 2-D spectrum: {} on the map's periodogram (not its ring average; measured_spectrum ring for that), "
             "sigma {:.6g} um over the whole lattice; self-convolutions on a {}-fold finer lattice, out to |zeta| = "
-            "{:.3g} rad/um; largest share of a lobe in the outer quarter of that lattice {:.2g}{}",
+            "{:.3g} rad/um; largest share of a lobe in the outer quarter of that lattice {:.2g}{}; {}",
             to_string(o.model), lobes->sigma_h(), lobes->padding(), coverage, lobes->edge_fraction(),
-            lobes->edge_fraction() > 1e-3 ? " (warning: the highest orders fold back there)" : ""));
+            lobes->edge_fraction() > 1e-3 ? " (warning: the highest orders fold back there)" : "",
+            lobes->rough_rows() > 0
+                ? fmt::format("g >= {:.4g} in the rough-surface limit (the Gaussian of the periodogram's slope "
+                              "covariance; within {:.2g} of the lobe's peak there)",
+                              lobes->rough_limit_g(), surface::SpectrumLobes2d::kRoughTolerance)
+                : fmt::format("every g in full (the rough-surface limit would start at g = {:.4g})",
+                              lobes->rough_limit_g())));
     }
     if (o.model == ModelKind::ghs_ssa)
         return std::make_unique<MapGhsBsdf>(std::move(lobes), o.ssa_form, material, ssa_settings(o.ssa_form, o.fresnel));

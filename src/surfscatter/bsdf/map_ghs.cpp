@@ -8,6 +8,7 @@
 
 #include "surfscatter/bsdf/wedge_sampling.hpp"  // wavenumber
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/progress.hpp"
 #include "surfscatter/math/fast_math.hpp"
 #include "surfscatter/math/lagrange.hpp"
 
@@ -171,30 +172,57 @@ MapGhsBsdf::RefinedTables MapGhsBsdf::refine(const AzimuthTables& tables) {
 
 MapGhsBsdf::AzimuthTables MapGhsBsdf::build_tables(double lambda_nm) const {
     AzimuthTables tables;
-    for (int a = 0; a < kAzimuthNodes; ++a)
+    // A progress bar on stderr when the disc integrals are more than about a second's work (~5e7 cells).
+    const auto bins = disc_bins(wavenumber(lambda_nm));
+    const double disc_cells = kPi * std::pow(wavenumber(lambda_nm) / bins->h + 1.0, 2);
+    Progress progress(fmt::format("{} tables of the measured 2-D spectrum at {:.4g} nm", settings_.name, lambda_nm),
+                      kAzimuthNodes, disc_cells * kAzimuthNodes * kIncidenceAxis.size() > 5e7);
+    for (int a = 0; a < kAzimuthNodes; ++a) {
         tables[std::size_t(a)] = tabulate_incidence(
             kIncidenceAxis, [&](double cos_theta_i) { return direct(incidence(cos_theta_i, a * kAzimuthStep), lambda_nm); },
             [this](double c) { return norm_power(c); });
+        progress.advance();
+    }
+    progress.finish();
     return tables;
+}
+
+std::shared_ptr<const surface::SpectrumLobes2d::Bins> MapGhsBsdf::disc_bins(double k) const {
+    std::lock_guard lock(bins_mutex_);
+    if (!bins_ || bins_k_ != k) {
+        // Cells of k / kDiscCells, or the finest row lattice that any g of this wavelength reads if that is coarser,
+        // over every visible disc (|zeta| <= 2 k).
+        const double b = k * lobes_->sigma_h(), g_hi = 4.0 * b * b;
+        const double h = std::max(k / kDiscCells, lobes_->finest_spacing(0.0, g_hi));
+        bins_ = std::make_shared<const surface::SpectrumLobes2d::Bins>(lobes_->bins(h, 2.0 * k + h, g_hi));
+        bins_k_ = k;
+    }
+    return bins_;
 }
 
 GhsBsdf::Direct MapGhsBsdf::direct(const Vec3& wi, double lambda_nm) const {
     const double k = wavenumber(lambda_nm), ci = wi.z;
+    const auto bins = disc_bins(k);
+    const Vec2 centre(k * wi.x, k * wi.y);
     const bool needs_mass = settings_.relevant_roughness || settings_.normalization == LobeNormalization::disc_mass;
-    const double disc_mass = needs_mass ? lobes_->disc_mass(Vec2(k * wi.x, k * wi.y), k) : 1.0;
+    const double disc_mass =
+        needs_mass ? std::clamp(lobes_->disc_cells(*bins, centre, k, [&](std::size_t cell, Vec2) {
+                         return bins->mass[0][cell];
+                     }), 0.0, 1.0)
+                   : 1.0;
     const double sigma = settings_.relevant_roughness ? lobes_->sigma_h() * std::sqrt(disc_mass) : lobes_->sigma_h();
     switch (settings_.normalization) {
         case LobeNormalization::none: return {sigma, 1.0};
         case LobeNormalization::disc_mass: return {sigma, disc_mass > 0 ? 1.0 / disc_mass : 1.0};
         case LobeNormalization::albedo: {
-            // int over the visible disc of S_{g(o)}(zeta) d^2 zeta, zeta = k (i_xy + o_xy), by disc_sum on the finest
-            // lattice of the rows that g(o) reads (g from (k sigma cos theta_i)^2 at the horizon to (2 k sigma)^2).
+            // int over the visible disc of S_{g(o)}(zeta) d^2 zeta, zeta = k (i_xy + o_xy): the product rule over the
+            // cells of disc_bins, each cell's mass of every row times the weights of g at its centre.
             const double a = 2.0 * k * sigma * ci, b = k * sigma;
-            const double h = lobes_->finest_spacing(b * b * ci * ci, b * b * (ci + 1) * (ci + 1));
-            const double mass = lobes_->disc_sum(Vec2(k * wi.x, k * wi.y), k, h, [&](Vec2 zeta) {
+            const double mass = lobes_->disc_cells(*bins, centre, k, [&](std::size_t cell, Vec2 zeta) {
                 const double ox = zeta.x / k - wi.x, oy = zeta.y / k - wi.y;
-                const double co = std::sqrt(std::max(0.0, 1.0 - ox * ox - oy * oy)), c = b * (ci + co);
-                return density(c * c, zeta);
+                const double co = std::sqrt(std::max(0.0, 1.0 - ox * ox - oy * oy)), c = b * (ci + co), g = c * c;
+                const double weight = ssa_ == SsaForm::strict ? g : math::one_minus_exp(g);  // as density()
+                return weight * lobes_->binned_shape(*bins, cell, g, ssa_.has_value());
             });
             return {sigma, mass > 0 ? -std::expm1(-a * a) / mass : 1.0};
         }

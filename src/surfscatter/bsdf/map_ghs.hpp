@@ -25,6 +25,7 @@
 // the pdf is the exact sub-probability density pdf(o) = (1 - e^{-g0}) k^2 cos theta_o p(zeta).
 #include <array>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 
@@ -43,6 +44,7 @@ public:
     static constexpr int kAzimuthNodes = 24;        // phi_i over [0, pi), tabulated
     static constexpr int kRefinement = 4;           // refined azimuths per tabulated interval, read linearly
     static constexpr double kMinWavelength = 360;   // nm
+    static constexpr double kDiscCells = 64;        // cells per visible disc radius k in the tables' disc integrals
 
     // ssa: nullopt for the full GHS lobe, else the SSA form (its first-order lobe).
     MapGhsBsdf(std::shared_ptr<const surface::SpectrumLobes2d> lobes, std::optional<SsaForm> ssa,
@@ -83,7 +85,13 @@ private:
     AzimuthTables cached_tables(double lambda_nm) const;
     AzimuthTables build_tables(double lambda_nm) const;
 
+    // The lobes' bins for the visible-disc integrals of direct() at wavenumber k (the last k asked for is kept).
+    std::shared_ptr<const surface::SpectrumLobes2d::Bins> disc_bins(double k) const;
+
     std::shared_ptr<const surface::SpectrumLobes2d> lobes_;
+    mutable std::mutex bins_mutex_;
+    mutable std::shared_ptr<const surface::SpectrumLobes2d::Bins> bins_;
+    mutable double bins_k_ = 0;
     std::optional<SsaForm> ssa_;
     material::Conductor material_;
     GhsSettings settings_;

@@ -39,4 +39,8 @@ std::string EllipticalStatistics::cache_key() const {
     return fmt::format("elliptical({},LV={:.17g},A={:.17g})", radial_->cache_key(), corr_length_v_, lay_angle_);
 }
 
+std::string EllipticalStatistics::shape_key() const {
+    return fmt::format("elliptical({},LV={:.17g})", radial_->cache_key(), corr_length_v_);
+}
+
 }  // namespace surfscatter::surface

@@ -45,6 +45,9 @@ public:
     Vec2 slope_variances_lay() const;
     // The radial key with LV and A: tables derived from the anisotropic surface.
     std::string cache_key() const;
+    // The radial key with LV but not A: tables over the incidence relative to the lay (phi_i - A), which a new lay
+    // angle only rotates (AnisotropicGhsBsdf's), are shared by every lay angle.
+    std::string shape_key() const;
 
 private:
     std::shared_ptr<const RadialStatistics> radial_;

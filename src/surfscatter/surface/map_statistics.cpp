@@ -36,7 +36,7 @@ public:
     // P (um^4) inside the band. Rings sit near multiples of the ring width (skipped rings aside), so the segment is
     // found from a first guess and a few steps instead of a search (this is on the lobe's evaluation path).
     double value_in_band(double zeta) const {
-        if (zeta <= zeta_.front()) return dc_ + (first_ - dc_) * zeta / zeta_.front();  // from the periodogram's DC value
+        if (zeta <= zeta_.front()) return dc_ + (first_ - dc_) * zeta / zeta_.front();  // from P(0), the DC bin
         const std::size_t last = slope_.size() - 1;  // segments 0 .. last; beyond the last ring: its segment continued
         std::size_t i = std::min(last, static_cast<std::size_t>((zeta - zeta_.front()) / spacing_));
         while (i > 0 && zeta_[i] > zeta) --i;
@@ -52,6 +52,15 @@ private:
     std::vector<double> zeta_, log_psd_, slope_;
     double nyquist_, dc_, first_ = 0, edge_ = 0, spacing_ = 1;
 };
+
+double lowest_ring_mean(const Psd2d& p) {
+    if (p.nx < 3 || p.ny < 3) fail("a measured spectrum needs at least 3 x 3 bins, got {} x {}", p.nx, p.ny);
+    const std::size_t hx = p.half_nx(), last = p.ny - 1;
+    // The 8 bins around DC in the full plane: (+-1, 0), (0, +-1), (+-1, +-1); (-kx, -ky) mirrors (kx, ky).
+    const double sum = 2 * p.values[1] + p.values[hx] + p.values[last * hx] + 2 * p.values[hx + 1] +
+                       2 * p.values[last * hx + 1];
+    return std::max(0.0, sum / 8);
+}
 
 MapStatistics::MapStatistics(const heightmap::HeightMap& map, heightmap::Form form) {
     heightmap::require_valid_fraction(map, heightmap::kMinFitValidFraction, "measured statistics");
@@ -69,9 +78,13 @@ MapStatistics::MapStatistics(const heightmap::HeightMap& map, heightmap::Form fo
     window_scale_ = map_rms_ * map_rms_ / weighted;
     for (double& v : spectrum_.values) v *= window_scale_;
     radial_ = radial_average(spectrum_);
-    // P(0): the periodogram's own DC value, 0 for the rectangular window (the mean is removed), with the Hann window
-    // the power its main lobe moved there from the first rings.
-    double dc = std::max(0.0, spectrum_.values[0]);
+    // P(0): the DC bin is not the surface's power at zero frequency but what removing the mean left there (0 with the
+    // rectangular window; with the Hann window the power its main lobe moved there from the first rings), which put a
+    // hole in the lobe's core exactly at specular (SSA ~1e-25 there, GHS 3-6x low at small g). It is continued from
+    // the lattice's lowest ring instead, the mean of its 8 neighbours, in the 2-D spectrum that the 2-D route reads
+    // and as the ring route's P(0), so that the core follows the lowest rings continuously (docs/HEIGHTMAPS.md).
+    spectrum_.values[0] = lowest_ring_mean(spectrum_);
+    double dc = spectrum_.values[0];
     // The rings used and the lattice's sum over them and DC (each ring's mean times its points): what the map holds
     // in the band (Parseval).
     std::vector<double> zeta, psd;

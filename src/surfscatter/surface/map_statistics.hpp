@@ -16,11 +16,11 @@
 // 3. The band: beyond Nyquist P falls as zeta^-200 from its value there (continuous, so that the lobe tables keep
 //    their fast path; 0.02x at 1.02 zeta_N), so next to nothing beyond what the map holds is used, whatever the
 //    tail does (an instrument's noise floor flatter than zeta^-2 included); that share is reported
-//    (above_band_fraction()). Below the first ring (periods
-//    longer than the map) P runs linearly from the periodogram's own DC value to the first ring, as a bilinear
-//    reading of the lattice does: 0 with the rectangular window (the mean is removed), with the Hann window the
-//    power its main lobe moved there from the first rings; nothing is held flat or extrapolated. Its share of
-//    the variance is reported (below_band_fraction()).
+//    (above_band_fraction()). Below the first ring (periods longer than the map) P runs linearly from P(0) to the
+//    first ring, as a bilinear reading of the lattice does, P(0) being the DC bin continued from the lattice's
+//    lowest ring (lowest_ring_mean(): the periodogram's own DC value is what removing the mean left, 0 with the
+//    rectangular window, and put a hole in the lobe's core at specular); nothing is extrapolated beyond the lowest
+//    ring. Its share of the variance is reported (below_band_fraction()).
 // 1b. Window correction: the periodogram is scaled so that its total is the map's own variance (the Hann window's
 //    total is the centre-weighted variance): window_scale().
 // 4. sigma_h^2 is the integral of that P, which equals the periodogram's sum over the disc of the band (Parseval):
@@ -88,5 +88,9 @@ private:
     std::shared_ptr<const MapRingPsd> rings_psd_;   // the ring means as a PSD, rolled off beyond the band
     double inverse_variance_ = 0, nyquist_ = 0;
 };
+
+// The mean of the 8 bins around DC of a periodogram (its lowest ring on the lattice): what MapStatistics puts in the
+// DC bin, where removing the mean left 0 (or the Hann window's leakage). Error below 3 x 3 bins.
+double lowest_ring_mean(const Psd2d& spectrum);
 
 }  // namespace surfscatter::surface

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/progress.hpp"
 #include "surfscatter/math/fast_math.hpp"
 #include "surfscatter/math/lagrange.hpp"
 #include "surfscatter/heightmap/fftw_planner.hpp"
@@ -20,7 +21,7 @@ namespace surfscatter::surface {
 
 namespace {
 
-constexpr std::uint32_t kVersion = 1;  // of the construction, in key()
+constexpr std::uint32_t kVersion = 2;  // of the construction, in key()
 
 // A real function on a full, centred lattice: nodes -half_x .. half_x by -half_y .. half_y, spacing dzx, dzy.
 struct Centred {
@@ -34,9 +35,10 @@ struct Centred {
 // The full plane of a half-plane (r2c) layout value(kx, ky) of an n_x x n_y lattice, kx in [0, n_x/2]: the point
 // (-kx, -ky) mirrors (kx, ky); a Nyquist bin of an even side (the same lattice point at +- n/2) is split half and half
 // between both, so that the result is even.
+// Into `c`, whose storage is reused (the rows' lattices are up to 2048^2: a fresh one per row cost a third of a
+// build in page faults).
 template <class Value>
-Centred centred_plane(std::size_t nx, std::size_t ny, double dzx, double dzy, Value value) {
-    Centred c;
+void centred_plane(std::size_t nx, std::size_t ny, double dzx, double dzy, Value value, Centred& c) {
     c.half_x = long(nx / 2);
     c.half_y = long(ny / 2);
     c.dzx = dzx;
@@ -51,7 +53,6 @@ Centred centred_plane(std::size_t nx, std::size_t ny, double dzx, double dzy, Va
             if (ny % 2 == 0 && std::abs(j) == c.half_y) factor *= 0.5;
             c.at(i, j) = factor * value(std::size_t(kx), wrap(ky, ny));
         }
-    return c;
 }
 
 // Chebyshev ring (max(|i|, |j|)) of a node.
@@ -155,7 +156,35 @@ double SpectrumLobes2d::Row::at(Vec2 zeta) const {
     return (1 - ty) * ((1 - tx) * p[0] + tx * p[dx]) + ty * ((1 - tx) * q[0] + tx * q[dx]);
 }
 
-SpectrumLobes2d::SpectrumLobes2d(const Psd2d& spectrum, double g_max) : g_max_(g_max), spectrum_(spectrum) {
+namespace {
+// A row in the rough-surface limit: the unit-mass Gaussian of covariance c (xx, xy, yy) on a lattice of
+// kGaussNodesPerSigma nodes per standard deviation and axis out to kGaussSigmas of them.
+SpectrumLobes2d::Row gaussian_row(const std::array<double, 3>& c) {
+    SpectrumLobes2d::Row row;
+    const double sx = std::sqrt(c[0]), sy = std::sqrt(c[2]), det = c[0] * c[2] - c[1] * c[1];
+    row.hx = sx / SpectrumLobes2d::kGaussNodesPerSigma;
+    row.hy = sy / SpectrumLobes2d::kGaussNodesPerSigma;
+    row.inv_hx = 1.0 / row.hx;
+    row.inv_hy = 1.0 / row.hy;
+    row.half_x = row.half_y = long(std::ceil(SpectrumLobes2d::kGaussSigmas * SpectrumLobes2d::kGaussNodesPerSigma));
+    row.value.assign(std::size_t((2 * row.half_x + 1) * (2 * row.half_y + 1)), 0.0);
+    double sum = 0;
+    for (long j = -row.half_y; j <= row.half_y; ++j)
+        for (long i = -row.half_x; i <= row.half_x; ++i) {
+            const double x = double(i) * row.hx, y = double(j) * row.hy;
+            const double q = (c[2] * x * x - 2 * c[1] * x * y + c[0] * y * y) / det;
+            const double v = std::exp(-0.5 * q);
+            row.value[std::size_t((j + row.half_y) * (2 * row.half_x + 1) + (i + row.half_x))] = v;
+            sum += v;
+        }
+    for (double& v : row.value) v /= sum * row.hx * row.hy;
+    row.raw_mass = 1.0;
+    return row;
+}
+}  // namespace
+
+SpectrumLobes2d::SpectrumLobes2d(const Psd2d& spectrum, double g_max, bool rough_limit)
+    : g_max_(g_max), spectrum_(spectrum) {
     if (!(g_max > 0 && g_max <= 1e7)) fail("2-D measured lobes: g_max must be in (0, 1e7], got {}", g_max);
     const double variance = spectrum.integral();
     if (!(variance > 0) || !std::isfinite(variance))
@@ -164,8 +193,28 @@ SpectrumLobes2d::SpectrumLobes2d(const Psd2d& spectrum, double g_max) : g_max_(g
     for (double& v : spectrum_.values) v /= variance;
     const std::size_t nx = spectrum_.nx, ny = spectrum_.ny, hx = spectrum_.half_nx();
     const double dzx = spectrum_.dzeta_x, dzy = spectrum_.dzeta_y;
-    const Centred unit = centred_plane(nx, ny, dzx, dzy,
-                                       [&](std::size_t kx, std::size_t ky) { return spectrum_.values[ky * hx + kx]; });
+    Centred unit;
+    centred_plane(nx, ny, dzx, dzy, [&](std::size_t kx, std::size_t ky) { return spectrum_.values[ky * hx + kx]; },
+                  unit);
+
+    // The rough-surface limit's moments of the unit periodogram and its switch (rough_limit_g()).
+    for (long j = -unit.half_y; j <= unit.half_y; ++j)
+        for (long i = -unit.half_x; i <= unit.half_x; ++i) {
+            const double x = double(i) * dzx, y = double(j) * dzy, w = unit.at(i, j) * dzx * dzy;
+            moment_[0] += w * x * x;
+            moment_[1] += w * x * y;
+            moment_[2] += w * y * y;
+        }
+    const double det = moment_[0] * moment_[2] - moment_[1] * moment_[1];
+    if (det > 0) {
+        for (long j = -unit.half_y; j <= unit.half_y; ++j)
+            for (long i = -unit.half_x; i <= unit.half_x; ++i) {
+                const double x = double(i) * dzx, y = double(j) * dzy;
+                const double q = (moment_[2] * x * x - 2 * moment_[1] * x * y + moment_[0] * y * y) / det;
+                kurtosis_ += unit.at(i, j) * dzx * dzy * q * q;
+            }
+        if (rough_limit && std::isfinite(kurtosis_)) rough_limit_g_ = kurtosis_ / (8.0 * kRoughTolerance);
+    }
 
     // 2. rho on the p-fold lattice.
     const double nyquist = std::min(0.5 * double(nx) * dzx, 0.5 * double(ny) * dzy);
@@ -209,13 +258,28 @@ SpectrumLobes2d::SpectrumLobes2d(const Psd2d& spectrum, double g_max) : g_max_(g
         beyond_min[std::size_t(r)] = std::min(beyond_min[std::size_t(r)], beyond_min[std::size_t(r) + 1]);
     }
 
-    // 3. Rows.
+    // 3. Rows, with a progress bar on stderr for a build of more than about a second (~1e8 lattice points
+    // transformed: measured 0.6-1 s on this project's VM, docs/PERFORMANCE.md).
+    const int last = int(std::ceil(std::log10(g_max / kMinG) * kRowsPerDecade - 1e-9));
+    const double work = double(fx) * double(fy) * double(std::max(last, 3) + 2);
+    Progress progress(fmt::format("2-D measured lobes ({} x {} lattice, {} rows)", fx, fy, std::max(last, 3) + 2),
+                      std::uint64_t(std::max(last, 3) + 2), work > 1e8);
     double edge = 0;
+    std::vector<double> f;                     // one row's window of e^{-g (1 - rho)} - e^{-g}
+    std::vector<std::complex<double>> out;     // its transform
+    Centred lobe;                              // on the full plane
     rows_.push_back(make_row(unit, 1.0, edge));  // on the map's own lattice: its edge is the band's, nothing folds
     row_g_.push_back(0.0);
-    const int last = int(std::ceil(std::log10(g_max / kMinG) * kRowsPerDecade - 1e-9));
+    progress.advance();
     for (int n = 0; n <= std::max(last, 3); ++n) {  // at least the 4 rows of one cubic stencil
         const double g = kMinG * std::pow(10.0, double(n) / kRowsPerDecade);
+        if (g >= rough_limit_g_) {
+            rows_.push_back(gaussian_row({g * moment_[0], g * moment_[1], g * moment_[2]}));
+            row_g_.push_back(g);
+            ++rough_rows_;
+            progress.advance();
+            continue;
+        }
         const double e = std::exp(-g), f0 = -std::expm1(-g);
         // The window: the smallest Chebyshev radius beyond which |f| < kCropValue f(0).
         long w = 1;
@@ -226,8 +290,8 @@ SpectrumLobes2d::SpectrumLobes2d(const Psd2d& spectrum, double g_max) : g_max_(g
         while (w < rings && beyond(w) >= kCropValue * f0) ++w;
         const std::size_t wx = std::min(fx, power_of_two_at_least(std::size_t(2 * w))),
                           wy = std::min(fy, power_of_two_at_least(std::size_t(2 * w)));
-        std::vector<double> f(wx * wy);
-        std::vector<std::complex<double>> out(wy * (wx / 2 + 1));
+        f.resize(wx * wy);  // every element written below
+        out.resize(wy * (wx / 2 + 1));
         for (long j = -long(wy / 2); j < long(wy - wy / 2); ++j)
             for (long i = -long(wx / 2); i < long(wx - wx / 2); ++i) {
                 const double value = std::exp(-g * (1.0 - rho_at(i, j))) - e;
@@ -245,12 +309,14 @@ SpectrumLobes2d::SpectrumLobes2d(const Psd2d& spectrum, double g_max) : g_max_(g
         }
         const double scale = dxf * dyf / (4.0 * kPi * kPi);
         const std::size_t ohx = wx / 2 + 1;
-        const Centred lobe = centred_plane(wx, wy, kTwoPi / (double(wx) * dxf), kTwoPi / (double(wy) * dyf),
-                                           [&](std::size_t kx, std::size_t ky) { return scale * out[ky * ohx + kx].real(); });
+        centred_plane(wx, wy, kTwoPi / (double(wx) * dxf), kTwoPi / (double(wy) * dyf),
+                      [&](std::size_t kx, std::size_t ky) { return scale * out[ky * ohx + kx].real(); }, lobe);
         rows_.push_back(make_row(lobe, f0, edge));
         row_g_.push_back(g);
         edge_fraction_ = std::max(edge_fraction_, edge);
+        progress.advance();
     }
+    progress.finish();
     for (const Row& r : rows_)
         reach_ = std::max({reach_, (double(r.half_x) + 0.5) * r.hx, (double(r.half_y) + 0.5) * r.hy});
     for (std::size_t first = 0; first + 5 <= rows_.size(); ++first) {
@@ -267,8 +333,10 @@ SpectrumLobes2d::SpectrumLobes2d(const Psd2d& spectrum, double g_max) : g_max_(g
     std::uint64_t h = fnv1a(spectrum_.values.data(), spectrum_.values.size() * sizeof(double));
     const double dims[4] = {double(nx), double(ny), dzx, dzy};
     h = fnv1a(dims, sizeof dims, h);
-    key_ = fmt::format("spectrum-lobes-2d:v{}:{:016x}:{}x{}:sigma_h={:.17g}:window={}:p={}:rows/decade={}:cells={}",
-                       kVersion, h, nx, ny, sigma_h_, int(spectrum_.window), padding_, kRowsPerDecade, kMaxCells);
+    key_ = fmt::format("spectrum-lobes-2d:v{}:{:016x}:{}x{}:sigma_h={:.17g}:window={}:p={}:rows/decade={}:cells={}"
+                       ":rough-limit={:.17g}/{}/{}",
+                       kVersion, h, nx, ny, sigma_h_, int(spectrum_.window), padding_, kRowsPerDecade, kMaxCells,
+                       rough_limit_g_, kGaussNodesPerSigma, kGaussSigmas);
 }
 
 SpectrumLobes2d::Mixture SpectrumLobes2d::mixture(double g, bool first_order_only) const {
@@ -285,6 +353,14 @@ SpectrumLobes2d::Mixture SpectrumLobes2d::mixture(double g, bool first_order_onl
     return {a, a + 1, 1.0 - w, w};
 }
 
+// Cubic Lagrange in ln g over the 4 rows around it (one-sided at the ends).
+inline SpectrumLobes2d::Cubic SpectrumLobes2d::cubic(double log_g) const {
+    const double t = (log_g - std::log(kMinG)) * (kRowsPerDecade / std::numbers::ln10);
+    const long nodes = long(rows_.size()) - 1;  // rows 1 .. nodes at t = 0 .. nodes - 1
+    const long first = std::clamp(long(t) - 1, 0L, nodes - 4);
+    return {first, math::lagrange4_weights(t - double(first))};
+}
+
 double SpectrumLobes2d::shape(double g, Vec2 zeta) const { return shape(g, math::fast_log(g), zeta); }
 
 double SpectrumLobes2d::shape(double g, double log_g, Vec2 zeta) const {
@@ -293,12 +369,7 @@ double SpectrumLobes2d::shape(double g, double log_g, Vec2 zeta) const {
         const Mixture m = mixture(g, false);
         return m.wa * rows_[m.a].at(zeta) + m.wb * rows_[m.b].at(zeta);
     }
-    // Cubic Lagrange in ln g over the 4 rows around it (one-sided at the ends).
-    const double t = (log_g - std::log(kMinG)) * (kRowsPerDecade / std::numbers::ln10);
-    const long nodes = long(rows_.size()) - 1;  // rows 1 .. nodes at t = 0 .. nodes - 1
-    const long first = std::clamp(long(t) - 1, 0L, nodes - 4);
-    const double u = t - double(first);
-    const std::array<double, 4> w = math::lagrange4_weights(u);
+    const auto [first, w] = cubic(log_g);
     const Row* stencil = rows_.data() + first + 1;
     double sum = 0;
     if (shared_lattice_[std::size_t(first)]) {
@@ -351,6 +422,68 @@ double SpectrumLobes2d::disc_mass(Vec2 centre, double radius) const {
         }
     }
     return std::clamp(sum * r.hx * r.hy, 0.0, 1.0);
+}
+
+namespace {
+// One axis of Bins: node values v[-nodes .. nodes] at spacing s onto cells -half .. half of spacing h, at stride
+// `stride` in out (added to): summed when s < h, the linear interpolant at the cell centres (0 beyond the outermost
+// nodes, as Row::at) times h otherwise.
+void bin_axis(const double* v, long nodes, double s, double h, long half, double* out, std::size_t stride) {
+    if (s < h) {
+        for (long i = -nodes; i <= nodes; ++i) {
+            const long c = std::lround(double(i) * s / h);
+            if (c >= -half && c <= half) out[std::size_t(c + half) * stride] += s * v[i + nodes];
+        }
+        return;
+    }
+    for (long c = -half; c <= half; ++c) {
+        const double u = double(c) * h / s + double(nodes);
+        if (!(u >= 0 && u <= double(2 * nodes))) continue;
+        const long i = std::min(long(u), std::max(2 * nodes - 1, 0L));
+        const double t = nodes > 0 ? u - double(i) : 0.0;
+        out[std::size_t(c + half) * stride] += h * ((1 - t) * v[i] + (nodes > 0 ? t * v[i + 1] : 0.0));
+    }
+}
+}  // namespace
+
+SpectrumLobes2d::Bins SpectrumLobes2d::bins(double h, double extent, double g_hi) const {
+    if (!(h > 0 && extent > 0 && std::isfinite(extent / h)))
+        fail("2-D measured lobes: bins of spacing {} out to {} rad/um", h, extent);
+    Bins b;
+    b.h = h;
+    b.half = long(std::ceil(extent / h));
+    const long n = 2 * b.half + 1;
+    // The last row any g <= g_hi reads: the cubic's stencil at g_hi (rows 0 and 1 below kMinG).
+    const double top = std::min(g_hi, g_max_);
+    const std::size_t last = top < kMinG ? 1 : std::size_t(cubic(std::log(top)).first + 4);
+    b.mass.resize(rows_.size());
+    for (std::size_t r = 0; r <= std::min(last, rows_.size() - 1); ++r) {
+        const Row& row = rows_[r];
+        const long nx = 2 * row.half_x + 1, ny = 2 * row.half_y + 1;
+        std::vector<double> along_x(std::size_t(ny * n), 0.0);  // [node row j][cell i]
+        for (long j = 0; j < ny; ++j)
+            bin_axis(row.value.data() + j * nx, row.half_x, row.hx, h, b.half, along_x.data() + j * n, 1);
+        std::vector<double> m(std::size_t(n * n), 0.0);
+        std::vector<double> column(std::size_t(ny), 0.0);
+        for (long i = 0; i < n; ++i) {
+            for (long j = 0; j < ny; ++j) column[std::size_t(j)] = along_x[std::size_t(j * n + i)];
+            bin_axis(column.data(), row.half_y, row.hy, h, b.half, m.data() + i, std::size_t(n));
+        }
+        b.mass[r] = std::move(m);
+    }
+    return b;
+}
+
+double SpectrumLobes2d::binned_shape(const Bins& bins, std::size_t index, double g, bool first_order_only) const {
+    if (first_order_only || g <= 0) return bins.mass[0][index];
+    if (g < kMinG) {
+        const Mixture m = mixture(g, false);
+        return m.wa * bins.mass[m.a][index] + m.wb * bins.mass[m.b][index];
+    }
+    const auto [first, w] = cubic(std::log(g));
+    double sum = 0;
+    for (int n = 0; n < 4; ++n) sum += w[std::size_t(n)] * bins.mass[std::size_t(first + 1 + n)][index];
+    return std::max(sum, 0.0);
 }
 
 double SpectrumLobes2d::finest_spacing(double g_lo, double g_hi) const {

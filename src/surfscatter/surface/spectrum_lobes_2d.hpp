@@ -4,8 +4,9 @@
 //   S_g(zeta) = e^{-g} sum_{m>=1} g^m/m! P-hat^{*m}(zeta) = (1/4 pi^2) FT{e^{-g (1 - rho(r))} - e^{-g}}(zeta),
 // of mass 1 - e^{-g}, tabulated as its unit-mass shape s_g = S_g / (1 - e^{-g}).
 // Construction:
-// 1. P-hat = the periodogram (MapStatistics::spectrum(): its window and DC value) over its lattice sum, which is
-//    sigma_h^2 here (the whole lattice, its corners beyond the Nyquist disc included; the ring route sums the disc).
+// 1. P-hat = the periodogram (MapStatistics::spectrum(): its window, its DC bin continued from the lowest ring) over
+//    its lattice sum, which is sigma_h^2 here (the whole lattice, its corners beyond the Nyquist disc included; the
+//    ring route sums the disc).
 //    The lattice's Nyquist bins of an even side are split half and half between +Nyquist and -Nyquist, so that every
 //    tabulated lobe is even (S(-zeta) = S(zeta)). Beyond the lattice P-hat is 0, as the ring route's roll-off
 //    (zeta^-200 beyond Nyquist) makes it in effect: nothing beyond what the map holds enters the first order.
@@ -15,7 +16,8 @@
 //    Nyquist (order m reaches m Nyquist), out to p * Nyquist; what an order would put beyond p * Nyquist folds back
 //    (the lattice is periodic): edge_fraction() reports the largest share of any g > 0 row's mass in the outer quarter
 //    of its lattice, the measure of that folding, and the models pass it on in their notes.
-// 3. Rows: g -> 0 (P-hat itself) and kRowsPerDecade log-spaced g from kMinG up to the g_max given. For each g,
+// 3. Rows: g -> 0 (P-hat itself) and kRowsPerDecade log-spaced g from kMinG up to the g_max given; those at
+//    g >= rough_limit_g() in the rough-surface limit (below), the others in full. For each g in full,
 //    f = e^{-g (1 - rho)} - e^{-g} on the fine lattice cropped to the square window outside which f < kCropValue f(0)
 //    (the whole lattice for small g: f ~ g rho there; a few correlation lengths for large g, where the lobe is wide
 //    and its zeta grid may be coarse), transformed (r2c FFT); the result is cropped to the square holding all but
@@ -37,6 +39,7 @@
 // x, then y given x, both inverted in closed form); the pdf is that mixture of the rows' bilinear shapes (each over its
 // own cell sum), exact for what is drawn and continuous (the eval's cubic in ln g is not the sampler's).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <memory>
@@ -58,10 +61,15 @@ public:
     static constexpr double kCoverage = 4.0 * kPi / 0.36;  // rad/um: 2 k at 360 nm
     static constexpr double kCropValue = 1e-10;
     static constexpr double kCropMass = 1e-9;
+    // The rough-surface limit (rows at g >= rough_limit_g()): its estimated error at the lobe's peak, relative.
+    static constexpr double kRoughTolerance = 0.01;
+    static constexpr int kGaussNodesPerSigma = 6;     // node spacing of a limit row, per standard deviation and axis
+    static constexpr double kGaussSigmas = 7.5;       // its extent (e^{-28}: below kCropMass)
 
-    // The lobes of `spectrum` (a periodogram, estimate_psd()) for g in [0, g_max]. Error if its lattice sum is not
-    // positive or g_max not in (0, 1e7].
-    SpectrumLobes2d(const Psd2d& spectrum, double g_max);
+    // The lobes of `spectrum` (a periodogram, estimate_psd()) for g in [0, g_max]; rough_limit false computes every
+    // row in full (the reference of the limit's accuracy). Error if its lattice sum is not positive or g_max not in
+    // (0, 1e7].
+    SpectrumLobes2d(const Psd2d& spectrum, double g_max, bool rough_limit = true);
 
     double sigma_h() const { return sigma_h_; }                // sqrt of the periodogram's lattice sum, um
     double g_max() const { return g_max_; }
@@ -84,11 +92,38 @@ public:
     // ramp over one cell): int over the disc of f, continuous in centre and radius.
     template <class F>
     double disc_sum(Vec2 centre, double radius, double h, F&& f) const;
+    // The rows' unit-mass shapes as masses on the square grid of spacing h through 0 (cells -half .. half per axis,
+    // half = ceil(extent / h)), for product integrals over a disc (MapGhsBsdf's tables; docs/MODELS.md "Measured 2-D
+    // spectrum"): along an axis on which a row's nodes are finer than h their masses (value times spacing) are summed
+    // into the cell holding them, along any other its linear interpolant is taken at the cell's centre times h (per
+    // axis, so that a row's bilinear reading is kept where it is coarse and its every node where it is fine). Only
+    // the rows that some g in [0, g_hi] reads are made; the others are left empty.
+    struct Bins {
+        double h = 0;
+        long half = 0;
+        std::vector<std::vector<double>> mass;  // per row: [(j + half) * (2 half + 1) + (i + half)]
+    };
+    Bins bins(double h, double extent, double g_hi) const;
+    // s_g's mass in cell `index` of `bins` (first_order_only: P-hat's), over the rows as shape() reads them.
+    double binned_shape(const Bins& bins, std::size_t index, double g, bool first_order_only) const;
+    // Sum over the cells of `bins` within `radius` of `centre` of f(index, the cell's centre), each weighted by the
+    // share of its cell inside the disc (a linear ramp over one cell, as disc_sum): continuous in centre and radius.
+    template <class F>
+    double disc_cells(const Bins& bins, Vec2 centre, double radius, F&& f) const;
     // A zeta drawn from s_g (first_order_only: from P-hat), and the density of that draw at zeta (1/um^2^-1).
     Vec2 sample(double g, bool first_order_only, double u_row, Vec2 u) const;
     double sample_density(double g, bool first_order_only, Vec2 zeta) const;
 
-    double edge_fraction() const { return edge_fraction_; }   // see 2. above
+    double edge_fraction() const { return edge_fraction_; }   // see 2. above (rows in full only)
+    // The rough-surface limit: rows with g >= rough_limit_g() are the Gaussian of covariance g M2 (M2 = slope_moment(),
+    // the unit periodogram's second moment: the slope covariance over sigma_h^2), the lobe's limit as g -> inf where
+    // e^{-g (1 - rho)} -> e^{-g r.M2.r / 2}. Its relative error at the peak is the Edgeworth term of the compound
+    // Poisson sum, K / (8 g) with K = E[(zeta.M2^-1.zeta)^2] over P-hat (kurtosis()); the switch is where that is
+    // kRoughTolerance (+inf when rough_limit is false or K is not finite).
+    double rough_limit_g() const { return rough_limit_g_; }
+    std::array<double, 3> slope_moment() const { return moment_; }  // M2: xx, xy, yy (rad/um)^2
+    double kurtosis() const { return kurtosis_; }
+    std::size_t rough_rows() const { return rough_rows_; }          // rows made in the limit
     std::size_t padding() const { return padding_; }          // p
     std::size_t rows() const { return rows_.size(); }
     double row_g(std::size_t row) const { return row_g_[row]; }  // 0 for row 0
@@ -106,10 +141,15 @@ public:
 
 private:
     struct Mixture { std::size_t a, b; double wa, wb; };
+    // The cubic in ln g (g >= kMinG): its rows first + 1 .. first + 4 and their weights.
+    struct Cubic { long first; std::array<double, 4> w; };
+    Cubic cubic(double log_g) const;
     Mixture mixture(double g, bool first_order_only) const;
     const std::vector<double>& cdf(std::size_t row) const;
 
-    double sigma_h_ = 0, g_max_ = 0, edge_fraction_ = 0, reach_ = 0;
+    double sigma_h_ = 0, g_max_ = 0, edge_fraction_ = 0, reach_ = 0, rough_limit_g_ = HUGE_VAL, kurtosis_ = 0;
+    std::array<double, 3> moment_{};
+    std::size_t rough_rows_ = 0;
     std::size_t padding_ = 1;
     Psd2d spectrum_;                 // normalised to unit lattice sum
     std::vector<Row> rows_;
@@ -137,6 +177,26 @@ double SpectrumLobes2d::disc_sum(Vec2 centre, double radius, double h, F&& f) co
         }
     }
     return sum * h * h;
+}
+
+template <class F>
+double SpectrumLobes2d::disc_cells(const Bins& bins, Vec2 centre, double radius, F&& f) const {
+    const double h = bins.h, outer = radius + 0.5 * h;
+    const long n = 2 * bins.half + 1;
+    const long j0 = std::max(-bins.half, long(std::ceil((centre.y - outer) / h)));
+    const long j1 = std::min(bins.half, long(std::floor((centre.y + outer) / h)));
+    const long i0 = std::max(-bins.half, long(std::ceil((centre.x - outer) / h)));
+    const long i1 = std::min(bins.half, long(std::floor((centre.x + outer) / h)));
+    double sum = 0;
+    for (long j = j0; j <= j1; ++j) {
+        const double y = double(j) * h, dy = y - centre.y;
+        for (long i = i0; i <= i1; ++i) {
+            const double x = double(i) * h, dx = x - centre.x;
+            const double w = std::clamp(0.5 + (radius - std::sqrt(dx * dx + dy * dy)) / h, 0.0, 1.0);
+            if (w > 0) sum += w * f(std::size_t((j + bins.half) * n + (i + bins.half)), Vec2(x, y));
+        }
+    }
+    return sum;
 }
 
 }  // namespace surfscatter::surface
