@@ -44,7 +44,7 @@ void BM_real_map_brdf(benchmark::State& state) {
             o.material = "Al";
             o.surface.psd = PsdKind::measured;
             o.surface.surface_file = file;
-            o.surface.form = form;
+            o.surface.preparation.form = form;
             o.surface.measured_spectrum = route == 1 ? MeasuredSpectrum::ring : MeasuredSpectrum::two_d;
             try {
                 load_height_map(o.surface);
