@@ -27,9 +27,9 @@ def main(csv, heights, before, after, out, title, width, height, left, right, bo
     width, height, left, right, bottom, top = map(float, (width, height, left, right, bottom, top))
     lambda_s, lambda_c, nyquist = float(lambda_s), float(lambda_c), float(nyquist)
 
-    fig = plt.figure(figsize=(13, 9.5))
-    spec = fig.add_gridspec(2, 3, height_ratios=[1, 1.05], hspace=0.35, wspace=0.35)
-    fig.suptitle(wrap(title, 12.5, 10), fontsize=10)
+    fig = plt.figure(figsize=(14, 9.5))
+    spec = fig.add_gridspec(2, 3, height_ratios=[1, 1.05], hspace=0.35, wspace=0.6)
+    fig.suptitle(wrap(title, 13.5, 10), fontsize=10)
 
     ax = fig.add_subplot(spec[0, 0])
     image = ax.imshow(h, origin="lower", extent=(0, width, 0, height), cmap="viridis", aspect="equal")
