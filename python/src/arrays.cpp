@@ -117,6 +117,17 @@ std::string nesting_index_text(py::handle value, const char* name) {
     return fmt::format("{:.17g}", real_scalar(value, name));
 }
 
+heightmap::Preparation preparation_arguments(const std::string& outliers, const std::string& row_alignment,
+                                             const std::string& form, py::handle lambda_s_um, py::handle lambda_c_um) {
+    heightmap::Preparation how;
+    how.outliers = heightmap::parse_outlier_policy(outliers, "outliers");
+    how.rows = heightmap::parse_row_alignment(row_alignment, "row_alignment");
+    how.form = heightmap::parse_form(form, "form");
+    how.lambda_s_um = heightmap::parse_lambda_s(nesting_index_text(lambda_s_um, "lambda_s_um"), "lambda_s_um");
+    how.lambda_c_um = heightmap::parse_lambda_c(nesting_index_text(lambda_c_um, "lambda_c_um"), "lambda_c_um");
+    return how;
+}
+
 Batch::Batch(const std::vector<Arg>& args) {
     py::list shapes;
     std::vector<std::string> described;

@@ -13,6 +13,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "surfscatter/heightmap/prepare.hpp"
+
 namespace surfscatter::python {
 
 namespace py = pybind11;
@@ -82,6 +84,11 @@ double real_scalar(py::handle value, const char* name, Domain domain = Domain::a
 // A nesting index (lambda_s_um, lambda_c_um) as the CLI and XML take it: a number (um) as its text, or a string
 // ("none", "auto") as it is; heightmap::parse_lambda_s / parse_lambda_c check it.
 std::string nesting_index_text(py::handle value, const char* name);
+
+// A map's preparation from Python's keywords outliers, row_alignment, form, lambda_s_um, lambda_c_um, each checked
+// under its own name (heightmap/prepare.hpp).
+heightmap::Preparation preparation_arguments(const std::string& outliers, const std::string& row_alignment,
+                                             const std::string& form, py::handle lambda_s_um, py::handle lambda_c_um);
 
 // body(i) for i in [0, n), in parallel on TBB's threads, with the GIL released (the body must not touch Python
 // objects). An exception thrown by the body (surfscatter::Error) reaches the caller.

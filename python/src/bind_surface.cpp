@@ -442,12 +442,8 @@ void bind_height_maps(py::module_& m) {
             "prepare",
             [](const heightmap::HeightMap& h, const std::string& outliers, const std::string& row_alignment,
                const std::string& form, py::handle lambda_s_um, py::handle lambda_c_um) {
-                heightmap::Preparation how;
-                how.outliers = heightmap::parse_outlier_policy(outliers, "outliers");
-                how.rows = heightmap::parse_row_alignment(row_alignment, "row_alignment");
-                how.form = heightmap::parse_form(form, "form");
-                how.lambda_s_um = heightmap::parse_lambda_s(nesting_index_text(lambda_s_um, "lambda_s_um"), "lambda_s_um");
-                how.lambda_c_um = heightmap::parse_lambda_c(nesting_index_text(lambda_c_um, "lambda_c_um"), "lambda_c_um");
+                const heightmap::Preparation how =
+                    preparation_arguments(outliers, row_alignment, form, lambda_s_um, lambda_c_um);
                 heightmap::PreparedMap p = [&] {
                     py::gil_scoped_release release;
                     return heightmap::prepare(h, how);

@@ -128,12 +128,8 @@ py::dict validity_map(py::handle surface_arg, const std::string& material, const
                       std::size_t map_pixels, std::size_t realizations, std::uint64_t seed, double subarea_um,
                       double max_theta_o_deg, double bin_deg, double tolerance, double max_reference_stderr,
                       int threads) {
-    heightmap::Preparation preparation;
-    preparation.outliers = heightmap::parse_outlier_policy(outliers, "outliers");
-    preparation.rows = heightmap::parse_row_alignment(row_alignment, "row_alignment");
-    preparation.form = heightmap::parse_form(form, "form");
-    preparation.lambda_s_um = heightmap::parse_lambda_s(nesting_index_text(lambda_s_um, "lambda_s_um"), "lambda_s_um");
-    preparation.lambda_c_um = heightmap::parse_lambda_c(nesting_index_text(lambda_c_um, "lambda_c_um"), "lambda_c_um");
+    const heightmap::Preparation preparation =
+        preparation_arguments(outliers, row_alignment, form, lambda_s_um, lambda_c_um);
     const bsdf::SurfaceOptions options = map_surface_options(surface_arg, preparation);
     const bool measured = options.psd == bsdf::PsdKind::measured;
     if (!measured && preparation != heightmap::Preparation{})

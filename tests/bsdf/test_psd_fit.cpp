@@ -24,6 +24,7 @@
 #include "surfscatter/bsdf/slice.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/heightmap/form.hpp"
+#include "surfscatter/heightmap/prepare.hpp"
 #include "surfscatter/surface/kc_fit.hpp"
 #include "surfscatter/surface/synthesis.hpp"
 
@@ -57,6 +58,18 @@ ModelOptions from_map(ModelKind model, const hm::HeightMap& map, PsdFit fit) {
     o.surface.height_map = std::make_shared<const hm::HeightMap>(map);
     o.surface.psd_fit = fit;
     return o;
+}
+
+// What the models fit: the map as every consumer prepares it (heightmap::prepare, default options), its form removed.
+const hm::HeightMap& prepared_map() {
+    static const hm::HeightMap map = hm::prepare(elliptical_map(), hm::Preparation{}).map;
+    return map;
+}
+
+ss::SurfaceFit prepared_fit() {
+    ss::KcFitOptions options;
+    options.form = hm::Form::none;
+    return ss::fit_surface(prepared_map(), options);
 }
 
 // The psd kc route with the elliptical fit's parameters: what psd_fit elliptical must give.
@@ -98,7 +111,7 @@ bool contains(const std::vector<std::string>& notes, const std::string& text) {
 }  // namespace
 
 TEST(PsdFit, EllipticalFitIsTheAnisotropicModelOfTheFittedStatistics) {
-    const ss::EllipticalKcFit e = ss::fit_surface(elliptical_map()).elliptical;
+    const ss::EllipticalKcFit e = prepared_fit().elliptical;
     ASSERT_TRUE(e.failure.empty()) << e.failure;
     // Within 3 standard errors of the synthesised statistics.
     EXPECT_NEAR(e.corr_length_u_um, kLengthU, 3 * e.corr_length_u_error_um);
@@ -132,8 +145,8 @@ TEST(PsdFit, EllipticalFitIsTheAnisotropicModelOfTheFittedStatistics) {
 // ggx_stats: alpha_u, alpha_v = sqrt(2 <h_u^2>), sqrt(2 <h_v^2>) of the map's own central differences projected on the
 // fitted lay axes (computed here), as the isotropic route takes the map's rms slope; kc_link from the fitted LU, LV.
 TEST(PsdFit, GgxStatsTakesTheMapSlopesAlongTheFittedLay) {
-    const ss::EllipticalKcFit e = ss::fit_surface(elliptical_map()).elliptical;
-    const hm::HeightMap flat = hm::remove_form(elliptical_map(), hm::Form::plane);
+    const ss::EllipticalKcFit e = prepared_fit().elliptical;
+    const hm::HeightMap& flat = prepared_map();
     const double c = std::cos(e.lay_angle_deg * kDegree), s = std::sin(e.lay_angle_deg * kDegree);
     double su = 0, sv = 0;
     std::size_t n = 0;
@@ -195,7 +208,7 @@ TEST(PsdFit, TurnedMapTurnsTheBrdf) {
 
 // psd_fit isotropic (given or the default) is today's route: the KC of the isotropic fit.
 TEST(PsdFit, IsotropicIsTheKcOfTheIsotropicFit) {
-    const ss::KcFit kc = ss::fit_surface(elliptical_map()).kc;
+    const ss::KcFit kc = prepared_fit().kc;
     const auto reference = make_bsdf(test::kc_options(ModelKind::ghs, kc.sigma_h_um, kc.corr_length_um, kc.gamma));
     ModelOptions by_default = from_map(ModelKind::ghs, elliptical_map(), PsdFit::isotropic);
     EXPECT_EQ(ModelOptions().surface.psd_fit, PsdFit::isotropic);

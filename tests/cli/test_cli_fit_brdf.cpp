@@ -25,11 +25,11 @@ void expect_bad_data(const std::string& text, const std::string& needle, const s
     const auto path = (dir / name).string();
     std::ofstream(path) << text;
     const auto r = run_cli({"fit-brdf", "--data", path, "--material", "Au", "--model", "ggx_stats", "-o",
-                            (dir / "bad").string()});
+                            (dir / "fitted").string()});
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_NE(r.err.find(needle), std::string::npos) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-    EXPECT_FALSE(std::filesystem::exists(dir / "bad.json"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "fitted.json"));
 }
 
 }  // namespace
