@@ -163,7 +163,6 @@ void run_kirchhoff(const KirchhoffArgs& a) {
     const auto conductor = material::Conductor::from_name(a.material);
     const heightmap::PreparedMap prepared = read_prepared_map(a.surface_file, {}, {}, a.preparation);
     const heightmap::HeightMap& map = prepared.map;
-    std::fprintf(stderr, "surfscatter: note: %s: %s\n", a.surface_file.c_str(), heightmap::describe(prepared).c_str());
     for (const std::string& warning : map.source.warnings)
         std::fprintf(stderr, "surfscatter: warning: %s: %s\n", a.surface_file.c_str(), warning.c_str());
     reference::KirchhoffOptions o;
@@ -183,6 +182,7 @@ void run_kirchhoff(const KirchhoffArgs& a) {
                      r.subareas_done, r.subareas);
     if (r.subareas_done == 0) return;
     write_file_atomically(a.output, kirchhoff_csv(r));
+    std::fprintf(stderr, "surfscatter: note: %s: %s\n", a.surface_file.c_str(), heightmap::describe(prepared).c_str());
     std::printf("subareas = %zu\nsubarea_px = %zu x %zu\n", r.subareas_done, r.subarea_nx, r.subarea_ny);
     std::printf("lattice_step = %s x %s\n", format_number(r.step_x).c_str(), format_number(r.step_y).c_str());
     std::printf("qz_bands = %zu\nffts_per_subarea = %zu\n", r.band_count, r.fft_count);

@@ -104,15 +104,14 @@ void add_map_options(CLI::App* cmd, MapArgs& a) {
     add_preparation_options(cmd, a.preparation);
 }
 
-// The map prepared (after checking the options): the reader's warnings and the preparation go to stdout, the
-// outliers to stderr as a note (a warning when kept and holding most of the pixel-scale roughness).
+// The map prepared (after checking the options): the reader's warnings go to stdout (the `preparation` line once the
+// command has its results: a failing command prints its error alone), the outliers to stderr as a note (a warning when kept and holding most of the pixel-scale roughness).
 heightmap::PreparedMap read_map(const MapArgs& args, std::optional<heightmap::HeightMap>* as_read = nullptr) {
     if (args.spacing) heightmap::require_valid_spacing(*args.spacing, "--spacing");
     if (args.height_unit) require_positive(*args.height_unit, "--height-unit");
     heightmap::PreparedMap prepared =
         read_prepared_map(args.input, args.spacing, args.height_unit, args.preparation, as_read);
     for (const std::string& warning : prepared.map.source.warnings) std::printf("warning = %s\n", warning.c_str());
-    std::printf("preparation = %s\n", heightmap::describe(prepared).c_str());
     return prepared;
 }
 
@@ -155,6 +154,7 @@ void info(const InfoArgs& args) {
     const heightmap::HeightMoments moments = heightmap::height_moments(map);
     const surface::AcvMeasures acv = surface::acv_measures(map);
     const auto& source = map.source;
+    std::printf("preparation = %s\n", heightmap::describe(prepared).c_str());
     std::printf("format = %s\n", source.format.c_str());
     std::printf("reader = %s%s\n", source.reader.c_str(),
                 source.channel.empty() ? "" : (", channel " + source.channel).c_str());
@@ -394,6 +394,7 @@ void fit(const FitArgs& args) {
         write_outputs();
         fail("{}: {}", args.input, lattice);
     }
+    std::printf("preparation = %s\n", heightmap::describe(prepared).c_str());
     std::printf("sigma_h = %s\n", format_number(result.kc.sigma_h_um).c_str());
     std::printf("corr_length = %s\n", format_number(result.kc.corr_length_um).c_str());
     std::printf("gamma = %s\n", format_number(result.kc.gamma).c_str());

@@ -102,9 +102,11 @@ TEST(CliCompareModels, BadOptionsExitTwo) {
 // Issue 36: the demo's sheets show the supplemental's two surfaces (rough: KC sigma 0.15 um, L 4 um, gamma 4; smooth:
 // sigma 0.02 um, L 2 um, gamma 3), one sheet per surface and view; -D cannot change what --surfaces sets.
 TEST(CliCompareModels, BothSupplementalSurfacesByDefault) {
+    // The scene by its path in the checkout: ctest runs this from the build tree, not the repository root.
+    const std::string kPhotoSetup = std::string(SURFSCATTER_SOURCE_DIR) + "/scenes/photo-setup/scene.xml";
     const fs::path dir = temp_dir() / "cmp_surfaces";
     fs::remove_all(dir);
-    auto result = run_cli({"compare-models", "--view", "1", "--list", "-o", dir.string()});
+    auto result = run_cli({"compare-models", "--scene", kPhotoSetup, "--view", "1", "--list", "-o", dir.string()});
     ASSERT_EQ(result.exit_code, 0) << result.err;
     for (const char* job : {"sheet/rough/view1", "sheet/smooth/view1", "render/rough/view1/ghs", "render/smooth/view1/ghs"})
         EXPECT_NE(result.out.find(job), std::string::npos) << job << " not in\n" << result.out;
@@ -116,26 +118,26 @@ TEST(CliCompareModels, BothSupplementalSurfacesByDefault) {
                                   "\"sigma\": \"0.02\"", "\"corr_length\": \"2\"", "\"gamma\": \"3\""})
         EXPECT_NE(study.find(parameter), std::string::npos) << parameter << " not in\n" << study;
 
-    result = run_cli({"compare-models", "--surfaces", "smooth", "--view", "1", "--list", "-o", dir.string()});
+    result = run_cli({"compare-models", "--scene", kPhotoSetup, "--surfaces", "smooth", "--view", "1", "--list", "-o", dir.string()});
     ASSERT_EQ(result.exit_code, 0) << result.err;
     EXPECT_NE(result.out.find("sheet/smooth/view1"), std::string::npos) << result.out;
     EXPECT_EQ(result.out.find("sheet/rough/view1"), std::string::npos) << result.out;
-    result = run_cli({"compare-models", "--surfaces", "rough", "--view", "1", "--list", "-o", dir.string()});
+    result = run_cli({"compare-models", "--scene", kPhotoSetup, "--surfaces", "rough", "--view", "1", "--list", "-o", dir.string()});
     ASSERT_EQ(result.exit_code, 0) << result.err;
     EXPECT_NE(result.out.find("render/rough/view1/ggx_measured"), std::string::npos) << result.out;
     EXPECT_EQ(result.err.find("left out"), std::string::npos) << result.err;
-    result = run_cli({"compare-models", "--surfaces", "scene", "-D", "sigma=0.2", "--view", "1", "--list", "-o",
+    result = run_cli({"compare-models", "--scene", kPhotoSetup, "--surfaces", "scene", "-D", "sigma=0.2", "--view", "1", "--list", "-o",
                       (temp_dir() / "cmp_scene").string()});
     ASSERT_EQ(result.exit_code, 0) << result.err;
     EXPECT_NE(result.out.find("sheet/view1"), std::string::npos) << result.out;
 
-    result = run_cli({"compare-models", "-D", "sigma=0.2", "-o", dir.string()});
+    result = run_cli({"compare-models", "--scene", kPhotoSetup, "-D", "sigma=0.2", "-o", dir.string()});
     EXPECT_EQ(result.exit_code, 2);
     EXPECT_NE(result.err.find("-D sigma: --surfaces rough,smooth sets this parameter"), std::string::npos) << result.err;
-    result = run_cli({"compare-models", "--surfaces", "rough,bumpy", "-o", dir.string()});
+    result = run_cli({"compare-models", "--scene", kPhotoSetup, "--surfaces", "rough,bumpy", "-o", dir.string()});
     EXPECT_EQ(result.exit_code, 2);
     EXPECT_NE(result.err.find("--surfaces: unknown surface 'bumpy' (rough, smooth or scene)"), std::string::npos) << result.err;
-    result = run_cli({"compare-models", "--surfaces", "rough,scene", "-o", dir.string()});
+    result = run_cli({"compare-models", "--scene", kPhotoSetup, "--surfaces", "rough,scene", "-o", dir.string()});
     EXPECT_EQ(result.exit_code, 2);
     EXPECT_NE(result.err.find("--surfaces scene cannot be combined"), std::string::npos) << result.err;
 }
@@ -175,7 +177,7 @@ TEST(CliRender, ModelDefineListsTheModelsAndTakesOldSpellings) {
     result = run_cli(args("phong", temp_dir() / "x.exr"));
     EXPECT_EQ(result.exit_code, 2);
     EXPECT_NE(result.err.find("model=phong names no file (metal_phong.xml not found): model must be one of conductor | "
-                              "ggx_stats | ghs | ghs_ssa | roughconductor | two_scale"),
+                              "ggx_stats | ghs | ghs_ssa | measured | roughconductor | two_scale"),
               std::string::npos) << result.err;
 }
 
