@@ -409,9 +409,11 @@ FitResult fit_brdf(const BrdfData& data, const FitOptions& options) {
         fail("refined must be between 1 and starts ({}), got {}", options.starts, options.refined);
     if (options.max_evaluations_per_start < 1)
         fail("max_evaluations_per_start must be >= 1, got {}", options.max_evaluations_per_start);
-    for (const auto& [name, value] : options.fixed) {
+    for (const auto& fixed : options.fixed) {
+        const auto& [name, value] = fixed;
         const auto* end = std::end(kParameterNames);
-        if (std::find_if(std::begin(kParameterNames), end, [&](const char* n) { return name == n; }) == end)
+        // By the pair, not the binding: clang 14 (the fuzz and sanitizer builds) cannot capture a structured binding.
+        if (std::find_if(std::begin(kParameterNames), end, [&](const char* n) { return fixed.first == n; }) == end)
             fail("fix {}: not a parameter; the parameters are sigma_um, corr_length_um, gamma, corr_length_v_um, "
                  "lay_angle_deg", name);
         if (!std::isfinite(value)) fail("fix {}={}: the value must be finite", name, value);
