@@ -16,7 +16,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     header.erase(std::remove(header.begin(), header.end(), '\0'), header.end());
     std::size_t samples = 0;
     try {
-        const auto fields = surface::parse::header_fields(header, 2, "fuzz.gsf");
+        const auto fields = heightmap::parse::header_fields(header, 2, "fuzz.gsf");
         const auto side = [&](const char* key) -> std::size_t {
             const auto it = fields.find(key);
             const auto value = it == fields.end() ? std::nullopt : to_double(it->second);
