@@ -211,9 +211,7 @@ double RglMeasuredBsdf::table_value(Vec2 sample, double phi_i, double theta_i, d
     return std::max(0.0, spectra_.eval(sample, params));
 }
 
-double RglMeasuredBsdf::eval(const Vec3& wi_, const Vec3& wo_, double lambda_nm) const {
-    check_lambda(lambda_nm);
-    if (wi_.z <= 0 || wo_.z <= 0) return 0.0;
+RglMeasuredBsdf::Lookup RglMeasuredBsdf::lookup(const Vec3& wi_, const Vec3& wo_) const {
     const Frame fr = fold(wi_);
     const Vec3 wi = fr.wi, wo{wo_.x * fr.sx, wo_.y * fr.sy, wo_.z};
     const Vec3 m = normalize(wi + wo);
@@ -221,26 +219,26 @@ double RglMeasuredBsdf::eval(const Vec3& wi_, const Vec3& wo_, double lambda_nm)
     const double theta_m = rgl_elevation(m), phi_m = std::atan2(m.y, m.x);
     Vec2 u_m{rgl_theta_to_u(theta_m), rgl_phi_to_u(isotropic_ ? phi_m - phi_i : phi_m)};
     u_m.y -= std::floor(u_m.y);
-    const double params[2] = {phi_i, theta_i};
-    const Vec2 sample = vndf_.invert(u_m, params).first;
+    return {wi, m, u_m, {phi_i, theta_i}};
+}
+
+double RglMeasuredBsdf::eval(const Vec3& wi_, const Vec3& wo_, double lambda_nm) const {
+    check_lambda(lambda_nm);
+    if (wi_.z <= 0 || wo_.z <= 0) return 0.0;
+    const Lookup l = lookup(wi_, wo_);
+    const double phi_i = l.params[0], theta_i = l.params[1];
+    const Vec2 sample = vndf_.invert(l.u_m, l.params).first;
     double v = table_value(sample, phi_i, theta_i, lambda_nm);
-    if (jacobian_) v *= ndf_.eval(u_m) / (4 * sigma_.eval({rgl_theta_to_u(theta_i), rgl_phi_to_u(phi_i)}));
+    if (jacobian_) v *= ndf_.eval(l.u_m) / (4 * sigma_.eval({rgl_theta_to_u(theta_i), rgl_phi_to_u(phi_i)}));
     return v / wo_.z;
 }
 
 double RglMeasuredBsdf::pdf(const Vec3& wi_, const Vec3& wo_, double /*lambda_nm*/) const {
     if (wi_.z <= 0 || wo_.z <= 0) return 0.0;
-    const Frame fr = fold(wi_);
-    const Vec3 wi = fr.wi, wo{wo_.x * fr.sx, wo_.y * fr.sy, wo_.z};
-    const Vec3 m = normalize(wi + wo);
-    const double theta_i = rgl_elevation(wi), phi_i = std::atan2(wi.y, wi.x);
-    const double theta_m = rgl_elevation(m), phi_m = std::atan2(m.y, m.x);
-    Vec2 u_m{rgl_theta_to_u(theta_m), rgl_phi_to_u(isotropic_ ? phi_m - phi_i : phi_m)};
-    u_m.y -= std::floor(u_m.y);
-    const double params[2] = {phi_i, theta_i};
-    const auto [sample, vndf_pdf] = vndf_.invert(u_m, params);
-    const double luminance_pdf = luminance_.eval(sample, params);
-    const double jacobian = std::max(2 * kPi * kPi * u_m.x * sin_theta(m), 1e-6) * 4 * dot(wi, m);
+    const Lookup l = lookup(wi_, wo_);
+    const auto [sample, vndf_pdf] = vndf_.invert(l.u_m, l.params);
+    const double luminance_pdf = luminance_.eval(sample, l.params);
+    const double jacobian = std::max(2 * kPi * kPi * l.u_m.x * sin_theta(l.m), 1e-6) * 4 * dot(l.wi, l.m);
     const double p = vndf_pdf * luminance_pdf / jacobian;
     return p > 0 && std::isfinite(p) ? p : 0.0;
 }

@@ -83,6 +83,14 @@ private:
         double sx = 1, sy = 1;
     };
     Frame fold(const Vec3& wi) const;
+    // A pair of directions (z > 0) as the tables index them: the folded incidence, the half vector, its warped
+    // coordinates u_m and the incidence parameters (phi_i, theta_i).
+    struct Lookup {
+        Vec3 wi, m;
+        Vec2 u_m;
+        double params[2];
+    };
+    Lookup lookup(const Vec3& wi, const Vec3& wo) const;
     void check_lambda(double lambda_nm) const;
 
     std::string name_;
