@@ -409,9 +409,13 @@ std::unique_ptr<Bsdf> map_spectrum_bsdf(const ModelOptions& o, SurfaceSource& su
         notes->push_back(fmt::format(
             "measured 2-D spectrum: {} on the map's periodogram (not its ring average; measured_spectrum ring for that), "
             "sigma {:.6g} um over the whole lattice; self-convolutions on a {}-fold finer lattice, out to |zeta| = "
-            "{:.3g} rad/um; largest share of a lobe in the outer quarter of that lattice {:.2g}{}; {}",
+            "{:.3g} rad/um; largest share of a lobe in the outer quarter of that lattice {:.2g}{}; {}{}",
             to_string(o.model), lobes->sigma_h(), lobes->padding(), coverage, lobes->edge_fraction(),
             lobes->edge_fraction() > 1e-3 ? " (warning: the highest orders fold back there)" : "",
+            lobes->clipped_fraction() > 0
+                ? fmt::format("the masked periodogram's bins below zero ({:.2g} of its positive sum: its scatter where "
+                              "the PSD lies below it) set to 0, each ring's sum kept; ", lobes->clipped_fraction())
+                : std::string(),
             lobes->rough_rows() > 0
                 ? fmt::format("g >= {:.4g} in the rough-surface limit (the Gaussian of the periodogram's slope "
                               "covariance; within {:.2g} of the lobe's peak there)",

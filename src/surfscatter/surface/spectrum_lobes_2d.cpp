@@ -188,7 +188,46 @@ SpectrumLobes2d::Row gaussian_row(const std::array<double, 3>& c) {
 SpectrumLobes2d::SpectrumLobes2d(const Psd2d& spectrum, double g_max, bool rough_limit)
     : g_max_(g_max), spectrum_(spectrum) {
     if (!(g_max > 0 && g_max <= 1e7)) fail("2-D measured lobes: g_max must be in (0, 1e7], got {}", g_max);
-    const double variance = spectrum.integral();
+    // A masked estimate's bins below zero (its scatter where the PSD lies below it: psd_estimate.hpp) would make
+    // rho no longer positive definite and the lobes negative: within each ring of width max(dzeta_x, dzeta_y) about
+    // zeta = 0 (radial_average's rings, out to the lattice's corners) that holds one, the negative bins are set to 0
+    // and the positive ones scaled to keep the ring's sum; a ring whose sum is not positive is set to 0 (the ring
+    // route skips it). clipped_fraction() is the negative bins' |sum| over the positive bins' sum.
+    {
+        const std::size_t hx = spectrum_.half_nx();
+        const double dz = std::max(spectrum_.dzeta_x, spectrum_.dzeta_y);
+        auto ring = [&](std::size_t kx, std::size_t ky) {
+            return std::size_t(std::floor(std::hypot(spectrum_.zeta_x(kx), spectrum_.zeta_y(ky)) / dz + 0.5));
+        };
+        std::vector<double> sum, negative, positive;
+        for (std::size_t ky = 0; ky < spectrum_.ny; ++ky)
+            for (std::size_t kx = 0; kx < hx; ++kx) {
+                const std::size_t r = ring(kx, ky);
+                if (r >= sum.size()) {
+                    sum.resize(r + 1, 0.0);
+                    negative.resize(r + 1, 0.0);
+                    positive.resize(r + 1, 0.0);
+                }
+                const double v = spectrum_.values[ky * hx + kx] * spectrum_.multiplicity(kx);
+                sum[r] += v;
+                (v < 0 ? negative[r] : positive[r]) += std::abs(v);
+            }
+        double all_negative = 0, all_positive = 0;
+        for (std::size_t r = 0; r < sum.size(); ++r) {
+            all_negative += negative[r];
+            all_positive += positive[r];
+        }
+        clipped_fraction_ = all_positive > 0 ? all_negative / all_positive : 0.0;
+        if (all_negative > 0)
+            for (std::size_t ky = 0; ky < spectrum_.ny; ++ky)
+                for (std::size_t kx = 0; kx < hx; ++kx) {
+                    const std::size_t r = ring(kx, ky);
+                    if (negative[r] == 0) continue;
+                    double& v = spectrum_.values[ky * hx + kx];
+                    v = v > 0 && sum[r] > 0 ? v * sum[r] / positive[r] : 0.0;
+                }
+    }
+    const double variance = spectrum_.integral();
     if (!(variance > 0) || !std::isfinite(variance))
         fail("2-D measured lobes: the periodogram's lattice sum is {} (needs > 0)", variance);
     sigma_h_ = std::sqrt(variance);

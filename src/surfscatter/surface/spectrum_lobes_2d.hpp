@@ -6,7 +6,10 @@
 // Construction:
 // 1. P-hat = the periodogram (MapStatistics::spectrum(): its window, its DC bin continued from the lowest ring) over
 //    its lattice sum, which is sigma_h^2 here (the whole lattice, its corners beyond the Nyquist disc included; the
-//    ring route sums the disc).
+//    ring route sums the disc). A masked estimate's bins below zero (psd_estimate.hpp) are set to 0 and the positive
+//    bins of their ring scaled to keep its sum (a ring whose sum is not positive is 0, as the ring route skips it):
+//    e^{g rho} is a positive lobe only for a spectrum that is positive (frt-2's map failed on them at 1.6e-4 of the
+//    peak; SpectrumLobes2d.MaskedSpectrumKeepsItsRingsAndLobesArePositive).
 //    The lattice's Nyquist bins of an even side are split half and half between +Nyquist and -Nyquist, so that every
 //    tabulated lobe is even (S(-zeta) = S(zeta)). Beyond the lattice P-hat is 0, as the ring route's roll-off
 //    (zeta^-200 beyond Nyquist) makes it in effect: nothing beyond what the map holds enters the first order.
@@ -115,6 +118,8 @@ public:
     double sample_density(double g, bool first_order_only, Vec2 zeta) const;
 
     double edge_fraction() const { return edge_fraction_; }   // see 2. above (rows in full only)
+    // The spectrum's bins below zero (a masked estimate's scatter), set to 0: their |sum| over the positive bins' sum.
+    double clipped_fraction() const { return clipped_fraction_; }
     // The rough-surface limit: rows with g >= rough_limit_g() are the Gaussian of covariance g M2 (M2 = slope_moment(),
     // the unit periodogram's second moment: the slope covariance over sigma_h^2), the lobe's limit as g -> inf where
     // e^{-g (1 - rho)} -> e^{-g r.M2.r / 2}. Its relative error at the peak is the Edgeworth term of the compound
@@ -147,7 +152,7 @@ private:
     Mixture mixture(double g, bool first_order_only) const;
     const std::vector<double>& cdf(std::size_t row) const;
 
-    double sigma_h_ = 0, g_max_ = 0, edge_fraction_ = 0, reach_ = 0, rough_limit_g_ = HUGE_VAL, kurtosis_ = 0;
+    double sigma_h_ = 0, g_max_ = 0, edge_fraction_ = 0, clipped_fraction_ = 0, reach_ = 0, rough_limit_g_ = HUGE_VAL, kurtosis_ = 0;
     std::array<double, 3> moment_{};
     std::size_t rough_rows_ = 0;
     std::size_t padding_ = 1;
