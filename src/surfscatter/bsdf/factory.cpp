@@ -341,6 +341,40 @@ double macro_alpha(const ModelOptions& o, double slope2) {
     return alpha;
 }
 
+// The mean-square slope of a macro NDF as wide as one ring of a measured map's periodogram (ring 0, |zeta| <= dzeta/2,
+// at the split's reference wavenumber; docs/MODELS.md "Two-scale on a measured map"): the map tells no lobe narrower
+// from a mirror. A facet of slope m moves zeta = k (i_xy + o_xy) by about 2 k m, and the uniform disc of radius
+// dzeta/2 has mean |zeta|^2 = dzeta^2 / 8, so <|m|^2> = dzeta^2 / (32 k^2).
+double two_scale_resolution_slope2(double dzeta) {
+    const double k = kTwoPi / (kTwoScaleReferenceWavelength * 1e-3);
+    return dzeta * dzeta / (32.0 * k * k);
+}
+
+// What two_scale takes from a measured map: the split against the band the map resolves, and the macro NDF's parts.
+std::string two_scale_measured_note(const ModelOptions& o, const surface::MapStatistics& s,
+                                    const surface::PsdSplit& split, double waviness_slope2, double alpha) {
+    const double zeta_c = split.zeta_c;
+    std::string note = fmt::format(
+        "two_scale on the measured map: split at zeta_c {:.4g} rad/um ({:.4g} wavelengths of {:.0f} nm, periods {:.4g} "
+        "um) against the map's band {:.3g} .. {:.3g} rad/um; macro NDF alpha {:.4g} = the low-pass part's rms slope "
+        "{:.3g}, the waviness's {:.3g} and the map's angular resolution {:.3g} (one ring of its periodogram, dzeta "
+        "{:.3g} rad/um) in quadrature",
+        zeta_c, o.cutoff_wavelengths, kTwoScaleReferenceWavelength, kTwoPi / zeta_c, s.first_ring(), s.nyquist(), alpha,
+        std::sqrt(split.slope2_macro), std::sqrt(waviness_slope2),
+        std::sqrt(two_scale_resolution_slope2(s.ring_width())), s.ring_width());
+    if (s.first_ring() > zeta_c)
+        note += fmt::format("; the map resolves no period longer than {:.4g} um (its first ring lies above zeta_c): the "
+                            "macro NDF is its resolution{}, not measured slopes",
+                            kTwoPi / zeta_c, waviness_slope2 > 0 ? " and the waviness" : "");
+    if (!split.micro)
+        note += fmt::format("; warning: the map resolves no roughness finer than {:.4g} um (its band ends at {:.3g} "
+                            "rad/um, below zeta_c): the micro part is empty and the BRDF is the macro-facet model of "
+                            "the map's slopes alone; roughness finer than its {:.3g} um pixels is not measured and would "
+                            "add a diffraction lobe",
+                            kTwoPi / zeta_c, s.nyquist(), kPi / s.nyquist());
+    return note;
+}
+
 // two_scale on elliptical statistics (docs/MODELS.md "Two-scale on elliptical statistics"): the split on the ellipse
 // inside the circle zeta_c (psd_split.hpp), per lay axis alpha = sqrt(2 <h_axis^2>) (ggx_stats' convention, so that
 // LV = LU gives the isotropic alpha = rms slope of the low-pass part), the micro lobe the anisotropic GHS of the
@@ -472,8 +506,10 @@ std::unique_ptr<Bsdf> make_bsdf(const ModelOptions& o, std::vector<std::string>*
     SurfaceSource surface(needs_surface(o) ? o.surface : SurfaceOptions{});
     if (notes && surface.options().prepared && !surface.options().measured_psd && !surface.options().preparation_noted)
         for (std::string& note : preparation_notes(surface.options())) notes->push_back(std::move(note));
+    // The waviness's mean-square slope, once: the note below and two_scale's macro NDF take it.
+    const double waviness_slope2 = needs_surface(o) ? surface.waviness_slope2() : 0.0;
     if (notes && needs_surface(o) && surface.options().prepared && surface.options().prepared->waviness) {
-        const double slope = std::sqrt(surface.waviness_slope2());
+        const double slope = std::sqrt(waviness_slope2);
         const double lambda_c = surface.options().prepared->applied.lambda_c_um.value_or(0.0);
         notes->push_back(
             o.model == ModelKind::two_scale
@@ -518,10 +554,17 @@ std::unique_ptr<Bsdf> make_bsdf(const ModelOptions& o, std::vector<std::string>*
             if (elliptical) return elliptical_two_scale(o, *elliptical, zeta_c, std::move(material), std::move(settings));
             const auto split = surface::split_psd(surface.statistics(notes), zeta_c, surface::LowPassFilter::sharp);
             // The rms slope of the low-pass part, and of the map's waviness (what its L-filter removed), which is
-            // slope the macro NDF carries as well.
-            const double alpha = macro_alpha(o, split.slope2_macro + surface.waviness_slope2());
-            auto micro = std::make_unique<GhsBsdf>(split.micro, std::make_shared<ExactScatterCore>(split.micro),
-                                                   material, settings);
+            // slope the macro NDF carries as well; of a measured map also its angular resolution (two_scale_resolution).
+            const double resolution2 = o.surface.psd == PsdKind::measured
+                                           ? two_scale_resolution_slope2(surface.measured(notes).ring_width())
+                                           : 0.0;
+            const double alpha = macro_alpha(o, split.slope2_macro + waviness_slope2 + resolution2);
+            if (notes && o.surface.psd == PsdKind::measured)
+                notes->push_back(two_scale_measured_note(o, surface.measured(notes), split, waviness_slope2, alpha));
+            std::unique_ptr<Bsdf> micro;
+            if (split.micro)
+                micro = std::make_unique<GhsBsdf>(split.micro, std::make_shared<ExactScatterCore>(split.micro),
+                                                  material, settings);
             return std::make_unique<TwoScaleBsdf>(std::move(material), o.macro_ndf, alpha, std::move(micro));
         }
     }

@@ -35,22 +35,22 @@ double TwoScaleBsdf::macro_pdf(const Vec3& wi, const Vec3& wo) const {
 double TwoScaleBsdf::eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
     if (wi.z <= 0 || wo.z <= 0) return 0.0;
     // The macro weight from the micro lobe at the local-frame incidence (an anisotropic micro lobe's depends on it).
-    const double f = macro_eval(lay_.to_lay(wi), lay_.to_lay(wo), lambda_nm, micro_->delta_probability(wi, lambda_nm)) +
-                     micro_->eval(wi, wo, lambda_nm);
+    const double f = macro_eval(lay_.to_lay(wi), lay_.to_lay(wo), lambda_nm, macro_weight(wi, lambda_nm)) +
+                     (micro_ ? micro_->eval(wi, wo, lambda_nm) : 0.0);
     return std::isfinite(f) ? f : 0.0;
 }
 
 double TwoScaleBsdf::pdf(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
     if (wi.z <= 0 || wo.z <= 0) return 0.0;
-    const double p = micro_->delta_probability(wi, lambda_nm) * macro_pdf(lay_.to_lay(wi), lay_.to_lay(wo)) +
-                     micro_->pdf(wi, wo, lambda_nm);
+    const double p = macro_weight(wi, lambda_nm) * macro_pdf(lay_.to_lay(wi), lay_.to_lay(wo)) +
+                     (micro_ ? micro_->pdf(wi, wo, lambda_nm) : 0.0);
     return std::isfinite(p) ? p : 0.0;
 }
 
 std::optional<BsdfSample> TwoScaleBsdf::sample(const Vec3& wi, double lambda_nm, double u_lobe, Vec2 u) const {
     if (wi.z <= 0) return std::nullopt;
     Vec3 wo;
-    if (u_lobe < micro_->delta_probability(wi, lambda_nm)) {
+    if (!micro_ || u_lobe < macro_weight(wi, lambda_nm)) {
         const Vec3 wi_lay = lay_.to_lay(wi);
         const Vec3 h = ndf_ == MacroNdf::ggx ? ggx_.sample_visible(wi_lay, u) : beckmann_.sample_projected(u);
         wo = lay_.from_lay(reflect(wi_lay, h));

@@ -20,6 +20,8 @@
 // the micro lobe is any Bsdf whose delta_probability() is e^{-g0,micro} (the GHS of the high-pass part, isotropic or
 // not): only its Bsdf interface is used. On elliptical statistics (the factory; docs/MODELS.md "Two-scale on elliptical
 // statistics") the macro weight depends on the incidence azimuth: it is the micro lobe's at the local-frame incidence.
+// Without a micro lobe (null: a height map that resolves no roughness finer than zeta_c) the model is the macro
+// microfacet lobe alone, of weight 1.
 #include <memory>
 
 #include "surfscatter/bsdf/bsdf.hpp"
@@ -39,19 +41,24 @@ public:
     double eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const override;
     std::optional<BsdfSample> sample(const Vec3& wi, double lambda_nm, double u_lobe, Vec2 u) const override;
     double pdf(const Vec3& wi, const Vec3& wo, double lambda_nm) const override;
-    double jump_radius(double lambda_nm) const override { return micro_->jump_radius(lambda_nm); }
+    double jump_radius(double lambda_nm) const override { return micro_ ? micro_->jump_radius(lambda_nm) : 0.0; }
     std::string name() const override { return "two_scale"; }
-    bool isotropic() const override { return alpha_.x == alpha_.y && micro_->isotropic(); }
+    bool isotropic() const override { return alpha_.x == alpha_.y && (!micro_ || micro_->isotropic()); }
 
     double macro_alpha() const { return alpha_.x; }  // alpha_u
     Vec2 macro_alpha_uv() const { return alpha_; }
-    const Bsdf& micro() const { return *micro_; }
+    bool has_micro() const { return micro_ != nullptr; }
+    const Bsdf& micro() const { return *micro_; }  // has_micro() only
 
 private:
     // Both in the lay frame.
     // weight: the micro lobe's delta probability e^{-g0,micro} at the incidence in the local frame.
     double macro_eval(const Vec3& wi, const Vec3& wo, double lambda_nm, double weight) const;
     double macro_pdf(const Vec3& wi, const Vec3& wo) const;  // density of the macro sampler alone
+    // e^{-g0,micro}: the micro lobe's delta probability, 1 without one.
+    double macro_weight(const Vec3& wi, double lambda_nm) const {
+        return micro_ ? micro_->delta_probability(wi, lambda_nm) : 1.0;
+    }
 
     material::Conductor material_;
     MacroNdf ndf_;

@@ -63,8 +63,10 @@ PsdSplit split_psd(std::shared_ptr<const RadialStatistics> base, double zeta_c, 
                                  std::log(zeta_c * 1e-6), y_max, 1e-11);
     }
     split.sigma2_micro = sigma2 - split.sigma2_macro;
-    if (filter == LowPassFilter::sharp)
-        split.micro = std::make_shared<SharpCutStatistics>(base, zeta_c, CutPart::high_pass);
+    if (filter == LowPassFilter::sharp) {
+        if (1.0 - base->radial_cdf(zeta_c) >= kMinCutFraction)
+            split.micro = std::make_shared<SharpCutStatistics>(base, zeta_c, CutPart::high_pass);
+    }
     else
         split.micro = std::make_shared<GaussianFilteredStatistics>(base, zeta_c, true);
     return split;

@@ -35,7 +35,9 @@ struct PsdSplit {
     double sigma2_macro = 0;        // um^2
     double sigma2_micro = 0;        // um^2 (sigma2_macro + sigma2_micro = sigma_h^2)
     double slope2_macro = 0;        // <|grad h_LP|^2>
-    std::shared_ptr<const RadialStatistics> micro;  // high-pass statistics (SharpCutStatistics for the sharp filter)
+    // High-pass statistics (SharpCutStatistics for the sharp filter); null when the sharp cut leaves less than
+    // kMinCutFraction of the variance above zeta_c (a map whose band ends below it: no micro roughness resolved).
+    std::shared_ptr<const RadialStatistics> micro;
 };
 
 PsdSplit split_psd(std::shared_ptr<const RadialStatistics> base, double zeta_c, LowPassFilter);

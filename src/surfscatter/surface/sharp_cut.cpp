@@ -70,7 +70,7 @@ SharpCutStatistics::SharpCutStatistics(std::shared_ptr<const RadialStatistics> b
 
     const double cdf_c = base_->radial_cdf(zeta_c);
     fraction_ = part == CutPart::low_pass ? cdf_c : 1.0 - cdf_c;
-    if (!(fraction_ >= 1e-9))
+    if (!(fraction_ >= kMinCutFraction))
         fail("a sharp cut at {:.6g} rad/um leaves {:.3g} of the variance in the {} part: no {} roughness to model",
              zeta_c, fraction_, part == CutPart::low_pass ? "low-pass" : "high-pass",
              part == CutPart::low_pass ? "macro" : "micro");

@@ -24,6 +24,9 @@ namespace surfscatter::surface {
 
 enum class CutPart { low_pass, high_pass };
 
+// A part holding less of the variance than this is no part (SharpCutStatistics refuses it; split_psd leaves it out).
+inline constexpr double kMinCutFraction = 1e-9;
+
 class SharpCutStatistics final : public RadialStatistics {
 public:
     // zeta_c in rad/um; throws Error unless the part keeps at least 1e-9 of the base's variance.
