@@ -52,9 +52,7 @@ heightmap::PreparedMap read_prepared_map(const std::string& path, std::optional<
     if (as_read) *as_read = std::move(read);
     const heightmap::Outliers& found = prepared.outliers;
     if (found.count > 0)
-        std::fprintf(stderr, "surfscatter: %s: %s: %s\n",
-                     heightmap::kept_and_dominant(found, how.outliers) ? "warning" : "note", path.c_str(),
-                     heightmap::describe(found, how.outliers).c_str());
+        std::fprintf(stderr, "surfscatter: note: %s\n", heightmap::outliers_note(path, found, how.outliers).c_str());
     return prepared;
 }
 

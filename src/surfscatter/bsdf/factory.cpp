@@ -480,8 +480,7 @@ std::vector<std::string> preparation_notes(const SurfaceOptions& surface) {
     const std::string name = surface.surface_file.empty() ? p.map.origin() : surface.surface_file;
     std::vector<std::string> notes{fmt::format("{}: {}", name, heightmap::describe(p))};
     if (p.outliers.count > 0)
-        notes.push_back(fmt::format("{}{}: {}", heightmap::kept_and_dominant(p.outliers, p.applied.outliers) ? "warning: " : "",
-                                    name, heightmap::describe(p.outliers, p.applied.outliers)));
+        notes.push_back(heightmap::outliers_note(name, p.outliers, p.applied.outliers));
     return notes;
 }
 

@@ -14,7 +14,7 @@
 // memory 0.39 MB per wavelength node); between wavelength nodes linear. A table is 64 x
 // kAzimuthNodes pairs of visible-disc integrals (sigma: P-hat's lattice sum over the disc; N: the midpoint sum of the
 // lobe over the nodes of the finest row lattice it reads; both with rim weights that keep them continuous in the
-// incidence, SpectrumLobes2d::disc_sum), built lazily and kept in the disk cache under a key naming the lobes.
+// incidence, SpectrumLobes2d::disc_cells), built lazily and kept in the disk cache under a key naming the lobes.
 // Accuracy (MapGhs.TablesMatchDirectValues, against direct() between the nodes every 3.1 deg of phi_i): sigma within
 // 2.7e-3 and N within 3.2e-3 on a Gaussian map, 7.4e-3 and 5.3e-3 on an elliptical one (L_v / L_u = 0.3); sigma_rel is
 // a lattice sum, stepped where lattice points cross the disc's rim, which the cubics smooth (48 azimuth nodes only

@@ -181,4 +181,8 @@ std::string describe(const Outliers& o, OutlierPolicy policy) {
                                        : "; kept (outliers fill replaces them)");
 }
 
+std::string outliers_note(const std::string& name, const Outliers& outliers, OutlierPolicy policy) {
+    return fmt::format("{}{}: {}", kept_and_dominant(outliers, policy) ? "warning: " : "", name, describe(outliers, policy));
+}
+
 }  // namespace surfscatter::heightmap

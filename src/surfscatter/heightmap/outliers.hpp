@@ -63,5 +63,8 @@ HeightMap apply_outlier_policy(HeightMap map, OutlierPolicy policy, Outliers& fo
 std::string describe(const Outliers& outliers);
 // The same with what `policy` did with them and, kept, what they do to the map's statistics.
 std::string describe(const Outliers& outliers, OutlierPolicy policy);
+// The line the models' notes and the CLI give for the map named `name`: "[warning: ]<name>: <describe(.., policy)>",
+// a warning when they are kept and dominate.
+std::string outliers_note(const std::string& name, const Outliers& outliers, OutlierPolicy policy);
 
 }  // namespace surfscatter::heightmap

@@ -358,8 +358,6 @@ SpectrumLobes2d::SpectrumLobes2d(const Psd2d& spectrum, double g_max, bool rough
         progress.advance();
     }
     progress.finish();
-    for (const Row& r : rows_)
-        reach_ = std::max({reach_, (double(r.half_x) + 0.5) * r.hx, (double(r.half_y) + 0.5) * r.hy});
     for (std::size_t first = 0; first + 5 <= rows_.size(); ++first) {
         const Row& a = rows_[first + 1];
         bool shared = a.half_x > 0 && a.half_y > 0;
@@ -444,26 +442,6 @@ double SpectrumLobes2d::eval(double g, double log_g, Vec2 zeta) const {
 }
 
 double SpectrumLobes2d::first_order(Vec2 zeta) const { return rows_[0].at(zeta); }
-
-double SpectrumLobes2d::disc_mass(Vec2 centre, double radius) const {
-    const Row& r = rows_[0];
-    double sum = 0;
-    const double h = std::max(r.hx, r.hy);
-    const double outer = radius + 0.5 * h;
-    const long j0 = std::max(-r.half_y, long(std::ceil((centre.y - outer) / r.hy)));
-    const long j1 = std::min(r.half_y, long(std::floor((centre.y + outer) / r.hy)));
-    const long i0 = std::max(-r.half_x, long(std::ceil((centre.x - outer) / r.hx)));
-    const long i1 = std::min(r.half_x, long(std::floor((centre.x + outer) / r.hx)));
-    for (long j = j0; j <= j1; ++j) {
-        const double dy = double(j) * r.hy - centre.y;
-        const double* row = r.value.data() + (j + r.half_y) * (2 * r.half_x + 1) + r.half_x;
-        for (long i = i0; i <= i1; ++i) {
-            const double dx = double(i) * r.hx - centre.x;
-            sum += std::clamp(0.5 + (radius - std::sqrt(dx * dx + dy * dy)) / h, 0.0, 1.0) * row[i];
-        }
-    }
-    return std::clamp(sum * r.hx * r.hy, 0.0, 1.0);
-}
 
 namespace {
 // One axis of Bins: node values v[-nodes .. nodes] at spacing s onto cells -half .. half of spacing h, at stride

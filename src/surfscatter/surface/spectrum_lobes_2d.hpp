@@ -83,18 +83,8 @@ public:
     double eval(double g, double log_g, Vec2 zeta) const;
     double shape(double g, double log_g, Vec2 zeta) const;
     double first_order(Vec2 zeta) const;                       // P-hat(zeta) (unit mass): the g -> 0 row
-    // Mass of P-hat (the g -> 0 row's nodes, disc_sum's rim weights) in the disc of `radius` about `centre`:
-    // sigma_rel^2 / sigma_h^2 for the visible disc; continuous in centre and radius.
-    double disc_mass(Vec2 centre, double radius) const;
-    // The finest node spacing (rad/um) of the rows that g in [g_lo, g_hi] reads, and how far any row reaches
-    // (|zeta_x|, |zeta_y| beyond it: S_g = 0 for every g).
+    // The finest node spacing (rad/um) of the rows that g in [g_lo, g_hi] reads.
     double finest_spacing(double g_lo, double g_hi) const;
-    double reach() const { return reach_; }
-    // Midpoint sum of f(zeta) h^2 over the nodes of the lattice of spacing h through 0 that lie within `radius` of
-    // `centre` and within reach(), a node near the rim weighted by the share of its cell inside the disc (a linear
-    // ramp over one cell): int over the disc of f, continuous in centre and radius.
-    template <class F>
-    double disc_sum(Vec2 centre, double radius, double h, F&& f) const;
     // The rows' unit-mass shapes as masses on the square grid of spacing h through 0 (cells -half .. half per axis,
     // half = ceil(extent / h)), for product integrals over a disc (MapGhsBsdf's tables; docs/MODELS.md "Measured 2-D
     // spectrum"): along an axis on which a row's nodes are finer than h their masses (value times spacing) are summed
@@ -110,7 +100,7 @@ public:
     // s_g's mass in cell `index` of `bins` (first_order_only: P-hat's), over the rows as shape() reads them.
     double binned_shape(const Bins& bins, std::size_t index, double g, bool first_order_only) const;
     // Sum over the cells of `bins` within `radius` of `centre` of f(index, the cell's centre), each weighted by the
-    // share of its cell inside the disc (a linear ramp over one cell, as disc_sum): continuous in centre and radius.
+    // share of its cell inside the disc (a linear ramp over one cell): continuous in centre and radius.
     template <class F>
     double disc_cells(const Bins& bins, Vec2 centre, double radius, F&& f) const;
     // A zeta drawn from s_g (first_order_only: from P-hat), and the density of that draw at zeta (1/um^2^-1).
@@ -152,7 +142,7 @@ private:
     Mixture mixture(double g, bool first_order_only) const;
     const std::vector<double>& cdf(std::size_t row) const;
 
-    double sigma_h_ = 0, g_max_ = 0, edge_fraction_ = 0, clipped_fraction_ = 0, reach_ = 0, rough_limit_g_ = HUGE_VAL, kurtosis_ = 0;
+    double sigma_h_ = 0, g_max_ = 0, edge_fraction_ = 0, clipped_fraction_ = 0, rough_limit_g_ = HUGE_VAL, kurtosis_ = 0;
     std::array<double, 3> moment_{};
     std::size_t rough_rows_ = 0;
     std::size_t padding_ = 1;
@@ -164,25 +154,6 @@ private:
     mutable std::vector<std::vector<double>> cdfs_;
     mutable std::unique_ptr<std::once_flag[]> cdf_once_;
 };
-
-template <class F>
-double SpectrumLobes2d::disc_sum(Vec2 centre, double radius, double h, F&& f) const {
-    const double outer = radius + 0.5 * h;
-    const long j0 = long(std::ceil(std::max(centre.y - outer, -reach_) / h));
-    const long j1 = long(std::floor(std::min(centre.y + outer, reach_) / h));
-    const long i0 = long(std::ceil(std::max(centre.x - outer, -reach_) / h));
-    const long i1 = long(std::floor(std::min(centre.x + outer, reach_) / h));
-    double sum = 0;
-    for (long j = j0; j <= j1; ++j) {
-        const double y = double(j) * h, dy = y - centre.y;
-        for (long i = i0; i <= i1; ++i) {
-            const double x = double(i) * h, dx = x - centre.x;
-            const double w = std::clamp(0.5 + (radius - std::sqrt(dx * dx + dy * dy)) / h, 0.0, 1.0);
-            if (w > 0) sum += w * f(Vec2(x, y));
-        }
-    }
-    return sum * h * h;
-}
 
 template <class F>
 double SpectrumLobes2d::disc_cells(const Bins& bins, Vec2 centre, double radius, F&& f) const {
