@@ -43,16 +43,20 @@ void centred_plane(std::size_t nx, std::size_t ny, double dzx, double dzy, Value
     c.half_y = long(ny / 2);
     c.dzx = dzx;
     c.dzy = dzy;
-    c.v.assign(std::size_t((2 * c.half_x + 1) * (2 * c.half_y + 1)), 0.0);
+    c.v.resize(std::size_t((2 * c.half_x + 1) * (2 * c.half_y + 1)));  // every element written below
     const auto wrap = [](long k, std::size_t n) { return std::size_t(((k % long(n)) + long(n)) % long(n)); };
-    for (long j = -c.half_y; j <= c.half_y; ++j)
-        for (long i = -c.half_x; i <= c.half_x; ++i) {
-            const long kx = i >= 0 ? i : -i, ky = i >= 0 ? j : -j;
-            double factor = 1.0;
-            if (nx % 2 == 0 && std::abs(i) == c.half_x) factor *= 0.5;
-            if (ny % 2 == 0 && std::abs(j) == c.half_y) factor *= 0.5;
-            c.at(i, j) = factor * value(std::size_t(kx), wrap(ky, ny));
+    const double edge_x = nx % 2 == 0 ? 0.5 : 1.0;
+    for (long j = -c.half_y; j <= c.half_y; ++j) {
+        const double fy = ny % 2 == 0 && std::abs(j) == c.half_y ? 0.5 : 1.0;
+        const std::size_t plus = wrap(j, ny), minus = wrap(-j, ny);  // ky of the nodes i >= 0 and i < 0
+        double* row = &c.at(0, j);
+        for (long i = -c.half_x; i < 0; ++i) row[i] = fy * value(std::size_t(-i), minus);
+        for (long i = 0; i <= c.half_x; ++i) row[i] = fy * value(std::size_t(i), plus);
+        if (c.half_x > 0) {
+            row[-c.half_x] *= edge_x;
+            row[c.half_x] *= edge_x;
         }
+    }
 }
 
 // Chebyshev ring (max(|i|, |j|)) of a node.
@@ -333,11 +337,17 @@ SpectrumLobes2d::SpectrumLobes2d(const Psd2d& spectrum, double g_max, bool rough
                           wy = std::min(fy, power_of_two_at_least(std::size_t(2 * w)));
         f.resize(wx * wy);  // every element written below
         out.resize(wy * (wx / 2 + 1));
-        for (long j = -long(wy / 2); j < long(wy - wy / 2); ++j)
-            for (long i = -long(wx / 2); i < long(wx - wx / 2); ++i) {
-                const double value = std::exp(-g * (1.0 - rho_at(i, j))) - e;
-                f[std::size_t(((j + long(wy)) % long(wy))) * wx + std::size_t((i + long(wx)) % long(wx))] = value;
-            }
+        // The window's node (i, j), i in [-wx/2, wx - wx/2), sits at f[wrap(j, wy) * wx + wrap(i, wx)] and reads
+        // rho[wrap(j, fy) * fx + wrap(i, fx)]: per row two contiguous runs (i >= 0, i < 0).
+        const std::size_t right = wx - wx / 2;
+        for (std::size_t y = 0; y < wy; ++y) {
+            const std::size_t ry = y < wy - wy / 2 ? y : y + fy - wy;
+            const double* r = rho.data() + ry * fx;
+            double* out_row = f.data() + y * wx;
+            for (std::size_t x = 0; x < right; ++x) out_row[x] = math::fast_exp(g * (r[x] - 1.0)) - e;
+            const double* r_left = r + (fx - wx);
+            for (std::size_t x = right; x < wx; ++x) out_row[x] = math::fast_exp(g * (r_left[x] - 1.0)) - e;
+        }
         {
             fftw_plan raw;
             {
@@ -499,7 +509,7 @@ double SpectrumLobes2d::binned_shape(const Bins& bins, std::size_t index, double
         const Mixture m = mixture(g, false);
         return m.wa * bins.mass[m.a][index] + m.wb * bins.mass[m.b][index];
     }
-    const auto [first, w] = cubic(std::log(g));
+    const auto [first, w] = cubic(math::fast_log(g));
     double sum = 0;
     for (int n = 0; n < 4; ++n) sum += w[std::size_t(n)] * bins.mass[std::size_t(first + 1 + n)][index];
     return std::max(sum, 0.0);
