@@ -76,7 +76,8 @@ public:
     // Independent periodogram samples of the ring holding zeta (relative standard error 1/sqrt of it).
     double ring_samples(double zeta) const;
     // Relative standard error of sigma_h for a random surface of this spectrum: half that of sigma_h^2,
-    // sqrt(sum_k M_k^2 / nu_k) / sum_k M_k over the rings' variances M_k and independent samples nu_k.
+    // sqrt(sum_k M_k^2 / nu_k) / sum_k M_k over the rings' variances M_k and independent samples nu_k, counted as the
+    // rectangular window's whatever the window (sigma_h is the window-corrected, unweighted rms: docs/HEIGHTMAPS.md).
     double sigma_relative_error() const;
 
 private:
