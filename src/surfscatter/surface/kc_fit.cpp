@@ -24,6 +24,7 @@ namespace {
 
 struct RingData {
     std::vector<double> zeta, log_psd, weight, log_bias;
+    bool profile = false;  // a profile's 1-D PSD: the KC's profile PSD is the model
 };
 
 // Residuals sqrt(nu_i) (ln Pbar_i - b_i - ln sigma^2 - ln P-hat_i) with ln sigma^2 profiled out; returns ln sigma^2.
@@ -36,7 +37,8 @@ double profiled_residuals(const RingData& data, double log_l, double log_gm1, Ei
     const KCorrelation model(1.0, std::exp(std::clamp(log_l, -200.0, 200.0)), 1.0 + std::exp(std::clamp(log_gm1, lo, hi)));
     double sum_w = 0.0, sum_wd = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
-        const double d = data.log_psd[i] - data.log_bias[i] - std::log(model.psd_unit(data.zeta[i]));
+        const double unit = data.profile ? model.profile_psd_unit(data.zeta[i]) : model.psd_unit(data.zeta[i]);
+        const double d = data.log_psd[i] - data.log_bias[i] - std::log(unit);
         residuals[static_cast<Eigen::Index>(i)] = d;
         sum_w += data.weight[i];
         sum_wd += data.weight[i] * d;
@@ -79,6 +81,7 @@ KcFit fit_kc(const RadialPsd& radial, double nyquist, const KcFitOptions& option
     fit.zeta_max = options.max_nyquist_fraction * nyquist;
 
     RingData data;
+    data.profile = options.profile;
     for (std::size_t i = 0; i < radial.zeta.size(); ++i) {
         if (radial.zeta[i] < fit.zeta_min || radial.zeta[i] > fit.zeta_max) continue;
         if (!(radial.psd[i] > 0.0)) continue;  // exactly zero power (e.g. a synthetic band edge) has no log
