@@ -369,6 +369,15 @@ HeightMap read_x3p_file(const std::string& path, const X3pLayout& layout) {
 
 }  // namespace
 
+std::optional<LineScan> read_line_scan(const std::filesystem::path& file) {
+    require_readable_file(file, "height map file");
+    const std::string head = file_head(file.string(), 65536);
+    if (is_hfm(head)) return read_hfm(file);
+    if (is_opdx(head))
+        if (auto data = read_opdx(file); std::holds_alternative<LineScan>(data)) return std::get<LineScan>(std::move(data));
+    return std::nullopt;
+}
+
 HeightMap read_height_map(const std::filesystem::path& file, std::optional<double> spacing_um,
                           std::optional<double> height_unit_um) {
     const std::string path = file.string();

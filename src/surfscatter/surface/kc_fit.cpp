@@ -141,20 +141,22 @@ KcFit fit_kc(const RadialPsd& radial, double nyquist, const KcFitOptions& option
 
     const std::string band = fmt::format("the PSD between {:.4g} and {:.4g} rad/um ({} rings)", fit.zeta_min,
                                          fit.zeta_max, fit.rings);
+    const char* instead = options.profile ? "the areal models take a profile's statistics from this fit"
+                                          : "use --psd measured for the map's own spectrum";
     const std::string misfit = fmt::format("misfit log_residual_rms {:.3g} against a statistical floor of {:.3g}",
                                            fit.log_residual_rms, fit.statistical_floor);
     if (const char* end = search_box_end(best[0], log_l_min, log_l_max))
         fit.failure = fmt::format(
             "KC fit: no KC correlation length fits {}: L_c was searched from {:.4g} to {:.4g} um (1/(4 zeta_max) to "
             "4/zeta_min) and the best attempt lies at the {} end (L_c = {:.4g} um, gamma = {:.4g}, {}): the PSD has "
-            "no KC knee inside the band; use --psd measured for the map's own spectrum",
-            band, std::exp(log_l_min), std::exp(log_l_max), end, l, gamma, misfit);
+            "no KC knee inside the band; {}",
+            band, std::exp(log_l_min), std::exp(log_l_max), end, l, gamma, misfit, instead);
     else if (const char* end = search_box_end(best[1], log_g_min, log_g_max))
         fit.failure = fmt::format(
             "KC fit: gamma is not resolved by {}: gamma was searched from {:.4g} to {:.4g} and the best attempt lies "
             "at the {} end (gamma = {:.4g}, L_c = {:.4g} um, {}; a PSD falling faster than any power law, e.g. "
-            "Gaussian, has no KC gamma); use --psd measured for the map's own spectrum",
-            band, 1.0 + kKcGammaMinusOneMin, 1.0 + kKcGammaMinusOneMax, end, gamma, l, misfit);
+            "Gaussian, has no KC gamma); {}",
+            band, 1.0 + kKcGammaMinusOneMin, 1.0 + kKcGammaMinusOneMax, end, gamma, l, misfit, instead);
     return fit;
 }
 
