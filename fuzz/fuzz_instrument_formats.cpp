@@ -1,5 +1,5 @@
 // Fuzz target: the native readers of instrument formats Gwyddion lacks or misdetects (heightmap/tmd, nms, opdx,
-// hfm), each on the same bytes, and read_height_map's dispatch; a map that loads must hold finite heights and rms, a
+// hfm, mnt with its compound file), each on the same bytes, and read_height_map's dispatch; a map that loads must hold finite heights and rms, a
 // profile finite heights and a positive spacing.
 #include <variant>
 
@@ -7,6 +7,7 @@
 #include "surfscatter/heightmap/form.hpp"
 #include "surfscatter/heightmap/hfm.hpp"
 #include "surfscatter/heightmap/io.hpp"
+#include "surfscatter/heightmap/mnt.hpp"
 #include "surfscatter/heightmap/nms.hpp"
 #include "surfscatter/heightmap/opdx.hpp"
 #include "surfscatter/heightmap/tmd.hpp"
@@ -38,8 +39,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         else check_scan(std::get<heightmap::LineScan>(read));
     });
     fuzz::expect_clean([&] { check_scan(heightmap::read_hfm(path)); });
+    fuzz::expect_clean([&] { check_map(heightmap::read_mnt(path)); });
     // Only the native formats: anything else would go to Gwyddion, whose modules are not fuzzed here.
-    if (heightmap::is_tmd(bytes) || heightmap::is_nms(bytes) || heightmap::is_opdx(bytes) || heightmap::is_hfm(bytes))
+    if (heightmap::is_tmd(bytes) || heightmap::is_nms(bytes) || heightmap::is_opdx(bytes) || heightmap::is_hfm(bytes) ||
+        heightmap::is_mnt(path, bytes))
         fuzz::expect_clean([&] { check_map(heightmap::read_height_map(path, std::nullopt)); });
     return 0;
 }

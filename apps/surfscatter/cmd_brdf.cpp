@@ -15,6 +15,7 @@
 #include "command.hpp"
 #include "list_options.hpp"
 #include "preparation_options.hpp"
+#include "profile_route.hpp"
 #include "surfscatter/bsdf/albedo.hpp"
 #include "surfscatter/bsdf/factory.hpp"
 #include "surfscatter/bsdf/rgl_export.hpp"
@@ -39,6 +40,9 @@ struct BrdfArgs {
     double sigma = 0, corr_length = 0, gamma = 0, corr_length_v = 0, lay_angle = 0;
     // The --surface map, read and prepared when first needed and shared by every model of the command.
     mutable std::shared_ptr<const heightmap::PreparedMap> prepared;
+    // A --surface profile's KC (profile_route.hpp), fitted when first needed; `profile_checked` once looked for.
+    mutable std::optional<ProfileSurface> profile;
+    mutable bool profile_checked = false;
     double wavelength = 0, phi_i = 0;
     std::vector<double> theta_i;
     // eval
@@ -82,6 +86,8 @@ std::string flag_name(std::string name) {
 void check_given_options_apply(const BrdfArgs& a, const std::vector<bsdf::ModelOptions>& models,
                                const std::vector<std::string>& model_names) {
     for (const std::string& name : a.given) {
+        // A --surface profile stands for the KC fitted to it (model_options): its file, --psd and --form are used.
+        if (a.profile && (name == "surface_file" || name == "psd" || name == "psd_fit" || name == "form")) continue;
         std::string why;
         for (const bsdf::ModelOptions& o : models) {
             why = bsdf::inapplicable_option(o, name);
@@ -128,7 +134,22 @@ bsdf::ModelOptions model_options(const BrdfArgs& a, const std::string& spec) {
     o.material = a.material;
     const bool needs_surface = o.model != bsdf::ModelKind::ggx || o.alpha_from != bsdf::AlphaFrom::none;
     const bool from_map = psd.empty() || psd == "file" || psd == "measured";
-    if (!a.surface_file.empty() && from_map) {
+    if (!a.surface_file.empty() && from_map && !a.profile_checked) {
+        a.profile_checked = true;
+        if (const auto scan = read_profile(a.surface_file, a.preparation)) {
+            a.profile = profile_surface(*scan, profile_form(a.preparation));
+            std::fprintf(stderr, "surfscatter: brdf: note: %s\n", a.profile->note.c_str());
+        }
+    }
+    if (a.profile && from_map) {
+        // A profile: --psd file and measured both take the KC fitted to its 1-D PSD as the isotropic surface's.
+        if (!a.psd_fit.empty() && bsdf::parse_psd_fit(a.psd_fit, "--psd-fit") == bsdf::PsdFit::elliptical)
+            fail("--psd-fit elliptical: {} is a profile, which holds no lay direction", a.surface_file);
+        o.surface.psd = bsdf::PsdKind::kc;
+        o.surface.sigma = a.profile->fit.kc.sigma_h_um;
+        o.surface.corr_length = a.profile->fit.kc.corr_length_um;
+        o.surface.gamma = a.profile->fit.kc.gamma;
+    } else if (!a.surface_file.empty() && from_map) {
         o.surface.psd = psd.empty() ? bsdf::PsdKind::file : bsdf::parse_psd(psd, "--psd");
         o.surface.surface_file = a.surface_file;
         o.surface.preparation = parse_preparation(a.preparation);

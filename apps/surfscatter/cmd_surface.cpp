@@ -1,5 +1,6 @@
 // surfscatter surface synth | info | fit: random KC height maps (.gsf, .gwy), statistics of measured height maps
 // (any format read_height_map reads), and KC fits.
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -15,6 +16,7 @@
 
 #include "command.hpp"
 #include "preparation_options.hpp"
+#include "profile_route.hpp"
 #include "statistics_options.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/paths.hpp"
@@ -147,7 +149,52 @@ void write_ring_csv(const surface::RadialPsd& r, const char* model_column, const
 
 void write_preparation_plot(const InfoArgs& args, const heightmap::HeightMap& read, const heightmap::PreparedMap& p);
 
+// The profile's 1-D PSD bands as CSV (column `model_column`: `model`; in band: `in_band`; a `profile` column for
+// psd_fit.py's 1-D labels) and psd_fit.py's plot of them.
+void write_profile_plot(const std::string& plot, const std::string& csv, const surface::RadialPsd& psd,
+                        const char* model_column, const std::function<double(double)>& model,
+                        const std::function<bool(double)>& in_band, const std::string& title) {
+    write_ring_csv(psd, model_column, model, in_band, csv, plot.empty() ? "--csv" : "--plot",
+                   {{"profile", std::vector<double>(psd.zeta.size(), 1.0)}});
+    if (!plot.empty()) run_plot_script("psd_fit.py", {csv, plot, title});
+}
+
+// The band of a profile's PSD whose mean frequency is `zeta` (its own value: the PSD is its own model column).
+std::size_t ring_of(const surface::RadialPsd& psd, double zeta) {
+    return static_cast<std::size_t>(std::lower_bound(psd.zeta.begin(), psd.zeta.end(), zeta) - psd.zeta.begin());
+}
+
+// `surface info` on a profile: its statistics along its line (no assumption about the area).
+void profile_info(const InfoArgs& args, const heightmap::LineScan& scan) {
+    const heightmap::Form form = profile_form(args.preparation);
+    const surface::ProfileMoments moments = surface::profile_moments(scan, form);
+    std::printf("preparation = %s\n", describe_profile(scan, form).c_str());
+    std::printf("format = %s\n", scan.source.format.c_str());
+    std::printf("reader = %s%s\n", scan.source.reader.c_str(),
+                scan.source.channel.empty() ? "" : (", channel " + scan.source.channel).c_str());
+    std::printf("kind = profile\npoints = %zu\n", scan.size());
+    print_value("dx_um", scan.spacing_um);
+    print_value("length_um", scan.length_um());
+    print_value("valid_fraction", static_cast<double>(scan.valid_count()) / static_cast<double>(scan.size()));
+    print_value("rms_height_um", moments.rms_height_um);
+    print_value("rms_slope", moments.rms_slope);
+    std::printf("note = statistics along the profile's line; surface fit and brdf treat it as an isotropic surface "
+                "(docs/HEIGHTMAPS.md \"Profiles\")\n");
+    if (!args.plot.empty()) {
+        const surface::RadialPsd psd = surface::estimate_profile_psd(scan, form);
+        const std::string csv = std::filesystem::path(args.plot).replace_extension(".csv").string();
+        write_profile_plot(args.plot, csv, psd, "model_psd", [&](double z) { return psd.psd[ring_of(psd, z)]; },
+                           [](double) { return true; },
+                           fmt::format("{}: profile 1-D PSD (Hann, bands of {} frequencies), rms {:.4g} um",
+                                       std::filesystem::path(args.input).filename().string(),
+                                       surface::kProfileBandBins, moments.rms_height_um));
+        std::printf("plot = %s\ncsv = %s\n", args.plot.c_str(), csv.c_str());
+    }
+}
+
 void info(const InfoArgs& args) {
+    if (const auto scan = read_profile(args.input, args.preparation, args.spacing, args.height_unit))
+        return profile_info(args, *scan);
     std::optional<heightmap::HeightMap> read;
     const heightmap::PreparedMap prepared = read_map(args, args.plot.empty() ? nullptr : &read);
     const heightmap::HeightMap& map = prepared.map;
@@ -364,7 +411,62 @@ void print_elliptical(const surface::EllipticalKcFit& e) {
                     e.log_residual_rms, e.log_residual_rms / e.statistical_floor);
 }
 
+// `surface fit` on a profile: the KC fitted to its 1-D PSD with the KC's profile PSD, under the isotropy note.
+void profile_fit(const FitArgs& args, const heightmap::LineScan& scan) {
+    if (args.smoothing) fail("--smoothing applies to areal maps; {} is a profile", args.input);
+    surface::KcFitOptions options;
+    options.form = profile_form(args.preparation);
+    options.min_ring = args.min_ring;
+    options.max_nyquist_fraction = args.max_zeta_fraction;
+    const surface::ProfileFit result = surface::fit_profile(scan, options);
+    const surface::KcFit& kc = result.kc;
+    std::string csv = args.csv;
+    if (csv.empty() && !args.plot.empty()) csv = std::filesystem::path(args.plot).replace_extension(".csv").string();
+    const auto write_outputs = [&] {
+        if (csv.empty()) return;
+        const double variance = kc.sigma_h_um * kc.sigma_h_um;
+        const surface::KCorrelation model(kc.sigma_h_um, kc.corr_length_um, kc.gamma);
+        write_profile_plot(args.plot, csv, result.psd, "kc_fit",
+                           [&](double z) { return variance * model.profile_psd_unit(z); },
+                           [&](double z) { return z >= kc.zeta_min && z <= kc.zeta_max; },
+                           fmt::format("{}: {} to the profile's 1-D PSD, sigma_h {:.4g} um, L_c {:.4g} um, gamma {:.3g}",
+                                       std::filesystem::path(args.input).filename().string(),
+                                       kc.failure.empty() ? "KC fit" : "NO KC FIT, best attempt", kc.sigma_h_um,
+                                       kc.corr_length_um, kc.gamma));
+    };
+    if (!kc.failure.empty()) {
+        write_outputs();
+        surface::require_resolved(kc);
+    }
+    std::printf("preparation = %s\n", describe_profile(scan, options.form).c_str());
+    std::printf("sigma_h = %s\n", format_number(kc.sigma_h_um).c_str());
+    std::printf("corr_length = %s\n", format_number(kc.corr_length_um).c_str());
+    std::printf("gamma = %s\n", format_number(kc.gamma).c_str());
+    std::printf("rms_slope = %s\n", format_number(result.rms_slope).c_str());
+    std::printf("rms_height_profile = %s\n", format_number(result.rms_height_um).c_str());
+    std::printf("zeta_min = %s\n", format_number(kc.zeta_min).c_str());
+    std::printf("zeta_max = %s\n", format_number(kc.zeta_max).c_str());
+    std::printf("log_residual_rms = %s\n", format_number(kc.log_residual_rms).c_str());
+    std::printf("statistical_floor = %s\n", format_number(kc.statistical_floor).c_str());
+    print_value("fit_band_rms", result.fit_band_rms_um);
+    print_value("profile_band_rms", result.profile_band_rms_um);
+    std::printf("note = %s\n", surface::kIsotropyNote);
+    const double ratio = result.fit_band_rms_um / result.profile_band_rms_um;
+    if (!(std::abs(std::log(ratio)) <= std::log1p(surface::kLatticeRmsTolerance)))
+        std::printf("warning = the fitted KC holds rms %.4g um on the profile's frequencies, the profile %.4g um (%.0f %% "
+                    "apart)\n",
+                    result.fit_band_rms_um, result.profile_band_rms_um, 100.0 * std::abs(ratio - 1.0));
+    if (kc.log_residual_rms > surface::kPoorFitFactor * kc.statistical_floor)
+        std::printf("warning = the KC model fits this profile's PSD poorly (log_residual_rms %.3g, %.1f times its "
+                    "statistical floor)\n",
+                    kc.log_residual_rms, kc.log_residual_rms / kc.statistical_floor);
+    write_outputs();
+    if (!csv.empty()) std::printf("%scsv = %s\n", args.plot.empty() ? "" : ("plot = " + args.plot + "\n").c_str(), csv.c_str());
+}
+
 void fit(const FitArgs& args) {
+    if (const auto scan = read_profile(args.input, args.preparation, args.spacing, args.height_unit))
+        return profile_fit(args, *scan);
     if (args.smoothing) require_positive(*args.smoothing, "--smoothing");  // before reading the map
     surface::KcFitOptions options;
     const heightmap::PreparedMap prepared = read_map(args);

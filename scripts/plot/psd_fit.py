@@ -3,7 +3,9 @@ uses (`surfscatter surface info --plot`), and the 2-D PSD beside it.
 
 usage: psd_fit.py <psd.csv> <out.png> [title [<psd2d.npy> <zeta_x_left> <zeta_x_right> <zeta_y_bottom> <zeta_y_top>]]
 The CSV has columns zeta (rad/um), psd (um^4), count, kc_fit or model_psd (um^4), in_band (1 if the ring was used),
-independent_samples (of each ring: its mean's relative standard error is 1/sqrt of it, drawn as a band).
+independent_samples (of each ring: its mean's relative standard error is 1/sqrt of it, drawn as a band), and for a
+profile (`surface info | fit` on a line scan) a column `profile`: the rings are bands of its 1-D PSD (um^3), and
+`surface info`'s model_psd column (the PSD itself) is not drawn.
 Rings whose periods exceed a third of the map (zeta < 3 dzeta) are shaded: few samples hold them.
 The .npy holds the 2-D PSD (um^4) over the zeta-plane, centred, rows = zeta_y; the four numbers are its outer
 edges (rad/um). A directional texture shows as a streak through the origin, perpendicular to the lay.
@@ -21,6 +23,8 @@ import numpy as np
 def radial_panels(fig, spec, data, title):
     names = data.dtype.names
     measured = "model_psd" in names
+    profile = "profile" in names
+    noun, unit = ("1-D PSD", "3") if profile else ("radial PSD", "4")
     zeta, psd, band = data["zeta"], data["psd"], data["in_band"] > 0.5
     fit = data["model_psd" if measured else "kc_fit"]
     ax = fig.add_subplot(spec[0, 0])
@@ -32,12 +36,15 @@ def radial_panels(fig, spec, data, title):
         error = 1.0 / np.sqrt(np.maximum(data["independent_samples"], 1e-12))
         ax.fill_between(zeta, psd * np.exp(-error), psd * np.exp(error), color="C0", alpha=0.15, lw=0,
                         label="+-1 standard error")
-    ax.loglog(zeta[~band], psd[~band], ".", color="0.6", ms=3, label="radial PSD (not fitted)")
+    ax.loglog(zeta[~band], psd[~band], ".", color="0.6", ms=3, label=f"{noun} (not fitted)")
     ax.loglog(zeta[band], psd[band], ".", color="C0", ms=3,
-              label="radial PSD (band used: first ring to Nyquist)" if measured else "radial PSD (fitted band)")
-    ax.loglog(zeta, fit, "-", color="C3", lw=1.5, label="--psd measured" if measured else "KC fit")
+              label=f"{noun} (every band)" if profile and measured
+              else f"{noun} (band used: first ring to Nyquist)" if measured else f"{noun} (fitted band)")
+    if not (profile and measured):
+        ax.loglog(zeta, fit, "-", color="C3", lw=1.5,
+                  label="--psd measured" if measured else "KC fit (its profile PSD)" if profile else "KC fit")
     ax.text(3.0 * ring_width, ax.get_ylim()[0], " periods > map / 3", fontsize=7, color="0.4", va="bottom")
-    ax.set_ylabel(r"$P(\zeta)$ [$\mu$m$^4$]")
+    ax.set_ylabel(rf"$P(\zeta)$ [$\mu$m$^{unit}$]")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(loc="upper right")  # the PSD falls to the right: its upper right is empty
     if title:

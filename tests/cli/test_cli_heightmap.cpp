@@ -382,3 +382,49 @@ TEST(CliHeightmap, RealFilesFitOrSayWhyWithAPlotAndGiveAFiniteMeasuredBrdf) {
     EXPECT_NE(kept.err.find("rests on a few long periods"), std::string::npos) << kept.err;
     EXPECT_NE(kept.err.find("--lambda-c"), std::string::npos) << kept.err;
 }
+
+// A profile (.hfm, written here from a synthesised KC profile: sigma_h 0.1 um, L_c 5 um, gamma 3, 8192 points 0.5 um
+// apart): `surface info` reports it as a profile, `surface fit` fits the KC's profile PSD and prints the isotropy
+// note, `brdf --psd measured` uses that KC with the note on stderr; an areal preparation option is an error.
+TEST(CliHeightmap, ProfileInfoFitAndBrdf) {
+    const std::vector<double> h = ss::synthesize_profile(ss::KCorrelation(0.1, 5.0, 3.0), 8192, 0.5, 3);
+    const std::string hfm = (temp_dir() / "profile.hfm").string();
+    {
+        std::ofstream out(hfm);
+        out << "X;Y;valid\n[mm];[mm];[1/0]\n";
+        char line[96];
+        for (std::size_t i = 0; i < h.size(); ++i) {
+            std::snprintf(line, sizeof line, "%.7f;%.10f;1\n", 0.0005 * static_cast<double>(i), h[i] * 1e-3);
+            out << line;
+        }
+    }
+    const auto info = run_cli({"surface", "info", hfm});
+    ASSERT_EQ(info.exit_code, 0) << info.err;
+    EXPECT_NE(info.out.find("kind = profile"), std::string::npos) << info.out;
+    EXPECT_EQ(parse_values(info).at("points"), 8192.0);
+
+    const auto fit = run_cli({"surface", "fit", hfm});
+    ASSERT_EQ(fit.exit_code, 0) << fit.err;
+    const auto values = parse_values(fit);
+    EXPECT_NEAR(values.at("sigma_h") / 0.1, 1.0, 0.15) << fit.out;
+    EXPECT_NEAR(values.at("gamma"), 3.0, 0.45) << fit.out;
+    EXPECT_NE(fit.out.find("note = a profile holds heights along one line: the surface is assumed isotropic"),
+              std::string::npos);
+
+    const auto brdf = run_cli({"brdf", "eval", "--model", "ghs", "--psd", "measured", "--surface", hfm, "--material",
+                               "Al", "--wavelength", "550", "--theta-i", "30", "--theta-o", "0,60", "--phi-o", "180"});
+    ASSERT_EQ(brdf.exit_code, 0) << brdf.err;
+    EXPECT_NE(brdf.err.find("the surface is assumed isotropic"), std::string::npos) << brdf.err;
+    const auto lines = brdf.out_lines();
+    ASSERT_EQ(lines.size(), 3u) << brdf.out;
+    for (std::size_t i = 1; i < lines.size(); ++i) {
+        const double value = std::stod(lines[i].substr(lines[i].rfind(',') + 1));
+        EXPECT_TRUE(std::isfinite(value) && value > 0.0) << lines[i];
+    }
+
+    const auto areal = run_cli({"surface", "info", hfm, "--lambda-c", "100"});
+    EXPECT_EQ(areal.exit_code, 2);
+    EXPECT_NE(areal.err.find("--lambda-c applies to areal maps; a profile is prepared by its form only"),
+              std::string::npos)
+        << areal.err;
+}

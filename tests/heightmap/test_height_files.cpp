@@ -280,7 +280,7 @@ TEST(HeightFiles, BadFilesGetOneClearError) {
     write_bytes(garbage, bytes);
     EXPECT_EQ(error_of([&] { hm::read_height_map(garbage, std::nullopt); }),
               fmt::format("{}: unknown height map format: none of Gwyddion {}'s {} file modules recognises it, and "
-                          "it is not a GSF, X3P, TMD, OPDx, NMS, HFM or text grid",
+                          "it is not a GSF, X3P, TMD, OPDx, NMS, HFM, MNT or text grid",
                           garbage.string(), hm::gwyddion_version(), hm::gwyddion_loader_count()));
     EXPECT_GT(hm::gwyddion_loader_count(), 100u);
 

@@ -398,27 +398,6 @@ TEST(HeightFormats, HfmBadFilesNameTheLine) {
     EXPECT_NE(error("empty.hfm", "X;Y;valid\n[mm];[mm];[1/0]\n").find("0 points: a profile needs at least 2"), std::string::npos);
 }
 
-// ---------------------------------------------------------------- MountainsMap documents
-
-// An OLE compound file whose directory names a ScopedContents stream is named as what it is, not "unknown format".
-TEST(HeightFormats, MountainsDocumentIsNamed) {
-    std::string header("\xd0\xcf\x11\xe0\xa1\xb1\x1a\xe1", 8);
-    header.resize(512, '\0');
-    header[30] = 9;  // 512-byte sectors
-    header[48] = 1;  // the directory in sector 1, at byte 1024
-    std::string directory(512, '\0');
-    const std::string name("S\0c\0o\0p\0e\0d\0C\0o\0n\0t\0e\0n\0t\0s\0", 28);
-    directory.replace(128, name.size(), name);
-    const fs::path path = file_with("doc.mnt", header + std::string(512, '\0') + directory);
-    EXPECT_EQ(error_of([&] { hm::read_height_map(path, std::nullopt); }),
-              path.string() + ": a Digital Surf MountainsMap document (.mnt), which is not read: its heights are stored "
-                              "in an undocumented compressed layout; export the surface from MountainsMap as .sur or "
-                              ".x3p (both read here)");
-    EXPECT_NE(error_of([] { hm::read_height_map(real_file("mnt-1.mnt"), std::nullopt); })
-                  .find("mnt-1.mnt: a Digital Surf MountainsMap document (.mnt), which is not read"),
-              std::string::npos);
-}
-
 // ---------------------------------------------------------------- the real files
 
 // tmd-1.tmd: its header states 300 x 300 points over 18.9566 x 18.9566 mm (float32: 18.956600189208984), the figure

@@ -148,13 +148,13 @@ TEST(Prepare, NestingIndicesAreParsedOrNamed) {
 
 // ---------------------------------------------------------------- real instrument files
 
-// The default preparation's numerics on the real files that today's readers read (the other five of
-// ../shared/data/realdata/heightmaps, .mnt .tmd .opdx .nms .hfm, await their readers): row alignment (auto), plane,
+// The default preparation's numerics on the real maps of ../shared/data/realdata/heightmaps (.tmd and .nms are
+// tested in test_height_formats.cpp; .opdx and .hfm are profiles): row alignment (auto), plane,
 // the default lambda_c; where it filters, the filtered map's sigma is estimable (standard error <= 10 %).
 TEST(Prepare, RealFilesGetAnEstimableSigma) {
     const std::vector<std::string> files = {"metropro-1.dat", "opd-1.opd", "di-1.di", "di-2.di", "di-5.di",
                                             "frt-2.frt", "mi-1.mi", "sur-2.sur", "x3p-2.x3p", "stp-1.stp",
-                                            "spot_1-1000nm.ibw"};
+                                            "spot_1-1000nm.ibw", "mnt-1.mnt"};
     for (const std::string& name : files) {
         const auto path = std::filesystem::path(SURFSCATTER_SHARED_DATA) / "realdata" / "heightmaps" / name;
         const HeightMap map = read_height_map(path, std::nullopt);

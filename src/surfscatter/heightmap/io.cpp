@@ -18,6 +18,7 @@
 #include "surfscatter/heightmap/binary.hpp"
 #include "surfscatter/heightmap/gwyddion_file.hpp"
 #include "surfscatter/heightmap/hfm.hpp"
+#include "surfscatter/heightmap/mnt.hpp"
 #include "surfscatter/heightmap/nms.hpp"
 #include "surfscatter/heightmap/opdx.hpp"
 #include "surfscatter/heightmap/parse.hpp"
@@ -334,22 +335,6 @@ std::string file_head(const std::string& path, std::size_t bytes) {
     return head;
 }
 
-// A Digital Surf MountainsMap document (.mnt): an OLE compound file (Microsoft's CFB) whose first directory sector
-// names a "ScopedContents" stream. Only the header and that sector are read.
-bool is_mountains_document(const std::string& path, std::string_view head) {
-    constexpr std::string_view kOleMagic("\xd0\xcf\x11\xe0\xa1\xb1\x1a\xe1", 8);
-    if (head.size() < 512 || head.substr(0, kOleMagic.size()) != kOleMagic) return false;
-    const unsigned shift = binary::load_u16(head.data() + 30);  // sector size 2^shift: 512 or 4096
-    if (shift != 9 && shift != 12) return false;
-    const std::uint64_t offset = (std::uint64_t{binary::load_u32(head.data() + 48)} + 1) << shift;
-    std::ifstream in(path, std::ios::binary);
-    std::string sector(std::size_t{1} << shift, '\0');
-    in.seekg(static_cast<std::streamoff>(offset));
-    in.read(sector.data(), static_cast<std::streamsize>(sector.size()));
-    const std::string_view name("S\0c\0o\0p\0e\0d\0C\0o\0n\0t\0e\0n\0t\0s\0", 28);  // UTF-16LE
-    return in && sector.find(name) != std::string::npos;
-}
-
 // A file's stated spacing and height unit against what the user gave (text grids reconcile their own).
 void reconcile(const HeightMap& map, std::optional<double> spacing_um, std::optional<double> height_unit_um) {
     const std::string& path = map.origin();
@@ -384,6 +369,15 @@ HeightMap read_x3p_file(const std::string& path, const X3pLayout& layout) {
 
 }  // namespace
 
+std::optional<LineScan> read_line_scan(const std::filesystem::path& file) {
+    require_readable_file(file, "height map file");
+    const std::string head = file_head(file.string(), 65536);
+    if (is_hfm(head)) return read_hfm(file);
+    if (is_opdx(head))
+        if (auto data = read_opdx(file); std::holds_alternative<LineScan>(data)) return std::get<LineScan>(std::move(data));
+    return std::nullopt;
+}
+
 HeightMap read_height_map(const std::filesystem::path& file, std::optional<double> spacing_um,
                           std::optional<double> height_unit_um) {
     const std::string path = file.string();
@@ -404,10 +398,8 @@ HeightMap read_height_map(const std::filesystem::path& file, std::optional<doubl
         map = read_nms(file);
     } else if (is_hfm(head)) {
         fail("{}", line_scan_refusal(read_hfm(file)));
-    } else if (is_mountains_document(path, head)) {
-        fail("{}: a Digital Surf MountainsMap document (.mnt), which is not read: its heights are stored in an "
-             "undocumented compressed layout; export the surface from MountainsMap as .sur or .x3p (both read here)",
-             path);
+    } else if (is_mnt(file, head)) {
+        map = read_mnt(file);
     } else if (head.compare(0, kZipMagic.size(), kZipMagic) == 0) {
         if (const auto layout = x3p_layout(path)) map = read_x3p_file(path, *layout);
         else map = gwyddion_read(path);  // other zip-based formats (Sensofar, Keyence, NanoObserver, ...)
@@ -419,7 +411,7 @@ HeightMap read_height_map(const std::filesystem::path& file, std::optional<doubl
         return read_text_grid(file, spacing_um, height_unit_um);
     } else {
         fail("{}: unknown height map format: none of Gwyddion {}'s {} file modules recognises it, and it is not a "
-             "GSF, X3P, TMD, OPDx, NMS, HFM or text grid",
+             "GSF, X3P, TMD, OPDx, NMS, HFM, MNT or text grid",
              path, gwyddion_version(), gwyddion_loader_count());
     }
     reconcile(*map, spacing_um, height_unit_um);

@@ -25,6 +25,7 @@
 #include <optional>
 
 #include "surfscatter/heightmap/height_map.hpp"
+#include "surfscatter/heightmap/line_scan.hpp"
 
 namespace surfscatter::heightmap {
 
@@ -33,6 +34,10 @@ namespace surfscatter::heightmap {
 // (within the precision the file states them with), and a contradiction is an Error. Fills map.source.
 HeightMap read_height_map(const std::filesystem::path& path, std::optional<double> spacing_um,
                           std::optional<double> height_unit_um = std::nullopt);
+
+// The profile a file holds (an .hfm export, a Dektak OPDx line scan: the files read_height_map refuses as
+// profiles), or nullopt for any other file (which read_height_map reads or refuses).
+std::optional<LineScan> read_line_scan(const std::filesystem::path& path);
 
 HeightMap read_gsf(const std::filesystem::path& path);
 

@@ -21,6 +21,40 @@ std::optional<double> length_unit_in_um(std::string_view unit) {
     return std::nullopt;
 }
 
+std::string utf16le_to_utf8(std::string_view bytes, const std::string& what) {
+    if (bytes.size() % 2 != 0) fail("{}: UTF-16 text of {} bytes (an odd number)", what, bytes.size());
+    const auto unit = [&](std::size_t i) {
+        return static_cast<char32_t>(static_cast<unsigned char>(bytes[2 * i]) |
+                                     static_cast<unsigned char>(bytes[2 * i + 1]) << 8);
+    };
+    std::string out;
+    const std::size_t units = bytes.size() / 2;
+    for (std::size_t i = 0; i < units; ++i) {
+        char32_t c = unit(i);
+        if (c == 0) break;
+        if (c >= 0xd800 && c < 0xdc00 && i + 1 < units && unit(i + 1) >= 0xdc00 && unit(i + 1) < 0xe000)
+            c = 0x10000 + ((c - 0xd800) << 10) + (unit(++i) - 0xdc00);
+        else if (c >= 0xd800 && c < 0xe000)
+            c = 0xfffd;
+        if (c < 0x80) {
+            out += static_cast<char>(c);
+        } else if (c < 0x800) {
+            out += static_cast<char>(0xc0 | c >> 6);
+            out += static_cast<char>(0x80 | (c & 0x3f));
+        } else if (c < 0x10000) {
+            out += static_cast<char>(0xe0 | c >> 12);
+            out += static_cast<char>(0x80 | ((c >> 6) & 0x3f));
+            out += static_cast<char>(0x80 | (c & 0x3f));
+        } else {
+            out += static_cast<char>(0xf0 | c >> 18);
+            out += static_cast<char>(0x80 | ((c >> 12) & 0x3f));
+            out += static_cast<char>(0x80 | ((c >> 6) & 0x3f));
+            out += static_cast<char>(0x80 | (c & 0x3f));
+        }
+    }
+    return out;
+}
+
 std::map<std::string, std::string> header_fields(std::string_view text, int first_line, const std::string& path) {
     std::map<std::string, std::string> fields;
     std::map<std::string, int> lines;

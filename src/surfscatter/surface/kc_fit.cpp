@@ -24,6 +24,7 @@ namespace {
 
 struct RingData {
     std::vector<double> zeta, log_psd, weight, log_bias;
+    bool profile = false;  // a profile's 1-D PSD: the KC's profile PSD is the model
 };
 
 // Residuals sqrt(nu_i) (ln Pbar_i - b_i - ln sigma^2 - ln P-hat_i) with ln sigma^2 profiled out; returns ln sigma^2.
@@ -36,7 +37,8 @@ double profiled_residuals(const RingData& data, double log_l, double log_gm1, Ei
     const KCorrelation model(1.0, std::exp(std::clamp(log_l, -200.0, 200.0)), 1.0 + std::exp(std::clamp(log_gm1, lo, hi)));
     double sum_w = 0.0, sum_wd = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
-        const double d = data.log_psd[i] - data.log_bias[i] - std::log(model.psd_unit(data.zeta[i]));
+        const double unit = data.profile ? model.profile_psd_unit(data.zeta[i]) : model.psd_unit(data.zeta[i]);
+        const double d = data.log_psd[i] - data.log_bias[i] - std::log(unit);
         residuals[static_cast<Eigen::Index>(i)] = d;
         sum_w += data.weight[i];
         sum_wd += data.weight[i] * d;
@@ -79,6 +81,7 @@ KcFit fit_kc(const RadialPsd& radial, double nyquist, const KcFitOptions& option
     fit.zeta_max = options.max_nyquist_fraction * nyquist;
 
     RingData data;
+    data.profile = options.profile;
     for (std::size_t i = 0; i < radial.zeta.size(); ++i) {
         if (radial.zeta[i] < fit.zeta_min || radial.zeta[i] > fit.zeta_max) continue;
         if (!(radial.psd[i] > 0.0)) continue;  // exactly zero power (e.g. a synthetic band edge) has no log
@@ -138,20 +141,22 @@ KcFit fit_kc(const RadialPsd& radial, double nyquist, const KcFitOptions& option
 
     const std::string band = fmt::format("the PSD between {:.4g} and {:.4g} rad/um ({} rings)", fit.zeta_min,
                                          fit.zeta_max, fit.rings);
+    const char* instead = options.profile ? "the areal models take a profile's statistics from this fit"
+                                          : "use --psd measured for the map's own spectrum";
     const std::string misfit = fmt::format("misfit log_residual_rms {:.3g} against a statistical floor of {:.3g}",
                                            fit.log_residual_rms, fit.statistical_floor);
     if (const char* end = search_box_end(best[0], log_l_min, log_l_max))
         fit.failure = fmt::format(
             "KC fit: no KC correlation length fits {}: L_c was searched from {:.4g} to {:.4g} um (1/(4 zeta_max) to "
             "4/zeta_min) and the best attempt lies at the {} end (L_c = {:.4g} um, gamma = {:.4g}, {}): the PSD has "
-            "no KC knee inside the band; use --psd measured for the map's own spectrum",
-            band, std::exp(log_l_min), std::exp(log_l_max), end, l, gamma, misfit);
+            "no KC knee inside the band; {}",
+            band, std::exp(log_l_min), std::exp(log_l_max), end, l, gamma, misfit, instead);
     else if (const char* end = search_box_end(best[1], log_g_min, log_g_max))
         fit.failure = fmt::format(
             "KC fit: gamma is not resolved by {}: gamma was searched from {:.4g} to {:.4g} and the best attempt lies "
             "at the {} end (gamma = {:.4g}, L_c = {:.4g} um, {}; a PSD falling faster than any power law, e.g. "
-            "Gaussian, has no KC gamma); use --psd measured for the map's own spectrum",
-            band, 1.0 + kKcGammaMinusOneMin, 1.0 + kKcGammaMinusOneMax, end, gamma, l, misfit);
+            "Gaussian, has no KC gamma); {}",
+            band, 1.0 + kKcGammaMinusOneMin, 1.0 + kKcGammaMinusOneMax, end, gamma, l, misfit, instead);
     return fit;
 }
 

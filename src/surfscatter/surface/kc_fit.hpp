@@ -35,6 +35,9 @@ struct KcFitOptions {
     std::size_t min_ring = 4;           // first ring used (1 = the lowest non-zero frequency)
     double max_nyquist_fraction = 0.5;  // zeta_max = this * pi / max(dx, dy), in (0, 1]
     heightmap::Form form = heightmap::Form::plane;            // removed before everything (fit_surface)
+    // The rings are a profile's 1-D PSD (profile_statistics.hpp): fitted with the KC's profile PSD
+    // (KCorrelation::profile_psd_unit), so that sigma_h, L_c and gamma are the isotropic surface's.
+    bool profile = false;
 };
 
 struct KcFit {

@@ -100,6 +100,12 @@ double KCorrelation::psd_unit(double zeta) const {
     return (gamma_ - 1.0) * length_ * length_ / (2.0 * kPi) * std::exp(-0.5 * (gamma_ + 1.0) * std::log1p(lz2));
 }
 
+double KCorrelation::profile_psd_unit(double zeta) const {
+    const double log_b = 0.5 * std::log(kPi) + std::lgamma(0.5 * gamma_) - std::lgamma(0.5 * (gamma_ + 1.0));
+    return (gamma_ - 1.0) * length_ / (2.0 * kPi) *
+           std::exp(log_b - 0.5 * gamma_ * std::log1p(length_ * length_ * zeta * zeta));
+}
+
 double KCorrelation::radial_cdf(double zeta) const {
     if (std::isinf(zeta)) return 1.0;
     return -std::expm1(-nu_ * std::log1p(length_ * length_ * zeta * zeta));

@@ -66,6 +66,10 @@ public:
     double sigma_h() const override { return sigma_; }
     double correlation_length() const override { return length_; }
     double psd_unit(double zeta) const override;
+    // The profile (1-D) PSD per unit variance, P-hat integrated over zeta_y at zeta_x = zeta (what a line scan of the
+    // isotropic surface holds; unit mass over the zeta_x-line): (gamma - 1) L B / (2 pi) (1 + L^2 zeta^2)^(-gamma/2),
+    // B = sqrt(pi) Gamma(gamma/2) / Gamma((gamma + 1)/2) (docs/HEIGHTMAPS.md "Profiles").
+    double profile_psd_unit(double zeta) const;
     double acv_normalized(double r) const override;
     double radial_cdf(double zeta) const override;  // 1 - (1 + L^2 zeta^2)^(-(gamma-1)/2)
     double inverse_radial_cdf(double u) const;      // zeta with radial_cdf(zeta) = u, u in [0, 1); +inf at u = 1
