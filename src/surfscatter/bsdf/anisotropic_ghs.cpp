@@ -20,12 +20,33 @@ const NodeAxis kIncidenceAxis = ghs_incidence_axis();
 const NodeAxis kWavelengthAxis = ghs_wavelength_axis();
 constexpr int kLastAzimuth = AnisotropicGhsBsdf::kAzimuthNodes - 1;
 
-// cos 2 phi_r of incidence wi: (u^2 - v^2) / (u^2 + v^2) of its lay components; 1 at normal incidence (where every
-// azimuth node holds the same values).
+// The azimuth nodes are uniform in x = kLastAzimuth (2 phi_r / pi + kAzimuthGrading sin(4 phi_r) / (2 pi)), phi_r in
+// [0, 90] deg: 1 + kAzimuthGrading times denser than uniform at the lay and at its normal (where grazing incidence
+// makes the tables change fastest: along the longer correlation length, which is the lay's normal when LV > LU),
+// 1 - kAzimuthGrading at 45 deg. x is odd about phi_r = 0, x(90 + d) = 2 x(90) - x(90 - d), and x(90 - phi) =
+// kLastAzimuth - x(phi): the tables, even about 0 and 90 deg, stay smooth in x across both ends (the stencil is
+// reflected there), and relabelling the surface (A + 90 deg, LU and LV swapped) reads mirrored nodes.
+constexpr double kAzimuthGrading = 0.3;
+
+// x of incidence with lay components uv (0 at normal incidence, where every azimuth node holds the same values).
 double azimuth_coordinate(Vec2 uv) {
-    const double u2 = uv.x * uv.x, v2 = uv.y * uv.y, r2 = u2 + v2;
-    return r2 > 0 ? (u2 - v2) / r2 : 1.0;
+    const double u = std::abs(uv.x), v = std::abs(uv.y), r2 = u * u + v * v;
+    const double sin_4phi = r2 > 0 ? 4.0 * u * v * (u * u - v * v) / (r2 * r2) : 0.0;
+    return kLastAzimuth * (std::atan2(v, u) + 0.25 * kAzimuthGrading * sin_4phi) / (0.5 * kPi);
 }
+
+// phi_r of azimuth node a (x = a), by bisection (x increases with phi_r).
+double azimuth_node_angle(int a) {
+    double lo = 0.0, hi = 0.5 * kPi;
+    for (int step = 0; step < 60; ++step) {
+        const double mid = 0.5 * (lo + hi);
+        (azimuth_coordinate({std::cos(mid), std::sin(mid)}) < a ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+// Node j of the 4-point stencil, reflected at phi_r = 0 and 90 deg (the tables are even about both).
+int reflected_azimuth(int j) { return j < 0 ? -j : (j > kLastAzimuth ? 2 * kLastAzimuth - j : j); }
 
 }  // namespace
 
@@ -50,11 +71,11 @@ AnisotropicGhsBsdf::AnisotropicGhsBsdf(std::shared_ptr<const surface::Elliptical
     const double cosine = std::clamp(wi.z, kIncidenceAxis.node(0), 1.0);
     const int c = kIncidenceAxis.position(cosine).interval;
     const math::Pair d = math::Pair{1.0, 1.0} * (cosine - kIncidenceAxis.node(c));
-    // Azimuth: the 4 uniform nodes around x = (cos 2 phi_r + 1) / h (one-sided at the ends), Lagrange weights at t.
-    double x = 0.5 * kLastAzimuth * (azimuth_coordinate(stats_->to_lay({wi.x, wi.y})) + 1.0);
+    // Azimuth: the 4 nodes around x (uniform in x, reflected at the ends), Lagrange weights at t.
+    double x = azimuth_coordinate(stats_->to_lay({wi.x, wi.y}));
     if (!(x >= 0.0)) x = 0.0;
     x = std::min(x, double(kLastAzimuth));
-    const int first = std::clamp(int(x) - 1, 0, kLastAzimuth - 3);
+    const int first = std::clamp(int(x) - 1, -1, kLastAzimuth - 2);
     const double t = x - first;
     const std::array<double, 4> w = math::lagrange4_weights(t);
     auto table = [&](int slot) -> const AzimuthTables& {
@@ -62,7 +83,8 @@ AnisotropicGhsBsdf::AnisotropicGhsBsdf(std::shared_ptr<const surface::Elliptical
     };
     auto at = [&](const AzimuthTables& tables) {
         math::Pair v{0.0, 0.0};
-        for (int j = 0; j < 4; ++j) v += w[j] * estrin(tables[std::size_t(first + j)][std::size_t(c)], d);
+        for (int j = 0; j < 4; ++j)
+            v += w[j] * estrin(tables[std::size_t(reflected_azimuth(first + j))][std::size_t(c)], d);
         return v;
     };
     const math::Pair at_a = at(table(l.interval)), v = at_a + l.t * (at(table(l.interval + 1)) - at_a);
@@ -165,12 +187,12 @@ std::optional<BsdfSample> AnisotropicGhsBsdf::sample(const Vec3& wi, double lamb
 AnisotropicGhsBsdf::AzimuthTables AnisotropicGhsBsdf::cached_tables(double lambda_nm) const {
     // The tables are over phi_i - A (build_tables, lookup): a new lay angle is a rotation of the local frame that
     // they already hold, so the key leaves A out (shape_key) and every lay angle of a surface shares them.
-    constexpr std::uint32_t kVersion = 4;  // of build_tables' construction and the layout
+    constexpr std::uint32_t kVersion = 5;  // of build_tables' construction and the layout
     const std::string key = fmt::format(
         "ghs-anisotropic-incidence:{}:sigma_h={:.17g}:{}:normalization={}:relevant={}:lambda={:.17g}:nodes={}x{}"
-        ":azimuth=cos2(phi-A)",
+        ":azimuth=2(phi-A)/pi+{}sin(4(phi-A))/2pi",
         stats_->shape_key(), stats_->sigma_h(), core_->cache_key(), int(settings_.normalization),
-        settings_.relevant_roughness, lambda_nm, kGhsThetaNodes, kAzimuthNodes);
+        settings_.relevant_roughness, lambda_nm, kGhsThetaNodes, kAzimuthNodes, kAzimuthGrading);
     return cached_incidence_table<AzimuthTables>("ghs-anisotropic-incidence", kVersion, key,
                                                  [&] { return build_tables(lambda_nm); });
 }
@@ -178,7 +200,7 @@ AnisotropicGhsBsdf::AzimuthTables AnisotropicGhsBsdf::cached_tables(double lambd
 AnisotropicGhsBsdf::AzimuthTables AnisotropicGhsBsdf::build_tables(double lambda_nm) const {
     AzimuthTables tables;
     for (int a = 0; a < kAzimuthNodes; ++a) {
-        const double phi_r = 0.5 * std::acos(std::clamp(-1.0 + 2.0 * a / kLastAzimuth, -1.0, 1.0));
+        const double phi_r = azimuth_node_angle(a);
         const Vec2 along = stats_->from_lay({std::cos(phi_r), std::sin(phi_r)});
         tables[std::size_t(a)] = tabulate_incidence(
             kIncidenceAxis,

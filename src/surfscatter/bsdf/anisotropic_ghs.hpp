@@ -9,20 +9,26 @@
 // the zeta plane; P-hat is even, so the disc about -k i_xy holds the same) and N (GhsBsdf's normalisations) now
 // depend on the incidence azimuth relative to the lay, phi_r = phi_i - A, through c = cos 2 phi_r only: the surface is
 // symmetric under phi_r -> -phi_r and phi_r -> phi_r + pi, and an even pi-periodic smooth function of phi_r is a
-// smooth function of cos 2 phi_r. Per wavelength node (GhsBsdf's) and per azimuth node (kAzimuthNodes, uniform in c
-// over [-1, 1]) ln sigma and ln(N / cos^p theta_i) are GhsBsdf's cubics over cos theta_i; between azimuth nodes the
-// 4-point Lagrange cubic in c, between wavelength nodes linear. A table is 64 x 9 pairs of visible-disc integrals, both
-// over the rays of the stretched plane w = (zeta_u, s zeta_v) / k from the specular point, where the lobe is a function
-// of |w| and of g alone and the disc an ellipse (adaptive Gauss-Kronrod over the ray angle, each quarter graded toward
-// the ray where grazing incidence brings the horizon close): sigma from the radial CDF at each ray's end, N from a fixed
-// 32-point rule along each ray (24 in ln |w| for the lobe, 8 at the horizon); built lazily and kept in the disk cache
-// under a key naming the elliptical statistics (LV and A included), the core and the settings; ~0.15 CPU s per
-// wavelength node for photo-setup's plate (bench_bsdf BM_ghs_tables/1; a render touches ~45 nodes once; the disk
-// cache keeps them).
+// smooth function of cos 2 phi_r. Per wavelength node (GhsBsdf's) and per azimuth node (kAzimuthNodes over phi_r in
+// [0, 90] deg, 3.5 deg apart at the lay and its normal, 6.4 deg at 45 deg: nodes uniform in cos 2 phi_r left 20.7 deg
+// between the lay and the next, and at grazing incidence, where the rim cuts the lobe's narrow direction, sigma was
+// 3.8e-3 low at 85 deg; 13 nodes uniform in phi_r, 5.4e-3 at 89.9 deg) ln sigma and ln(N / cos^p theta_i) are
+// GhsBsdf's cubics over cos theta_i; between azimuth nodes the 4-point Lagrange cubic in the graded coordinate, its
+// stencil reflected at 0 and 90 deg (both even), between wavelength nodes linear. A table is 64 x 21 pairs of
+// visible-disc integrals, both over the rays of the stretched plane w = (zeta_u, s zeta_v) / k from the specular
+// point, where the lobe is a function of |w| and of g alone and the disc an ellipse (adaptive Gauss-Kronrod over the
+// ray angle, each quarter graded toward the ray where grazing incidence brings the horizon close): sigma from the
+// radial CDF at each ray's end, N from a fixed 32-point rule along each ray (24 in ln |w| for the lobe, 8 at the
+// horizon); built lazily and kept in the disk cache under a key naming the elliptical statistics (LV and A included),
+// the core and the settings; ~0.15 CPU s per wavelength node for photo-setup's plate with 9 azimuth nodes (bench_bsdf
+// BM_ghs_tables/1; 21 cost ~21/9 of that; a render touches ~45 nodes once; the disk cache keeps them).
 // Accuracy (AnisotropicGhs.TablesMatchDirectQuadrature, against Gauss-Legendre over the disc written in the test):
 // sigma within 1e-3 and N within 3e-3 of their direct values at (theta_i, phi_r) between the nodes for s = 0.25 and 4
-// (measured 1.3e-4 and 2.1e-4; the direct values themselves within 1e-4, measured 6.8e-6, and at normal and grazing
-// incidence, 88.5 and 89.7 deg, for photo-setup's plate too: 1.5e-5, AnisotropicGhs.DirectValuesHoldAtGrazingIncidence).
+// (measured 1.5e-5 and 1.1e-4; the direct values themselves within 1e-4, measured 6.8e-6, and at normal and grazing
+// incidence, 88.5 and 89.7 deg, for photo-setup's plate too: 1.5e-5, AnisotropicGhs.DirectValuesHoldAtGrazingIncidence);
+// sigma within 1e-3 of the direct value at every azimuth (0.5 deg steps) up to 89.9 deg incidence, photo-setup's
+// plate at 550 nm and a wide lobe (measured 6.6e-4 at 89.9 deg, 1.5 deg from the lay;
+// AnisotropicGhs.SigmaHoldsAtEveryAzimuthUpToGrazing).
 // Sampling: the delta with probability e^{-g0}; otherwise the core's radius at g* = g0 in the stretched plane
 // (|w| <= k (1 + sin theta_i) max(1, s), w = (zeta_u, s zeta_v)), a uniform azimuth there, mapped back to zeta; a draw
 // outside the visible disc is a failed sample (nothing returned), so the pdf is the exact sub-probability density
@@ -49,7 +55,7 @@ namespace surfscatter::bsdf {
 
 class AnisotropicGhsBsdf final : public Bsdf {
 public:
-    static constexpr int kAzimuthNodes = 9;  // in cos 2 phi_r over [-1, 1]
+    static constexpr int kAzimuthNodes = 21;  // over phi_r in [0, 90] deg, graded toward 0 and 90 (.cpp)
 
     // `core` made on stats->radial_ptr() (ExactScatterCore, RefitScatterCore or FirstOrderCore).
     AnisotropicGhsBsdf(std::shared_ptr<const surface::EllipticalStatistics> stats,

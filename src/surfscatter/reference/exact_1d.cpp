@@ -13,6 +13,7 @@
 #include "surfscatter/math/vec.hpp"
 #include "surfscatter/reference/banded_solve.hpp"
 #include "surfscatter/reference/dense_solve.hpp"
+#include "surfscatter/reference/far_field_sum.hpp"
 #include "surfscatter/reference/far_interaction.hpp"
 #include "surfscatter/reference/gmres.hpp"
 #include "surfscatter/reference/hankel.hpp"
@@ -542,70 +543,19 @@ FarField solve_exact_1d(const Profile& profile, const material::Conductor& condu
 
     // Far field of int [psi dG1/dn' - G1 L] dx': |psi_sc|^2 r = |F|^2 / (8 pi k) with
     // F = int [L + i k psi (cos - h' sin)] e^{-i k o.r'} dx'.
+    std::vector<Complex> plain(n), cosine(n), sine(n);
+    for (std::size_t j = 0; j < n; ++j) {
+        plain[j] = normal[j];
+        cosine[j] = kI * k * psi[j];
+        sine[j] = cosine[j] * surface.dh[j];
+    }
     FarField out;
+    out.amplitude = far_field_sum(k, surface.x[0], surface.step, surface.h, plain, cosine, sine);
     const double scale = surface.step / std::sqrt(8.0 * kPi * k * incident_power(k, theta_i, g));
-    out.theta_o_rad.resize(kFarFieldSteps + 1);
-    out.amplitude.resize(kFarFieldSteps + 1);
-    // theta and -theta share e^{-i k cos h_j}, and from one direction to the next it changes by e^{-i k dcos h_j}, a
-    // small angle e summed by its Taylor series to e^9 (|e| <= 0.05: 3e-20; recomputed exactly every 64 directions,
-    // and at every direction when the heights make e larger). e^{-i k sin x_j} follows x_j's uniform step by recurrence
-    // (rounding grows to ~n eps, 1e-12 at 10^4 nodes). Heights are taken from their mid-range, whose phase
-    // multiplies the sum.
-    const auto [h_lo, h_hi] = std::minmax_element(surface.h.begin(), surface.h.end());
-    const double h_mid = 0.5 * (*h_lo + *h_hi), h_half = 0.5 * (*h_hi - *h_lo);
-    const double max_step = k * h_half * 180.0 / kFarFieldSteps * kDegree;  // |d cos| <= d theta
-    const bool recurrence = max_step <= 0.05;  // else exact phases at every direction
-    std::vector<double> height(n), phase_re(n), phase_im(n);
-    for (std::size_t j = 0; j < n; ++j) height[j] = surface.h[j] - h_mid;
-    double previous_co = 0.0;
-    for (int q = 0; q <= kFarFieldSteps / 2; ++q) {
-        const int mirror = kFarFieldSteps - q;
-        const double theta = (-90.0 + 180.0 * q / kFarFieldSteps) * kDegree;
-        const double so = std::sin(theta), co = std::cos(theta);
-        if (!recurrence || q % 64 == 0) {
-            for (std::size_t j = 0; j < n; ++j) {
-                const double phase = -k * co * height[j];
-                phase_re[j] = std::cos(phase);
-                phase_im[j] = std::sin(phase);
-            }
-        } else {
-            const double factor = -k * (co - previous_co);
-            for (std::size_t j = 0; j < n; ++j) {
-                const double e = factor * height[j], e2 = e * e;
-                const double c = 1.0 - e2 / 2 * (1.0 - e2 / 12 * (1.0 - e2 / 30 * (1.0 - e2 / 56)));
-                const double sn = e * (1.0 - e2 / 6 * (1.0 - e2 / 20 * (1.0 - e2 / 42 * (1.0 - e2 / 72))));
-                const double re = phase_re[j] * c - phase_im[j] * sn, im = phase_re[j] * sn + phase_im[j] * c;
-                phase_re[j] = re;
-                phase_im[j] = im;
-            }
-        }
-        previous_co = co;
-        // sum over j of (A + co B -+ so C) X^(+-1) E, A = L, B = i k psi, C = i k h' psi, X = e^{-i k sin x_j}, E the
-        // height phase: in real arithmetic (libgcc's complex multiply checks every product for NaN).
-        const double step_re = std::cos(-k * so * surface.step), step_im = std::sin(-k * so * surface.step);
-        double x_re = std::cos(-k * so * surface.x[0]), x_im = std::sin(-k * so * surface.x[0]);
-        double sum_re = 0.0, sum_im = 0.0, mirror_re = 0.0, mirror_im = 0.0;
-        for (std::size_t j = 0; j < n; ++j) {
-            const double e_re = phase_re[j], e_im = phase_im[j];
-            const double w_re = normal[j].real() - k * co * psi[j].imag(), w_im = normal[j].imag() + k * co * psi[j].real();
-            const double c_re = -k * so * surface.dh[j] * psi[j].imag(), c_im = k * so * surface.dh[j] * psi[j].real();
-            const double p_re = w_re * e_re - w_im * e_im, p_im = w_re * e_im + w_im * e_re;   // (A + co B) E
-            const double q_re = c_re * e_re - c_im * e_im, q_im = c_re * e_im + c_im * e_re;   // so C E
-            const double minus_re = p_re - q_re, minus_im = p_im - q_im, plus_re = p_re + q_re, plus_im = p_im + q_im;
-            sum_re += minus_re * x_re - minus_im * x_im;
-            sum_im += minus_re * x_im + minus_im * x_re;
-            mirror_re += plus_re * x_re + plus_im * x_im;  // times conj(X)
-            mirror_im += plus_im * x_re - plus_re * x_im;
-            const double next_re = x_re * step_re - x_im * step_im;
-            x_im = x_re * step_im + x_im * step_re;
-            x_re = next_re;
-        }
-        const Complex sum(sum_re, sum_im), mirror_sum(mirror_re, mirror_im);
-        const Complex mid_phase = std::polar(scale, -k * co * h_mid);
-        out.theta_o_rad[q] = theta;
-        out.amplitude[q] = sum * mid_phase;
-        out.theta_o_rad[mirror] = (-90.0 + 180.0 * mirror / kFarFieldSteps) * kDegree;
-        out.amplitude[mirror] = mirror_sum * mid_phase;
+    out.theta_o_rad.resize(out.amplitude.size());
+    for (std::size_t q = 0; q < out.amplitude.size(); ++q) {
+        out.theta_o_rad[q] = (-90.0 + 180.0 * static_cast<double>(q) / kFarFieldSteps) * kDegree;
+        out.amplitude[q] *= scale;
     }
     for (const Complex& a : out.amplitude)
         if (!std::isfinite(a.real()) || !std::isfinite(a.imag()))

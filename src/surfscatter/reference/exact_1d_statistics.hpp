@@ -1,7 +1,9 @@
 #pragma once
-// The exact 1-D solution averaged over random profiles (docs/REFERENCE.md): realizations solved in parallel, the
-// mean far field split into its coherent part |<a>|^2 and its incoherent part <|a|^2> - |<a>|^2, each with its
-// Monte Carlo standard error.
+// The exact 1-D solution averaged over random profiles (docs/REFERENCE.md, "Statistical mode"): realizations solved
+// in parallel, the mean far field split into its coherent part |<a>|^2 and its incoherent part <|a - <a>|^2>, each
+// with its Monte Carlo standard error, both estimated with a control variate: the same profile's Kirchhoff far field
+// under the beam's footprint, whose ensemble mean and variance are known in closed form for the synthesised
+// (Gaussian, periodic) profiles.
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -23,13 +25,24 @@ struct StatisticalOptions {
 
 struct StatisticalResult {
     std::vector<double> theta_o_rad;
-    std::vector<double> intensity, coherent, incoherent;  // per radian over the incident power
+    // Per radian over the incident power. intensity: the plain mean <|a|^2> (each realization conserves energy, so
+    // its integral carries no Monte Carlo error); coherent and incoherent: the controlled estimates, whose sum
+    // differs from intensity by the control's correction (within their standard errors).
+    std::vector<double> intensity, coherent, incoherent;
     std::vector<double> coherent_stderr, incoherent_stderr;
+    // The incoherent part without the control (the sample variance of a) and its standard error: the variance
+    // reduction is (incoherent_plain_stderr / incoherent_stderr)^2.
+    std::vector<double> incoherent_plain, incoherent_plain_stderr;
+    // 2 / (k g cos theta_i): the half-width at 1/e^2 of the beam's angular power spectrum (its incident directions),
+    // the angular resolution of the reference. Within it of specular the coherent beam dominates and the incoherent
+    // part is the plane-wave lobe blurred by the beam; a comparison with plane-wave models leaves those directions out.
+    double beam_half_width_rad = 0.0;
     std::size_t realizations = 0;  // completed (fewer than asked if interrupted)
 };
 
 // The random profile of realization `index`: a cut through an isotropic surface with `statistics`
-// (surface::synthesize_profile), sampled at lambda / points_per_wavelength over length_um, centred on x = 0.
+// (surface::synthesize_profile with its zero-frequency line), sampled at lambda / points_per_wavelength over
+// length_um, centred on x = 0.
 Profile random_profile(const surface::RadialStatistics& statistics, const Exact1dOptions& options, double length_um,
                        std::uint64_t seed);
 

@@ -85,7 +85,7 @@ double profile_psd(const RadialStatistics& statistics, double zeta_x) {
 }
 
 std::vector<double> synthesize_profile(const RadialStatistics& statistics, std::size_t n, double spacing_um,
-                                       std::uint64_t seed) {
+                                       std::uint64_t seed, ProfileMean mean) {
     if (n < 4) fail("profile length must be at least 4 samples, got {}", n);
     heightmap::require_valid_spacing(spacing_um, "profile spacing");
     require_memory(48.0 * static_cast<double>(n), fmt::format("a profile of {} samples", n));
@@ -93,7 +93,9 @@ std::vector<double> synthesize_profile(const RadialStatistics& statistics, std::
     const double dz = 2.0 * kPi / (static_cast<double>(n) * spacing_um);
     const double scale = std::sqrt(dz / static_cast<double>(n));  // A_k / N with A_k = sqrt(N P1 dzeta)
     for (std::size_t kx = 0; kx < spectrum.size(); ++kx)
-        spectrum[kx] *= kx == 0 ? 0.0 : scale * std::sqrt(profile_psd(statistics, static_cast<double>(kx) * dz));
+        spectrum[kx] *= kx == 0 && mean == ProfileMean::zero
+                            ? 0.0
+                            : scale * std::sqrt(profile_psd(statistics, static_cast<double>(kx) * dz));
     return heightmap::inverse_fft_2d(std::move(spectrum), n, 1);
 }
 

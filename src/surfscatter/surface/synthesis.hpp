@@ -38,10 +38,17 @@ heightmap::HeightMap synthesize_surface(const EllipticalStatistics& statistics, 
 // form). By adaptive quadrature to 1e-10 relative.
 double profile_psd(const RadialStatistics& statistics, double zeta_x);
 
+// Whether a synthesised profile keeps the zero-frequency line: `zero` sets it to 0 (each profile has zero mean);
+// `random` draws it like every other line, variance P1(0) dzeta, from the same noise. A finite window (a beam) sees
+// a cut through the surface whose local mean varies: without the line, the scattering a window collects from the
+// frequencies within its own spectral width of zero is missing (exact-1d's incoherent part near specular, issue 34).
+enum class ProfileMean { zero, random };
+
 // A random profile of n samples (>= 4) spaced spacing_um apart with the 1-D PSD profile_psd: the same spectral
-// synthesis and noise as synthesize_surface in one dimension (periodic over n spacing, zero mean, variance
-// sum_k P1(zeta_k) dzeta up to Nyquist).
+// synthesis and noise as synthesize_surface in one dimension (periodic over n spacing, variance sum_k P1(zeta_k)
+// dzeta over the lines k up to Nyquist, k = 0 included with ProfileMean::random). The lines' amplitudes are
+// independent Gaussians with E|c_k|^2 = P1(|zeta_k|) dzeta, h_j = sum_k c_k exp(2 pi i k j / n).
 std::vector<double> synthesize_profile(const RadialStatistics& statistics, std::size_t n, double spacing_um,
-                                       std::uint64_t seed);
+                                       std::uint64_t seed, ProfileMean mean = ProfileMean::zero);
 
 }  // namespace surfscatter::surface
