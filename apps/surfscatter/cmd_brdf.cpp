@@ -49,6 +49,7 @@ struct BrdfArgs {
     // export
     std::string format, output;
     bsdf::RglExportOptions export_options;
+    double tolerance_percent = 2;
     // slice
     std::vector<std::string> models;
     std::string plot, csv;
@@ -285,6 +286,7 @@ void export_rgl_file(const BrdfArgs& a) {
     if (a.format != "rgl-spectral" && a.format != "rgl-rgb")
         fail("--format must be one of rgl-spectral | rgl-rgb, got '{}'", printable(a.format));
     if (a.output.empty()) fail("-o FILE.bsdf is required");
+    bsdf::check_rgl_accuracy({}, a.tolerance_percent, "--tolerance", a.output);  // the value, before the work
     const std::filesystem::path out(a.output);
     if (!a.surface_file.empty() && std::filesystem::exists(out) &&
         std::filesystem::equivalent(out, std::filesystem::path(a.surface_file)))
@@ -292,6 +294,7 @@ void export_rgl_file(const BrdfArgs& a) {
     const auto model = single_model(a);
     bsdf::RglExportOptions o = a.export_options;
     o.rgb = a.format == "rgl-rgb";
+    o.tolerance_percent = a.tolerance_percent;
     if (model->isotropic() && given(a, "phi_i_count")) fail("--phi-i-count applies to anisotropic surfaces only");
     if (o.rgb && (given(a, "lambda_step"))) fail("--lambda-step applies to --format rgl-spectral only");
     const std::string description = fmt::format("surfscatter {} export ({})", model->name(), a.format);
@@ -323,6 +326,12 @@ void export_rgl_file(const BrdfArgs& a) {
                     "(docs/RENDERER.md \"Exporting to Mitsuba 3 and pbrt-v4\")\n",
                     side.c_str(), format_number(delta_peak).c_str());
     }
+    // The written file read back from disk and evaluated as Mitsuba 3 and pbrt-v4 do, against the model.
+    const bsdf::RglAccuracy acc = bsdf::rgl_file_accuracy(*model, out, o);
+    std::printf("accuracy: the file against the model at %zu directions (random and from the model's sampler, "
+                "where f >= 1 %% of its peak and theta_o <= 80 deg): worst %.2f %% at %s, rms %.2f %%\n",
+                acc.compared, 100 * acc.worst, bsdf::rgl_accuracy_where(acc).c_str(), 100 * acc.rms);
+    bsdf::check_rgl_accuracy(acc, a.tolerance_percent, "--tolerance", a.output);
 }
 
 void add_model_options(CLI::App* cmd, BrdfArgs& a) {
@@ -409,7 +418,7 @@ const Command command("brdf", [](CLI::App& app) {
     export_cmd->add_option("-o,--output", a->output, "output FILE.bsdf")->required();
     export_cmd->add_option("--theta-i-count", a->export_options.theta_i_count, "incidences over 0-88 deg (default 16)");
     export_cmd->add_option("--phi-i-count", a->export_options.phi_i_count,
-                           "anisotropic surfaces: incidence azimuths over 180 deg (default 9)");
+                           "anisotropic surfaces: incidence azimuths over 360 deg (default 17)");
     export_cmd->add_option("--sample-resolution", a->export_options.sample_resolution,
                            "nodes per side of the spectral table (default 64)");
     export_cmd->add_option("--ndf-resolution", a->export_options.ndf_resolution,
@@ -417,6 +426,9 @@ const Command command("brdf", [](CLI::App& app) {
     export_cmd->add_option("--lambda-step", a->export_options.lambda_step_nm,
                            "rgl-spectral: wavelength step over 360-1000 nm (default 3.2 nm)");
     export_cmd->add_option("--threads", a->export_options.threads, "worker threads (default 0: all)");
+    export_cmd->add_option("--tolerance", a->tolerance_percent,
+                           "largest relative error (%) of the written file against the model accepted, measured after "
+                           "writing; beyond it exit 2 (default 2)");
     export_cmd->callback([a, export_cmd] {
         a->given = given_options(export_cmd);
         require_thread_count(a->export_options.threads, "--threads");
