@@ -50,6 +50,7 @@ struct BrdfArgs {
     std::string format, output;
     bsdf::RglExportOptions export_options;
     double tolerance_percent = 2;
+    double specular_lobe_deg = 0;  // > 0: the delta part carried in the file as a lobe of this width
     // slice
     std::vector<std::string> models;
     std::string plot, csv;
@@ -297,20 +298,32 @@ void export_rgl_file(const BrdfArgs& a) {
     o.tolerance_percent = a.tolerance_percent;
     if (model->isotropic() && given(a, "phi_i_count")) fail("--phi-i-count applies to anisotropic surfaces only");
     if (o.rgb && (given(a, "lambda_step"))) fail("--lambda-step applies to --format rgl-spectral only");
-    const std::string description = fmt::format("surfscatter {} export ({})", model->name(), a.format);
-    const bsdf::RglData data = bsdf::export_rgl(*model, o, description);
-    // The delta part: its reflectance over incidence and wavelength, written only if the model has one.
+    // The delta part: its reflectance over incidence and wavelength.
     std::vector<double> thetas, lambdas;
     for (int t = 0; t <= 89; ++t) thetas.push_back(t);
     for (double l = 360; l <= 830 + 1e-9; l += 10) lambdas.push_back(l);
     const bsdf::DeltaTable delta = bsdf::delta_table(*model, thetas, lambdas);
     const double delta_peak = *std::max_element(delta.reflectance.begin(), delta.reflectance.end());
+    std::optional<bsdf::SpecularAsLobe> with_lobe;
+    if (given(a, "specular_lobe")) {
+        if (!(delta_peak > 0)) fail("--specular-lobe: the model {} has no coherent specular part", model->name());
+        with_lobe.emplace(*model, a.specular_lobe_deg * kDegree);
+    }
+    const bsdf::Bsdf& tabulated = with_lobe ? static_cast<const bsdf::Bsdf&>(*with_lobe) : *model;
+    const std::string description =
+        fmt::format("surfscatter {} export ({}{})", model->name(), a.format,
+                    with_lobe ? fmt::format(", specular part as a {} deg lobe", format_number(a.specular_lobe_deg)) : "");
+    const bsdf::RglData data = bsdf::export_rgl(tabulated, o, description);
     bsdf::write_rgl(out, data);
     std::printf("wrote %s (%zu incidences x %zu azimuths, %zu x %zu samples, %s)\n", a.output.c_str(),
                 data.theta_i.size(), data.phi_i.size(), data.rows, data.cols,
                 o.rgb ? "rgb" : fmt::format("{} wavelengths {}-{} nm", data.wavelengths.size(), data.wavelengths.front(),
                                             data.wavelengths.back()).c_str());
-    if (delta_peak > 0) {
+    if (with_lobe) {
+        std::printf("the coherent specular part (reflectance up to %s) is in the file as a lobe of %s deg about the "
+                    "mirror direction (docs/RENDERER.md \"Exporting to Mitsuba 3 and pbrt-v4\")\n",
+                    format_number(delta_peak).c_str(), format_number(a.specular_lobe_deg).c_str());
+    } else if (delta_peak > 0) {
         std::string csv = "theta_deg";
         for (double l : lambdas) csv += fmt::format(",R_{}nm", format_number(l));
         csv += "\n";
@@ -323,11 +336,11 @@ void export_rgl_file(const BrdfArgs& a) {
         const std::string side = a.output + ".specular.csv";
         write_file_atomically(side, csv);
         std::printf("wrote %s: the coherent specular (delta) reflectance, up to %s, which the file leaves out "
-                    "(docs/RENDERER.md \"Exporting to Mitsuba 3 and pbrt-v4\")\n",
+                    "(--specular-lobe DEG puts it in the file; docs/RENDERER.md \"Exporting to Mitsuba 3 and pbrt-v4\")\n",
                     side.c_str(), format_number(delta_peak).c_str());
     }
     // The written file read back from disk and evaluated as Mitsuba 3 and pbrt-v4 do, against the model.
-    const bsdf::RglAccuracy acc = bsdf::rgl_file_accuracy(*model, out, o);
+    const bsdf::RglAccuracy acc = bsdf::rgl_file_accuracy(tabulated, out, o);
     std::printf("accuracy: the file against the model at %zu directions (random and from the model's sampler, "
                 "where f >= 1 %% of its peak and theta_o <= 80 deg): worst %.2f %% at %s, rms %.2f %%\n",
                 acc.compared, 100 * acc.worst, bsdf::rgl_accuracy_where(acc).c_str(), 100 * acc.rms);
@@ -426,6 +439,9 @@ const Command command("brdf", [](CLI::App& app) {
     export_cmd->add_option("--lambda-step", a->export_options.lambda_step_nm,
                            "rgl-spectral: wavelength step over 360-1000 nm (default 3.2 nm)");
     export_cmd->add_option("--threads", a->export_options.threads, "worker threads (default 0: all)");
+    export_cmd->add_option("--specular-lobe", a->specular_lobe_deg,
+                           "carry the coherent specular (delta) part in the file as a lobe of this width (deg, "
+                           "< 11.5) about the mirror direction, instead of beside it as FILE.specular.csv");
     export_cmd->add_option("--tolerance", a->tolerance_percent,
                            "largest relative error (%) of the written file against the model accepted, measured after "
                            "writing; beyond it exit 2 (default 2)");

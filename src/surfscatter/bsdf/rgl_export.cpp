@@ -67,6 +67,27 @@ void check(bool ok, const char* what) {
 
 }  // namespace
 
+SpecularAsLobe::SpecularAsLobe(const Bsdf& model, double width_rad)
+    : model_(model), kappa_(1 / (width_rad * width_rad)),
+      norm_(kappa_ / (kTwoPi * -std::expm1(-2 * kappa_))) {
+    if (!(width_rad > 0 && width_rad < 0.2))
+        fail("--specular-lobe must be in (0, {:.3g}) degrees, got {:.6g}", 0.2 / kDegree, width_rad / kDegree);
+}
+
+double SpecularAsLobe::eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
+    const double f = model_.eval(wi, wo, lambda_nm);
+    if (wi.z <= 0 || wo.z <= 0) return f;
+    const double c = -wi.x * wo.x - wi.y * wo.y + wi.z * wo.z;  // cosine to the mirror direction
+    const double kernel = norm_ * std::exp(kappa_ * (c - 1));
+    return kernel > 0 ? f + model_.delta_reflectance(wi, lambda_nm) * kernel / wo.z : f;
+}
+
+std::optional<BsdfSample> SpecularAsLobe::sample(const Vec3& wi, double lambda_nm, double u_lobe, Vec2 u) const {
+    auto s = model_.sample(wi, lambda_nm, u_lobe, u);
+    if (s && s->delta) s->delta = false;  // the mirror direction, now the lobe's peak
+    return s;
+}
+
 DeltaTable delta_table(const Bsdf& model, const std::vector<double>& theta_deg, const std::vector<double>& lambda_nm) {
     DeltaTable t{theta_deg, lambda_nm, {}};
     for (double th : theta_deg)

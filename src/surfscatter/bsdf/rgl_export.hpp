@@ -65,6 +65,26 @@ std::string rgl_accuracy_where(const RglAccuracy& accuracy);
 void check_rgl_accuracy(const RglAccuracy& accuracy, double tolerance_percent, const std::string& option,
                         const std::string& path);
 
+// A model with its coherent specular (delta) part spread into a narrow lobe, so that a tabulated file carries the
+// whole reflectance (brdf export --specular-lobe): f(wi, wo) + delta_reflectance(wi) K(wo) / cos(theta_o), K a von
+// Mises-Fisher kernel about the mirror direction with kappa = 1 / width^2 (width in radians: the lobe's angular
+// standard deviation per axis) and unit integral over the sphere, so that the lobe's albedo is the delta's less the
+// kernel's tail below the horizon. sample() draws the model's continuous part and, for its delta, the mirror
+// direction (what rgl_accuracy probes).
+class SpecularAsLobe final : public Bsdf {
+public:
+    SpecularAsLobe(const Bsdf& model, double width_rad);
+    double eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const override;
+    std::optional<BsdfSample> sample(const Vec3& wi, double lambda_nm, double u_lobe, Vec2 u) const override;
+    double pdf(const Vec3& wi, const Vec3& wo, double lambda_nm) const override { return model_.pdf(wi, wo, lambda_nm); }
+    bool isotropic() const override { return model_.isotropic(); }
+    std::string name() const override { return model_.name(); }
+
+private:
+    const Bsdf& model_;
+    double kappa_, norm_;
+};
+
 // The coherent specular reflectance the file leaves out, delta_reflectance(wi, lambda), on a theta x lambda grid
 // (rows theta_deg, columns lambda_nm): what a separate smooth conductor component must carry.
 struct DeltaTable {
