@@ -305,10 +305,7 @@ void export_rgl_file(const BrdfArgs& a) {
     const bsdf::DeltaTable delta = bsdf::delta_table(*model, thetas, lambdas);
     const double delta_peak = *std::max_element(delta.reflectance.begin(), delta.reflectance.end());
     std::optional<bsdf::SpecularAsLobe> with_lobe;
-    if (given(a, "specular_lobe")) {
-        if (!(delta_peak > 0)) fail("--specular-lobe: the model {} has no coherent specular part", model->name());
-        with_lobe.emplace(*model, a.specular_lobe_deg * kDegree);
-    }
+    if (given(a, "specular_lobe")) with_lobe.emplace(*model, a.specular_lobe_deg * kDegree);
     const bsdf::Bsdf& tabulated = with_lobe ? static_cast<const bsdf::Bsdf&>(*with_lobe) : *model;
     const std::string description =
         fmt::format("surfscatter {} export ({}{})", model->name(), a.format,

@@ -412,6 +412,19 @@ TEST(CliBrdf, ExportWritesAnRglFileAndTheDeltaTable) {
     // g0 = (4 pi 0.02 / 0.55)^2 = 0.21 at 550 nm: most of the light is in the delta, written beside the file.
     ASSERT_TRUE(std::filesystem::exists(out + ".specular.csv"));
     EXPECT_NE(r.out.find("specular.csv"), std::string::npos) << r.out;
+    const auto lobe = with({"--tolerance", "1e6", "--specular-lobe", "0.5"});
+    ASSERT_EQ(lobe.exit_code, 0) << lobe.err;
+    EXPECT_NE(lobe.out.find("is in the file as a lobe of 0.5 deg"), std::string::npos) << lobe.out;
+    const auto wide = with({"--specular-lobe", "20"});
+    EXPECT_EQ(wide.exit_code, 2);
+    EXPECT_NE(wide.err.find("--specular-lobe must be in (0, 11.5) degrees, got 20"), std::string::npos) << wide.err;
+    auto ggx = base;
+    ggx[3] = "ggx_stats";
+    ggx[9] = "3.5";  // gamma: GGX's rms slope needs gamma > 3
+    ggx.insert(ggx.end(), {"--specular-lobe", "0.5"});
+    const auto no_delta = run_cli(ggx);
+    EXPECT_EQ(no_delta.exit_code, 2);
+    EXPECT_NE(no_delta.err.find("has no coherent specular part"), std::string::npos) << no_delta.err;
     const auto aniso_only = with({"--phi-i-count", "5"});
     EXPECT_EQ(aniso_only.exit_code, 2);
     EXPECT_NE(aniso_only.err.find("--phi-i-count applies to anisotropic surfaces only"), std::string::npos)

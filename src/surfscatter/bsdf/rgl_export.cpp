@@ -72,6 +72,10 @@ SpecularAsLobe::SpecularAsLobe(const Bsdf& model, double width_rad)
       norm_(kappa_ / (kTwoPi * -std::expm1(-2 * kappa_))) {
     if (!(width_rad > 0 && width_rad < 0.2))
         fail("--specular-lobe must be in (0, {:.3g}) degrees, got {:.6g}", 0.2 / kDegree, width_rad / kDegree);
+    bool has_delta = false;
+    for (int t = 0; t < 90 && !has_delta; ++t)
+        has_delta = model.delta_reflectance(spherical_direction(t * kDegree, 0), 550) > 0;
+    if (!has_delta) fail("--specular-lobe: the model {} has no coherent specular part", model.name());
 }
 
 double SpecularAsLobe::eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const {

@@ -73,6 +73,7 @@ void check_rgl_accuracy(const RglAccuracy& accuracy, double tolerance_percent, c
 // direction (what rgl_accuracy probes).
 class SpecularAsLobe final : public Bsdf {
 public:
+    // Throws Error for a width outside (0, 0.2) rad or a model without a delta part (at 550 nm, theta_i 0-89 deg).
     SpecularAsLobe(const Bsdf& model, double width_rad);
     double eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const override;
     std::optional<BsdfSample> sample(const Vec3& wi, double lambda_nm, double u_lobe, Vec2 u) const override;
