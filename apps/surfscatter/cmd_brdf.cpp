@@ -53,6 +53,8 @@ struct BrdfArgs {
     // export
     std::string format, output;
     bsdf::RglExportOptions export_options;
+    double tolerance_percent = 2;
+    double specular_lobe_deg = 0;  // > 0: the delta part carried in the file as a lobe of this width
     // slice
     std::vector<std::string> models;
     std::string plot, csv;
@@ -306,6 +308,7 @@ void export_rgl_file(const BrdfArgs& a) {
     if (a.format != "rgl-spectral" && a.format != "rgl-rgb")
         fail("--format must be one of rgl-spectral | rgl-rgb, got '{}'", printable(a.format));
     if (a.output.empty()) fail("-o FILE.bsdf is required");
+    bsdf::check_rgl_accuracy({}, a.tolerance_percent, "--tolerance", a.output);  // the value, before the work
     const std::filesystem::path out(a.output);
     if (!a.surface_file.empty() && std::filesystem::exists(out) &&
         std::filesystem::equivalent(out, std::filesystem::path(a.surface_file)))
@@ -313,22 +316,32 @@ void export_rgl_file(const BrdfArgs& a) {
     const auto model = single_model(a);
     bsdf::RglExportOptions o = a.export_options;
     o.rgb = a.format == "rgl-rgb";
+    o.tolerance_percent = a.tolerance_percent;
     if (model->isotropic() && given(a, "phi_i_count")) fail("--phi-i-count applies to anisotropic surfaces only");
     if (o.rgb && (given(a, "lambda_step"))) fail("--lambda-step applies to --format rgl-spectral only");
-    const std::string description = fmt::format("surfscatter {} export ({})", model->name(), a.format);
-    const bsdf::RglData data = bsdf::export_rgl(*model, o, description);
-    // The delta part: its reflectance over incidence and wavelength, written only if the model has one.
+    // The delta part: its reflectance over incidence and wavelength.
     std::vector<double> thetas, lambdas;
     for (int t = 0; t <= 89; ++t) thetas.push_back(t);
     for (double l = 360; l <= 830 + 1e-9; l += 10) lambdas.push_back(l);
     const bsdf::DeltaTable delta = bsdf::delta_table(*model, thetas, lambdas);
     const double delta_peak = *std::max_element(delta.reflectance.begin(), delta.reflectance.end());
+    std::optional<bsdf::SpecularAsLobe> with_lobe;
+    if (given(a, "specular_lobe")) with_lobe.emplace(*model, a.specular_lobe_deg * kDegree);
+    const bsdf::Bsdf& tabulated = with_lobe ? static_cast<const bsdf::Bsdf&>(*with_lobe) : *model;
+    const std::string description =
+        fmt::format("surfscatter {} export ({}{})", model->name(), a.format,
+                    with_lobe ? fmt::format(", specular part as a {} deg lobe", format_number(a.specular_lobe_deg)) : "");
+    const bsdf::RglData data = bsdf::export_rgl(tabulated, o, description);
     bsdf::write_rgl(out, data);
     std::printf("wrote %s (%zu incidences x %zu azimuths, %zu x %zu samples, %s)\n", a.output.c_str(),
                 data.theta_i.size(), data.phi_i.size(), data.rows, data.cols,
                 o.rgb ? "rgb" : fmt::format("{} wavelengths {}-{} nm", data.wavelengths.size(), data.wavelengths.front(),
                                             data.wavelengths.back()).c_str());
-    if (delta_peak > 0) {
+    if (with_lobe) {
+        std::printf("the coherent specular part (reflectance up to %s) is in the file as a lobe of %s deg about the "
+                    "mirror direction (docs/RENDERER.md \"Exporting to Mitsuba 3 and pbrt-v4\")\n",
+                    format_number(delta_peak).c_str(), format_number(a.specular_lobe_deg).c_str());
+    } else if (delta_peak > 0) {
         std::string csv = "theta_deg";
         for (double l : lambdas) csv += fmt::format(",R_{}nm", format_number(l));
         csv += "\n";
@@ -341,9 +354,15 @@ void export_rgl_file(const BrdfArgs& a) {
         const std::string side = a.output + ".specular.csv";
         write_file_atomically(side, csv);
         std::printf("wrote %s: the coherent specular (delta) reflectance, up to %s, which the file leaves out "
-                    "(docs/RENDERER.md \"Exporting to Mitsuba 3 and pbrt-v4\")\n",
+                    "(--specular-lobe DEG puts it in the file; docs/RENDERER.md \"Exporting to Mitsuba 3 and pbrt-v4\")\n",
                     side.c_str(), format_number(delta_peak).c_str());
     }
+    // The written file read back from disk and evaluated as Mitsuba 3 and pbrt-v4 do, against the model.
+    const bsdf::RglAccuracy acc = bsdf::rgl_file_accuracy(tabulated, out, o);
+    std::printf("accuracy: the file against the model at %zu directions (random and from the model's sampler, "
+                "where f >= 1 %% of its peak and theta_o <= 80 deg): worst %.2f %% at %s, rms %.2f %%\n",
+                acc.compared, 100 * acc.worst, bsdf::rgl_accuracy_where(acc).c_str(), 100 * acc.rms);
+    bsdf::check_rgl_accuracy(acc, a.tolerance_percent, "--tolerance", a.output);
 }
 
 void add_model_options(CLI::App* cmd, BrdfArgs& a) {
@@ -430,7 +449,7 @@ const Command command("brdf", [](CLI::App& app) {
     export_cmd->add_option("-o,--output", a->output, "output FILE.bsdf")->required();
     export_cmd->add_option("--theta-i-count", a->export_options.theta_i_count, "incidences over 0-88 deg (default 16)");
     export_cmd->add_option("--phi-i-count", a->export_options.phi_i_count,
-                           "anisotropic surfaces: incidence azimuths over 180 deg (default 9)");
+                           "anisotropic surfaces: incidence azimuths over 360 deg (default 17)");
     export_cmd->add_option("--sample-resolution", a->export_options.sample_resolution,
                            "nodes per side of the spectral table (default 64)");
     export_cmd->add_option("--ndf-resolution", a->export_options.ndf_resolution,
@@ -438,6 +457,12 @@ const Command command("brdf", [](CLI::App& app) {
     export_cmd->add_option("--lambda-step", a->export_options.lambda_step_nm,
                            "rgl-spectral: wavelength step over 360-1000 nm (default 3.2 nm)");
     export_cmd->add_option("--threads", a->export_options.threads, "worker threads (default 0: all)");
+    export_cmd->add_option("--specular-lobe", a->specular_lobe_deg,
+                           "carry the coherent specular (delta) part in the file as a lobe of this width (deg, "
+                           "< 11.5) about the mirror direction, instead of beside it as FILE.specular.csv");
+    export_cmd->add_option("--tolerance", a->tolerance_percent,
+                           "largest relative error (%) of the written file against the model accepted, measured after "
+                           "writing; beyond it exit 2 (default 2)");
     export_cmd->callback([a, export_cmd] {
         a->given = given_options(export_cmd);
         require_thread_count(a->export_options.threads, "--threads");

@@ -23,6 +23,7 @@ namespace {
 struct FitArgs {
     std::string data, material, psd = "kc", output;
     std::vector<std::string> models, fixes;
+    std::vector<double> wavelengths;  // RGL files: the wavelengths read (default 450, 550, 650 nm)
     bool anisotropic = false;
 };
 
@@ -46,11 +47,9 @@ void require_not_input(const std::filesystem::path& output, const std::string& i
 }
 
 void run(const FitArgs& a) {
-    const std::filesystem::path data_path(a.data);
-    if (data_path.extension() == ".bsdf")
-        fail("--data {}: RGL .bsdf files are not supported by fit-brdf yet; give a CSV "
-             "(wavelength_nm,theta_i_deg,phi_i_deg,theta_o_deg,phi_o_deg,brdf[,brdf_stderr])",
-             printable(a.data, kShownPathChars));
+    const bool rgl = std::filesystem::path(a.data).extension() == ".bsdf";
+    if (!rgl && !a.wavelengths.empty()) fail("--wavelengths applies to RGL .bsdf data only (a CSV names its own)");
+    const std::vector<double> wavelengths = a.wavelengths.empty() ? std::vector<double>{450, 550, 650} : a.wavelengths;
     inverse::FitOptions options;
     options.material = a.material;
     options.psd = bsdf::parse_psd(a.psd, "--psd");
@@ -65,7 +64,14 @@ void run(const FitArgs& a) {
     const std::string out = a.output;
     const std::filesystem::path json_path = out + ".json", csv_path = out + ".csv", png_path = out + "_residuals.png";
     for (const auto& p : {json_path, csv_path, png_path}) require_not_input(p, a.data);
-    const inverse::BrdfData data = inverse::read_brdf_csv(a.data);
+    const inverse::BrdfData data = rgl ? inverse::read_brdf_rgl(a.data, wavelengths) : inverse::read_brdf_csv(a.data);
+    if (rgl) {
+        std::string listed;
+        for (double l : wavelengths) listed += (listed.empty() ? "" : ",") + format_number(l);
+        std::printf("read %zu values from %s: its sample nodes at each incidence below 89 deg, at %s nm (docs/FIT.md "
+                    "\"RGL measured files\")\n",
+                    data.size(), a.data.c_str(), listed.c_str());
+    }
     const inverse::FitResult result = inverse::fit_brdf(data, options);
     write_file_atomically(json_path, inverse::fit_json(data, options, result).dump(2) + "\n");
     write_file_atomically(csv_path, inverse::fit_csv(data, result));
@@ -82,11 +88,13 @@ const Command command("fit-brdf", [](CLI::App& app) {
                     "errors, correlations, misfit, the best model (docs/FIT.md)");
     sub->add_option("--data", a->data,
                     "measured BRDF: CSV wavelength_nm,theta_i_deg,phi_i_deg,theta_o_deg,phi_o_deg,brdf[,brdf_stderr] "
-                    "(1/sr, no cosine)")
+                    "(1/sr, no cosine) or an RGL measured file .bsdf (spectral or rgb)")
         ->required();
     sub->add_option("--material", a->material,
                     "perfect, a built-in metal (Ag, Au, Al, Cu, ...) or a .yml/.csv refractive index file")
         ->required();
+    add_number_list(sub, "--wavelengths", a->wavelengths,
+                    "RGL .bsdf data: wavelengths read, nm, comma separated (default 450,550,650)");
     add_string_list(sub, "--model", a->models,
                     "models to fit, comma separated: " + bsdf::choices("model") + " (default all)");
     sub->add_option("--psd", a->psd, "surface statistics fitted: kc (sigma, L, gamma; default) | gaussian (sigma, L)");

@@ -397,7 +397,8 @@ void bind_bsdf(py::module_& m) {
     m.def(
         "export_rgl",
         [](const PyBsdf& b, const std::string& path, const std::string& format, int theta_i_count, int phi_i_count,
-           int sample_resolution, int ndf_resolution, double lambda_step_nm) {
+           int sample_resolution, int ndf_resolution, double lambda_step_nm, double tolerance_percent,
+           std::optional<double> specular_lobe_deg) {
             if (format != "rgl-spectral" && format != "rgl-rgb")
                 fail("format must be one of rgl-spectral | rgl-rgb, got '{}'", printable(format));
             bsdf::RglExportOptions o;
@@ -405,16 +406,34 @@ void bind_bsdf(py::module_& m) {
             o.theta_i_count = theta_i_count, o.phi_i_count = phi_i_count;
             o.sample_resolution = sample_resolution, o.ndf_resolution = ndf_resolution;
             o.lambda_step_nm = lambda_step_nm;
-            py::gil_scoped_release release;
-            bsdf::write_rgl(path, bsdf::export_rgl(*b.model, o, fmt::format("surfscatter {} export ({})",
-                                                                           b.model->name(), format)));
+            o.tolerance_percent = tolerance_percent;
+            bsdf::check_rgl_accuracy({}, tolerance_percent, "tolerance_percent", path);
+            std::optional<bsdf::SpecularAsLobe> with_lobe;
+            if (specular_lobe_deg) with_lobe.emplace(*b.model, *specular_lobe_deg * kDegree);
+            const bsdf::Bsdf& tabulated = with_lobe ? static_cast<const bsdf::Bsdf&>(*with_lobe) : *b.model;
+            bsdf::RglAccuracy acc;
+            {
+                py::gil_scoped_release release;
+                bsdf::write_rgl(path, bsdf::export_rgl(tabulated, o, fmt::format("surfscatter {} export ({})",
+                                                                                b.model->name(), format)));
+                acc = bsdf::rgl_file_accuracy(tabulated, path, o);
+            }
+            bsdf::check_rgl_accuracy(acc, tolerance_percent, "tolerance_percent", path);
+            return py::dict("worst"_a = acc.worst, "rms"_a = acc.rms, "compared"_a = acc.compared,
+                            "theta_i_deg"_a = acc.theta_i_deg, "phi_i_deg"_a = acc.phi_i_deg,
+                            "theta_o_deg"_a = acc.theta_o_deg, "phi_o_deg"_a = acc.phi_o_deg,
+                            "lambda_nm"_a = acc.lambda_nm);
         },
         py::arg("model"), py::arg("path"), py::arg("format") = "rgl-spectral", py::arg("theta_i_count") = 16,
-        py::arg("phi_i_count") = 9, py::arg("sample_resolution") = 64, py::arg("ndf_resolution") = 128,
-        py::arg("lambda_step_nm") = 3.2,
+        py::arg("phi_i_count") = 17, py::arg("sample_resolution") = 64, py::arg("ndf_resolution") = 128,
+        py::arg("lambda_step_nm") = 3.2, py::arg("tolerance_percent") = 2.0, py::arg("specular_lobe_deg") = py::none(),
         "Writes the model's continuous part as an RGL measured BSDF file (Mitsuba 3 / pbrt-v4 `measured`), as "
         "`surfscatter brdf export`: format 'rgl-spectral' (360-1000 nm) or 'rgl-rgb'; the coherent specular part is "
-        "not in the file (model.delta_reflectance gives it; docs/RENDERER.md).");
+        "not in the file (model.delta_reflectance gives it) unless specular_lobe_deg carries it as a narrow lobe of that "
+        "width (docs/RENDERER.md). Returns the written file's accuracy "
+        "against the model (dict: worst and rms relative error where f >= 1 % of its peak and theta_o <= 80 deg, "
+        "directions compared, where the worst is; lambda_nm 0 for rgb files, compared in CIE Y); raises Error after "
+        "writing when the worst exceeds tolerance_percent.");
 
     m.def(
         "read_rgl",

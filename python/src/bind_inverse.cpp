@@ -2,7 +2,9 @@
 // `surfscatter fit-brdf`; the result is the CLI's JSON document as a dict, with each model's fit and residual per
 // row as numpy arrays.
 #include <algorithm>
+#include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,6 +15,7 @@
 #include "bindings.hpp"
 #include "surfscatter/bsdf/model_options.hpp"
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/inverse/brdf_data.hpp"
 #include "surfscatter/inverse/fit_report.hpp"
 
 namespace surfscatter::python {
@@ -29,8 +32,15 @@ std::vector<double> column(const py::dict& data, const char* name) {
     return std::vector<double>(a.data(), a.data() + a.size());
 }
 
-inverse::BrdfData data_of(const py::handle& data) {
-    if (!py::isinstance<py::dict>(data)) return inverse::read_brdf_csv(path_string(data, "data"));
+inverse::BrdfData data_of(const py::handle& data, const std::optional<std::vector<double>>& wavelengths_nm) {
+    if (!py::isinstance<py::dict>(data)) {
+        const std::string path = path_string(data, "data");
+        if (std::filesystem::path(path).extension() == ".bsdf")
+            return inverse::read_brdf_rgl(path, wavelengths_nm.value_or(std::vector<double>{450, 550, 650}));
+        if (wavelengths_nm) fail("wavelengths_nm applies to RGL .bsdf data only (a CSV names its own)");
+        return inverse::read_brdf_csv(path);
+    }
+    if (wavelengths_nm) fail("wavelengths_nm applies to RGL .bsdf data only (a dict names its own)");
     const py::dict d = py::reinterpret_borrow<py::dict>(data);
     static const char* kNames[] = {"wavelength_nm", "theta_i_deg", "phi_i_deg", "theta_o_deg", "phi_o_deg", "brdf",
                                    "brdf_stderr"};
@@ -53,8 +63,9 @@ inverse::BrdfData data_of(const py::handle& data) {
 }
 
 py::dict fit_brdf(const py::handle& data, const std::string& material, const std::vector<std::string>& models,
-                  const std::string& psd, bool anisotropic, const std::map<std::string, double>& fix) {
-    const inverse::BrdfData brdf = data_of(data);
+                  const std::string& psd, bool anisotropic, const std::map<std::string, double>& fix,
+                  const std::optional<std::vector<double>>& wavelengths_nm) {
+    const inverse::BrdfData brdf = data_of(data, wavelengths_nm);
     inverse::FitOptions options;
     options.material = material;
     options.psd = bsdf::parse_psd(psd, "psd");
@@ -85,8 +96,9 @@ py::dict fit_brdf(const py::handle& data, const std::string& material, const std
 void bind_inverse(py::module_& m) {
     m.def("fit_brdf", &fit_brdf, "data"_a, "material"_a, py::kw_only(),
           "models"_a = std::vector<std::string>{}, "psd"_a = "kc", "anisotropic"_a = false,
-          "fix"_a = std::map<std::string, double>{},
-          "Fit each model's surface statistics to a measured BRDF (docs/FIT.md). data: a CSV path or a dict of 1-D "
+          "fix"_a = std::map<std::string, double>{}, "wavelengths_nm"_a = py::none(),
+          "Fit each model's surface statistics to a measured BRDF (docs/FIT.md). data: a CSV path, an RGL measured "
+          "file (.bsdf: its sample nodes at each incidence, at wavelengths_nm, default 450, 550, 650) or a dict of 1-D "
           "arrays wavelength_nm, theta_i_deg, phi_i_deg, theta_o_deg, phi_o_deg, brdf (1/sr, no cosine) and "
           "optionally brdf_stderr; models: names (default all four); psd: 'kc' or 'gaussian'; fix: "
           "{'gamma': 3, ...}. Returns the dict of `surfscatter fit-brdf`'s JSON, each model with 'fitted' and "

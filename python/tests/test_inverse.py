@@ -49,3 +49,15 @@ def test_bad_data_names_the_row():
         ss.fit_brdf(data, "Au", models=["ggx_stats"])
     with pytest.raises(ss.Error, match=r"fix gamma applies to psd kc only"):
         ss.fit_brdf(columns(), "Au", models=["ggx_stats"], psd="gaussian", fix={"gamma": 3.0})
+
+
+def test_fit_brdf_reads_an_rgl_file(tmp_path):
+    model = ss.bsdf("ggx_stats", surface=ss.KCorrelation(sigma=0.1, corr_length=1.5, gamma=3.5), material="Au")
+    path = tmp_path / "gold.bsdf"
+    ss.export_rgl(model, str(path), theta_i_count=4, sample_resolution=12, ndf_resolution=24, lambda_step_nm=80,
+                  tolerance_percent=1e6)
+    got = ss.fit_brdf(str(path), "Au", models=["ggx_stats"], wavelengths_nm=[500.0, 600.0])
+    assert got["models"][0]["model"] == "ggx_stats"
+    assert np.all(np.isfinite(got["models"][0]["residual"]))
+    with pytest.raises(ss.Error, match=r"wavelengths_nm applies to RGL .bsdf data only"):
+        ss.fit_brdf(columns(), "Au", models=["ggx_stats"], wavelengths_nm=[550.0])

@@ -20,8 +20,13 @@ def test_read_real_file():
 def test_export_round_trip(tmp_path):
     model = ss.bsdf("ggx_stats", surface=ss.KCorrelation(sigma=0.08, corr_length=1.5, gamma=3.5), material="Au")
     path = tmp_path / "gold.bsdf"
-    ss.export_rgl(model, str(path), format="rgl-spectral", theta_i_count=3, sample_resolution=8, ndf_resolution=16,
-                  lambda_step_nm=80)
+    with pytest.raises(ss.Error, match="more than tolerance_percent 2"):  # so coarse a file is far off the model
+        ss.export_rgl(model, str(path), format="rgl-spectral", theta_i_count=3, sample_resolution=8,
+                      ndf_resolution=16, lambda_step_nm=80)
+    assert path.exists()  # written all the same
+    acc = ss.export_rgl(model, str(path), format="rgl-spectral", theta_i_count=3, sample_resolution=8,
+                        ndf_resolution=16, lambda_step_nm=80, tolerance_percent=1e6)
+    assert acc["compared"] > 1000 and 0.02 < acc["worst"] < 1e4 and acc["lambda_nm"] in (360, 550, 1000)
     d = ss.read_rgl(str(path))
     assert d["spectra"].shape == (1, 3, len(d["wavelengths"]), 8, 8)
     assert d["wavelengths"][0] == 360 and d["wavelengths"][-1] == 1000
@@ -36,3 +41,14 @@ def test_bad_input(tmp_path):
     (tmp_path / "bad.bsdf").write_bytes(b"not a tensor file")
     with pytest.raises(ss.Error, match="not a tensor file"):
         ss.read_rgl(str(tmp_path / "bad.bsdf"))
+
+
+def test_export_specular_lobe(tmp_path):
+    smooth = ss.bsdf("ghs", surface=ss.KCorrelation(sigma=0.02, corr_length=2, gamma=3), material="Au")
+    acc = ss.export_rgl(smooth, str(tmp_path / "lobe.bsdf"), theta_i_count=3, sample_resolution=8, ndf_resolution=16,
+                        lambda_step_nm=80, tolerance_percent=1e6, specular_lobe_deg=0.5)
+    assert acc["compared"] > 0
+    rough = ss.bsdf("ggx_stats", surface=ss.KCorrelation(sigma=0.08, corr_length=1.5, gamma=3.5), material="Au")
+    with pytest.raises(ss.Error, match="has no coherent specular part"):
+        ss.export_rgl(rough, str(tmp_path / "x.bsdf"), theta_i_count=3, sample_resolution=8, ndf_resolution=16,
+                      lambda_step_nm=80, specular_lobe_deg=0.5)

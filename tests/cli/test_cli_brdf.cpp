@@ -377,7 +377,8 @@ TEST(CliBrdf, EllipticalSurfaceOptions) {
 }
 
 // brdf export: a small spectral file of a GHS model, read back with the format's shapes, and its delta part's
-// reflectance beside it; options that do not apply are errors.
+// reflectance beside it; its accuracy printed, exit 2 beyond --tolerance (such a coarse file is far beyond the default
+// 2 %, and written all the same); options that do not apply are errors.
 TEST(CliBrdf, ExportWritesAnRglFileAndTheDeltaTable) {
     const auto dir = std::filesystem::temp_directory_path() / ("cli_export_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
@@ -386,8 +387,23 @@ TEST(CliBrdf, ExportWritesAnRglFileAndTheDeltaTable) {
                                            "--gamma", "3", "--material", "Au", "--format", "rgl-spectral", "-o", out,
                                            "--theta-i-count", "3", "--sample-resolution", "6", "--ndf-resolution", "12",
                                            "--lambda-step", "40"};
-    const auto r = run_cli(base);
+    auto with = [&](std::vector<std::string> extra) {
+        std::vector<std::string> args = base;
+        args.insert(args.end(), extra.begin(), extra.end());
+        return run_cli(args);
+    };
+    const auto coarse = run_cli(base);
+    EXPECT_EQ(coarse.exit_code, 2);
+    EXPECT_NE(coarse.err.find("more than --tolerance 2 %"), std::string::npos) << coarse.err;
+    ASSERT_TRUE(std::filesystem::exists(out));
+    std::filesystem::remove(out);
+    const auto r = with({"--tolerance", "1e6"});  // 3 incidences: 80x off at grazing incidence
     ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("accuracy: the file against the model at"), std::string::npos) << r.out;
+    const auto bad_tolerance = with({"--tolerance", "0"});
+    EXPECT_EQ(bad_tolerance.exit_code, 2);
+    EXPECT_NE(bad_tolerance.err.find("--tolerance must be a percentage > 0, got 0"), std::string::npos)
+        << bad_tolerance.err;
     const surfscatter::bsdf::RglData d = surfscatter::bsdf::read_rgl(out);
     EXPECT_EQ(d.theta_i.size(), 3u);
     EXPECT_EQ(d.wavelengths.front(), 360.0);
@@ -396,11 +412,19 @@ TEST(CliBrdf, ExportWritesAnRglFileAndTheDeltaTable) {
     // g0 = (4 pi 0.02 / 0.55)^2 = 0.21 at 550 nm: most of the light is in the delta, written beside the file.
     ASSERT_TRUE(std::filesystem::exists(out + ".specular.csv"));
     EXPECT_NE(r.out.find("specular.csv"), std::string::npos) << r.out;
-    auto with = [&](std::vector<std::string> extra) {
-        std::vector<std::string> args = base;
-        args.insert(args.end(), extra.begin(), extra.end());
-        return run_cli(args);
-    };
+    const auto lobe = with({"--tolerance", "1e6", "--specular-lobe", "0.5"});
+    ASSERT_EQ(lobe.exit_code, 0) << lobe.err;
+    EXPECT_NE(lobe.out.find("is in the file as a lobe of 0.5 deg"), std::string::npos) << lobe.out;
+    const auto wide = with({"--specular-lobe", "20"});
+    EXPECT_EQ(wide.exit_code, 2);
+    EXPECT_NE(wide.err.find("--specular-lobe must be in (0, 11.5) degrees, got 20"), std::string::npos) << wide.err;
+    auto ggx = base;
+    ggx[3] = "ggx_stats";
+    ggx[9] = "3.5";  // gamma: GGX's rms slope needs gamma > 3
+    ggx.insert(ggx.end(), {"--specular-lobe", "0.5"});
+    const auto no_delta = run_cli(ggx);
+    EXPECT_EQ(no_delta.exit_code, 2);
+    EXPECT_NE(no_delta.err.find("has no coherent specular part"), std::string::npos) << no_delta.err;
     const auto aniso_only = with({"--phi-i-count", "5"});
     EXPECT_EQ(aniso_only.exit_code, 2);
     EXPECT_NE(aniso_only.err.find("--phi-i-count applies to anisotropic surfaces only"), std::string::npos)

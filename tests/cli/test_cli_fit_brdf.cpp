@@ -53,13 +53,34 @@ TEST(CliFitBrdf, WritesJsonCsvPlotAndSummary) {
     EXPECT_GT(std::filesystem::file_size(out + "_residuals.png"), 10000u);
 }
 
+// An RGL file as data: one written by brdf export (small, coarse: --tolerance accepts its error), read at its sample
+// nodes at the wavelengths asked for.
+TEST(CliFitBrdf, ReadsAnRglFile) {
+    const auto dir = scratch_directory("surfscatter_cli_fit_brdf");
+    const auto file = (dir / "gold.bsdf").string();
+    const auto e = run_cli({"brdf", "export", "--model", "ggx_stats", "--sigma", "0.1", "--corr-length", "1.5",
+                            "--gamma", "3.5", "--material", "Au", "--format", "rgl-spectral", "--theta-i-count", "4",
+                            "--sample-resolution", "12", "--ndf-resolution", "24", "--lambda-step", "80",
+                            "--tolerance", "1e6", "-o", file});
+    ASSERT_EQ(e.exit_code, 0) << e.err;
+    const auto r = run_cli({"fit-brdf", "--data", file, "--material", "Au", "--model", "ggx_stats", "--wavelengths",
+                            "500,600", "-o", (dir / "fit").string()});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.out.rfind("read ", 0), 0u) << r.out;
+    EXPECT_NE(r.out.find("at 500,600 nm"), std::string::npos) << r.out;
+    const auto outside = run_cli({"fit-brdf", "--data", file, "--material", "Au", "--model", "ggx_stats",
+                                  "--wavelengths", "300", "-o", (dir / "fit2").string()});
+    EXPECT_EQ(outside.exit_code, 2);
+    EXPECT_NE(outside.err.find("wavelength 300 nm is outside the file"), std::string::npos) << outside.err;
+}
+
 TEST(CliFitBrdf, BadDataNamesTheRow) {
     expect_bad_data("wavelength_nm,theta_i_deg,phi_i_deg,theta_o_deg,brdf\n550,30,0,30,1\n", "bad.csv:1: expected");
     expect_bad_data(kHeader + kGood + "550,30,0,45,180,-0.1\n", "bad.csv:5: brdf must be finite and >= 0");
     expect_bad_data(kHeader + kGood + "550,30,0,45,180,nan\n", "bad.csv:5: brdf must be finite");
     expect_bad_data(kHeader + kGood + "550,30,0,91,180,0.1\n", "bad.csv:5: theta_o_deg must be in [0, 90)");
     expect_bad_data(kHeader + "550,30,0,30,180,1.5\n550,30,0,30,180,1.4\n", "one direction");
-    expect_bad_data(kHeader + kGood, "RGL .bsdf files are not supported", "measured.bsdf");
+    expect_bad_data(kHeader + kGood, "not a tensor file", "measured.bsdf");  // read as RGL by its extension
 }
 
 TEST(CliFitBrdf, BadOptionsAreErrors) {
@@ -71,7 +92,8 @@ TEST(CliFitBrdf, BadOptionsAreErrors) {
              {{"--fix", "lay_angle_deg=10"}, "applies to an anisotropic fit only"},
              {{"--psd", "gaussian", "--fix", "gamma=3"}, "fix gamma applies to psd kc only"},
              {{"--psd", "file"}, "--psd must be kc or gaussian"},
-             {{"--model", "phong"}, "--model must be one of"}}) {
+             {{"--model", "phong"}, "--model must be one of"},
+             {{"--wavelengths", "550"}, "--wavelengths applies to RGL .bsdf data only"}}) {
         std::vector<std::string> args = {"fit-brdf", "--data", kExample, "--material", "Au", "-o",
                                          (dir / "opt").string()};
         args.insert(args.end(), extra.begin(), extra.end());

@@ -5,6 +5,7 @@
 #include <tuple>
 #include <utility>
 
+#include "surfscatter/bsdf/rgl_measured.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/input_file.hpp"
 
@@ -66,6 +67,54 @@ BrdfData parse_brdf_csv(std::string_view text, const std::string& source) {
 
 BrdfData read_brdf_csv(const std::string& path) {
     return parse_brdf_csv(read_input_file(path, "BRDF data file"), path);
+}
+
+BrdfData read_brdf_rgl(const std::string& path, const std::vector<double>& wavelengths_nm,
+                       std::size_t max_directions) {
+    const bsdf::RglData d = bsdf::read_rgl(path);
+    const bsdf::RglMeasuredBsdf file(d);
+    for (double l : wavelengths_nm)
+        if (!(l >= file.wavelengths().front() && l <= file.wavelengths().back()))
+            fail("wavelength {} nm is outside the file {} ({}-{} nm)", l, printable(path, kShownPathChars),
+                 file.wavelengths().front(), file.wavelengths().back());
+    const Marginal2D vndf(d.vndf, d.vndf_cols, d.vndf_rows, {d.phi_i, d.theta_i}, true);
+    std::vector<std::pair<double, double>> incidences;  // (theta_i, phi_i)
+    for (double phi : d.phi_i)
+        if (d.isotropic() || phi < kPi - 1e-6 || d.phi_i.front() > -kPi + 1e-6)
+            for (double theta : d.theta_i)
+                if (theta < 89 * kDegree) incidences.push_back({theta, d.isotropic() ? 0.0 : phi});
+    if (incidences.empty()) fail("RGL file {}: no incidence below 89 degrees", printable(path, kShownPathChars));
+    const std::size_t per_incidence = std::max<std::size_t>(4, max_directions / incidences.size());
+    std::size_t stride = 1;
+    while ((d.rows + stride - 1) / stride * ((d.cols + stride - 1) / stride) > per_incidence) ++stride;
+    BrdfData data;
+    data.source = path;
+    for (const auto& [theta_i, phi_i] : incidences) {
+        const Vec3 wi = spherical_direction(theta_i, phi_i);
+        const double params[2] = {phi_i, theta_i};
+        for (std::size_t y = 0; y < d.rows; y += stride)
+            for (std::size_t x = 0; x < d.cols; x += stride) {
+                const Vec2 node{double(x) / double(d.cols - 1), double(y) / double(d.rows - 1)};
+                const Vec2 u_m = vndf.sample(node, params).first;
+                const Vec3 m = spherical_direction(bsdf::rgl_u_to_theta(u_m.x),
+                                                   bsdf::rgl_u_to_phi(u_m.y) + (d.isotropic() ? phi_i : 0.0));
+                const Vec3 wo = normalize(m * (2 * dot(wi, m)) - wi);
+                if (dot(wi, m) <= 0 || wo.z <= std::cos(89 * kDegree)) continue;
+                for (double l : wavelengths_nm) {
+                    const double f = file.eval(wi, wo, l);
+                    if (!(f > 0)) continue;
+                    data.wavelength_nm.push_back(l);
+                    data.theta_i_deg.push_back(theta_i / kDegree);
+                    data.phi_i_deg.push_back(phi_i / kDegree);
+                    data.theta_o_deg.push_back(bsdf::rgl_elevation(wo) / kDegree);
+                    data.phi_o_deg.push_back(std::atan2(wo.y, wo.x) / kDegree);
+                    data.brdf.push_back(f);
+                    data.line.push_back(static_cast<int>(data.brdf.size()));
+                }
+            }
+    }
+    validate(data);
+    return data;
 }
 
 void validate(const BrdfData& data) {

@@ -22,6 +22,17 @@ struct BrdfData {
 BrdfData parse_brdf_csv(std::string_view text, const std::string& source);
 BrdfData read_brdf_csv(const std::string& path);
 
+// An RGL measured file (bsdf/rgl_measured.hpp; real gonio-photometer measurements or `brdf export`) as fit data: at
+// each of the file's incidences below 89 degrees (theta_i nodes; and each phi_i node of an anisotropic file but a
+// repeated +pi), the outgoing directions of its sample-square nodes, where the file holds its values (each node mapped
+// through the incidence's VNDF warp to a half vector, as a reader maps it back), every k-th node per side so that
+// at most max_directions directions remain, evaluated as Mitsuba 3 reads the file at `wavelengths_nm` (spectral
+// files: within their wavelengths; rgb files: the reader's spectrum of the node's colour, docs/FIT.md). Directions
+// with theta_o >= 89 degrees and zero values are left out; no standard errors. The file's `valid` field is not used
+// (no reader defines it).
+BrdfData read_brdf_rgl(const std::string& path, const std::vector<double>& wavelengths_nm,
+                       std::size_t max_directions = 1000);
+
 // Throws Error naming the first bad row ("meas.csv:7: brdf must be finite and >= 0, got -0.1"): wavelengths > 0,
 // theta_i and theta_o in [0, 90) (a direction at or below the horizon is refused), finite azimuths, BRDF finite and
 // >= 0 (> 0 without brdf_stderr: the residuals are then relative), errors finite and > 0; at least two distinct
