@@ -184,8 +184,15 @@ TEST(CliReference, ValidityWritesTheTableAndRefusesAnUnresolvedReference) {
     };
     const auto r = run_cli(with({"--theta-i", "0,40", "--realizations", "4"}));
     EXPECT_EQ(r.exit_code, 2) << r.err;
-    EXPECT_NE(r.err.find("nothing can be concluded"), std::string::npos) << r.err;
-    EXPECT_NE(r.out.find("550 nm, theta_i 40 deg, p: no model can be certified"), std::string::npos) << r.out;
+    EXPECT_NE(r.err.find("nothing can be concluded in 4 of 4 cases, no model is ruled out there: the reference is "
+                         "outside its validity (550 nm, theta_i 0 deg, s: "),
+              std::string::npos)
+        << r.err;
+    EXPECT_NE(r.out.find("550 nm, theta_i 40 deg, p: nothing can be concluded and no model is ruled out: the "
+                         "reference is outside its validity ("),
+              std::string::npos)
+        << r.out;
+    EXPECT_EQ(r.out.find("; ruled out:"), std::string::npos) << r.out;
     const std::string csv = read_whole_file(out + ".csv");
     EXPECT_EQ(csv.substr(0, csv.find('\n')),
               "model,wavelength_nm,theta_i_deg,polarisation,median_rel_error,worst_rel_error,worst_theta_o_deg,"
@@ -199,6 +206,11 @@ TEST(CliReference, ValidityWritesTheTableAndRefusesAnUnresolvedReference) {
 
     expect_bad_input(with({"--theta-i", "0,90", "--realizations", "4"}), "theta_i must be in [0, 90) degrees, got 90");
     expect_bad_input(with({"--theta-i", "0", "--realizations", "1"}), "--realizations must be at least 2, got 1");
+    expect_bad_input(with({"--theta-i", "0", "--realizations", "4", "--target-stderr", "5"}),
+                     "--realizations and --target-stderr: give one");
+    expect_bad_input(with({"--theta-i", "0", "--target-stderr", "0"}), "--target-stderr must be in (0, 100) percent");
+    expect_bad_input(with({"--theta-i", "0", "--realizations", "4", "--max-realizations", "9"}),
+                     "--max-realizations caps --target-stderr's profiles");
     expect_bad_input(with({"--theta-i", "0", "--realizations", "4", "--tolerance", "2"}),
                      "--tolerance must be in (0, 1), got 2");
     expect_bad_input({"validity", "--material", "perfect", "--wavelengths", "550", "--theta-i", "0", "--length-um",
@@ -221,10 +233,19 @@ std::string map_out(const char* name) { return (scratch_directory("surfscatter_c
 TEST(CliValidityMap, HeightMapFileWritesTheTableJsonAndPlots) {
     const auto out = map_out("file");
     const auto r = run_cli({"validity", "--surface-file", kExampleMap, "--material", "perfect", "--wavelengths", "550",
-                            "--theta-i", "0", "--bin-deg", "6", "-o", out});
+                            "--theta-i", "0", "--bin-deg", "12", "-o", out});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("550 nm, theta_i 0 deg, phi_i 0 deg: "), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("ruled out: ghs_ssa/measured"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("ruled out: ghs_ssa/file"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("ghs_ssa/measured ("), std::string::npos) << r.out;
+    // 6 deg bins leave the reference 14 % noise, above the tolerance: nothing concluded, nothing ruled out, exit 2.
+    const auto noisy = run_cli({"validity", "--surface-file", kExampleMap, "--material", "perfect", "--wavelengths",
+                                "550", "--theta-i", "0", "--bin-deg", "6", "-o", out + "_noisy"});
+    EXPECT_EQ(noisy.exit_code, 2) << noisy.err;
+    EXPECT_NE(noisy.err.find("the reference's median standard error 14.3 % exceeds the tolerance 10 %"),
+              std::string::npos)
+        << noisy.err;
+    EXPECT_EQ(noisy.out.find("; ruled out:"), std::string::npos) << noisy.out;
     const std::string csv = read_whole_file(out + ".csv");
     EXPECT_EQ(csv.substr(0, csv.find('\n')),
               "model,wavelength_nm,theta_i_deg,polarisation,median_rel_error,worst_rel_error,worst_theta_o_deg,"
@@ -247,10 +268,15 @@ TEST(CliValidityMap, ReferenceOutsideItsValidityExitsTwo) {
                             "--map-size-um", "4", "--map-pixels", "128", "--subarea-um", "1", "--material", "perfect",
                             "--wavelengths", "550", "--theta-i", "0", "-o", out});
     EXPECT_EQ(r.exit_code, 2) << r.err;
-    EXPECT_NE(r.err.find("the Kirchhoff reference is outside its validity in every case"), std::string::npos) << r.err;
-    EXPECT_NE(r.out.find("not concluded, the reference is not trusted here (Kirchhoff outside its validity: k l ="),
+    EXPECT_NE(r.err.find("nothing can be concluded in 1 of 1 cases, no model is ruled out there: the reference is "
+                         "outside its validity (550 nm, theta_i 0 deg, phi_i 0 deg: Kirchhoff outside its validity"),
+              std::string::npos)
+        << r.err;
+    EXPECT_NE(r.out.find("nothing can be concluded and no model is ruled out: the reference is outside its validity "
+                         "(Kirchhoff outside its validity: k l ="),
               std::string::npos)
         << r.out;
+    EXPECT_EQ(r.out.find("; ruled out:"), std::string::npos) << r.out;
     const std::string csv = read_whole_file(out + ".csv");
     EXPECT_NE(csv.find(",0,0\n"), std::string::npos) << csv;  // phi_i 0, reference_valid 0
 }
@@ -266,7 +292,7 @@ TEST(CliValidityMap, DominantOutliersExitTwoUnlessFilled) {
     const std::string spiked = map_out("spiked.gsf");
     surfscatter::heightmap::write_height_map(clean.with_heights(h), spiked);
     const std::vector<std::string> args{"validity", "--surface-file", spiked, "--material", "perfect", "--wavelengths",
-                                        "550", "--theta-i", "0", "--bin-deg", "6", "-o", map_out("spiked")};
+                                        "550", "--theta-i", "0", "--bin-deg", "12", "-o", map_out("spiked")};
     const auto kept = run_cli(args);
     EXPECT_EQ(kept.exit_code, 2) << kept.err;
     EXPECT_NE(kept.err.find("nothing can be trusted: "), std::string::npos) << kept.err;

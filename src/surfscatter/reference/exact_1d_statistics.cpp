@@ -27,24 +27,13 @@ Profile random_profile(const surface::RadialStatistics& statistics, const Exact1
     return profile;
 }
 
-StatisticalResult solve_exact_1d_statistics(const surface::RadialStatistics& statistics,
-                                            const material::Conductor& conductor, const Exact1dOptions& options,
-                                            const StatisticalOptions& st) {
-    if (st.realizations < 2) fail("realizations must be at least 2 (for a standard error), got {}", st.realizations);
-    // The first profile is made before any thread starts, so that bad statistics or lengths fail at once.
-    const Profile first = random_profile(statistics, options, st.length_um, st.seed);
-    std::vector<FarField> fields(st.realizations);
-    const std::vector<char> done =
-        run_parallel_jobs(st.realizations, st.threads, "exact-1d realizations", st.progress, [&] {
-            return [&](std::size_t r) {
-                const Profile profile = r == 0 ? first : random_profile(statistics, options, st.length_um, st.seed + r);
-                fields[r] = solve_exact_1d(profile, conductor, options);
-            };
-        });
+namespace {
 
+// The mean far field's coherent and incoherent parts with their standard errors, over the fields done.
+StatisticalResult summarise(const std::vector<FarField>& fields, const std::vector<char>& done) {
     StatisticalResult out;
     std::vector<const FarField*> completed;
-    for (std::size_t r = 0; r < st.realizations; ++r)
+    for (std::size_t r = 0; r < fields.size(); ++r)
         if (done[r]) completed.push_back(&fields[r]);
     out.realizations = completed.size();
     if (completed.empty()) return out;
@@ -89,6 +78,40 @@ StatisticalResult solve_exact_1d_statistics(const surface::RadialStatistics& sta
         out.incoherent_stderr[j] = std::sqrt(var_incoherent / count);
     }
     return out;
+}
+
+}  // namespace
+
+StatisticalResult solve_exact_1d_statistics(const surface::RadialStatistics& statistics,
+                                            const material::Conductor& conductor, const Exact1dOptions& options,
+                                            const StatisticalOptions& st) {
+    if (st.realizations < 2) fail("realizations must be at least 2 (for a standard error), got {}", st.realizations);
+    if (st.more && st.first_round < 2) fail("the first round must be at least 2 realizations, got {}", st.first_round);
+    // The first profile is made before any thread starts, so that bad statistics or lengths fail at once.
+    const Profile first = random_profile(statistics, options, st.length_um, st.seed);
+    std::vector<FarField> fields;
+    std::vector<char> done;
+    std::size_t wanted = st.more ? std::min(st.first_round, st.realizations) : st.realizations;
+    while (true) {
+        const std::size_t begin = fields.size();
+        fields.resize(wanted);
+        const std::vector<char> round =
+            run_parallel_jobs(wanted - begin, st.threads, "exact-1d realizations", st.progress, [&] {
+                return [&](std::size_t i) {
+                    const std::size_t r = begin + i;
+                    const Profile profile =
+                        r == 0 ? first : random_profile(statistics, options, st.length_um, st.seed + r);
+                    fields[r] = solve_exact_1d(profile, conductor, options);
+                };
+            });
+        done.insert(done.end(), round.begin(), round.end());
+        if (!st.more || wanted >= st.realizations || std::find(round.begin(), round.end(), 0) != round.end())
+            break;
+        const std::size_t extra = st.more(summarise(fields, done));
+        if (extra == 0) break;
+        wanted = std::min(st.realizations, wanted + extra);
+    }
+    return summarise(fields, done);
 }
 
 }  // namespace surfscatter::reference
