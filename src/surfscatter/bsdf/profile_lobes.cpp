@@ -188,23 +188,19 @@ void check_lobe_input(double lambda_nm, double theta_i_rad, const std::vector<do
 
 }  // namespace
 
-ProfileLobe ggx_profile_lobe(const surface::RadialStatistics& statistics, const material::Conductor& conductor,
-                             double lambda_nm, double theta_i_rad, ProfilePolarisation polarisation,
-                             const std::vector<double>& theta_o_rad) {
-    check_lobe_input(lambda_nm, theta_i_rad, theta_o_rad);
-    const double slope2 = statistics.mean_square_slope(0.0, std::numeric_limits<double>::infinity());
-    if (!std::isfinite(slope2) || !(slope2 > 0))
-        fail("ggx_stats: the rms slope of {} diverges (KC gamma <= 3): GGX from statistics has no alpha",
-             statistics.cache_key());
-    const double alpha = std::sqrt(slope2), alpha2 = slope2;
+namespace {
+
+// The 1-D GGX lobe of alpha^2 (header), without the input checks.
+std::vector<double> ggx_lobe(double alpha2, const material::Conductor& conductor, double lambda_nm, double theta_i_rad,
+                             ProfilePolarisation polarisation, const std::vector<double>& theta_o_rad) {
+    const double alpha = std::sqrt(alpha2);
     const auto lambda = [&](double theta) {
         const double t = std::tan(theta);
         return 0.5 * (std::sqrt(1 + alpha2 * t * t) - 1);
     };
     const double ci = std::cos(theta_i_rad), lambda_i = lambda(theta_i_rad);
-    ProfileLobe out;
-    out.coherent = 0;
-    out.intensity_per_rad.reserve(theta_o_rad.size());
+    std::vector<double> out;
+    out.reserve(theta_o_rad.size());
     for (const double theta_o : theta_o_rad) {
         const double b = 0.5 * (theta_o - theta_i_rad), theta_d = 0.5 * (theta_i_rad + theta_o);
         const double p = std::tan(b), cb = std::cos(b);
@@ -213,10 +209,25 @@ ProfileLobe ggx_profile_lobe(const surface::RadialStatistics& statistics, const 
         const double value = polarised_reflectance(conductor, std::cos(theta_d), lambda_nm, polarisation) * g2 *
                              slope_density * std::cos(theta_d) / (2 * cb * cb * cb * ci);
         if (!std::isfinite(value))
-            fail("ggx_stats lobe is not finite at theta_o {} deg (theta_i {} deg, {} nm)", theta_o * 180 / kPi,
+            fail("GGX profile lobe is not finite at theta_o {} deg (theta_i {} deg, {} nm)", theta_o * 180 / kPi,
                  theta_i_rad * 180 / kPi, lambda_nm);
-        out.intensity_per_rad.push_back(value);
+        out.push_back(value);
     }
+    return out;
+}
+
+}  // namespace
+
+ProfileLobe ggx_profile_lobe(const surface::RadialStatistics& statistics, const material::Conductor& conductor,
+                             double lambda_nm, double theta_i_rad, ProfilePolarisation polarisation,
+                             const std::vector<double>& theta_o_rad) {
+    check_lobe_input(lambda_nm, theta_i_rad, theta_o_rad);
+    const double slope2 = statistics.mean_square_slope(0.0, std::numeric_limits<double>::infinity());
+    if (!std::isfinite(slope2) || !(slope2 > 0))
+        fail("ggx_stats: the rms slope of {} diverges (KC gamma <= 3): GGX from statistics has no alpha",
+             statistics.cache_key());
+    ProfileLobe out;
+    out.intensity_per_rad = ggx_lobe(slope2, conductor, lambda_nm, theta_i_rad, polarisation, theta_o_rad);
     return out;
 }
 

@@ -122,7 +122,8 @@ struct ProfileCase {
     reference::StatisticalResult reference;
     double reference_energy = 0;
     BinnedCurves binned;  // what the comparison used; binned.models in the order of `models`
-    std::vector<ModelResult> models;     // ghs, ghs_ssa, kirchhoff, ggx_stats (when its rms slope is finite)
+    // ghs, ghs_ssa, kirchhoff, then ggx_stats where its rms slope is finite (else in not_compared)
+    std::vector<ModelResult> models;
     std::vector<std::string> not_compared;  // why a model is left out
     Verdict verdict;
     Verdict render_verdict;  // among the models a renderer offers (all but kirchhoff)
