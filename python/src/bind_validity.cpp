@@ -58,7 +58,7 @@ py::dict validity(const surface::RadialStatistics& surface, const std::string& m
                   double length_um, double beam_width_um, const py::object& realizations,
                   const std::vector<std::string>& polarisations, std::uint64_t seed, double bin_deg,
                   double tolerance, double max_reference_stderr, int threads, const py::object& target_stderr_pct,
-                  std::size_t max_realizations) {
+                  const py::object& max_realizations_arg) {
     if (!realizations.is_none() && !target_stderr_pct.is_none())
         fail("realizations and target_stderr_pct: give one (a fixed count of profiles, or profiles until the "
              "reference's standard error reaches the target)");
@@ -67,8 +67,12 @@ py::dict validity(const surface::RadialStatistics& surface, const std::string& m
                               : 0.0;
     if (realizations.is_none() && !(target > 0 && target < 100))
         fail("target_stderr_pct must be in (0, 100) percent, got {}", target);
-    if (realizations.is_none() && max_realizations < 2)
-        fail("max_realizations must be at least 2, got {}", max_realizations);
+    if (!realizations.is_none() && !max_realizations_arg.is_none())
+        fail("max_realizations caps target_stderr_pct's profiles; realizations is a fixed count");
+    const long long max_realizations =
+        max_realizations_arg.is_none() ? 1000 : max_realizations_arg.cast<long long>();
+    if (realizations.is_none() && !(max_realizations >= 2 && max_realizations <= 1000000))
+        fail("max_realizations must be in [2, 1000000], got {}", max_realizations);
     const auto conductor = material::Conductor::from_name(material);
     validity::ProfileStudy study;
     study.wavelengths_nm = wavelengths_nm;
@@ -77,7 +81,8 @@ py::dict validity(const surface::RadialStatistics& surface, const std::string& m
         study.polarisations.push_back(bsdf::parse_profile_polarisation(p, "polarisations"));
     study.beam_width_um = beam_width_um;
     study.statistical.length_um = length_um;
-    study.statistical.realizations = realizations.is_none() ? max_realizations : realizations.cast<std::size_t>();
+    study.statistical.realizations = realizations.is_none() ? static_cast<std::size_t>(max_realizations)
+                                                            : realizations.cast<std::size_t>();
     study.target_rel_stderr = target / 100;
     study.statistical.seed = seed;
     study.statistical.threads = threads;
@@ -217,13 +222,13 @@ void bind_validity(py::module_& m) {
           py::arg("theta_i_deg"), py::arg("length_um"), py::arg("beam_width_um"), py::arg("realizations") = py::none(),
           py::arg("polarisations") = std::vector<std::string>{"s", "p"}, py::arg("seed") = 1,
           py::arg("bin_deg") = 3.0, py::arg("tolerance") = 0.1, py::arg("max_reference_stderr") = 0.25,
-          py::arg("threads") = 0, py::arg("target_stderr_pct") = py::none(), py::arg("max_realizations") = 1000,
+          py::arg("threads") = 0, py::arg("target_stderr_pct") = py::none(), py::arg("max_realizations") = py::none(),
           R"(Which model to trust for profiles cut through `surface` (KCorrelation or GaussianAcv), as `surfscatter
 validity` (docs/VALIDITY.md): the 1-D GHS, SSA, Kirchhoff and GGX-from-statistics forms against exact-1d
 averaged over random profiles
 of length_um (Thorsos beam of width beam_width_um): a fixed number `realizations`, or (the default) as many as bring
 the reference's median relative standard error over the bins used to target_stderr_pct percent (default 2), at
-most max_realizations (verdicts' target_reached says whether it did); not both. For every wavelength in wavelengths_nm (nm),
+most max_realizations (default 1000; verdicts' target_reached says whether it did); not both. For every wavelength in wavelengths_nm (nm),
 incidence in theta_i_deg (degrees) and polarisation ('s', 'p'). Returns {'table': one dict per model and case with
 the CSV's columns, 'verdicts': one dict per case (conclusive, trusted, best_model, indistinguishable, within_tolerance, ruled_out,
 reference_problem, text, realizations, reference_median_rel_stderr, target_reached, render_verdict: the same

@@ -42,6 +42,8 @@ def test_validity_runs_profiles_until_the_target_standard_error():
     assert verdict["not_compared"] and verdict["not_compared"][0].startswith("ggx_stats: ")  # gamma 3
     with pytest.raises(ss.Error, match="realizations and target_stderr_pct: give one"):
         ss.validity(surface, "perfect", [550], [0], 12, 2, realizations=4, target_stderr_pct=5)
+    with pytest.raises(ss.Error, match="max_realizations caps target_stderr_pct's profiles"):
+        ss.validity(surface, "perfect", [550], [0], 12, 2, realizations=4, max_realizations=9)
 
 
 def test_validity_refuses_bad_input():
