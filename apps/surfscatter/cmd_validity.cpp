@@ -1,6 +1,7 @@
 // surfscatter validity: which model to trust for a surface (docs/VALIDITY.md). Two routes:
-// * profiles (--length-um): profiles cut through KC/Gaussian statistics, the 1-D GHS, SSA and Kirchhoff forms against
-//   exact-1d's average over random profiles, per wavelength, incidence and polarisation;
+// * profiles (--length-um): profiles cut through KC/Gaussian statistics, the 1-D GHS, SSA, Kirchhoff and GGX
+//   forms against exact-1d's average over random profiles (--realizations, or until --target-stderr),
+//   per wavelength, incidence and polarisation;
 // * maps (--surface-file, or --map-size-um for maps synthesised from --psd statistics, elliptical with
 //   --corr-length-v / --lay-angle): every 2-D model the factory makes against the maps' Kirchhoff BRDF, per
 //   wavelength and incidence (theta_i, phi_i), with Kirchhoff's own validity (validity/map_validity.hpp).
@@ -34,6 +35,9 @@ namespace surfscatter::cli {
 
 namespace {
 
+constexpr double kDefaultTargetStderrPct = 2;
+constexpr long long kDefaultMaxRealizations = 1000;
+
 struct ValidityArgs {
     SurfaceArgs surface;
     std::string material, polarisation = "both", output;
@@ -41,6 +45,8 @@ struct ValidityArgs {
     double length = 0, beam_width = 0, points_per_wavelength = 10;
     double tolerance = 0.10, max_reference_stderr = 0.25, bin_deg = 3;
     long long realizations = 0, seed = 1;
+    std::optional<double> target_stderr;          // percent
+    std::optional<long long> max_realizations;
     int threads = 0;
     // the map route
     std::string surface_file;
@@ -72,8 +78,14 @@ std::string csv_table(const std::vector<validity::TableRow>& rows, bool map_rout
 }
 
 nlohmann::json verdict_json(const validity::Verdict& v) {
-    return {{"conclusive", v.conclusive}, {"trusted", v.trusted},       {"best_model", v.best_model},
-            {"within_tolerance", v.within_tolerance}, {"ruled_out", v.ruled_out}, {"text", v.text}};
+    return {{"conclusive", v.conclusive},
+            {"trusted", v.trusted},
+            {"best_model", v.best_model},
+            {"indistinguishable", v.indistinguishable},
+            {"within_tolerance", v.within_tolerance},
+            {"ruled_out", v.ruled_out},
+            {"reference_problem", v.reference_problem},
+            {"text", v.text}};
 }
 
 nlohmann::json model_json(const validity::ModelResult& m) {
@@ -93,9 +105,15 @@ nlohmann::json json_report(const std::vector<validity::ProfileCase>& cases, cons
     j["material"] = material;
     j["criteria"] = {{"peak_fraction", validity::Criteria{}.peak_fraction}, {"max_reference_stderr", a.max_reference_stderr},
                      {"tolerance", a.tolerance}, {"bin_deg", a.bin_deg}};
-    j["reference"] = {{"solver", "exact-1d"},         {"length_um", a.length},
-                      {"beam_width_um", a.beam_width}, {"realizations", a.realizations},
-                      {"seed", a.seed},                {"points_per_wavelength", a.points_per_wavelength}};
+    j["reference"] = {{"solver", "exact-1d"},
+                      {"length_um", a.length},
+                      {"beam_width_um", a.beam_width},
+                      {"realizations", a.realizations},
+                      {"target_stderr_pct", a.realizations != 0 ? 0.0 : a.target_stderr.value_or(kDefaultTargetStderrPct)},
+                      {"max_realizations", a.realizations != 0 ? a.realizations
+                                                               : a.max_realizations.value_or(kDefaultMaxRealizations)},
+                      {"seed", a.seed},
+                      {"points_per_wavelength", a.points_per_wavelength}};
     j["cases"] = nlohmann::json::array();
     for (const auto& c : cases) {
         nlohmann::json jc;
@@ -103,7 +121,14 @@ nlohmann::json json_report(const std::vector<validity::ProfileCase>& cases, cons
         jc["theta_i_deg"] = c.theta_i_deg;
         jc["polarisation"] = validity::to_string(c.polarisation);
         jc["reference_energy"] = c.reference_energy;
+        jc["realizations"] = c.reference.realizations;
+        jc["reference_median_rel_stderr"] = c.reference_rel_stderr;
+        jc["target_reached"] = c.target_reached;
+        jc["near_specular_bins_left_out"] = c.binned.near_specular_bins;
+        jc["edge_rel_error"] = c.edge_rel_error;
         jc["verdict"] = verdict_json(c.verdict);
+        jc["render_verdict"] = verdict_json(c.render_verdict);
+        jc["not_compared"] = c.not_compared;
         std::vector<double> theta_deg;
         for (const double t : c.reference.theta_o_rad) theta_deg.push_back(t / kDegree);
         jc["theta_o_deg"] = theta_deg;
@@ -125,16 +150,41 @@ nlohmann::json json_report(const std::vector<validity::ProfileCase>& cases, cons
     return j;
 }
 
+// Per case the verdict over every model, and the render models' own (Kirchhoff is not a render model).
 void print_summary(const std::vector<validity::ProfileCase>& cases) {
-    for (const auto& c : cases)
+    for (const auto& c : cases) {
         std::printf("%s nm, theta_i %s deg, %s: %s\n", format_number(c.wavelength_nm).c_str(),
                     format_number(c.theta_i_deg).c_str(), validity::to_string(c.polarisation).c_str(),
                     c.verdict.text.c_str());
+        if (c.verdict.conclusive) std::printf("  render models: %s\n", c.render_verdict.text.c_str());
+        if (c.edge_rel_error >= 1e-3)
+            std::printf("  profile ends: they diffract an estimated %.3g %% of the reference (median over the bins "
+                        "used)\n",
+                        100 * c.edge_rel_error);
+        for (const std::string& why : c.not_compared) std::printf("  not compared: %s\n", why.c_str());
+    }
 }
 
 void say_if_interrupted(const std::string& output, std::size_t done, std::size_t asked) {
     if (done < asked)
         std::fprintf(stderr, "surfscatter: interrupted: %s.csv holds %zu of %zu cases\n", output.c_str(), done, asked);
+}
+
+// Exit status 2, once the outputs are written, when the reference is outside its validity in any case: one line
+// saying in how many and why (the first such case's reason).
+template <typename Case, typename Label>
+void require_reference_valid(const std::vector<Case>& cases, Label&& label) {
+    std::size_t invalid = 0;
+    const Case* first = nullptr;
+    for (const Case& c : cases)
+        if (!c.verdict.conclusive) {
+            ++invalid;
+            if (!first) first = &c;
+        }
+    if (invalid > 0 && !interrupt_requested())
+        fail("nothing can be concluded in {} of {} cases, no model is ruled out there: the reference is outside its "
+             "validity ({}: {})",
+             invalid, cases.size(), label(*first), first->verdict.reference_problem);
 }
 
 void check_criteria(const ValidityArgs& a) {
@@ -166,7 +216,18 @@ void run_profile_validity(const ValidityArgs& a) {
     const auto conductor = material::Conductor::from_name(a.material);
     if (!(a.length > 0)) fail("the profiles route needs --length-um (> 0), got {}", a.length);
     require_positive(a.beam_width, "--beam-width");
-    if (a.realizations < 2) fail("--realizations must be at least 2, got {}", a.realizations);
+    if (a.realizations != 0 && a.target_stderr)
+        fail("--realizations and --target-stderr: give one (a fixed count of profiles, or profiles until the "
+             "reference's standard error reaches the target)");
+    if (a.realizations != 0 && a.max_realizations)
+        fail("--max-realizations caps --target-stderr's profiles; --realizations {} is a fixed count", a.realizations);
+    if (a.realizations != 0 && a.realizations < 2) fail("--realizations must be at least 2, got {}", a.realizations);
+    const double target = a.realizations != 0 ? 0.0 : a.target_stderr.value_or(kDefaultTargetStderrPct);
+    if (a.realizations == 0 && !(target > 0 && target < 100))
+        fail("--target-stderr must be in (0, 100) percent, got {}", target);
+    const long long cap = a.max_realizations.value_or(kDefaultMaxRealizations);
+    if (a.realizations == 0 && !(cap >= 2 && cap <= 1000000))
+        fail("--max-realizations must be in [2, 1000000], got {}", cap);
     if (a.seed < 0) fail("--seed must be >= 0, got {}", a.seed);
     check_criteria(a);
 
@@ -180,7 +241,8 @@ void run_profile_validity(const ValidityArgs& a) {
     study.beam_width_um = a.beam_width;
     study.points_per_wavelength = a.points_per_wavelength;
     study.statistical.length_um = a.length;
-    study.statistical.realizations = static_cast<std::size_t>(a.realizations);
+    study.statistical.realizations = static_cast<std::size_t>(a.realizations != 0 ? a.realizations : cap);
+    study.target_rel_stderr = target / 100;
     study.statistical.seed = static_cast<std::uint64_t>(a.seed);
     study.statistical.threads = a.threads;
     study.criteria = criteria_from(a);
@@ -199,14 +261,21 @@ void run_profile_validity(const ValidityArgs& a) {
                                                 conductor.name()).dump() + "\n");
     run_plot_script("validity.py", {json_path, a.output + "_slices.png", a.output + "_error_map.png"});
     print_summary(cases);
+    for (const auto& c : cases)
+        if (!c.target_reached)
+            std::fprintf(stderr,
+                         "surfscatter: warning: %s nm, theta_i %s deg, %s: the reference's median standard error %.3g %% "
+                         "did not reach the target %s %% within %zu profiles (--max-realizations): its verdict "
+                         "allows for the larger uncertainty\n",
+                         format_number(c.wavelength_nm).c_str(), format_number(c.theta_i_deg).c_str(),
+                         validity::to_string(c.polarisation).c_str(), 100 * c.reference_rel_stderr,
+                         format_number(target).c_str(), c.reference.realizations);
     std::printf("wrote %s, %s, %s_slices.png and %s_error_map.png\n", csv_path.c_str(), json_path.c_str(),
                 a.output.c_str(), a.output.c_str());
-    std::size_t concluded = 0;
-    for (const auto& c : cases) concluded += c.verdict.conclusive || !c.verdict.ruled_out.empty() ? 1 : 0;
-    // Nothing concluded anywhere (no model certified or ruled out): the reference cannot be trusted at these settings.
-    if (concluded == 0 && !interrupt_requested())
-        fail("nothing can be concluded: the reference's Monte Carlo error is too large (more --realizations or "
-             "--length-um)");
+    require_reference_valid(cases, [](const validity::ProfileCase& c) {
+        return fmt::format("{} nm, theta_i {} deg, {}", format_number(c.wavelength_nm), format_number(c.theta_i_deg),
+                           validity::to_string(c.polarisation));
+    });
 }
 
 nlohmann::json map_json_report(const std::vector<validity::MapCase>& cases, const ValidityArgs& a,
@@ -284,6 +353,9 @@ bsdf::SurfaceOptions map_surface_options(const ValidityArgs& a) {
 }
 
 void run_map_validity(const ValidityArgs& a, bool polarisation_given) {
+    if (a.target_stderr || a.max_realizations)
+        fail("--target-stderr and --max-realizations belong to the profiles route (--length-um); the map route's "
+             "--realizations is a number of maps");
     if (a.length > 0 || a.beam_width > 0)
         fail("--length-um and --beam-width belong to the profiles route; the map route's reference is the Kirchhoff "
              "BRDF of the map(s)");
@@ -339,26 +411,19 @@ void run_map_validity(const ValidityArgs& a, bool polarisation_given) {
     }
     std::printf("wrote %s, %s, %s_slices.png and %s_error_map.png\n", csv_path.c_str(), json_path.c_str(),
                 a.output.c_str(), a.output.c_str());
-    std::size_t valid = 0, concluded = 0;
-    for (const auto& c : cases) {
-        valid += c.reference_validity.valid ? 1 : 0;
-        concluded += c.reference_validity.valid && (c.verdict.conclusive || !c.verdict.ruled_out.empty()) ? 1 : 0;
-    }
     validity::require_outliers_not_dominant(surface);
-    if (concluded == 0 && !interrupt_requested()) {
-        if (valid == 0)
-            fail("nothing can be concluded: the Kirchhoff reference is outside its validity in every case (see the "
-                 "verdicts)");
-        fail("nothing can be concluded: the Kirchhoff reference's standard error is too large (more --realizations, "
-             "larger maps or wider --bin-deg)");
-    }
+    require_reference_valid(cases, [](const validity::MapCase& c) {
+        return fmt::format("{} nm, theta_i {} deg, phi_i {} deg", format_number(c.wavelength_nm),
+                           format_number(c.theta_i_deg), format_number(c.phi_i_deg));
+    });
 }
 
 const Command command("validity", [](CLI::App& app) {
     auto a = std::make_shared<ValidityArgs>();
     auto* sub = app.add_subcommand(
-        "validity", "Which model to trust: the 1-D GHS, SSA and Kirchhoff forms against the exact 1-D solution "
-                    "averaged over random profiles, per wavelength, incidence and polarisation (--length-um); or "
+        "validity", "Which model to trust: the 1-D GHS, SSA, Kirchhoff and GGX forms against the exact 1-D "
+                    "solution averaged over random profiles, per wavelength, incidence and polarisation "
+                    "(--length-um); or "
                     "every 2-D model against the Kirchhoff BRDF of a height map (--surface-file) or of maps "
                     "synthesised from the statistics (--map-size-um), with Kirchhoff's own validity "
                     "(docs/VALIDITY.md)");
@@ -375,7 +440,14 @@ const Command command("validity", [](CLI::App& app) {
                     "profiles route: length of each random profile (um), centred on x = 0");
     sub->add_option("--beam-width", a->beam_width, "profiles route: Thorsos taper width g along x in um");
     sub->add_option("--realizations", a->realizations,
-                    "random profiles per case (profiles route, >= 2), or maps synthesised (map route, default 1)");
+                    "a fixed number of random profiles per case (profiles route, >= 2; instead of --target-stderr), "
+                    "or maps synthesised (map route, default 1)");
+    sub->add_option("--target-stderr", a->target_stderr,
+                    "profiles route: profiles run until the reference's median relative standard error over the "
+                    "bins used reaches this many percent (default 2)");
+    sub->add_option("--max-realizations", a->max_realizations,
+                    "profiles route: the most profiles --target-stderr runs per case (default 1000); short of the "
+                    "target, a warning says so");
     sub->add_option("--seed", a->seed, "seed of the first profile or map; number r uses seed + r (default 1)");
     sub->add_option("--surface-file", a->surface_file,
                     "map route: a measured height map (any format `surface info` reads) as the surface");

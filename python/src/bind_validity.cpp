@@ -45,17 +45,34 @@ py::dict verdict_dict(const validity::Verdict& verdict) {
     v["conclusive"] = verdict.conclusive;
     v["trusted"] = verdict.trusted;
     v["best_model"] = verdict.best_model;
+    v["indistinguishable"] = verdict.indistinguishable;
     v["within_tolerance"] = verdict.within_tolerance;
     v["ruled_out"] = verdict.ruled_out;
+    v["reference_problem"] = verdict.reference_problem;
     v["text"] = verdict.text;
     return v;
 }
 
 py::dict validity(const surface::RadialStatistics& surface, const std::string& material,
                   const std::vector<double>& wavelengths_nm, const std::vector<double>& theta_i_deg,
-                  double length_um, double beam_width_um, std::size_t realizations,
+                  double length_um, double beam_width_um, const py::object& realizations,
                   const std::vector<std::string>& polarisations, std::uint64_t seed, double bin_deg,
-                  double tolerance, double max_reference_stderr, int threads) {
+                  double tolerance, double max_reference_stderr, int threads, const py::object& target_stderr_pct,
+                  const py::object& max_realizations_arg) {
+    if (!realizations.is_none() && !target_stderr_pct.is_none())
+        fail("realizations and target_stderr_pct: give one (a fixed count of profiles, or profiles until the "
+             "reference's standard error reaches the target)");
+    const double target = realizations.is_none()
+                              ? (target_stderr_pct.is_none() ? 2.0 : target_stderr_pct.cast<double>())
+                              : 0.0;
+    if (realizations.is_none() && !(target > 0 && target < 100))
+        fail("target_stderr_pct must be in (0, 100) percent, got {}", target);
+    if (!realizations.is_none() && !max_realizations_arg.is_none())
+        fail("max_realizations caps target_stderr_pct's profiles; realizations is a fixed count");
+    const long long max_realizations =
+        max_realizations_arg.is_none() ? 1000 : max_realizations_arg.cast<long long>();
+    if (realizations.is_none() && !(max_realizations >= 2 && max_realizations <= 1000000))
+        fail("max_realizations must be in [2, 1000000], got {}", max_realizations);
     const auto conductor = material::Conductor::from_name(material);
     validity::ProfileStudy study;
     study.wavelengths_nm = wavelengths_nm;
@@ -64,7 +81,9 @@ py::dict validity(const surface::RadialStatistics& surface, const std::string& m
         study.polarisations.push_back(bsdf::parse_profile_polarisation(p, "polarisations"));
     study.beam_width_um = beam_width_um;
     study.statistical.length_um = length_um;
-    study.statistical.realizations = realizations;
+    study.statistical.realizations = realizations.is_none() ? static_cast<std::size_t>(max_realizations)
+                                                            : realizations.cast<std::size_t>();
+    study.target_rel_stderr = target / 100;
     study.statistical.seed = seed;
     study.statistical.threads = threads;
     study.criteria.bin_deg = bin_deg;
@@ -83,6 +102,11 @@ py::dict validity(const surface::RadialStatistics& surface, const std::string& m
         v["wavelength_nm"] = c.wavelength_nm;
         v["theta_i_deg"] = c.theta_i_deg;
         v["polarisation"] = validity::to_string(c.polarisation);
+        v["realizations"] = c.reference.realizations;
+        v["reference_median_rel_stderr"] = c.reference_rel_stderr;
+        v["target_reached"] = c.target_reached;
+        v["render_verdict"] = verdict_dict(c.render_verdict);
+        v["not_compared"] = c.not_compared;
         verdicts.append(v);
     }
     py::dict out;
@@ -195,15 +219,20 @@ py::dict validity_map(py::handle surface_arg, const std::string& material, const
 
 void bind_validity(py::module_& m) {
     m.def("validity", &validity, py::arg("surface"), py::arg("material"), py::arg("wavelengths_nm"),
-          py::arg("theta_i_deg"), py::arg("length_um"), py::arg("beam_width_um"), py::arg("realizations"),
+          py::arg("theta_i_deg"), py::arg("length_um"), py::arg("beam_width_um"), py::arg("realizations") = py::none(),
           py::arg("polarisations") = std::vector<std::string>{"s", "p"}, py::arg("seed") = 1,
           py::arg("bin_deg") = 3.0, py::arg("tolerance") = 0.1, py::arg("max_reference_stderr") = 0.25,
-          py::arg("threads") = 0,
+          py::arg("threads") = 0, py::arg("target_stderr_pct") = py::none(), py::arg("max_realizations") = py::none(),
           R"(Which model to trust for profiles cut through `surface` (KCorrelation or GaussianAcv), as `surfscatter
-validity` (docs/VALIDITY.md): the 1-D GHS, SSA and Kirchhoff forms against exact-1d averaged over `realizations`
-random profiles of length_um (Thorsos beam of width beam_width_um), for every wavelength in wavelengths_nm (nm),
+validity` (docs/VALIDITY.md): the 1-D GHS, SSA, Kirchhoff and GGX-from-statistics forms against exact-1d
+averaged over random profiles
+of length_um (Thorsos beam of width beam_width_um): a fixed number `realizations`, or (the default) as many as bring
+the reference's median relative standard error over the bins used to target_stderr_pct percent (default 2), at
+most max_realizations (default 1000; verdicts' target_reached says whether it did); not both. For every wavelength in wavelengths_nm (nm),
 incidence in theta_i_deg (degrees) and polarisation ('s', 'p'). Returns {'table': one dict per model and case with
-the CSV's columns, 'verdicts': one dict per case (conclusive, trusted, best_model, within_tolerance, ruled_out, text)}.)");
+the CSV's columns, 'verdicts': one dict per case (conclusive, trusted, best_model, indistinguishable, within_tolerance, ruled_out,
+reference_problem, text, realizations, reference_median_rel_stderr, target_reached, render_verdict: the same
+over the models a renderer offers (all but kirchhoff), not_compared: why a model is left out)}.)");
     m.def("validity_map", &validity_map, py::arg("surface"), py::arg("material"), py::arg("wavelengths_nm"),
           py::arg("theta_i_deg"), py::arg("phi_i_deg") = std::vector<double>{0.0}, py::arg("form") = "plane",
           py::arg("outliers") = "keep", py::arg("row_alignment") = "auto", py::arg("lambda_s_um") = "none",

@@ -12,7 +12,7 @@ def test_validity_matches_the_cli(tmp_path):
     surface = ss.KCorrelation(0.01, 1.0, 3.0)
     got = ss.validity(surface, "perfect", wavelengths_nm=[550], theta_i_deg=[0], length_um=12, beam_width_um=2,
                       realizations=4, polarisations=["s"])
-    assert [row["model"] for row in got["table"]] == ["ghs", "ghs_ssa", "kirchhoff"]
+    assert [row["model"] for row in got["table"]] == ["ghs", "ghs_ssa", "kirchhoff"]  # no ggx_stats: gamma 3
     assert len(got["verdicts"]) == 1 and not got["verdicts"][0]["conclusive"]
     out = tmp_path / "v"
     r = subprocess.run([CLI, "validity", "--psd", "kc", "--sigma", "0.01", "--corr-length", "1", "--gamma", "3",
@@ -29,6 +29,23 @@ def test_validity_matches_the_cli(tmp_path):
         assert mine["verdict"] == theirs["verdict"]
 
 
+def test_validity_runs_profiles_until_the_target_standard_error():
+    """target_stderr_pct: profiles in rounds until the reference's median standard error over the bins used reaches
+    it (a loose 15 % here, to be quick); with realizations it is an error naming both."""
+    surface = ss.KCorrelation(0.01, 1.0, 3.0)
+    got = ss.validity(surface, "perfect", wavelengths_nm=[550], theta_i_deg=[0], length_um=12, beam_width_um=2,
+                      polarisations=["s"], bin_deg=10, target_stderr_pct=15, max_realizations=200)
+    verdict = got["verdicts"][0]
+    assert verdict["target_reached"]
+    assert verdict["reference_median_rel_stderr"] <= 0.15
+    assert 16 <= verdict["realizations"] <= 200
+    assert verdict["not_compared"] and verdict["not_compared"][0].startswith("ggx_stats: ")  # gamma 3
+    with pytest.raises(ss.Error, match="realizations and target_stderr_pct: give one"):
+        ss.validity(surface, "perfect", [550], [0], 12, 2, realizations=4, target_stderr_pct=5)
+    with pytest.raises(ss.Error, match="max_realizations caps target_stderr_pct's profiles"):
+        ss.validity(surface, "perfect", [550], [0], 12, 2, realizations=4, max_realizations=9)
+
+
 def test_validity_refuses_bad_input():
     with pytest.raises(ss.Error, match="theta_i must be in"):
         ss.validity(ss.KCorrelation(0.01, 1.0, 3.0), "perfect", [550], [90], 12, 2, 4)
@@ -39,14 +56,14 @@ def test_validity_refuses_bad_input():
 def test_validity_map_matches_the_cli(tmp_path):
     """The map route on the example KC map: the same rows and verdicts as `surfscatter validity --surface-file`."""
     surface_file = SOURCE_DIR / "examples" / "data" / "kc_surface.gsf"
-    got = ss.validity_map(str(surface_file), "perfect", wavelengths_nm=[550], theta_i_deg=[0], bin_deg=6)
+    got = ss.validity_map(str(surface_file), "perfect", wavelengths_nm=[550], theta_i_deg=[0], bin_deg=12)
     assert [row["model"] for row in got["table"]][:2] == ["ghs/measured", "ghs_ssa/measured"]
     verdict = got["verdicts"][0]
     assert verdict["reference_validity"]["valid"]
     assert "ghs_ssa/measured" in verdict["ruled_out"]
     out = tmp_path / "m"
     run_cli("validity", "--surface-file", surface_file, "--material", "perfect", "--wavelengths", "550",
-            "--theta-i", "0", "--bin-deg", "6", "-o", out)
+            "--theta-i", "0", "--bin-deg", "12", "-o", out)
     with open(f"{out}.csv") as f:
         rows = list(csv.DictReader(f))
     assert len(rows) == len(got["table"])

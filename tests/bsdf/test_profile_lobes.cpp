@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "surfscatter/bsdf/profile_lobes.hpp"
@@ -239,4 +240,63 @@ TEST(ProfileLobes, FresnelModesGrazingAndErrors) {
                                   sb::ProfilePolarisation::s, {}, one),
                  surfscatter::Error);
     EXPECT_THROW(sb::parse_profile_model("ggx_stats"), surfscatter::Error);
+}
+
+// The 1-D GGX form against an independent computation written here: the slope density along x by quadrature of
+// GGX's 2-D slope density over the slope along y (not the closed marginal), Smith's Lambda by quadrature of
+// (1/mu) int_mu^inf (q - mu) P2(q) dq with mu = cot theta, and the geometric-optics lobe assembled from them; and the
+// lobe's mass with F = 1 and no shadowing is the share of facets the visible directions reach.
+TEST(ProfileLobes, GgxFormMatchesQuadratureOfTheSlopeDensity) {
+    const ss::KCorrelation surface(0.15, 4.0, 4.0);
+    const double alpha2 = surface.mean_square_slope(0.0, std::numeric_limits<double>::infinity());
+    const double alpha = std::sqrt(alpha2);
+    const auto p22 = [&](double p, double q) {
+        const double r = 1 + (p * p + q * q) / alpha2;
+        return 1 / (kPi * alpha2 * r * r);
+    };
+    const auto simpson = [](auto f, double a, double b, int n) {  // composite Simpson, n even
+        const double h = (b - a) / n;
+        double sum = f(a) + f(b);
+        for (int j = 1; j < n; ++j) sum += (j % 2 ? 4 : 2) * f(a + j * h);
+        return sum * h / 3;
+    };
+    // q = c tan t, c = sqrt(alpha^2 + p^2) (the density's own width at this p), maps the real line onto
+    // (-pi/2, pi/2).
+    const auto p2 = [&](double p) {
+        const double c = std::sqrt(alpha2 + p * p);
+        return simpson([&](double t) { return t * t >= kPi * kPi / 4 ? 0.0 : p22(p, c * std::tan(t)) * c /
+                                                                                   (std::cos(t) * std::cos(t)); },
+                       -kPi / 2, kPi / 2, 400);
+    };
+    const auto smith = [&](double theta) {
+        if (theta == 0) return 0.0;
+        const double mu = 1 / std::tan(std::abs(theta));
+        const double t0 = std::atan(mu / alpha);  // q = alpha tan t from mu to infinity
+        return simpson([&](double t) {
+                   if (t >= kPi / 2) return 0.0;
+                   const double q = alpha * std::tan(t);
+                   return (q - mu) * p2(q) * alpha / (std::cos(t) * std::cos(t));
+               }, t0, kPi / 2 - 1e-9, 2000) / mu;
+    };
+    const auto silver = sm::Conductor::from_name("Ag");
+    for (const double theta_i_deg : {0.0, 30.0, 60.0})
+        for (const auto polarisation : {sb::ProfilePolarisation::s, sb::ProfilePolarisation::p}) {
+            const double ti = theta_i_deg * kPi / 180;
+            const std::vector<double> theta_o{-1.2, -0.5, 0.0, 0.3, ti, 0.9, 1.4};
+            const auto lobe = sb::ggx_profile_lobe(surface, silver, 550, ti, polarisation, theta_o);
+            EXPECT_EQ(lobe.coherent, 0.0);
+            const double lambda_i = smith(ti);
+            for (std::size_t j = 0; j < theta_o.size(); ++j) {
+                const double to = theta_o[j], b = (to - ti) / 2, td = (ti + to) / 2;
+                const auto r = silver.reflectance_sp(std::cos(td), 550);
+                const double f = polarisation == sb::ProfilePolarisation::s ? r.rs : r.rp;
+                const double expected = f / (1 + lambda_i + smith(to)) * p2(std::tan(b)) * std::cos(td) /
+                                        (2 * std::pow(std::cos(b), 3) * std::cos(ti));
+                EXPECT_NEAR(lobe.intensity_per_rad[j], expected, 1e-6 * expected)
+                    << theta_i_deg << " deg, theta_o " << to;
+            }
+        }
+    EXPECT_THROW(sb::ggx_profile_lobe(ss::KCorrelation(0.15, 4.0, 3.0), silver, 550, 0.0, sb::ProfilePolarisation::s,
+                                      {0.0}),
+                 surfscatter::Error);
 }

@@ -137,11 +137,13 @@ const sv::ModelResult& result_of(const sv::MapCase& c, const std::string& name) 
 
 // sigma 0.02 um, L 2 um, gamma 3 at 550 nm, normal incidence (k sigma 0.23, rms slope small): GHS and Kirchhoff are
 // the same first-order scatter here, so GHS's median error against the maps' Kirchhoff BRDF must stay within 10 %
-// (the reference's own noise, 7 %, included); the energies within 1e-3.
+// (the reference's own noise, 6 %, included); the energies within 1e-3.
 TEST(MapValidity, SmoothSurfaceNearNormalIncidenceGhsAgreesWithKirchhoff) {
-    const sv::MapSurface surface = kc_maps(0.02, 2, 3);
-    ASSERT_EQ(surface.maps.size(), 4u);
-    const auto cases = sv::map_validity(surface, ss::material::Conductor::from_name("perfect"), fast_study(550));
+    const sv::MapSurface surface = kc_maps(0.02, 2, 3, 8);
+    ASSERT_EQ(surface.maps.size(), 8u);
+    auto study = fast_study(550);
+    study.subarea_um = 21;  // 16 um leave the lobe 2.96 lattice steps wide: under the 3 the reference needs
+    const auto cases = sv::map_validity(surface, ss::material::Conductor::from_name("perfect"), study);
     ASSERT_EQ(cases.size(), 1u);
     const sv::MapCase& c = cases.front();
     EXPECT_TRUE(c.reference_validity.valid) << c.reference_validity.text;
@@ -150,7 +152,12 @@ TEST(MapValidity, SmoothSurfaceNearNormalIncidenceGhsAgreesWithKirchhoff) {
     EXPECT_GT(ghs.comparison.directions_used, 20u);
     EXPECT_NEAR(ghs.model_energy, c.reference_energy, 1e-3);
     EXPECT_TRUE(c.verdict.conclusive) << c.verdict.text;
-    EXPECT_TRUE(c.verdict.trusted) << c.verdict.text;
+    // GHS, SSA and two-scale are the same first-order scatter here: within the tolerance, and no lead between them
+    // can beat the reference's noise.
+    const auto& within = c.verdict.within_tolerance;
+    EXPECT_NE(std::find(within.begin(), within.end(), "ghs"), within.end()) << c.verdict.text;
+    EXPECT_FALSE(c.verdict.trusted) << c.verdict.text;
+    EXPECT_GE(c.verdict.indistinguishable.size(), 2u) << c.verdict.text;
     // gamma 3: the rms slope diverges, so ggx_stats (alpha from the slopes) is refused, and said so.
     ASSERT_EQ(surface.refused.size(), 1u);
     EXPECT_EQ(surface.refused.front().rfind("ggx_stats: ", 0), 0u) << surface.refused.front();
@@ -162,7 +169,7 @@ TEST(MapValidity, SmoothSurfaceNearNormalIncidenceGhsAgreesWithKirchhoff) {
 // sigma 0.15 um, L 4 um, gamma 4 at 450 nm (k sigma 2.1): SSA, first order in the heights, is ruled out against
 // Kirchhoff (median error about 100 %), GHS is not.
 TEST(MapValidity, RoughSurfaceRulesOutSsa) {
-    const sv::MapSurface surface = kc_maps(0.15, 4, 4);
+    const sv::MapSurface surface = kc_maps(0.15, 4, 4, 8);  // 4 maps leave the reference 12.6 % noise
     const auto cases = sv::map_validity(surface, ss::material::Conductor::from_name("perfect"), fast_study(450));
     ASSERT_EQ(cases.size(), 1u);
     const sv::MapCase& c = cases.front();
@@ -189,7 +196,10 @@ TEST(MapValidity, VerdictAgainstAnInvalidReferenceIsMarked) {
     EXPECT_FALSE(cases.front().reference_validity.valid);
     EXPECT_FALSE(cases.front().verdict.conclusive);
     EXPECT_FALSE(cases.front().verdict.trusted);
-    EXPECT_EQ(cases.front().verdict.text.rfind("not concluded, the reference is not trusted here", 0), 0u)
+    EXPECT_TRUE(cases.front().verdict.ruled_out.empty()) << cases.front().verdict.text;
+    EXPECT_EQ(cases.front().verdict.reference_problem, cases.front().reference_validity.text);
+    EXPECT_NE(cases.front().verdict.text.find("the reference is outside its validity (Kirchhoff outside its validity"),
+              std::string::npos)
         << cases.front().verdict.text;
     EXPECT_FALSE(sv::table(cases).front().reference_valid);
 }

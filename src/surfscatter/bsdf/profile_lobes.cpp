@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <complex>
 #include <functional>
 #include <optional>
@@ -172,9 +173,9 @@ std::vector<double> uniform_theta_grid(int steps) {
     return grid;
 }
 
-ProfileLobe profile_lobe(const surface::RadialStatistics& statistics, const material::Conductor& conductor,
-                         double lambda_nm, double theta_i_rad, ProfilePolarisation polarisation,
-                         const ProfileModelOptions& options, const std::vector<double>& theta_o_rad) {
+namespace {
+
+void check_lobe_input(double lambda_nm, double theta_i_rad, const std::vector<double>& theta_o_rad) {
     require_finite(lambda_nm, "wavelength (nm)");
     if (lambda_nm < kMinWavelengthNm || lambda_nm > kMaxWavelengthNm)
         fail("wavelength must be between {} and {} nm, got {}", kMinWavelengthNm, kMaxWavelengthNm, lambda_nm);
@@ -183,6 +184,57 @@ ProfileLobe profile_lobe(const surface::RadialStatistics& statistics, const mate
         fail("theta_i must be in [0, 90) degrees, got {}", theta_i_rad * 180 / kPi);
     for (const double t : theta_o_rad)
         if (!(std::abs(t) <= kPi / 2)) fail("theta_o must be in [-90, 90] degrees, got {}", t * 180 / kPi);
+}
+
+}  // namespace
+
+namespace {
+
+// The 1-D GGX lobe of alpha^2 (header), without the input checks.
+std::vector<double> ggx_lobe(double alpha2, const material::Conductor& conductor, double lambda_nm, double theta_i_rad,
+                             ProfilePolarisation polarisation, const std::vector<double>& theta_o_rad) {
+    const double alpha = std::sqrt(alpha2);
+    const auto lambda = [&](double theta) {
+        const double t = std::tan(theta);
+        return 0.5 * (std::sqrt(1 + alpha2 * t * t) - 1);
+    };
+    const double ci = std::cos(theta_i_rad), lambda_i = lambda(theta_i_rad);
+    std::vector<double> out;
+    out.reserve(theta_o_rad.size());
+    for (const double theta_o : theta_o_rad) {
+        const double b = 0.5 * (theta_o - theta_i_rad), theta_d = 0.5 * (theta_i_rad + theta_o);
+        const double p = std::tan(b), cb = std::cos(b);
+        const double slope_density = 0.5 / (alpha * std::pow(1 + p * p / alpha2, 1.5));
+        const double g2 = std::abs(theta_o) < kPi / 2 ? 1 / (1 + lambda_i + lambda(theta_o)) : 0.0;
+        const double value = polarised_reflectance(conductor, std::cos(theta_d), lambda_nm, polarisation) * g2 *
+                             slope_density * std::cos(theta_d) / (2 * cb * cb * cb * ci);
+        if (!std::isfinite(value))
+            fail("GGX profile lobe is not finite at theta_o {} deg (theta_i {} deg, {} nm)", theta_o * 180 / kPi,
+                 theta_i_rad * 180 / kPi, lambda_nm);
+        out.push_back(value);
+    }
+    return out;
+}
+
+}  // namespace
+
+ProfileLobe ggx_profile_lobe(const surface::RadialStatistics& statistics, const material::Conductor& conductor,
+                             double lambda_nm, double theta_i_rad, ProfilePolarisation polarisation,
+                             const std::vector<double>& theta_o_rad) {
+    check_lobe_input(lambda_nm, theta_i_rad, theta_o_rad);
+    const double slope2 = statistics.mean_square_slope(0.0, std::numeric_limits<double>::infinity());
+    if (!std::isfinite(slope2) || !(slope2 > 0))
+        fail("ggx_stats: the rms slope of {} diverges (KC gamma <= 3): GGX from statistics has no alpha",
+             statistics.cache_key());
+    ProfileLobe out;
+    out.intensity_per_rad = ggx_lobe(slope2, conductor, lambda_nm, theta_i_rad, polarisation, theta_o_rad);
+    return out;
+}
+
+ProfileLobe profile_lobe(const surface::RadialStatistics& statistics, const material::Conductor& conductor,
+                         double lambda_nm, double theta_i_rad, ProfilePolarisation polarisation,
+                         const ProfileModelOptions& options, const std::vector<double>& theta_o_rad) {
+    check_lobe_input(lambda_nm, theta_i_rad, theta_o_rad);
     const double k = surface::wavenumber_per_um(lambda_nm);
     const double si = std::sin(theta_i_rad), ci = std::cos(theta_i_rad);
     const double sigma_h = statistics.sigma_h(), variance = sigma_h * sigma_h;

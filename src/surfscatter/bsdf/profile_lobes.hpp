@@ -90,4 +90,17 @@ ProfileLobe profile_lobe(const surface::RadialStatistics& statistics, const mate
                          double lambda_nm, double theta_i_rad, ProfilePolarisation polarisation,
                          const ProfileModelOptions& options, const std::vector<double>& theta_o_rad);
 
+// GGX from statistics in one dimension (docs/MODELS.md "One-dimensional forms", "GGX from statistics"): the cut
+// through the plane of incidence of ggx_stats' GGX (alpha = the rms slope sqrt(<|grad h|^2>) of `statistics`), in
+// geometric optics, with b = (theta_o - theta_i) / 2 the facet's tilt and theta_d = (theta_i + theta_o) / 2 the
+// local incidence:
+//   I(theta_o) = F(theta_d) G2 P2(tan b) cos(theta_d) / (2 cos^3(b) cos(theta_i)),
+// P2(p) = 1 / (2 alpha (1 + p^2 / alpha^2)^(3/2)) the density of the slope along x (GGX's slope density integrated
+// over the slope along y), G2 = 1 / (1 + Lambda(i) + Lambda(o)), Lambda = (sqrt(1 + alpha^2 tan^2) - 1) / 2, F the
+// chosen polarisation's |r|^2. No coherent part. Closed forms: round-off only. Throws Error where the rms slope
+// diverges (KC gamma <= 3), as ggx_stats does, or for bad input as profile_lobe.
+ProfileLobe ggx_profile_lobe(const surface::RadialStatistics& statistics, const material::Conductor& conductor,
+                             double lambda_nm, double theta_i_rad, ProfilePolarisation polarisation,
+                             const std::vector<double>& theta_o_rad);
+
 }  // namespace surfscatter::bsdf

@@ -56,11 +56,12 @@ double incident_power(double k_per_um, double theta_i_rad, double beam_width_um)
 // w = (2 (x + z tan)^2 / g^2 - 1) / (k g cos)^2.
 std::complex<double> thorsos_beam(double k_per_um, double theta_i_rad, double beam_width_um, double x_um, double z_um);
 
-// Profile ends at least this many beam widths from x = 0 (docs/REFERENCE.md: the truncation error it leaves).
-inline constexpr double kProfileBeamMargin = 2.5;
+// Profile ends at least this many beam widths from x = 0: Thorsos' L = 4 g (docs/REFERENCE.md: the truncation error
+// it leaves; validity estimates it per case and refuses where it exceeds the tolerance).
+inline constexpr double kProfileBeamMargin = 2.0;
 
 // Throws Error naming the value for a bad wavelength, angle, beam width or sampling, or a profile that does not
-// hold the beam (its ends within 2.5 g of x = 0).
+// hold the beam (its ends within 2 g of x = 0).
 FarField solve_exact_1d(const Profile& profile, const material::Conductor& conductor, const Exact1dOptions& options);
 
 }  // namespace surfscatter::reference

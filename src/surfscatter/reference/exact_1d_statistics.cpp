@@ -1,5 +1,6 @@
 #include "surfscatter/reference/exact_1d_statistics.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <complex>
@@ -226,6 +227,7 @@ StatisticalResult solve_exact_1d_statistics(const surface::RadialStatistics& sta
                                             const material::Conductor& conductor, const Exact1dOptions& options,
                                             const StatisticalOptions& st) {
     if (st.realizations < 2) fail("realizations must be at least 2 (for a standard error), got {}", st.realizations);
+    if (st.more && st.first_round < 2) fail("the first round must be at least 2 realizations, got {}", st.first_round);
     // The first profile is made before any thread starts, so that bad statistics or lengths fail at once.
     const Profile first = random_profile(statistics, options, st.length_um, st.seed);
     const KirchhoffControl control(statistics, options, first);
@@ -243,23 +245,38 @@ StatisticalResult solve_exact_1d_statistics(const surface::RadialStatistics& sta
             ++next;
         }
     };
-    run_parallel_jobs(st.realizations, st.threads, "exact-1d realizations", st.progress, [&] {
-        return [&](std::size_t r) {
-            const Profile profile = r == 0 ? first : random_profile(statistics, options, st.length_um, st.seed + r);
-            FarField field = solve_exact_1d(profile, conductor, options);
-            std::vector<Complex> b = control.amplitude(profile);
-            std::lock_guard<std::mutex> lock(mutex);
-            if (theta.empty()) theta = field.theta_o_rad;
-            pending.emplace(r, std::make_pair(std::move(field.amplitude), std::move(b)));
-            add_ready();
-        };
-    });
+    const auto summary = [&] {
+        StatisticalResult out = estimates(moments, control, theta);
+        out.beam_half_width_rad =
+            2.0 / (kTwoPi / (options.lambda_nm * 1e-3) * options.beam_width_um * std::cos(options.theta_i_rad));
+        return out;
+    };
+    // With `more`, rounds until it asks for none (or the cap, or an interruption).
+    std::size_t begin = 0, wanted = st.more ? std::min(st.first_round, st.realizations) : st.realizations;
+    while (true) {
+        const std::vector<char> round =
+            run_parallel_jobs(wanted - begin, st.threads, "exact-1d realizations", st.progress, [&] {
+                return [&](std::size_t i) {
+                    const std::size_t r = begin + i;
+                    const Profile profile =
+                        r == 0 ? first : random_profile(statistics, options, st.length_um, st.seed + r);
+                    FarField field = solve_exact_1d(profile, conductor, options);
+                    std::vector<Complex> b = control.amplitude(profile);
+                    std::lock_guard<std::mutex> lock(mutex);
+                    if (theta.empty()) theta = field.theta_o_rad;
+                    pending.emplace(r, std::make_pair(std::move(field.amplitude), std::move(b)));
+                    add_ready();
+                };
+            });
+        begin = wanted;
+        if (!st.more || wanted >= st.realizations || std::find(round.begin(), round.end(), 0) != round.end()) break;
+        const std::size_t extra = st.more(summary());
+        if (extra == 0) break;
+        wanted = std::min(st.realizations, wanted + extra);
+    }
     // Realizations after one that never ran (interrupted), in their order.
     for (const auto& entry : pending) moments.add(entry.second.first, entry.second.second);
-    StatisticalResult out = estimates(moments, control, std::move(theta));
-    out.beam_half_width_rad =
-        2.0 / (kTwoPi / (options.lambda_nm * 1e-3) * options.beam_width_um * std::cos(options.theta_i_rad));
-    return out;
+    return summary();
 }
 
 }  // namespace surfscatter::reference

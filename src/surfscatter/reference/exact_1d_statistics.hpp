@@ -6,6 +6,7 @@
 // (Gaussian, periodic) profiles.
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "surfscatter/material/conductor.hpp"
@@ -14,14 +15,6 @@
 #include "surfscatter/surface/radial_statistics.hpp"
 
 namespace surfscatter::reference {
-
-struct StatisticalOptions {
-    double length_um = 0.0;        // profile length, centred on x = 0
-    std::size_t realizations = 0;  // >= 2
-    std::uint64_t seed = 0;        // realization r uses seed + r
-    int threads = 0;               // 0: all hardware threads
-    bool progress = false;         // progress bar with ETA on stderr
-};
 
 struct StatisticalResult {
     std::vector<double> theta_o_rad;
@@ -38,6 +31,18 @@ struct StatisticalResult {
     // part is the plane-wave lobe blurred by the beam; a comparison with plane-wave models leaves those directions out.
     double beam_half_width_rad = 0.0;
     std::size_t realizations = 0;  // completed (fewer than asked if interrupted)
+};
+
+struct StatisticalOptions {
+    double length_um = 0.0;        // profile length, centred on x = 0
+    std::size_t realizations = 0;  // >= 2; with `more`, the most that are run
+    std::uint64_t seed = 0;        // realization r uses seed + r
+    int threads = 0;               // 0: all hardware threads
+    bool progress = false;         // progress bar with ETA on stderr
+    // Precision on request: when set, realizations run in rounds, the first of `first_round` (>= 2); after each,
+    // more(result so far) says how many more are wanted (0: enough), up to `realizations` in all.
+    std::function<std::size_t(const StatisticalResult&)> more;
+    std::size_t first_round = 16;
 };
 
 // The random profile of realization `index`: a cut through an isotropic surface with `statistics`

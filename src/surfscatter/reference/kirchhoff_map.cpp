@@ -334,11 +334,12 @@ void reduce(const Geometry& g, const std::vector<std::vector<Complex>>& amplitud
         weight += diffuse;
         moment += diffuse * (ex * ex + ey * ey);
     }
-    if (weight * cell > 1e-3 * out.albedo && std::sqrt(moment / weight) < kMinLobeSteps)
-        out.warnings.push_back(fmt::format(
-            "the diffuse lobe is {:.3g} lattice steps wide (rms): sub-areas of {} x {} pixels are too small to "
-            "resolve it",
-            std::sqrt(moment / weight), g.nx, g.ny));
+    if (weight * cell > 1e-3 * out.albedo && std::sqrt(moment / weight) < kMinLobeSteps) {
+        out.lobe_unresolved = fmt::format("the diffuse lobe is {:.3g} lattice steps wide (rms): sub-areas of {} x {} "
+                                          "pixels are too small to resolve it",
+                                          std::sqrt(moment / weight), g.nx, g.ny);
+        out.warnings.push_back(out.lobe_unresolved);
+    }
 }
 
 }  // namespace

@@ -71,6 +71,7 @@ struct KirchhoffResult {
     std::size_t fft_count = 0;               // FFTs per sub-area (bands x terms), the most any sub-area took
     std::size_t band_count = 0;              // q_z bands, the most any sub-area took
     std::vector<std::string> warnings;       // one line each
+    std::string lobe_unresolved;             // the warning when the diffuse lobe is under 3 lattice steps (rms)
 };
 
 // The map's heights are used as they are: remove the form first (heightmap::remove_form). Throws Error for bad

@@ -1,7 +1,12 @@
 #include "surfscatter/validity/validity.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <functional>
+#include <limits>
+#include <memory>
 
 #include <fmt/format.h>
 
@@ -35,16 +40,16 @@ std::string to_string(bsdf::ProfilePolarisation polarisation) {
 
 CurveComparison compare_curves(const std::vector<double>& theta_o_rad, const std::vector<double>& reference,
                                const std::vector<double>& reference_stderr, const std::vector<double>& model,
-                               const Criteria& criteria) {
+                               const Criteria& criteria, const std::vector<char>& left_out) {
     if (reference.size() != theta_o_rad.size() || reference_stderr.size() != theta_o_rad.size() ||
-        model.size() != theta_o_rad.size())
-        fail("compare_curves: grid of {} directions, reference {}, its standard errors {}, model {}",
-             theta_o_rad.size(), reference.size(), reference_stderr.size(), model.size());
+        model.size() != theta_o_rad.size() || (!left_out.empty() && left_out.size() != theta_o_rad.size()))
+        fail("compare_curves: grid of {} directions, reference {}, its standard errors {}, model {}, flags {}",
+             theta_o_rad.size(), reference.size(), reference_stderr.size(), model.size(), left_out.size());
     const double peak = reference.empty() ? 0.0 : *std::max_element(reference.begin(), reference.end());
     CurveComparison c;
     std::vector<double> errors, stderrs;
     for (std::size_t j = 0; j < reference.size(); ++j) {
-        if (!(peak > 0) || reference[j] < criteria.peak_fraction * peak) continue;
+        if (!(peak > 0) || reference[j] < criteria.peak_fraction * peak || (!left_out.empty() && left_out[j])) continue;
         if (reference_stderr[j] > criteria.max_reference_stderr * reference[j]) {
             ++c.directions_excluded;
             continue;
@@ -57,12 +62,14 @@ CurveComparison compare_curves(const std::vector<double>& theta_o_rad, const std
         errors.push_back(error);
         c.used.push_back(j);
         stderrs.push_back(reference_stderr[j] / reference[j]);
+        c.rel_deviation.push_back(model[j] / reference[j] - 1.0);
     }
     c.directions_used = errors.size();
     if (!errors.empty()) {
         c.median_rel_error = median(errors);
         c.reference_median_rel_stderr = median(stderrs);
     }
+    c.reference_rel_stderr = std::move(stderrs);
     return c;
 }
 
@@ -110,55 +117,123 @@ BinnedCurves bin_curves(const std::vector<double>& theta_o_rad, const std::vecto
     return out;
 }
 
-Verdict decide(const std::vector<ModelResult>& models, const Criteria& criteria) {
+namespace {
+
+// The median over the directions used of the largest change of f(d_j, delta) from f(d_j, 0) for a reference
+// moved by delta = +-eps_j of its value, d_j = model / reference - 1 (header).
+template <typename F>
+double median_over_used(const CurveComparison& c, F&& f) {
+    if (c.reference_rel_stderr.empty()) return 0.0;
+    std::vector<double> values(c.reference_rel_stderr.size());
+    for (std::size_t j = 0; j < values.size(); ++j) {
+        const double eps = c.reference_rel_stderr[j], now = f(j, 0.0);
+        values[j] = std::max(std::abs(f(j, eps) - now), std::abs(f(j, -eps) - now));
+    }
+    return median(std::move(values));
+}
+
+// |model / reference - 1| once the reference is moved by the fraction delta of its value.
+double moved_error(double deviation, double delta) { return std::abs((1.0 + deviation) / (1.0 + delta) - 1.0); }
+
+std::string points(double fraction) { return fmt::format("{:.3g}", 100 * fraction); }
+
+}  // namespace
+
+double error_uncertainty(const ModelResult& m) {
+    const CurveComparison& c = m.comparison;
+    const double reference =
+        median_over_used(c, [&](std::size_t j, double delta) { return moved_error(c.rel_deviation[j], delta); });
+    return std::hypot(reference, m.own_rel_uncertainty);
+}
+
+double lead_uncertainty(const ModelResult& a, const ModelResult& b) {
+    const CurveComparison &ca = a.comparison, &cb = b.comparison;
+    if (ca.rel_deviation.size() != cb.rel_deviation.size() || ca.reference_rel_stderr != cb.reference_rel_stderr)
+        fail("lead_uncertainty: {} and {} were not compared at the same directions", a.model, b.model);
+    const double reference = median_over_used(ca, [&](std::size_t j, double delta) {
+        return moved_error(cb.rel_deviation[j], delta) - moved_error(ca.rel_deviation[j], delta);
+    });
+    return std::sqrt(reference * reference + a.own_rel_uncertainty * a.own_rel_uncertainty +
+                     b.own_rel_uncertainty * b.own_rel_uncertainty);
+}
+
+Verdict decide(const std::vector<ModelResult>& models, const Criteria& criteria, const std::string& problem) {
     Verdict v;
     if (models.empty()) fail("decide: no models to compare");
     const CurveComparison& c = models.front().comparison;  // the same reference directions for every model
-    if (c.directions_used == 0) {
-        v.text = fmt::format("nothing can be concluded: no direction has a reference with a standard error within {} "
-                             "of its value ({} excluded); use more realizations",
-                             percent(criteria.max_reference_stderr), c.directions_excluded);
-        return v;
-    }
-    std::string ruled_out;
-    for (const ModelResult& m : models)
-        if (m.comparison.median_rel_error > criteria.tolerance + 2 * c.reference_median_rel_stderr) {
-            v.ruled_out.push_back(m.model);
-            ruled_out += fmt::format(" {} ({})", m.model, percent(m.comparison.median_rel_error));
-        }
-    if (!ruled_out.empty()) ruled_out = "; ruled out:" + ruled_out;
-    if (c.reference_median_rel_stderr > criteria.tolerance) {
-        v.text = fmt::format("no model can be certified: the reference's median standard error {} exceeds the "
-                             "tolerance {} (use more realizations){}",
-                             percent(c.reference_median_rel_stderr), percent(criteria.tolerance), ruled_out);
+    std::vector<const ModelResult*> order;
+    for (const ModelResult& m : models) order.push_back(&m);
+    std::stable_sort(order.begin(), order.end(), [](const ModelResult* a, const ModelResult* b) {
+        return a->comparison.median_rel_error < b->comparison.median_rel_error;
+    });
+    if (!problem.empty())
+        v.reference_problem = problem;
+    else if (c.directions_used == 0)
+        v.reference_problem = fmt::format("no direction has a reference with a standard error within {} of its value "
+                                          "({} excluded): use more realizations",
+                                          percent(criteria.max_reference_stderr), c.directions_excluded);
+    else if (c.reference_median_rel_stderr > criteria.tolerance)
+        v.reference_problem = fmt::format("the reference's median standard error {} exceeds the tolerance {}: use "
+                                          "more realizations",
+                                          percent(c.reference_median_rel_stderr), percent(criteria.tolerance));
+    if (!v.reference_problem.empty()) {
+        v.text = "nothing can be concluded and no model is ruled out: the reference is outside its validity (" +
+                 v.reference_problem + ")";
+        if (c.directions_used > 0)
+            v.text += fmt::format("; against it, for information only, the closest is {} ({})", order.front()->model,
+                                  percent(order.front()->comparison.median_rel_error));
         return v;
     }
     v.conclusive = true;
-    const auto best = std::min_element(models.begin(), models.end(), [](const ModelResult& a, const ModelResult& b) {
-        return a.comparison.median_rel_error < b.comparison.median_rel_error;
-    });
-    v.best_model = best->model;
-    const double allowed = criteria.tolerance + c.reference_median_rel_stderr;
-    v.trusted = best->comparison.median_rel_error <= allowed;
-    for (const ModelResult& m : models)
-        if (m.comparison.median_rel_error <= allowed) v.within_tolerance.push_back(m.model);
-    if (v.trusted) {
-        v.text = fmt::format("trust {} (median error {}, worst {}; reference uncertainty {})", best->model,
-                             percent(best->comparison.median_rel_error), percent(best->comparison.worst_rel_error),
-                             percent(c.reference_median_rel_stderr));
-        if (v.within_tolerance.size() > 1) {
-            v.text += fmt::format("; within {} too:", percent(allowed));
-            for (const std::string& name : v.within_tolerance)
-                if (name != best->model) v.text += " " + name;
-        }
-        v.text += ruled_out;
-    } else {
-        v.text = fmt::format("no model is within {} (tolerance + reference uncertainty): the closest is {} "
-                             "(median error {}, worst {})",
-                             percent(allowed), best->model, percent(best->comparison.median_rel_error),
-                             percent(best->comparison.worst_rel_error));
-        v.text += ruled_out;
+    const ModelResult& best = *order.front();
+    v.best_model = best.model;
+    v.indistinguishable.push_back(best.model);
+    double lead = 0, lead_u = 0;
+    std::string runner_up;
+    for (std::size_t i = 1; i < order.size(); ++i) {
+        const double u = lead_uncertainty(best, *order[i]);
+        const double d = order[i]->comparison.median_rel_error - best.comparison.median_rel_error;
+        if (d <= u) v.indistinguishable.push_back(order[i]->model);
+        if (i == 1) lead = d, lead_u = u, runner_up = order[i]->model;
     }
+    std::string ruled_out;
+    for (const ModelResult* m : order) {
+        const double e = m->comparison.median_rel_error;
+        if (e <= criteria.tolerance) v.within_tolerance.push_back(m->model);
+        const double u = error_uncertainty(*m);
+        if (e > criteria.tolerance + 2 * u) {
+            v.ruled_out.push_back(m->model);
+            ruled_out += fmt::format(" {} ({} +- {})", m->model, percent(e), percent(u));
+        }
+    }
+    if (!ruled_out.empty()) ruled_out = "; ruled out:" + ruled_out;
+    const bool best_within = best.comparison.median_rel_error <= criteria.tolerance;
+    v.trusted = best_within && v.indistinguishable.size() == 1;
+    const std::string best_text = fmt::format("{} (median error {} +- {}, worst {})", best.model,
+                                              percent(best.comparison.median_rel_error), percent(error_uncertainty(best)),
+                                              percent(best.comparison.worst_rel_error));
+    std::string tied;
+    for (std::size_t i = 1; i < v.indistinguishable.size(); ++i) {
+        const auto it = std::find_if(order.begin(), order.end(),
+                                     [&](const ModelResult* m) { return m->model == v.indistinguishable[i]; });
+        tied += fmt::format("{}{} ({})", i > 1 ? ", " : "", (*it)->model, percent((*it)->comparison.median_rel_error));
+    }
+    if (v.trusted) {
+        v.text = "trust " + best_text;
+        if (!runner_up.empty())
+            v.text += fmt::format(": {} points ahead of {}, beyond their uncertainty of {}", points(lead), runner_up,
+                                  points(lead_u));
+    } else if (best_within) {
+        v.text = fmt::format("no single model can be trusted: {} and {} are indistinguishable at this reference's "
+                             "uncertainty (lead over {} {} points, uncertainty {}); within the tolerance {}:",
+                             best_text, tied, runner_up, points(lead), points(lead_u), percent(criteria.tolerance));
+        for (const std::string& name : v.within_tolerance) v.text += " " + name;
+    } else {
+        v.text = fmt::format("no model is within the tolerance {}: the closest is {}", percent(criteria.tolerance),
+                             best_text);
+        if (!tied.empty()) v.text += ", indistinguishable from " + tied;
+    }
+    v.text += ruled_out;
     return v;
 }
 
@@ -172,6 +247,94 @@ std::vector<TableRow> table(const std::vector<ProfileCase>& cases) {
     return rows;
 }
 
+double near_specular_half_width_rad(const reference::StatisticalResult& reference) {
+    return 2.0 * reference.beam_half_width_rad;
+}
+
+void mark_near_specular(BinnedCurves& b, double theta_i_rad, double half_width_rad, double bin_rad) {
+    b.near_specular.assign(b.theta_o_rad.size(), 0);
+    b.near_specular_bins = 0;
+    for (std::size_t i = 0; i < b.theta_o_rad.size(); ++i)
+        if (std::abs(b.theta_o_rad[i] - theta_i_rad) < half_width_rad + 0.5 * bin_rad) {
+            b.near_specular[i] = 1;
+            ++b.near_specular_bins;
+        }
+}
+
+namespace {
+
+// The reference's incoherent part binned as the comparison bins it, the bins inside the beam's angular spread left
+// out, with the models' curves.
+BinnedCurves comparison_bins(const reference::StatisticalResult& reference,
+                             const std::vector<std::vector<double>>& models, const ProfileStudy& study,
+                             double lambda_nm, double theta_i_deg) {
+    const double k = 2 * kPi / (lambda_nm * 1e-3), bin = study.criteria.bin_deg * kDegree;
+    BinnedCurves b = bin_curves(reference.theta_o_rad, reference.incoherent, reference.incoherent_stderr, models, bin,
+                                k, study.beam_width_um);
+    mark_near_specular(b, theta_i_deg * kDegree, near_specular_half_width_rad(reference), bin);
+    return b;
+}
+
+// The reference's median relative standard error over the bins a comparison would use.
+double reference_rel_stderr(const reference::StatisticalResult& reference, const ProfileStudy& study,
+                            double lambda_nm, double theta_i_deg) {
+    const BinnedCurves b = comparison_bins(reference, {}, study, lambda_nm, theta_i_deg);
+    const CurveComparison c = compare_curves(b.theta_o_rad, b.reference, b.reference_stderr, b.reference,
+                                             study.criteria, b.near_specular);
+    return c.directions_used > 0 ? c.reference_median_rel_stderr : std::numeric_limits<double>::infinity();
+}
+
+
+// With a target: after each round, how many more realizations the reference needs, from its standard error falling
+// as 1 / sqrt(n) (10 % margin, at most doubling per round: the estimate is noisy); a line with the ETA per round.
+std::function<std::size_t(const reference::StatisticalResult&)> realizations_wanted(const ProfileStudy& study,
+                                                                                   const ProfileCase& pc) {
+    const auto start = std::make_shared<std::chrono::steady_clock::time_point>(std::chrono::steady_clock::now());
+    const double lambda = pc.wavelength_nm, theta_i = pc.theta_i_deg;
+    const std::string label = fmt::format("validity: {} nm, theta_i {} deg, {}", lambda, theta_i,
+                                          to_string(pc.polarisation));
+    return [&study, start, lambda, theta_i, label](const reference::StatisticalResult& r) -> std::size_t {
+        const double stderr_now = reference_rel_stderr(r, study, lambda, theta_i);
+        const double n = static_cast<double>(r.realizations);
+        if (stderr_now <= study.target_rel_stderr) return 0;
+        const double needed = std::isfinite(stderr_now)
+                                  ? std::ceil(1.1 * n * std::pow(stderr_now / study.target_rel_stderr, 2))
+                                  : 2 * n;
+        const double capped = std::min(needed, static_cast<double>(study.statistical.realizations));
+        const std::size_t more = static_cast<std::size_t>(std::max(1.0, std::min(capped - n, n)));
+        if (study.progress) {
+            const double seconds =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - *start).count();
+            std::fprintf(stderr, "%s: %zu realizations, reference median standard error %.3g %% (target %.3g %%): "
+                                 "about %.0f in all, ETA %s\n",
+                         label.c_str(), r.realizations, 100 * stderr_now, 100 * study.target_rel_stderr, capped,
+                         format_duration(seconds / n * (capped - n)).c_str());
+            std::fflush(stderr);
+        }
+        return more;
+    };
+}
+
+// The far field a flat profile of the same length and sampling diffracts at its ends: its pattern against that of
+// one twice as long (whose ends lie where the beam is e^-3 times weaker), per radian.
+std::vector<double> edge_diffraction(const material::Conductor& conductor, const reference::Exact1dOptions& options,
+                                     double length_um) {
+    const auto flat = [&](double length) {
+        reference::Profile profile;
+        profile.spacing_um = options.lambda_nm * 1e-3 / options.points_per_wavelength;
+        const auto n = static_cast<std::size_t>(std::ceil(length / profile.spacing_um)) + 1;
+        profile.x0_um = -0.5 * profile.spacing_um * static_cast<double>(n - 1);
+        profile.h_um.assign(n, 0.0);
+        return reference::solve_exact_1d(profile, conductor, options).intensity_per_rad();
+    };
+    std::vector<double> edge = flat(length_um);
+    const std::vector<double> longer = flat(2 * length_um);
+    for (std::size_t j = 0; j < edge.size(); ++j) edge[j] = std::abs(edge[j] - longer[j]);
+    return edge;
+}
+
+}  // namespace
+
 std::vector<ProfileCase> profile_validity(const surface::RadialStatistics& statistics,
                                           const material::Conductor& conductor, const ProfileStudy& study) {
     if (study.wavelengths_nm.empty()) fail("validity: no wavelengths given");
@@ -181,6 +344,8 @@ std::vector<ProfileCase> profile_validity(const surface::RadialStatistics& stati
         if (!(theta >= 0 && theta < 90)) fail("validity: theta_i must be in [0, 90) degrees, got {}", theta);
     for (const double lambda : study.wavelengths_nm)
         if (!(lambda > 0) || !std::isfinite(lambda)) fail("validity: wavelength must be > 0 nm, got {}", lambda);
+    if (!(study.target_rel_stderr >= 0 && study.target_rel_stderr < 1))
+        fail("validity: the target standard error must be in [0, 1), got {}", study.target_rel_stderr);
     const std::vector<bsdf::ProfileModel> model_kinds{bsdf::ProfileModel::ghs, bsdf::ProfileModel::ghs_ssa,
                                                       bsdf::ProfileModel::kirchhoff};
     const std::size_t total = study.wavelengths_nm.size() * study.theta_i_deg.size() * study.polarisations.size();
@@ -201,31 +366,64 @@ std::vector<ProfileCase> profile_validity(const surface::RadialStatistics& stati
                 pc.wavelength_nm = lambda;
                 pc.theta_i_deg = theta_i;
                 pc.polarisation = polarisation;
-                pc.reference = reference::solve_exact_1d_statistics(statistics, conductor, options, study.statistical);
-                if (pc.reference.realizations < study.statistical.realizations) return cases;  // interrupted
+                reference::StatisticalOptions statistical = study.statistical;
+                if (study.target_rel_stderr > 0) statistical.more = realizations_wanted(study, pc);
+                pc.reference = reference::solve_exact_1d_statistics(statistics, conductor, options, statistical);
+                if (interrupt_requested()) return cases;  // a case cut short is dropped
+                pc.reference_rel_stderr = reference_rel_stderr(pc.reference, study, lambda, theta_i);
+                pc.target_reached = pc.reference_rel_stderr <= study.target_rel_stderr || study.target_rel_stderr == 0;
                 pc.reference_energy = trapezoid(pc.reference.theta_o_rad, pc.reference.intensity);
                 std::vector<std::vector<double>> curves;
-                for (const auto kind : model_kinds) {
-                    bsdf::ProfileModelOptions model_options;
-                    model_options.model = kind;
-                    const auto lobe = bsdf::profile_lobe(statistics, conductor, lambda, theta_i * kDegree,
-                                                         polarisation, model_options, pc.reference.theta_o_rad);
+                const auto add = [&](const std::string& name, const bsdf::ProfileLobe& lobe) {
                     ModelResult m;
-                    m.model = bsdf::to_string(kind);
+                    m.model = name;
                     m.coherent = lobe.coherent;
                     m.model_energy = lobe.coherent + trapezoid(pc.reference.theta_o_rad, lobe.intensity_per_rad);
                     m.incoherent_per_rad = lobe.intensity_per_rad;
                     curves.push_back(lobe.intensity_per_rad);
                     pc.models.push_back(std::move(m));
+                };
+                for (const auto kind : model_kinds) {
+                    bsdf::ProfileModelOptions model_options;
+                    model_options.model = kind;
+                    add(bsdf::to_string(kind), bsdf::profile_lobe(statistics, conductor, lambda, theta_i * kDegree,
+                                                                  polarisation, model_options,
+                                                                  pc.reference.theta_o_rad));
                 }
-                pc.binned = bin_curves(pc.reference.theta_o_rad, pc.reference.incoherent,
-                                       pc.reference.incoherent_stderr, curves, study.criteria.bin_deg * kDegree,
-                                       2 * kPi / (lambda * 1e-3), study.beam_width_um);
+                try {
+                    add("ggx_stats", bsdf::ggx_profile_lobe(statistics, conductor, lambda, theta_i * kDegree,
+                                                            polarisation, pc.reference.theta_o_rad));
+                } catch (const Error& e) {
+                    pc.not_compared.push_back(e.what());
+                }
+                curves.push_back(edge_diffraction(conductor, options, study.statistical.length_um));
+                pc.binned = comparison_bins(pc.reference, curves, study, lambda, theta_i);
+                const CurveComparison edge = compare_curves(pc.binned.theta_o_rad, pc.binned.reference,
+                                                            pc.binned.reference_stderr, pc.binned.models.back(),
+                                                            study.criteria, pc.binned.near_specular);
+                pc.binned.models.pop_back();
+                if (edge.directions_used > 0) {
+                    std::vector<double> ratios;
+                    for (const double d : edge.rel_deviation) ratios.push_back(1.0 + d);
+                    pc.edge_rel_error = median(ratios);
+                }
                 for (std::size_t m = 0; m < pc.models.size(); ++m)
                     pc.models[m].comparison = compare_curves(pc.binned.theta_o_rad, pc.binned.reference,
                                                              pc.binned.reference_stderr, pc.binned.models[m],
-                                                             study.criteria);
-                pc.verdict = decide(pc.models, study.criteria);
+                                                             study.criteria, pc.binned.near_specular);
+                const std::string problem =
+                    pc.edge_rel_error > study.criteria.tolerance
+                        ? fmt::format("the profile's ends, {:.3g} beam widths either side of the beam centre, "
+                                      "diffract {} of the reference's median in the bins used, above the tolerance "
+                                      "{}: use a longer --length-um or a narrower --beam-width",
+                                      0.5 * study.statistical.length_um / study.beam_width_um,
+                                      percent(pc.edge_rel_error), percent(study.criteria.tolerance))
+                        : std::string();
+                pc.verdict = decide(pc.models, study.criteria, problem);
+                std::vector<ModelResult> render;
+                for (const ModelResult& m : pc.models)
+                    if (m.model != "kirchhoff") render.push_back(m);
+                pc.render_verdict = decide(render, study.criteria, problem);
                 cases.push_back(std::move(pc));
                 progress.advance();
             }

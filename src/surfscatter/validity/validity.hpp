@@ -1,5 +1,5 @@
 #pragma once
-// Which model to trust for a surface (docs/VALIDITY.md): the 1-D forms of GHS, SSA and Kirchhoff
+// Which model to trust for a surface (docs/VALIDITY.md): the 1-D forms of GHS, SSA, Kirchhoff and GGX from statistics
 // (bsdf/profile_lobes.hpp) against the rigorous exact-1d solution averaged over random profiles
 // (reference/exact_1d_statistics.hpp), per wavelength, incidence and polarisation.
 //
@@ -11,11 +11,20 @@
 // 0.1 deg grid (the reference's coherent part is the Monte Carlo |<a>|^2 spread over the beam's angular width).
 //
 // Before comparing, the curves are averaged over theta_o bins (Criteria::bin_deg, bin_curves below).
-// Verdict per (wavelength, incidence, polarisation): the model of smallest median error is trusted when that median
-// is within `tolerance` plus the reference's own median relative standard error over the directions used (the
-// reference's noise enters the measured error); no model is certified when that standard error exceeds the tolerance
-// itself or no direction is usable. Even then a model whose median error exceeds the tolerance plus twice the
-// reference's standard error is ruled out.
+// Verdict per (wavelength, incidence, polarisation), validity::decide (docs/VALIDITY.md "Verdicts"):
+// * the reference is outside its own validity (no direction usable, its median relative standard error above the
+//   tolerance, or a reason the route gives, e.g. map sub-areas too small to resolve the lobe): nothing is concluded
+//   and no model is ruled out;
+// * otherwise a model's error e (median relative error) has the uncertainty u: the median over the directions used
+//   of the largest change of |m_j / r_j - 1| when the reference moves by +-eps_j of its value (eps_j its relative
+//   standard error), combined in quadrature with the model's own stated accuracy. The lead of the best model a
+//   over another b has the uncertainty u_ab: the median of the largest change of |m_b / r - 1| - |m_a / r - 1| for
+//   the same moves (the reference's error is common to both: it cancels where both lie on the same side of the
+//   reference beyond its error, adds where they straddle it, and counts in full where a move would carry it past
+//   one of them), combined with both models' own accuracies in quadrature;
+// * a is trusted when e_a <= tolerance and e_b - e_a > u_ab for every other model b; the models b with
+//   e_b - e_a <= u_ab are indistinguishable from a and the verdict names them; a model with e > tolerance + 2 u is
+//   ruled out.
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -40,6 +49,8 @@ struct Criteria {
 struct BinnedCurves {
     std::vector<double> theta_o_rad, reference, reference_stderr;
     std::vector<std::vector<double>> models;
+    std::vector<char> near_specular;     // 1 for a bin mark_near_specular leaves out of the comparison (or empty)
+    std::size_t near_specular_bins = 0;
 };
 // The standard error of a bin's mean is the root mean square of its directions' standard errors over
 // sqrt(max(1, bin width / speckle width)): the speckle of one realization is correlated over the beam's angular
@@ -49,6 +60,14 @@ BinnedCurves bin_curves(const std::vector<double>& theta_o_rad, const std::vecto
                         const std::vector<double>& reference_stderr, const std::vector<std::vector<double>>& models,
                         double bin_rad, double k_per_um, double beam_width_um);
 
+// How far from specular (rad, either side) the reference's incoherent part cannot be told from its coherent part:
+// its beam spreads the specular reflection over the Thorsos beam's angular spectrum, whose intensity falls to e^-2
+// at the reference's beam_half_width_rad (2 / (k g cos theta_i)); twice that (intensity e^-8).
+double near_specular_half_width_rad(const reference::StatisticalResult& reference);
+// Marks the bins of `bin_rad` any part of which lies within `half_width_rad` of theta_i (near_specular, counted in
+// near_specular_bins): compare_curves leaves them out, so that a verdict never rests on them.
+void mark_near_specular(BinnedCurves& binned, double theta_i_rad, double half_width_rad, double bin_rad);
+
 struct CurveComparison {
     double median_rel_error = 0;
     double worst_rel_error = 0;
@@ -57,31 +76,44 @@ struct CurveComparison {
     std::size_t directions_excluded = 0;       // above peak_fraction but with too large a standard error
     double reference_median_rel_stderr = 0;    // over the directions used
     std::vector<std::size_t> used;             // indices of the directions used
+    // At the directions used: model / reference - 1, and the reference's standard error / its value.
+    std::vector<double> rel_deviation, reference_rel_stderr;
 };
 
-// `reference`, `reference_stderr` and `model` on the same grid `theta_o_rad`; throws Error on mismatched sizes.
+// `reference`, `reference_stderr` and `model` on the same grid `theta_o_rad`; the directions flagged in `left_out`
+// (empty: none) are not used but count for the reference's peak. Throws Error on mismatched sizes.
 CurveComparison compare_curves(const std::vector<double>& theta_o_rad, const std::vector<double>& reference,
                                const std::vector<double>& reference_stderr, const std::vector<double>& model,
-                               const Criteria& criteria);
+                               const Criteria& criteria, const std::vector<char>& left_out = {});
 
 struct ModelResult {
-    std::string model;  // ghs | ghs_ssa | kirchhoff
+    std::string model;  // ghs | ghs_ssa | kirchhoff | ggx_stats (map route: the factory's names)
     CurveComparison comparison;
     double model_energy = 0;  // coherent + integral of the incoherent part
     std::vector<double> incoherent_per_rad;  // on the reference's grid, before binning
     double coherent = 0;
+    double own_rel_uncertainty = 0;  // the model's stated numerical accuracy, relative
 };
+
+// Uncertainty of a model's median error from the reference's noise and its own accuracy (header).
+double error_uncertainty(const ModelResult& model);
+// Uncertainty of the difference of two models' median errors against the same reference (header).
+double lead_uncertainty(const ModelResult& a, const ModelResult& b);
 
 struct Verdict {
-    bool conclusive = false;
-    bool trusted = false;         // the best model is within the tolerance
-    std::string best_model;       // empty when not conclusive
+    bool conclusive = false;      // the reference is within its validity: the comparison stands
+    bool trusted = false;         // best_model is within the tolerance and ahead of every other beyond uncertainty
+    std::string best_model;       // the smallest median error; empty when not conclusive
+    std::vector<std::string> indistinguishable;  // with best_model, those whose lead is within the uncertainty
     std::vector<std::string> within_tolerance;
-    std::vector<std::string> ruled_out;  // median error > tolerance + 2 x the reference's standard error
-    std::string text;             // one plain sentence
+    std::vector<std::string> ruled_out;  // median error > tolerance + 2 x its uncertainty; none when not conclusive
+    std::string reference_problem;  // why the reference is outside its validity; empty when it is within
+    std::string text;               // one plain sentence
 };
 
-Verdict decide(const std::vector<ModelResult>& models, const Criteria& criteria);
+// `reference_problem`: why the route's reference is outside its validity here (empty when it is not known to be).
+Verdict decide(const std::vector<ModelResult>& models, const Criteria& criteria,
+               const std::string& reference_problem = {});
 
 struct ProfileCase {
     double wavelength_nm = 0, theta_i_deg = 0;
@@ -89,8 +121,19 @@ struct ProfileCase {
     reference::StatisticalResult reference;
     double reference_energy = 0;
     BinnedCurves binned;  // what the comparison used; binned.models in the order of `models`
+    // ghs, ghs_ssa, kirchhoff, then ggx_stats where its rms slope is finite (else in not_compared)
     std::vector<ModelResult> models;
+    std::vector<std::string> not_compared;  // why a model is left out
     Verdict verdict;
+    Verdict render_verdict;  // among the models a renderer offers (all but kirchhoff)
+    // The reference's median relative standard error over the bins the comparison uses (infinite when none is
+    // usable), and whether it reached the target standard error within the cap on realizations (true without one).
+    double reference_rel_stderr = 0;
+    bool target_reached = true;
+    // The estimate of the reference's error from the profile's ends: the median over the bins used of what a flat
+    // profile of the same length diffracts (its pattern against one twice as long) over the reference's incoherent
+    // part. Above the tolerance, the reference is outside its validity.
+    double edge_rel_error = 0;
 };
 
 struct ProfileStudy {
@@ -98,7 +141,11 @@ struct ProfileStudy {
     std::vector<bsdf::ProfilePolarisation> polarisations;
     double beam_width_um = 0;
     double points_per_wavelength = 10;
-    reference::StatisticalOptions statistical;  // length, realizations, seed, threads (progress: per case)
+    // length, realizations (a fixed count; with a target, the cap), seed, threads (progress: per case)
+    reference::StatisticalOptions statistical;
+    // > 0: realizations run until the reference's median relative standard error over the bins used reaches it
+    // (statistical.realizations the most), in rounds, the first of statistical.first_round; 0: a fixed count.
+    double target_rel_stderr = 0;
     Criteria criteria;
     bool progress = false;  // one bar over all cases x realizations, with ETA
 };
