@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "surfscatter/core/output_files.hpp"
 #include "surfscatter/heightmap/io.hpp"
 
 namespace surfscatter::cli {
@@ -53,7 +54,7 @@ heightmap::PreparedMap read_prepared_map(const std::string& path, std::optional<
     const heightmap::Outliers& found = prepared.outliers;
     if (found.count > 0)
         std::fprintf(stderr, "surfscatter: %s: %s: %s\n",
-                     heightmap::kept_and_dominant(found, how.outliers) ? "warning" : "note", path.c_str(),
+                     heightmap::kept_and_dominant(found, how.outliers) ? "warning" : "note", printable_path(path).c_str(),
                      heightmap::describe(found, how.outliers).c_str());
     return prepared;
 }

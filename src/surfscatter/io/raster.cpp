@@ -16,6 +16,7 @@
 #include <tiffio.h>
 
 #include "surfscatter/core/input_file.hpp"
+#include "surfscatter/core/output_files.hpp"
 #include "surfscatter/core/resources.hpp"
 
 namespace surfscatter::io {
@@ -624,11 +625,13 @@ void write_raster(const std::filesystem::path& path, const Raster& raster, Raste
         raster.samples.size() != static_cast<std::size_t>(raster.width) * raster.height * raster.channels)
         fail("cannot write {}: not a valid image ({}x{}, {} channels, {} bits, {} samples)", path.string(), raster.width,
              raster.height, raster.channels, raster.bit_depth, raster.samples.size());
-    switch (format) {
-        case RasterFormat::png: return write_png(path, raster);
-        case RasterFormat::jpeg: return write_jpeg(path, raster, jpeg_quality);
-        case RasterFormat::tiff: return write_tiff(path, raster);
-    }
+    write_atomically(path, [&](const std::filesystem::path& tmp) {
+        switch (format) {
+            case RasterFormat::png: return write_png(tmp, raster);
+            case RasterFormat::jpeg: return write_jpeg(tmp, raster, jpeg_quality);
+            case RasterFormat::tiff: return write_tiff(tmp, raster);
+        }
+    });
 }
 
 }  // namespace surfscatter::io
