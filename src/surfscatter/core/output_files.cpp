@@ -96,11 +96,12 @@ void OutputFiles::output(const fs::path& path, const std::string& what) {
     if (fs::exists(status) && !fs::is_regular_file(status))
         fail("{} {} is not a regular file (a device, FIFO or socket): name a file", what, printable_path(path));
     const fs::path folder = destination.parent_path();
+    const std::string shown_folder = printable_path(path.has_parent_path() ? path.parent_path() : fs::path("."));
     if (!fs::is_directory(folder, ec))
-        fail("cannot write {} {}: folder {} {}", what, printable_path(path), printable_path(folder),
+        fail("cannot write {} {}: folder {} {}", what, printable_path(path), shown_folder,
              fs::exists(folder, ec) ? "is not a folder" : "does not exist");
     if (::access(folder.c_str(), W_OK | X_OK) != 0)
-        fail("cannot write {} {}: folder {}: {}", what, printable_path(path), printable_path(folder), std::strerror(errno));
+        fail("cannot write {} {}: folder {}: {}", what, printable_path(path), shown_folder, std::strerror(errno));
     // A derived name (-o's .json beside a .csv) can pass the limit its output kept to: refused here, not at commit().
     const long name_max = ::pathconf(folder.c_str(), _PC_NAME_MAX);
     if (name_max > 0 && destination.filename().string().size() > static_cast<std::size_t>(name_max))
