@@ -250,7 +250,10 @@ void write_png(const std::filesystem::path& path, const Raster& raster) {
     point_rows(state, static_cast<std::size_t>(raster.height),
                static_cast<std::size_t>(raster.width) * static_cast<std::size_t>(raster.channels) * bytes_per_sample);
     File file = open_for_writing(path);
-    if (!encode_png(state, file.get(), raster)) fail("cannot write PNG {}: {}", path.string(), state.error);
+    errno = 0;
+    if (!encode_png(state, file.get(), raster))  // libpng says "Write Error" where the system names the reason
+        fail("cannot write PNG {}: {}", path.string(),
+             std::ferror(file.get()) && errno != 0 ? std::strerror(errno) : state.error);
     if (std::fclose(file.release()) != 0) fail("cannot write PNG {}: {}", path.string(), std::strerror(errno));
 }
 
