@@ -14,12 +14,14 @@
 #include <string>
 #include <vector>
 
+#include "error_of.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/output_files.hpp"
 
 namespace surfscatter {
 
 namespace fs = std::filesystem;
+using test::error_of;
 
 namespace {
 
@@ -28,15 +30,6 @@ fs::path scratch(const std::string& name) {
     fs::remove_all(dir);
     fs::create_directories(dir);
     return dir;
-}
-
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "no error";
 }
 
 std::string contents(const fs::path& file) {
