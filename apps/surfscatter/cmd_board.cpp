@@ -9,6 +9,7 @@
 #include "board_options.hpp"
 #include "command.hpp"
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/output_files.hpp"
 #include "surfscatter/io/pdf.hpp"
 #include "surfscatter/io/raster.hpp"
 #include "surfscatter/photo/board_image.hpp"
@@ -47,6 +48,9 @@ void run(const Options& o) {
         fail("--output '{}' must end in .png or .pdf (both are written)", o.output);
     const std::filesystem::path png = std::filesystem::path(output).replace_extension(".png");
     const std::filesystem::path pdf = std::filesystem::path(output).replace_extension(".pdf");
+    OutputFiles files;
+    files.output(png, "--output's PNG");
+    files.output(pdf, "--output's PDF");
     const double margin = o.margin ? *o.margin
                           : spec.type == photo::BoardType::Grid ? spec.marker_length
                                                                 : spec.square_length;
@@ -61,12 +65,14 @@ void run(const Options& o) {
     for (int y = 0; y < board.image.rows; ++y)
         for (int x = 0; x < board.image.cols; ++x) raster.at(x, y, 0) = board.image.at<std::uint8_t>(y, x);
     raster.pixels_per_metre = board.pixels_per_metre;
-    io::write_raster(png, raster, io::RasterFormat::png);
-    io::write_image_pdf(pdf, raster, board.width_m, board.height_m);
+    files.write_with(png, [&](const std::filesystem::path& tmp) { io::write_raster(tmp, raster, io::RasterFormat::png); });
+    files.write_with(pdf, [&](const std::filesystem::path& tmp) { io::write_image_pdf(tmp, raster, board.width_m, board.height_m); });
+    files.commit();
 
     std::printf("wrote %s (%d x %d px, %.4g dpi) and %s (page %.1f x %.1f mm); print at 100 %% (no fit to page) and "
                 "measure a %s with a ruler\n",
-                png.c_str(), raster.width, raster.height, board.pixels_per_metre * kMetresPerInch, pdf.c_str(),
+                printable_path(png).c_str(), raster.width, raster.height, board.pixels_per_metre * kMetresPerInch,
+                printable_path(pdf).c_str(),
                 board.width_m * 1e3, board.height_m * 1e3, spec.type == photo::BoardType::Grid ? "marker" : "square");
     std::printf("calibrate and pose with: %s\n", board_arguments(spec).c_str());
 }

@@ -3,10 +3,10 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <optional>
 #include <random>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -21,6 +21,7 @@
 #include "surfscatter/bsdf/rgl_export.hpp"
 #include "surfscatter/bsdf/slice.hpp"
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/output_files.hpp"
 #include "surfscatter/core/paths.hpp"
 #include "surfscatter/core/resources.hpp"
 
@@ -278,9 +279,20 @@ void sample(const BrdfArgs& a) {
     }
 }
 
+// The files the models read, which no output may replace.
+void declare_inputs(OutputFiles& files, const BrdfArgs& a) {
+    files.input(a.surface_file, "--surface");
+    files.input(a.material, "--material");
+}
+
 void slice(const BrdfArgs& a) {
-    check_common(a);
     if (a.plot.empty() && a.csv.empty()) fail("brdf slice needs --plot out.png and/or --csv out.csv");
+    const std::string csv = a.csv.empty() ? std::filesystem::path(a.plot).replace_extension(".csv").string() : a.csv;
+    OutputFiles files;
+    declare_inputs(files, a);
+    files.output(csv, a.csv.empty() ? "--plot's CSV" : "--csv");
+    if (!a.plot.empty()) files.output(a.plot, "--plot");
+    check_common(a);
     if (!a.models.empty() && std::count(a.given.begin(), a.given.end(), "model"))
         fail("brdf slice takes either --model or --models, not both");
     const std::vector<std::string> names = a.models.empty() ? std::vector<std::string>{a.model} : a.models;
@@ -289,16 +301,18 @@ void slice(const BrdfArgs& a) {
     check_given_options_apply(a, options, names);
     std::vector<std::unique_ptr<bsdf::Bsdf>> models;
     for (const auto& o : options) models.push_back(build_model(o));
-    std::string csv = a.csv;
-    if (csv.empty()) csv = std::filesystem::path(a.plot).replace_extension(".csv").string();
-    std::ofstream out(csv);
-    if (!out) fail("--csv: cannot open '{}' for writing", csv);
+    std::ostringstream table;
     for (std::size_t m = 0; m < models.size(); ++m)
-        bsdf::write_slice_csv(out, names[m], *models[m], a.theta_i, a.phi_i, a.wavelength, m == 0);
-    out.close();
+        bsdf::write_slice_csv(table, names[m], *models[m], a.theta_i, a.phi_i, a.wavelength, m == 0);
+    files.write(csv, table.str());
     if (!a.plot.empty())
-        run_plot_script("brdf_slice.py", {csv, a.plot, fmt::format("{} nm", format_number(a.wavelength))});
-    std::printf("wrote %s%s%s\n", csv.c_str(), a.plot.empty() ? "" : " and ", a.plot.c_str());
+        files.write_with(a.plot, [&](const std::filesystem::path& png) {
+            run_plot_script("brdf_slice.py",
+                            {files.staged(csv).string(), png.string(), fmt::format("{} nm", format_number(a.wavelength))});
+        });
+    files.commit();
+    std::printf("wrote %s%s%s\n", printable_path(csv).c_str(), a.plot.empty() ? "" : " and ",
+                printable_path(a.plot).c_str());
 }
 
 // The surface and material options shared by every brdf subcommand.
@@ -310,9 +324,11 @@ void export_rgl_file(const BrdfArgs& a) {
     if (a.output.empty()) fail("-o FILE.bsdf is required");
     bsdf::check_rgl_accuracy({}, a.tolerance_percent, "--tolerance", a.output);  // the value, before the work
     const std::filesystem::path out(a.output);
-    if (!a.surface_file.empty() && std::filesystem::exists(out) &&
-        std::filesystem::equivalent(out, std::filesystem::path(a.surface_file)))
-        fail("-o {} is the input --surface map; choose another output", printable(a.output, kShownPathChars));
+    const std::string side = a.output + ".specular.csv";
+    OutputFiles files;
+    declare_inputs(files, a);
+    files.output(out, "-o");
+    files.output(side, "-o's specular CSV");
     const auto model = single_model(a);
     bsdf::RglExportOptions o = a.export_options;
     o.rgb = a.format == "rgl-rgb";
@@ -332,33 +348,37 @@ void export_rgl_file(const BrdfArgs& a) {
         fmt::format("surfscatter {} export ({}{})", model->name(), a.format,
                     with_lobe ? fmt::format(", specular part as a {} deg lobe", format_number(a.specular_lobe_deg)) : "");
     const bsdf::RglData data = bsdf::export_rgl(tabulated, o, description);
-    bsdf::write_rgl(out, data);
-    std::printf("wrote %s (%zu incidences x %zu azimuths, %zu x %zu samples, %s)\n", a.output.c_str(),
-                data.theta_i.size(), data.phi_i.size(), data.rows, data.cols,
-                o.rgb ? "rgb" : fmt::format("{} wavelengths {}-{} nm", data.wavelengths.size(), data.wavelengths.front(),
-                                            data.wavelengths.back()).c_str());
-    if (with_lobe) {
-        std::printf("the coherent specular part (reflectance up to %s) is in the file as a lobe of %s deg about the "
-                    "mirror direction (docs/RENDERER.md \"Exporting to Mitsuba 3 and pbrt-v4\")\n",
-                    format_number(delta_peak).c_str(), format_number(a.specular_lobe_deg).c_str());
-    } else if (delta_peak > 0) {
+    files.write_with(out, [&](const std::filesystem::path& tmp) { bsdf::write_rgl(tmp, data); });
+    const bool side_csv = !with_lobe && delta_peak > 0;
+    if (side_csv) {
         std::string csv = "theta_deg";
         for (double l : lambdas) csv += fmt::format(",R_{}nm", format_number(l));
         csv += "\n";
         for (std::size_t i = 0; i < thetas.size(); ++i) {
             csv += format_number(thetas[i]);
-            for (std::size_t k = 0; k < lambdas.size(); ++k)
-                csv += "," + format_number(delta.reflectance[i * lambdas.size() + k]);
+            for (std::size_t k = 0; k < lambdas.size(); ++k) {
+                csv += ',';  // not `"," + std::string`: g++ 12's false -Wrestrict
+                csv += format_number(delta.reflectance[i * lambdas.size() + k]);
+            }
             csv += "\n";
         }
-        const std::string side = a.output + ".specular.csv";
-        write_file_atomically(side, csv);
-        std::printf("wrote %s: the coherent specular (delta) reflectance, up to %s, which the file leaves out "
-                    "(--specular-lobe DEG puts it in the file; docs/RENDERER.md \"Exporting to Mitsuba 3 and pbrt-v4\")\n",
-                    side.c_str(), format_number(delta_peak).c_str());
+        files.write(side, csv);
     }
     // The written file read back from disk and evaluated as Mitsuba 3 and pbrt-v4 do, against the model.
-    const bsdf::RglAccuracy acc = bsdf::rgl_file_accuracy(tabulated, out, o);
+    const bsdf::RglAccuracy acc = bsdf::rgl_file_accuracy(tabulated, files.staged(out), o);
+    files.commit();
+    std::printf("wrote %s (%zu incidences x %zu azimuths, %zu x %zu samples, %s)\n", printable_path(a.output).c_str(),
+                data.theta_i.size(), data.phi_i.size(), data.rows, data.cols,
+                o.rgb ? "rgb" : fmt::format("{} wavelengths {}-{} nm", data.wavelengths.size(), data.wavelengths.front(),
+                                            data.wavelengths.back()).c_str());
+    if (with_lobe)
+        std::printf("the coherent specular part (reflectance up to %s) is in the file as a lobe of %s deg about the "
+                    "mirror direction (docs/RENDERER.md \"Exporting to Mitsuba 3 and pbrt-v4\")\n",
+                    format_number(delta_peak).c_str(), format_number(a.specular_lobe_deg).c_str());
+    if (side_csv)
+        std::printf("wrote %s: the coherent specular (delta) reflectance, up to %s, which the file leaves out "
+                    "(--specular-lobe DEG puts it in the file; docs/RENDERER.md \"Exporting to Mitsuba 3 and pbrt-v4\")\n",
+                    printable_path(side).c_str(), format_number(delta_peak).c_str());
     std::printf("accuracy: the file against the model at %zu directions (random and from the model's sampler, "
                 "where f >= 1 %% of its peak and theta_o <= 80 deg): worst %.2f %% at %s, rms %.2f %%\n",
                 acc.compared, 100 * acc.worst, bsdf::rgl_accuracy_where(acc).c_str(), 100 * acc.rms);

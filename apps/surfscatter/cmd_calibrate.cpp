@@ -8,6 +8,7 @@
 #include "board_options.hpp"
 #include "command.hpp"
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/output_files.hpp"
 #include "surfscatter/photo/calibration.hpp"
 #include "surfscatter/photo/photo_io.hpp"
 
@@ -22,12 +23,16 @@ struct Options {
 };
 
 void run(const Options& o) {
+    OutputFiles files;
+    for (const auto& path : o.images) files.input(path, "image");
+    files.output(o.output, "-o");
     const photo::BoardSpec spec = o.board.spec();
 
     std::vector<photo::CalibrationInput> views;
     for (const auto& path : o.images) views.push_back({path, photo::read_photo(path).rgb});
     const photo::CalibrationResult result = photo::calibrate_camera(views, spec, o.fit_k3);
-    photo::write_camera(o.output, result.camera);
+    files.write_with(o.output, [&](const std::filesystem::path& tmp) { photo::write_camera(tmp, result.camera); });
+    files.commit();
 
     const auto& c = result.camera;
     std::printf("image,board_found,rms_reprojection_error_px\n");
@@ -42,10 +47,10 @@ void run(const Options& o) {
                  "(one standard deviation), distortion [%s], RMS reprojection error %.4f px over %zu images; wrote %s\n",
                  c.image_size.width, c.image_size.height, c.fx(), sd[0], c.fy(), sd[1], c.cx(), sd[2], c.cy(), sd[3],
                  fmt::format("{:.6g}", fmt::join(c.distortion, ", ")).c_str(), c.rms_reprojection_error,
-                 result.used.size(), o.output.c_str());
+                 result.used.size(), printable_path(o.output).c_str());
     for (const auto& warning : c.calibration_warnings)
         std::fprintf(stderr, "surfscatter: calibrate: warning: %s (recorded in %s)\n", warning.c_str(),
-                     o.output.c_str());
+                     printable_path(o.output).c_str());
 }
 
 const Command command("calibrate", [](CLI::App& app) {

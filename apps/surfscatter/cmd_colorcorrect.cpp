@@ -1,6 +1,5 @@
 // surfscatter colorcorrect: 3x3 colour correction matrix from an X-Rite ColorChecker Classic in the photograph.
 #include <cstdio>
-#include <fstream>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -10,6 +9,7 @@
 
 #include "command.hpp"
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/output_files.hpp"
 #include "surfscatter/photo/chart_correction.hpp"
 #include "surfscatter/photo/photo_io.hpp"
 
@@ -51,6 +51,12 @@ std::array<cv::Point2f, 4> parse_corners(const std::string& text) {
 }
 
 void run(const Options& o) {
+    OutputFiles files;
+    files.input(o.photo, "photo");
+    files.input(o.flat_field, "--flat-field");
+    files.input(o.reference, "--reference");
+    files.output(o.output, "-o");
+    files.output(o.ccm_output, "--ccm");
     photo::ChartCorrectionOptions options;
     options.objective = photo::ccm_objective_by_name(o.fit);
     options.preserve_white = o.preserve_white;
@@ -63,13 +69,11 @@ void run(const Options& o) {
     if (!o.flat_field.empty()) flat = photo::read_photo(o.flat_field, photo::Encoding::Linear);
     photo::ChartCorrection result = photo::correct_with_chart(image, flat ? &*flat : nullptr, o.flat_field, options);
 
-    photo::write_photo(o.output, result.corrected);
+    files.write_with(o.output, [&](const std::filesystem::path& tmp) { photo::write_photo(tmp, result.corrected); });
     nlohmann::json& j = result.json;
     j["photo"] = o.photo;
-    std::ofstream out(o.ccm_output);
-    if (!out) fail("output '{}' could not be written", o.ccm_output);
-    out << j.dump(2) << "\n";
-    if (!out) fail("output '{}' could not be written", o.ccm_output);
+    files.write(o.ccm_output, j.dump(2) + "\n");
+    files.commit();
 
     const auto& before = result.before;
     const auto& after = result.after;
@@ -81,7 +85,7 @@ void run(const Options& o) {
                  "%.3f -> %s, %s\n",
                  options.chart_corners ? "from --chart-corners" : "found by mcc",
                  photo::linearization_name(result.fit.curve.family()).c_str(), result.chosen_by.c_str(), before.mean,
-                 after.mean, before.max, after.max, o.output.c_str(), o.ccm_output.c_str());
+                 after.mean, before.max, after.max, printable_path(o.output).c_str(), printable_path(o.ccm_output).c_str());
     for (const auto& c : result.clipped)
         std::fprintf(stderr,
                      "surfscatter: colorcorrect: warning: %s is clipped (code at the top of the range): its colour "

@@ -12,6 +12,7 @@
 #include "command.hpp"
 #include "list_options.hpp"
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/output_files.hpp"
 #include "surfscatter/core/paths.hpp"
 #include "surfscatter/photo/compare.hpp"
 #include "surfscatter/photo/photo_io.hpp"
@@ -29,6 +30,15 @@ struct Options {
 };
 
 void run(const Options& o) {
+    const std::filesystem::path stem = std::filesystem::path(o.output).replace_extension();
+    const std::string csv_path = stem.string() + ".csv", json_path = stem.string() + ".json";
+    OutputFiles files;
+    files.input(o.photo, "photo");
+    for (const std::string& render : o.renders) files.input(render, "rendering");
+    files.input(o.mask, "--mask");
+    files.output(o.output, "-o");
+    files.output(csv_path, "-o's CSV");
+    files.output(json_path, "-o's JSON");
     if (!o.labels.empty() && o.labels.size() != o.renders.size())
         fail("--labels has {} entries for {} renderings", o.labels.size(), o.renders.size());
     const auto encoding = photo::encoding_by_name(o.encoding);
@@ -46,10 +56,8 @@ void run(const Options& o) {
         }
     }
     const cv::Mat sheet = photo::comparison_sheet(photo_rgb, renders, mask, metrics);
-    photo::write_display_image(o.output, sheet);
+    files.write_with(o.output, [&](const std::filesystem::path& tmp) { photo::write_display_image(tmp, sheet); });
 
-    const std::filesystem::path stem = std::filesystem::path(o.output).replace_extension();
-    const std::string csv_path = stem.string() + ".csv", json_path = stem.string() + ".json";
     const std::string header = "label,render,exposure_scale,rmse,psnr_db,ssim,mean_ciede2000";
     std::ostringstream csv;
     csv << header << "\n";
@@ -74,11 +82,12 @@ void run(const Options& o) {
                                 {"mean_ciede2000", m.mean_ciede2000}});
     }
     // Checked writes (a full disk fails, leaving no partial file).
-    write_file_atomically(csv_path, csv.str());
-    write_file_atomically(json_path, j.dump(2) + "\n");
+    files.write(csv_path, csv.str());
+    files.write(json_path, j.dump(2) + "\n");
+    files.commit();
     std::fputs(csv.str().c_str(), stdout);  // after the files: a failed write prints nothing
-    std::fprintf(stderr, "surfscatter: compare: %zu rendering(s) -> %s, %s, %s\n", metrics.size(), o.output.c_str(),
-                 csv_path.c_str(), json_path.c_str());
+    std::fprintf(stderr, "surfscatter: compare: %zu rendering(s) -> %s, %s, %s\n", metrics.size(),
+                 printable_path(o.output).c_str(), printable_path(csv_path).c_str(), printable_path(json_path).c_str());
 }
 
 const Command command("compare", [](CLI::App& app) {

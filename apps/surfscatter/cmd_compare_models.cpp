@@ -13,6 +13,7 @@
 #include "scene_defines.hpp"
 #include "study_runner.hpp"
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/output_files.hpp"
 #include "surfscatter/core/paths.hpp"
 #include "surfscatter/render/scene.hpp"
 

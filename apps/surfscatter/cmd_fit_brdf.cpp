@@ -13,6 +13,7 @@
 #include "surfscatter/bsdf/model_options.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/input_file.hpp"
+#include "surfscatter/core/output_files.hpp"
 #include "surfscatter/core/paths.hpp"
 #include "surfscatter/inverse/fit_report.hpp"
 
@@ -39,17 +40,18 @@ std::map<std::string, double> parse_fixes(const std::vector<std::string>& fixes)
     return fixed;
 }
 
-// No output may replace the input.
-void require_not_input(const std::filesystem::path& output, const std::string& input) {
-    std::error_code ec;
-    if (std::filesystem::equivalent(output, input, ec) || output == std::filesystem::path(input))
-        fail("-o would overwrite the input {}: choose another name", printable(output.string(), kShownPathChars));
-}
-
 void run(const FitArgs& a) {
     const bool rgl = std::filesystem::path(a.data).extension() == ".bsdf";
     if (!rgl && !a.wavelengths.empty()) fail("--wavelengths applies to RGL .bsdf data only (a CSV names its own)");
     const std::vector<double> wavelengths = a.wavelengths.empty() ? std::vector<double>{450, 550, 650} : a.wavelengths;
+    const std::string out = a.output;
+    const std::filesystem::path json_path = out + ".json", csv_path = out + ".csv", png_path = out + "_residuals.png";
+    OutputFiles files;
+    files.input(a.data, "--data");
+    files.input(a.material, "--material");
+    files.output(json_path, "-o's JSON");
+    files.output(csv_path, "-o's CSV");
+    files.output(png_path, "-o's residuals plot");
     inverse::FitOptions options;
     options.material = a.material;
     options.psd = bsdf::parse_psd(a.psd, "--psd");
@@ -61,24 +63,25 @@ void run(const FitArgs& a) {
         options.models.clear();
         for (const std::string& m : a.models) options.models.push_back(bsdf::parse_model(m, "--model"));
     }
-    const std::string out = a.output;
-    const std::filesystem::path json_path = out + ".json", csv_path = out + ".csv", png_path = out + "_residuals.png";
-    for (const auto& p : {json_path, csv_path, png_path}) require_not_input(p, a.data);
     const inverse::BrdfData data = rgl ? inverse::read_brdf_rgl(a.data, wavelengths) : inverse::read_brdf_csv(a.data);
     if (rgl) {
         std::string listed;
         for (double l : wavelengths) listed += (listed.empty() ? "" : ",") + format_number(l);
         std::printf("read %zu values from %s: its sample nodes at each incidence below 89 deg, at %s nm (docs/FIT.md "
                     "\"RGL measured files\")\n",
-                    data.size(), a.data.c_str(), listed.c_str());
+                    data.size(), printable_path(a.data).c_str(), listed.c_str());
     }
     const inverse::FitResult result = inverse::fit_brdf(data, options);
-    write_file_atomically(json_path, inverse::fit_json(data, options, result).dump(2) + "\n");
-    write_file_atomically(csv_path, inverse::fit_csv(data, result));
-    run_plot_script("fit_brdf.py", {csv_path.string(), json_path.string(), png_path.string()});
+    files.write(json_path, inverse::fit_json(data, options, result).dump(2) + "\n");
+    files.write(csv_path, inverse::fit_csv(data, result));
+    files.write_with(png_path, [&](const std::filesystem::path& png) {
+        run_plot_script("fit_brdf.py", {files.staged(csv_path).string(), files.staged(json_path).string(), png.string()});
+    });
+    files.commit();
     for (const auto& fit : result.fits) std::printf("%s\n", inverse::summary_line(fit).c_str());
     std::printf("%s\n", result.verdict.c_str());
-    std::printf("wrote %s, %s and %s\n", json_path.c_str(), csv_path.c_str(), png_path.c_str());
+    std::printf("wrote %s, %s and %s\n", printable_path(json_path).c_str(), printable_path(csv_path).c_str(),
+                printable_path(png_path).c_str());
 }
 
 const Command command("fit-brdf", [](CLI::App& app) {

@@ -16,6 +16,7 @@
 #include "command.hpp"
 #include "list_options.hpp"
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/output_files.hpp"
 #include "surfscatter/core/paths.hpp"
 #include "surfscatter/material/conductor.hpp"
 #include "surfscatter/spectrum/blackbody.hpp"
@@ -42,16 +43,27 @@ void run_metals(MetalsArgs a) {
     require_finite(a.max_wavelength, "--max-wavelength");
     if (!(a.max_wavelength > a.min_wavelength))
         fail("--max-wavelength {} must exceed --min-wavelength {}", a.max_wavelength, a.min_wavelength);
-    if (a.materials.empty()) a.materials = material::builtin_metal_names();
-    std::vector<material::Conductor> metals;
-    for (const auto& m : a.materials) metals.push_back(material::Conductor::from_name(m));
     std::error_code ec;
     if (std::filesystem::exists(a.out, ec) && !std::filesystem::is_directory(a.out, ec))
         fail("--out {} exists and is not a directory", a.out.string());
     std::filesystem::create_directories(a.out);
+    const auto reflectance_path = a.out / "metals_reflectance.csv", swatch_path = a.out / "metals_swatches.csv",
+               json_path = a.out / "metals_swatches.json", reflectance_png = a.out / "metals_reflectance.png",
+               swatch_png = a.out / "metals_swatches.png";
+    OutputFiles files;
+    for (const auto& m : a.materials) files.input(m, "--material");
+    files.output(reflectance_path, "--out's reflectance CSV");
+    files.output(swatch_path, "--out's swatch CSV");
+    files.output(json_path, "--out's swatch JSON");
+    if (a.plot) {
+        files.output(reflectance_png, "--out's reflectance plot");
+        files.output(swatch_png, "--out's swatch plot");
+    }
+    if (a.materials.empty()) a.materials = material::builtin_metal_names();
+    std::vector<material::Conductor> metals;
+    for (const auto& m : a.materials) metals.push_back(material::Conductor::from_name(m));
 
     // Normal-incidence reflectance, 1 nm steps.
-    const auto reflectance_path = a.out / "metals_reflectance.csv";
     {
         std::ostringstream csv;
         csv << "wavelength_nm";
@@ -62,7 +74,7 @@ void run_metals(MetalsArgs a) {
             for (const auto& m : metals) csv << "," << format_number(m.reflectance(1.0, l));
             csv << "\n";
         }
-        write_file_atomically(reflectance_path, csv.str());  // checked; on a full disk nothing is left behind
+        files.write(reflectance_path, csv.str());
     }
 
     // Colour under the lamp: XYZ with the perfect reflector at Y = 1, then either white-balanced to the lamp
@@ -78,7 +90,6 @@ void run_metals(MetalsArgs a) {
     json["geometry"] = "normal incidence, specular";
     json["white_balance"] = "Bradford from the lamp white to D65, then linear sRGB (IEC 61966-2-1)";
     json["as_lit_scale"] = as_lit_scale;
-    const auto swatch_path = a.out / "metals_swatches.csv";
     std::ostringstream csv;
     csv << "metal,X,Y,Z,x,y,r_linear,g_linear,b_linear,r8,g8,b8,r_linear_as_lit,g_linear_as_lit,b_linear_as_lit,"
            "r8_as_lit,g8_as_lit,b8_as_lit\n";
@@ -109,17 +120,16 @@ void run_metals(MetalsArgs a) {
                                   {"linear_srgb_as_lit", {as_lit.x, as_lit.y, as_lit.z}},
                                   {"srgb8_as_lit", {to_8bit(as_lit8.x), to_8bit(as_lit8.y), to_8bit(as_lit8.z)}}});
     }
-    write_file_atomically(swatch_path, csv.str());
-    const auto json_path = a.out / "metals_swatches.json";
-    write_file_atomically(json_path, json.dump(2) + "\n");
-
+    files.write(swatch_path, csv.str());
+    files.write(json_path, json.dump(2) + "\n");
     if (a.plot)
-        run_plot_script("metals.py", {reflectance_path.string(), json_path.string(),
-                                      (a.out / "metals_reflectance.png").string(),
-                                      (a.out / "metals_swatches.png").string()});
-    std::printf("%s\n%s\n%s\n", reflectance_path.c_str(), swatch_path.c_str(), json_path.c_str());
-    if (a.plot)
-        std::printf("%s\n%s\n", (a.out / "metals_reflectance.png").c_str(), (a.out / "metals_swatches.png").c_str());
+        files.write_together({reflectance_png, swatch_png}, [&](const std::vector<std::filesystem::path>& png) {
+            run_plot_script("metals.py", {files.staged(reflectance_path).string(), files.staged(json_path).string(),
+                                          png[0].string(), png[1].string()});
+        });
+    files.commit();  // on a full disk nothing is left behind
+    for (const auto& path : {reflectance_path, swatch_path, json_path}) std::printf("%s\n", printable_path(path).c_str());
+    if (a.plot) std::printf("%s\n%s\n", printable_path(reflectance_png).c_str(), printable_path(swatch_png).c_str());
 }
 
 const Command command("metals", [](CLI::App& app) {

@@ -1,7 +1,6 @@
 // surfscatter pose: camera pose from an ArUco marker or a whole ChArUco / ArUco grid board in a photograph, in the
 // scene frame (photo/pose.hpp), with its uncertainty, the ambiguity check, and the matching Mitsuba-style <sensor>.
 #include <cstdio>
-#include <fstream>
 #include <optional>
 #include <string>
 
@@ -10,6 +9,7 @@
 #include "board_options.hpp"
 #include "command.hpp"
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/output_files.hpp"
 #include "surfscatter/photo/photo_io.hpp"
 #include "surfscatter/photo/pose_report.hpp"
 
@@ -26,6 +26,10 @@ struct Options {
 };
 
 void run(const Options& o) {
+    OutputFiles files;
+    files.input(o.photo, "photo");
+    files.input(o.camera, "--camera");
+    files.output(o.output, "-o");
     if (!o.board.board.empty() && o.marker_id) fail("--marker-id is for a single marker, not with --board");
     if (o.board.board.empty() && o.board.board_options_given())
         fail("--squares, --markers, --square-length and --marker-separation describe a board: give --board too");
@@ -42,10 +46,8 @@ void run(const Options& o) {
     nlohmann::json& j = report.json;
     j["photo"] = o.photo;
     j["camera_file"] = o.camera;
-    std::ofstream out(o.output);
-    if (!out) fail("output '{}' could not be written", o.output);
-    out << j.dump(2) << "\n";
-    if (!out) fail("output '{}' could not be written", o.output);
+    files.write(o.output, j.dump(2) + "\n");
+    files.commit();
 
     const photo::Pose& pose = report.pose;
     const std::string xml = j["mitsuba"]["sensor_xml"];
@@ -56,13 +58,13 @@ void run(const Options& o) {
                  "origin, reprojection error %.3f px -> %s\n",
                  report.what.c_str(), pose.best.position[0], pose.best.position[1], pose.best.position[2],
                  u.position_std_m[0], u.position_std_m[1], u.position_std_m[2], cv::norm(pose.best.position),
-                 pose.best.reprojection_rms, o.output.c_str());
+                 pose.best.reprojection_rms, printable_path(o.output).c_str());
     if (pose.ambiguous)
         std::fprintf(stderr,
                      "surfscatter: pose: warning: the pose is ambiguous (ratio %.2f, chi-square %.3g): its mirror "
                      "image, camera at (%.5f, %.5f, %.5f) m, reprojects almost as well; both are in %s\n",
                      pose.ambiguity_ratio, pose.ambiguity_chi2, pose.alternative->position[0],
-                     pose.alternative->position[1], pose.alternative->position[2], o.output.c_str());
+                     pose.alternative->position[1], pose.alternative->position[2], printable_path(o.output).c_str());
     for (const std::string& note : report.notes) std::fprintf(stderr, "surfscatter: pose: note: %s\n", note.c_str());
 }
 

@@ -22,6 +22,7 @@
 #include "surfscatter/bsdf/model_options.hpp"
 #include "surfscatter/bsdf/profile_lobes.hpp"
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/output_files.hpp"
 #include "surfscatter/core/paths.hpp"
 #include "surfscatter/material/conductor.hpp"
 #include "surfscatter/math/vec.hpp"
@@ -89,6 +90,10 @@ void require_incidence(double theta_i, double wavelength) {
 }
 
 void run_exact_1d(const Exact1dArgs& a) {
+    OutputFiles files;
+    files.input(a.profile, "--profile");
+    files.input(a.material, "--material");
+    files.output(a.output, "-o");
     require_incidence(a.theta_i, a.wavelength);
     require_positive(a.beam_width, "--beam-width");
     const auto conductor = material::Conductor::from_name(a.material);
@@ -107,7 +112,8 @@ void run_exact_1d(const Exact1dArgs& a) {
             if (given) fail("{} applies to the statistical mode (--psd) only", name);
         if (a.profile.empty()) fail("give --profile FILE.csv or the statistical mode --psd kc|gaussian");
         const reference::Profile profile = reference::read_profile_csv(a.profile);
-        write_file_atomically(a.output, far_field_csv(reference::solve_exact_1d(profile, conductor, options)));
+        files.write(a.output, far_field_csv(reference::solve_exact_1d(profile, conductor, options)));
+        files.commit();
         return;
     }
     if (!a.profile.empty()) fail("--profile and --psd exclude each other: one profile or random ones");
@@ -125,9 +131,11 @@ void run_exact_1d(const Exact1dArgs& a) {
     install_interrupt_handler();
     const auto result = reference::solve_exact_1d_statistics(*statistics, conductor, options, st);
     if (result.realizations < st.realizations)
-        std::fprintf(stderr, "surfscatter: interrupted: %s holds %zu of %zu realizations\n", a.output.c_str(),
+        std::fprintf(stderr, "surfscatter: interrupted: %s holds %zu of %zu realizations\n", printable_path(a.output).c_str(),
                      result.realizations, st.realizations);
-    if (result.realizations > 0) write_file_atomically(a.output, statistics_csv(result));
+    if (result.realizations == 0) return;
+    files.write(a.output, statistics_csv(result));
+    files.commit();
 }
 
 struct KirchhoffArgs {
@@ -152,6 +160,11 @@ std::string kirchhoff_csv(const reference::KirchhoffResult& r) {
 }
 
 void run_kirchhoff(const KirchhoffArgs& a) {
+    OutputFiles files;
+    files.input(a.surface_file, "--surface");
+    files.input(a.material, "--material");
+    files.output(a.output, "-o");
+    if (!a.plot.empty()) files.output(a.plot, "--plot");
     require_incidence(a.theta_i, a.wavelength);
     require_finite(a.phi_i, "--phi-i");
     require_finite(a.max_theta_o, "--max-theta-o");
@@ -164,7 +177,7 @@ void run_kirchhoff(const KirchhoffArgs& a) {
     const heightmap::PreparedMap prepared = read_prepared_map(a.surface_file, {}, {}, a.preparation);
     const heightmap::HeightMap& map = prepared.map;
     for (const std::string& warning : map.source.warnings)
-        std::fprintf(stderr, "surfscatter: warning: %s: %s\n", a.surface_file.c_str(), warning.c_str());
+        std::fprintf(stderr, "surfscatter: warning: %s: %s\n", printable_path(a.surface_file).c_str(), warning.c_str());
     reference::KirchhoffOptions o;
     o.lambda_nm = a.wavelength;
     o.theta_i_rad = a.theta_i * kDegree;
@@ -178,21 +191,24 @@ void run_kirchhoff(const KirchhoffArgs& a) {
     const auto r = reference::kirchhoff_brdf(map, conductor, o);
     for (const std::string& warning : r.warnings) std::fprintf(stderr, "surfscatter: warning: %s\n", warning.c_str());
     if (r.subareas_done < r.subareas)
-        std::fprintf(stderr, "surfscatter: interrupted: %s holds %zu of %zu sub-areas\n", a.output.c_str(),
+        std::fprintf(stderr, "surfscatter: interrupted: %s holds %zu of %zu sub-areas\n", printable_path(a.output).c_str(),
                      r.subareas_done, r.subareas);
     if (r.subareas_done == 0) return;
-    write_file_atomically(a.output, kirchhoff_csv(r));
-    std::fprintf(stderr, "surfscatter: note: %s: %s\n", a.surface_file.c_str(), heightmap::describe(prepared).c_str());
+    files.write(a.output, kirchhoff_csv(r));
+    if (!a.plot.empty())
+        files.write_with(a.plot, [&](const std::filesystem::path& png) {
+            run_plot_script("kirchhoff_map.py", {files.staged(a.output).string(), png.string(), format_number(a.theta_i),
+                                                 format_number(a.phi_i), format_number(r.step_x), format_number(r.step_y),
+                                                 fmt::format("{} nm, {}", format_number(a.wavelength), a.material)});
+        });
+    files.commit();
+    std::fprintf(stderr, "surfscatter: note: %s: %s\n", printable_path(a.surface_file).c_str(), heightmap::describe(prepared).c_str());
     std::printf("subareas = %zu\nsubarea_px = %zu x %zu\n", r.subareas_done, r.subarea_nx, r.subarea_ny);
     std::printf("lattice_step = %s x %s\n", format_number(r.step_x).c_str(), format_number(r.step_y).c_str());
     std::printf("qz_bands = %zu\nffts_per_subarea = %zu\n", r.band_count, r.fft_count);
     std::printf("albedo = %s\nalbedo_standard_error = %s\ncoherent_albedo = %s\naliased_fraction = %s\n",
                 format_number(r.albedo).c_str(), format_number(r.albedo_standard_error).c_str(),
                 format_number(r.coherent_albedo).c_str(), format_number(r.aliased_fraction).c_str());
-    if (!a.plot.empty())
-        run_plot_script("kirchhoff_map.py", {a.output, a.plot, format_number(a.theta_i), format_number(a.phi_i),
-                                             format_number(r.step_x), format_number(r.step_y),
-                                             fmt::format("{} nm, {}", format_number(a.wavelength), a.material)});
 }
 
 void add_kirchhoff(CLI::App* reference_cmd) {
@@ -239,6 +255,14 @@ std::vector<bsdf::ProfileModel> chosen_models(const Models1dArgs& a, const CLI::
 }
 
 void run_models_1d(const Models1dArgs& a, const CLI::App& sub) {
+    const std::filesystem::path out(a.output);
+    const auto json_path = std::filesystem::path(out).replace_extension(".json");
+    const auto png_path = std::filesystem::path(out).replace_extension(".png");
+    OutputFiles files;
+    files.input(a.material, "--material");
+    files.output(out, "-o");
+    files.output(json_path, "the JSON beside -o");
+    files.output(png_path, "the PNG beside -o");
     require_incidence(a.theta_i, a.wavelength);
     if (!a.surface.psd) fail("models-1d needs the surface: --psd kc|gaussian --sigma --corr-length [--gamma]");
     const auto statistics = statistics_from(a.surface);
@@ -279,16 +303,16 @@ void run_models_1d(const Models1dArgs& a, const CLI::App& sub) {
         for (const auto& lobe : lobes) csv += fmt::format(",{}", format_number(lobe.intensity_per_rad[j]));
         csv += "\n";
     }
-    const std::filesystem::path out(a.output);
-    const auto json_path = std::filesystem::path(out).replace_extension(".json");
-    const auto png_path = std::filesystem::path(out).replace_extension(".png");
-    write_file_atomically(out, csv);
-    write_file_atomically(json_path, json.dump(2) + "\n");
-    run_plot_script("models_1d.py",
-                    {out.string(), json_path.string(), png_path.string(),
-                     fmt::format("{}, {} nm, theta_i {} deg, {}", conductor.name(), format_number(a.wavelength),
-                                 format_number(a.theta_i), a.polarisation)});
-    std::printf("wrote %s, %s and %s\n", out.c_str(), json_path.c_str(), png_path.c_str());
+    files.write(out, csv);
+    files.write(json_path, json.dump(2) + "\n");
+    files.write_with(png_path, [&](const std::filesystem::path& png) {
+        run_plot_script("models_1d.py",
+                        {files.staged(out).string(), files.staged(json_path).string(), png.string(),
+                         fmt::format("{}, {} nm, theta_i {} deg, {}", conductor.name(), format_number(a.wavelength),
+                                     format_number(a.theta_i), a.polarisation)});
+    });
+    files.commit();
+    std::printf("wrote %s, %s and %s\n", printable_path(out).c_str(), printable_path(json_path).c_str(), printable_path(png_path).c_str());
 }
 
 void add_models_1d(CLI::App* cmd) {

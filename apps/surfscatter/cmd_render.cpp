@@ -7,6 +7,7 @@
 #include "command.hpp"
 #include "scene_defines.hpp"
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/output_files.hpp"
 #include "surfscatter/core/progress.hpp"
 #include "surfscatter/core/resources.hpp"
 #include "surfscatter/distributed/render.hpp"
@@ -34,8 +35,10 @@ void run(const RenderArgs& args) {
     distributed::Session session;
     const std::filesystem::path output =
         args.output.empty() ? std::filesystem::path(args.scene).replace_extension(".exr") : std::filesystem::path(args.output);
+    const std::filesystem::path png = std::filesystem::path(output).replace_extension(".png");
     std::unique_ptr<render::Scene> scene;
     render::RenderOptions options;
+    OutputFiles files;  // rank 0's
     session.collectively([&] {
         if (args.spp && *args.spp <= 0) fail("--spp must be positive, got {}", *args.spp);
         require_thread_count(args.threads, "--threads");
@@ -62,7 +65,12 @@ void run(const RenderArgs& args) {
         options.threads = args.threads;
         if (args.seed) options.seed = static_cast<std::uint64_t>(*args.seed);
         options.progress = !args.quiet;
-        if (session.root() && !output.parent_path().empty()) std::filesystem::create_directories(output.parent_path());
+        if (session.root()) {
+            if (!output.parent_path().empty()) std::filesystem::create_directories(output.parent_path());
+            files.input(args.scene, "scene");
+            files.output(output, "-o");
+            files.output(png, "the PNG beside -o");
+        }
     });
     if (session.root())
         for (const std::string& note : scene->notes) std::fprintf(stderr, "surfscatter: render: %s\n", note.c_str());
@@ -77,17 +85,21 @@ void run(const RenderArgs& args) {
     render::RenderStats stats;
     const render::Film film = distributed::render(session, *scene, options, &stats);
     session.collectively([&] {
-        if (session.root()) render::write_film(film, scene->film, output);
+        if (!session.root()) return;
+        files.write_together({output, png}, [&](const std::vector<std::filesystem::path>& tmp) {
+            render::write_film(film, scene->film, tmp[0], tmp[1]);
+        });
+        files.commit();
     });
     if (!session.root()) return;
     const std::string samples = stats.max_samples_per_pixel > stats.samples_per_pixel
                                     ? fmt::format("{}-{} spp", stats.samples_per_pixel, stats.max_samples_per_pixel)
                                     : fmt::format("{} spp", stats.samples_per_pixel);
-    std::fprintf(stderr, "%s: %dx%d, %s%s, %.2f s%s, %.3g Mrays/s; wrote %s and %s\n", args.scene.c_str(), film.width(),
+    std::fprintf(stderr, "%s: %dx%d, %s%s, %.2f s%s, %.3g Mrays/s; wrote %s and %s\n", printable(args.scene, kShownPathChars).c_str(), film.width(),
                  film.height(), samples.c_str(), stats.interrupted ? " (interrupted)" : "", stats.seconds,
                  session.size() > 1 ? fmt::format(" on {} ranks", session.size()).c_str() : "",
-                 static_cast<double>(stats.rays) / std::max(stats.seconds, 1e-9) * 1e-6, output.string().c_str(),
-                 std::filesystem::path(output).replace_extension(".png").string().c_str());
+                 static_cast<double>(stats.rays) / std::max(stats.seconds, 1e-9) * 1e-6, printable(output.string(), kShownPathChars).c_str(),
+                 printable(png.string(), kShownPathChars).c_str());
 }
 
 const Command command("render", [](CLI::App& app) {

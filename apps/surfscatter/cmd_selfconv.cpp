@@ -3,13 +3,14 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
+#include <sstream>
 #include <memory>
 
 #include <fmt/format.h>
 
 #include "command.hpp"
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/output_files.hpp"
 #include "surfscatter/core/paths.hpp"
 #include "surfscatter/surface/refit.hpp"
 #include "surfscatter/surface/self_convolution_table.hpp"
@@ -23,21 +24,20 @@ struct SelfconvArgs {
     std::string out, plot;
 };
 
-void write_table(const surface::RefitResult& fit, std::FILE* file) {
-    std::fprintf(file, "m,L_m,misfit\n");
+std::string table_csv(const surface::RefitResult& fit) {
+    std::string out = "m,L_m,misfit\n";
     for (std::size_t i = 0; i < fit.corr_length_m.size(); ++i)
-        std::fprintf(file, "%zu,%s,%s\n", i + 1, format_number(fit.corr_length_m[i]).c_str(),
-                     format_number(fit.misfit_m[i]).c_str());
+        out += fmt::format("{},{},{}\n", i + 1, format_number(fit.corr_length_m[i]), format_number(fit.misfit_m[i]));
+    return out;
 }
 
 // Curves for the figure: P-hat^{*m} and its refit for a few orders, on a log zeta grid.
-void write_curves(const surface::KCorrelation& kc, const surface::RefitResult& fit, int orders, const std::string& path) {
+std::string curves_csv(const surface::KCorrelation& kc, const surface::RefitResult& fit, int orders) {
     const auto table = surface::SelfConvolutionTable::get(kc, orders);
     std::vector<int> shown;
     for (int m : {1, 2, 3, 5, 8, 13, 21, 34, 55, 89, 144, 233, 377, 610, 987})
         if (m <= orders) shown.push_back(m);
-    std::ofstream out(path);
-    if (!out) fail("--plot: cannot write '{}'", path);
+    std::ostringstream out;
     out << "zeta";
     for (int m : shown) out << ",true_" << m << ",fit_" << m;
     out << '\n';
@@ -51,38 +51,42 @@ void write_curves(const surface::KCorrelation& kc, const surface::RefitResult& f
         }
         out << '\n';
     }
-    if (!out) fail("--plot: write error on '{}'", path);
+    return out.str();
 }
 
 void run(const SelfconvArgs& args) {
+    const std::string base = std::filesystem::path(args.plot).replace_extension("").string();
+    const std::string curves = base + "_curves.csv", table = base + "_table.csv";
+    OutputFiles files;
+    if (!args.out.empty()) files.output(args.out, "--out");
+    if (!args.plot.empty()) {
+        files.output(args.plot, "--plot");
+        files.output(curves, "--plot's curves CSV");
+        files.output(table, "--plot's table CSV");
+    }
     surface::require_kc_gamma(args.gamma, "--gamma");
     surface::require_surface_length(args.corr_length, "--corr-length");
     surface::require_refit_orders(args.orders, "--orders");
     const surface::KCorrelation kc(1.0, args.corr_length, args.gamma);
     const surface::RefitResult fit = surface::refit_self_convolutions(kc, args.orders);
     std::printf("x = %s\n", format_number(fit.exponent_x).c_str());
-    write_table(fit, stdout);
-    if (!args.out.empty()) {
-        std::FILE* file = std::fopen(args.out.c_str(), "w");
-        if (!file) fail("--out: cannot open '{}' for writing", args.out);
-        write_table(fit, file);
-        if (std::fclose(file) != 0) fail("--out: write error on '{}'", args.out);
-        std::fprintf(stderr, "surfscatter: selfconv: wrote %s\n", args.out.c_str());
-    }
+    std::fputs(table_csv(fit).c_str(), stdout);
+    if (!args.out.empty()) files.write(args.out, table_csv(fit));
     if (!args.plot.empty()) {
-        const std::string base = std::filesystem::path(args.plot).replace_extension("").string();
-        const std::string curves = base + "_curves.csv", table = base + "_table.csv";
-        write_curves(kc, fit, args.orders, curves);
-        std::FILE* file = std::fopen(table.c_str(), "w");
-        if (!file) fail("--plot: cannot write '{}'", table);
-        write_table(fit, file);
-        std::fclose(file);
-        run_plot_script("selfconv.py", {curves, table, args.plot,
-                                        fmt::format("KC self-convolutions, gamma = {:g}, L = {:g} um: x = {:.4f}",
-                                                    args.gamma, args.corr_length, fit.exponent_x)});
-        std::fprintf(stderr, "surfscatter: selfconv: wrote %s (data: %s, %s)\n", args.plot.c_str(), curves.c_str(),
-                     table.c_str());
+        files.write(curves, curves_csv(kc, fit, args.orders));
+        files.write(table, table_csv(fit));
+        files.write_with(args.plot, [&](const std::filesystem::path& png) {
+            run_plot_script("selfconv.py", {files.staged(curves).string(), files.staged(table).string(), png.string(),
+                                            fmt::format("KC self-convolutions, gamma = {:g}, L = {:g} um: x = {:.4f}",
+                                                        args.gamma, args.corr_length, fit.exponent_x)});
+        });
     }
+    files.commit();
+    if (!args.out.empty())
+        std::fprintf(stderr, "surfscatter: selfconv: wrote %s\n", printable_path(args.out).c_str());
+    if (!args.plot.empty())
+        std::fprintf(stderr, "surfscatter: selfconv: wrote %s (data: %s, %s)\n", printable_path(args.plot).c_str(),
+                     printable_path(curves).c_str(), printable_path(table).c_str());
 }
 
 const Command command("selfconv", [](CLI::App& app) {

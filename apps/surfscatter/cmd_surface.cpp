@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <functional>
-#include <fstream>
+#include <sstream>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -19,6 +19,7 @@
 #include "profile_route.hpp"
 #include "statistics_options.hpp"
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/output_files.hpp"
 #include "surfscatter/core/paths.hpp"
 #include "surfscatter/math/vec.hpp"
 #include "surfscatter/surface/elliptical_fit.hpp"
@@ -59,6 +60,29 @@ struct InfoArgs : MapArgs {
     std::string plot;
 };
 
+// The files `surface info --plot P` writes: P, its CSV and what the preparation plot is drawn from.
+struct InfoPlotFiles {
+    std::string png, csv, heights, psd_read, psd_prepared, prepared_csv, prepared_png;
+    explicit InfoPlotFiles(const std::string& plot) : png(plot) {
+        csv = std::filesystem::path(plot).replace_extension(".csv").string();
+        const std::string stem = std::filesystem::path(plot).replace_extension().string();
+        heights = stem + "_prepared_heights.npy";
+        psd_read = stem + "_psd2d_read.npy";
+        psd_prepared = stem + "_psd2d_prepared.npy";
+        prepared_csv = stem + "_prepared.csv";
+        prepared_png = stem + "_prepared.png";
+    }
+    void declare(OutputFiles& files) const {
+        files.output(png, "--plot");
+        files.output(csv, "--plot's CSV");
+        files.output(heights, "--plot's prepared heights");
+        files.output(psd_read, "--plot's 2-D PSD as read");
+        files.output(psd_prepared, "--plot's 2-D PSD prepared");
+        files.output(prepared_csv, "--plot's preparation CSV");
+        files.output(prepared_png, "--plot's preparation plot");
+    }
+};
+
 struct FitArgs : MapArgs {
     std::optional<double> smoothing;
     std::size_t min_ring = surface::KcFitOptions{}.min_ring;
@@ -66,7 +90,32 @@ struct FitArgs : MapArgs {
     std::string plot, csv;
 };
 
+// The files `surface fit --plot P [--csv C]` writes: P, the CSV (C, default P's with .csv), the 2-D PSD beside the
+// radial fit, and the elliptical fit's plot with its data.
+struct FitPlotFiles {
+    std::string png, csv, psd2d, spectrum, elliptical, elliptical_png;
+    explicit FitPlotFiles(const FitArgs& args) : png(args.plot), csv(args.csv) {
+        if (csv.empty() && !png.empty()) csv = std::filesystem::path(png).replace_extension(".csv").string();
+        const std::string stem = std::filesystem::path(png).replace_extension().string();
+        psd2d = stem + "_psd2d.npy";
+        spectrum = stem + "_spectrum.npy";
+        elliptical = stem + "_elliptical.npy";
+        elliptical_png = stem + "_elliptical.png";
+    }
+    void declare(OutputFiles& files, const FitArgs& args) const {
+        if (!csv.empty()) files.output(csv, args.csv.empty() ? "--plot's CSV" : "--csv");
+        if (png.empty()) return;
+        files.output(png, "--plot");
+        files.output(psd2d, "--plot's 2-D PSD");
+        files.output(spectrum, "--plot's periodogram");
+        files.output(elliptical, "--plot's elliptical fit");
+        files.output(elliptical_png, "--plot's elliptical plot");
+    }
+};
+
 void synth(const SynthArgs& args) {
+    OutputFiles files;
+    files.output(args.output, "-o");
     const std::shared_ptr<const surface::RadialStatistics> model = args.statistics.make();
     if (args.seed < 0) fail("--seed must be >= 0, got {}", args.seed);
     heightmap::require_valid_spacing(args.spacing, "--spacing");
@@ -92,9 +141,10 @@ void synth(const SynthArgs& args) {
                                               : "",
                                   s.gamma ? fmt::format(" gamma={}", *s.gamma) : "", args.seed)
                     : args.title;
-    heightmap::write_height_map(map, args.output);
-    std::fprintf(stderr, "surfscatter: surface synth: wrote %s (%zu x %zu points of %s um, %s)\n", args.output.c_str(), n,
-                 n, format_number(args.spacing).c_str(), map.title.c_str());
+    files.write_with(args.output, [&](const std::filesystem::path& tmp) { heightmap::write_height_map(map, tmp); });
+    files.commit();
+    std::fprintf(stderr, "surfscatter: surface synth: wrote %s (%zu x %zu points of %s um, %s)\n",
+                 printable_path(args.output).c_str(), n, n, format_number(args.spacing).c_str(), printable(map.title, kShownPathChars).c_str());
 }
 
 void add_map_options(CLI::App* cmd, MapArgs& a) {
@@ -119,7 +169,7 @@ heightmap::PreparedMap read_map(const MapArgs& args, std::optional<heightmap::He
 
 void print_value(const char* name, double value) { std::printf("%s = %s\n", name, format_number(value).c_str()); }
 
-void write_measured_plot(const InfoArgs& args, const heightmap::HeightMap& map);
+void write_measured_plot(const InfoArgs& args, const heightmap::HeightMap& map, OutputFiles& files);
 
 // The rings of a radial PSD as CSV for psd_fit.py: zeta, psd, count, a model's value (column `model_column`), whether
 // the ring is in the band used, and its independent samples.
@@ -129,11 +179,9 @@ struct RingColumn {
     std::vector<double> values;
 };
 
-void write_ring_csv(const surface::RadialPsd& r, const char* model_column, const std::function<double(double)>& model,
-                    const std::function<bool(double)>& in_band, const std::string& path, const char* option,
-                    const std::vector<RingColumn>& extra = {}) {
-    std::ofstream out(path);
-    if (!out) fail("{}: cannot open '{}' for writing", option, path);
+std::string ring_csv(const surface::RadialPsd& r, const char* model_column, const std::function<double(double)>& model,
+                     const std::function<bool(double)>& in_band, const std::vector<RingColumn>& extra = {}) {
+    std::ostringstream out;
     out << "zeta,psd,count," << model_column << ",in_band,independent_samples";
     for (const RingColumn& column : extra) out << ',' << column.name;
     out << '\n';
@@ -144,19 +192,32 @@ void write_ring_csv(const surface::RadialPsd& r, const char* model_column, const
         for (const RingColumn& column : extra) out << ',' << format_number(column.values[i]);
         out << '\n';
     }
-    if (!out) fail("{}: write error on '{}'", option, path);
+    return out.str();
 }
 
-void write_preparation_plot(const InfoArgs& args, const heightmap::HeightMap& read, const heightmap::PreparedMap& p);
+void write_preparation_plot(const InfoArgs& args, const heightmap::HeightMap& read, const heightmap::PreparedMap& p,
+                            OutputFiles& files);
 
 // The profile's 1-D PSD bands as CSV (column `model_column`: `model`; in band: `in_band`; a `profile` column for
 // psd_fit.py's 1-D labels) and psd_fit.py's plot of them.
-void write_profile_plot(const std::string& plot, const std::string& csv, const surface::RadialPsd& psd,
-                        const char* model_column, const std::function<double(double)>& model,
-                        const std::function<bool(double)>& in_band, const std::string& title) {
-    write_ring_csv(psd, model_column, model, in_band, csv, plot.empty() ? "--csv" : "--plot",
-                   {{"profile", std::vector<double>(psd.zeta.size(), 1.0)}});
-    if (!plot.empty()) run_plot_script("psd_fit.py", {csv, plot, title});
+void write_profile_plot(OutputFiles& files, const std::string& plot, const std::string& csv,
+                        const surface::RadialPsd& psd, const char* model_column,
+                        const std::function<double(double)>& model, const std::function<bool(double)>& in_band,
+                        const std::string& title) {
+    files.write(csv, ring_csv(psd, model_column, model, in_band, {{"profile", std::vector<double>(psd.zeta.size(), 1.0)}}));
+    if (!plot.empty())
+        files.write_with(plot, [&](const std::filesystem::path& png) {
+            run_plot_script("psd_fit.py", {files.staged(csv).string(), png.string(), title});
+        });
+    files.commit();
+}
+
+// The outputs of a profile's `surface info --plot` or `surface fit [--plot] [--csv]`, checked before the work.
+void declare_profile_outputs(OutputFiles& files, const std::string& input, const std::string& plot,
+                             const std::string& csv, const char* csv_option) {
+    files.input(input, "height map");
+    if (!csv.empty()) files.output(csv, csv_option);
+    if (!plot.empty()) files.output(plot, "--plot");
 }
 
 // The band of a profile's PSD whose mean frequency is `zeta` (its own value: the PSD is its own model column).
@@ -166,6 +227,10 @@ std::size_t ring_of(const surface::RadialPsd& psd, double zeta) {
 
 // `surface info` on a profile: its statistics along its line (no assumption about the area).
 void profile_info(const InfoArgs& args, const heightmap::LineScan& scan) {
+    const std::string csv =
+        args.plot.empty() ? std::string() : std::filesystem::path(args.plot).replace_extension(".csv").string();
+    OutputFiles files;
+    declare_profile_outputs(files, args.input, args.plot, csv, "--plot's CSV");
     const heightmap::Form form = profile_form(args.preparation);
     const surface::ProfileMoments moments = surface::profile_moments(scan, form);
     std::printf("preparation = %s\n", describe_profile(scan, form).c_str());
@@ -182,19 +247,21 @@ void profile_info(const InfoArgs& args, const heightmap::LineScan& scan) {
                 "(docs/HEIGHTMAPS.md \"Profiles\")\n");
     if (!args.plot.empty()) {
         const surface::RadialPsd psd = surface::estimate_profile_psd(scan, form);
-        const std::string csv = std::filesystem::path(args.plot).replace_extension(".csv").string();
-        write_profile_plot(args.plot, csv, psd, "model_psd", [&](double z) { return psd.psd[ring_of(psd, z)]; },
+        write_profile_plot(files, args.plot, csv, psd, "model_psd", [&](double z) { return psd.psd[ring_of(psd, z)]; },
                            [](double) { return true; },
                            fmt::format("{}: profile 1-D PSD (Hann, bands of {} frequencies), rms {:.4g} um",
                                        std::filesystem::path(args.input).filename().string(),
                                        surface::kProfileBandBins, moments.rms_height_um));
-        std::printf("plot = %s\ncsv = %s\n", args.plot.c_str(), csv.c_str());
+        std::printf("plot = %s\ncsv = %s\n", printable_path(args.plot).c_str(), printable_path(csv).c_str());
     }
 }
 
 void info(const InfoArgs& args) {
     if (const auto scan = read_profile(args.input, args.preparation, args.spacing, args.height_unit))
         return profile_info(args, *scan);
+    OutputFiles files;
+    files.input(args.input, "height map");
+    if (!args.plot.empty()) InfoPlotFiles(args.plot).declare(files);
     std::optional<heightmap::HeightMap> read;
     const heightmap::PreparedMap prepared = read_map(args, args.plot.empty() ? nullptr : &read);
     const heightmap::HeightMap& map = prepared.map;
@@ -231,64 +298,64 @@ void info(const InfoArgs& args) {
                     "isotropic scattering models misrepresent this surface\n",
                     acv.texture_aspect_ratio, acv.slowest_direction_deg);
     if (!args.plot.empty()) {
-        write_measured_plot(args, map);
-        write_preparation_plot(args, *read, prepared);
+        write_measured_plot(args, map, files);
+        write_preparation_plot(args, *read, prepared, files);
+        files.commit();
+        const InfoPlotFiles written(args.plot);
+        std::printf("plot = %s\ncsv = %s\npreparation_plot = %s\n", printable_path(written.png).c_str(),
+                    printable_path(written.csv).c_str(), printable_path(written.prepared_png).c_str());
     }
 }
 
 // What `--psd measured` uses (map_statistics.hpp), as name = value lines, a CSV of its rings and the PSD plot.
-void write_measured_plot(const InfoArgs& args, const heightmap::HeightMap& map) {
+void write_measured_plot(const InfoArgs& args, const heightmap::HeightMap& map, OutputFiles& files) {
     const surface::MapStatistics stats(map, heightmap::Form::none);
     print_value("measured_sigma_um", stats.sigma_h());
     print_value("measured_sigma_standard_error", stats.sigma_relative_error());
     print_value("measured_band_min_zeta", stats.first_ring());
     print_value("measured_band_max_zeta", stats.nyquist());
     std::printf("measured_window = %s\n", stats.periodic() ? "rectangular (periodic map)" : "hann");
-    const std::string csv = std::filesystem::path(args.plot).replace_extension(".csv").string();
-    write_ring_csv(stats.rings(), "model_psd", [&](double z) { return stats.psd(z); }, [](double) { return true; },
-                   csv, "--plot");
-    run_plot_script("psd_fit.py",
-                    {csv, args.plot,
-                     fmt::format("{}: PSD that --psd measured uses, band {:.3g}-{:.3g} rad/um, sigma {:.4g} um (+-{:.2g} %)",
-                                 std::filesystem::path(args.input).filename().string(), stats.first_ring(),
-                                 stats.nyquist(), stats.sigma_h(), 100.0 * stats.sigma_relative_error())});
-    std::printf("plot = %s\ncsv = %s\n", args.plot.c_str(), csv.c_str());
+    const InfoPlotFiles out(args.plot);
+    files.write(out.csv, ring_csv(stats.rings(), "model_psd", [&](double z) { return stats.psd(z); },
+                                  [](double) { return true; }));
+    files.write_with(out.png, [&](const std::filesystem::path& png) {
+        run_plot_script("psd_fit.py",
+                        {files.staged(out.csv).string(), png.string(),
+                         fmt::format("{}: PSD that --psd measured uses, band {:.3g}-{:.3g} rad/um, sigma {:.4g} um (+-{:.2g} %)",
+                                     std::filesystem::path(args.input).filename().string(), stats.first_ring(),
+                                     stats.nyquist(), stats.sigma_h(), 100.0 * stats.sigma_relative_error())});
+    });
 }
 
 // The elliptical fit's ring means sit on the rings of the fitted (Hann) periodogram: the same lattice.
-void write_psd_csv(const surface::SurfaceFit& fit, const std::string& path) {
+std::string psd_csv(const surface::SurfaceFit& fit) {
     const surface::KCorrelation model(fit.kc.sigma_h_um, fit.kc.corr_length_um, fit.kc.gamma);
     const surface::RadialPsd elliptical = surface::radial_average(surface::fitted_psd(fit.elliptical, fit.psd));
-    write_ring_csv(fit.radial, "kc_fit", [&](double z) { return model.psd(z); },
-                   [&](double z) { return z >= fit.kc.zeta_min && z <= fit.kc.zeta_max; }, path, "--csv",
-                   {{"elliptical_fit", elliptical.psd}});
+    return ring_csv(fit.radial, "kc_fit", [&](double z) { return model.psd(z); },
+                    [&](double z) { return z >= fit.kc.zeta_min && z <= fit.kc.zeta_max; },
+                    {{"elliptical_fit", elliptical.psd}});
 }
 
 // `values` (height rows of width) as a little-endian float32 .npy array for a plot script.
-void write_npy(const std::vector<double>& values, std::size_t width, std::size_t height, const std::string& path) {
+std::string npy(const std::vector<double>& values, std::size_t width, std::size_t height) {
     std::string header = fmt::format("{{'descr': '<f4', 'fortran_order': False, 'shape': ({}, {}), }}", height, width);
     header.append(63 - (10 + header.size()) % 64, ' ');
     header += '\n';
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    if (!out) fail("--plot: cannot open '{}' for writing", path);
-    out.write("\x93NUMPY\x01\x00", 8);
+    std::string out("\x93NUMPY\x01\x00", 8);
     const auto header_size = static_cast<std::uint16_t>(header.size());
-    const char size_bytes[2] = {static_cast<char>(header_size & 0xff), static_cast<char>(header_size >> 8)};
-    out.write(size_bytes, 2);
-    out << header;
+    out += static_cast<char>(header_size & 0xff);
+    out += static_cast<char>(header_size >> 8);
+    out += header;
     for (double value : values) {
         const auto word = std::bit_cast<std::uint32_t>(static_cast<float>(value));
-        const char bytes[4] = {static_cast<char>(word & 0xff), static_cast<char>((word >> 8) & 0xff),
-                               static_cast<char>((word >> 16) & 0xff), static_cast<char>(word >> 24)};
-        out.write(bytes, 4);
+        for (int shift = 0; shift < 32; shift += 8) out += static_cast<char>((word >> shift) & 0xff);
     }
-    out.flush();
-    if (!out) fail("--plot: write error on '{}'", path);
+    return out;
 }
 
 // The 2-D PSD over the full zeta-plane, centred (zeta = 0 in the middle), averaged over blocks of
 // `block` x `block` frequencies, as a float32 .npy array [row = zeta_y][column = zeta_x] for the plot script.
-void write_psd_image(const surface::Psd2d& psd, std::size_t block, const std::string& path) {
+std::string psd_image(const surface::Psd2d& psd, std::size_t block) {
     const std::size_t width = psd.nx / block, height = psd.ny / block;
     std::vector<double> sums(width * height, 0.0);
     for (std::size_t ky = 0; ky < psd.ny; ++ky)
@@ -305,12 +372,12 @@ void write_psd_image(const surface::Psd2d& psd, std::size_t block, const std::st
         }
     const double norm = 1.0 / static_cast<double>(block * block);
     for (double& sum : sums) sum *= norm;
-    write_npy(sums, width, height, path);
+    return npy(sums, width, height);
 }
 
 // The prepared map's heights (um) averaged over blocks of `block` x `block` points (NaN where a block holds no valid
 // point), rows = y, as a float32 .npy array.
-void write_height_image(const heightmap::HeightMap& map, std::size_t block, const std::string& path) {
+std::string height_image(const heightmap::HeightMap& map, std::size_t block) {
     const std::size_t width = map.nx() / block, height = map.ny() / block;
     std::vector<double> sums(width * height, 0.0), counts(width * height, 0.0);
     for (std::size_t iy = 0; iy < height * block; ++iy)
@@ -321,7 +388,7 @@ void write_height_image(const heightmap::HeightMap& map, std::size_t block, cons
             }
     for (std::size_t i = 0; i < sums.size(); ++i)
         sums[i] = counts[i] > 0 ? sums[i] / counts[i] : std::numeric_limits<double>::quiet_NaN();
-    write_npy(sums, width, height, path);
+    return npy(sums, width, height);
 }
 
 // zeta at the outer edge of the image's first column (or row): write_psd_image puts signed index -n/2 there.
@@ -329,18 +396,15 @@ double psd_image_edge(std::size_t n, double dzeta) { return -(static_cast<double
 
 // What the preparation did (prepared_map.py): the prepared map, the 2-D PSDs as read and prepared, and their rings
 // with the waviness's, the band and the nesting indices: <plot>_prepared.png.
-void write_preparation_plot(const InfoArgs& args, const heightmap::HeightMap& read, const heightmap::PreparedMap& p) {
-    std::filesystem::path stem = args.plot;
-    stem.replace_extension();
-    const std::string heights = stem.string() + "_prepared_heights.npy", before = stem.string() + "_psd2d_read.npy",
-                      after = stem.string() + "_psd2d_prepared.npy", csv = stem.string() + "_prepared.csv",
-                      png = stem.string() + "_prepared.png";
+void write_preparation_plot(const InfoArgs& args, const heightmap::HeightMap& read, const heightmap::PreparedMap& p,
+                            OutputFiles& files) {
+    const InfoPlotFiles out(args.plot);
     const std::size_t block = std::max<std::size_t>(1, (std::max(read.nx(), read.ny()) + 255) / 256);
     const surface::Psd2d psd_read = surface::estimate_psd(read, surface::Window::hann, heightmap::Form::none);
     const surface::Psd2d psd_prepared = surface::estimate_psd(p.map, surface::Window::hann, heightmap::Form::none);
-    write_height_image(p.map, block, heights);
-    write_psd_image(psd_read, block, before);
-    write_psd_image(psd_prepared, block, after);
+    files.write(out.heights, height_image(p.map, block));
+    files.write(out.psd_read, psd_image(psd_read, block));
+    files.write(out.psd_prepared, psd_image(psd_prepared, block));
     const surface::RadialPsd rings_read = surface::radial_average(psd_read);
     const surface::RadialPsd rings_prepared = surface::radial_average(psd_prepared);
     std::vector<double> waviness(rings_read.zeta.size(), 0.0);
@@ -353,22 +417,24 @@ void write_preparation_plot(const InfoArgs& args, const heightmap::HeightMap& re
     for (std::size_t i = 0; i < std::min(rings_read.zeta.size(), rings_prepared.zeta.size()); ++i)
         rows += fmt::format("{},{},{},{}\n", format_number(rings_read.zeta[i]), format_number(rings_read.psd[i]),
                             format_number(rings_prepared.psd[i]), format_number(waviness[i]));
-    write_file_atomically(csv, rows);
+    files.write(out.prepared_csv, rows);
     const double left = psd_image_edge(read.nx(), psd_read.dzeta_x), bottom = psd_image_edge(read.ny(), psd_read.dzeta_y);
-    run_plot_script(
-        "prepared_map.py",
-        {csv, heights, before, after, png,
-         fmt::format("{}: {}", std::filesystem::path(args.input).filename().string(), heightmap::describe(p)),
-         format_number(p.map.width()), format_number(p.map.height()), format_number(left),
-         format_number(left + psd_read.dzeta_x * static_cast<double>(block * (read.nx() / block))), format_number(bottom),
-         format_number(bottom + psd_read.dzeta_y * static_cast<double>(block * (read.ny() / block))),
-         format_number(p.applied.lambda_s_um), format_number(p.applied.lambda_c_um.value_or(0.0)),
-         format_number(surface::nyquist_zeta(p.map))});
-    std::printf("preparation_plot = %s\n", png.c_str());
+    files.write_with(out.prepared_png, [&](const std::filesystem::path& png) {
+        run_plot_script(
+            "prepared_map.py",
+            {files.staged(out.prepared_csv).string(), files.staged(out.heights).string(), files.staged(out.psd_read).string(),
+             files.staged(out.psd_prepared).string(), png.string(),
+             fmt::format("{}: {}", std::filesystem::path(args.input).filename().string(), heightmap::describe(p)),
+             format_number(p.map.width()), format_number(p.map.height()), format_number(left),
+             format_number(left + psd_read.dzeta_x * static_cast<double>(block * (read.nx() / block))), format_number(bottom),
+             format_number(bottom + psd_read.dzeta_y * static_cast<double>(block * (read.ny() / block))),
+             format_number(p.applied.lambda_s_um), format_number(p.applied.lambda_c_um.value_or(0.0)),
+             format_number(surface::nyquist_zeta(p.map))});
+    });
 }
 
 void write_fit_plot(const FitArgs& args, const heightmap::HeightMap& map, const surface::SurfaceFit& result,
-                    const std::string& csv);
+                    OutputFiles& files);
 
 // The elliptical fit under the names of the model options (--corr-length, --corr-length-v, --lay-angle), prefixed,
 // and as options to paste; an unresolved one as a warning (the isotropic fit stands).
@@ -413,20 +479,22 @@ void print_elliptical(const surface::EllipticalKcFit& e) {
 
 // `surface fit` on a profile: the KC fitted to its 1-D PSD with the KC's profile PSD, under the isotropy note.
 void profile_fit(const FitArgs& args, const heightmap::LineScan& scan) {
-    if (args.smoothing) fail("--smoothing applies to areal maps; {} is a profile", args.input);
+    if (args.smoothing) fail("--smoothing applies to areal maps; {} is a profile", printable_path(args.input));
+    std::string csv = args.csv;
+    if (csv.empty() && !args.plot.empty()) csv = std::filesystem::path(args.plot).replace_extension(".csv").string();
+    OutputFiles files;
+    declare_profile_outputs(files, args.input, args.plot, csv, args.csv.empty() ? "--plot's CSV" : "--csv");
     surface::KcFitOptions options;
     options.form = profile_form(args.preparation);
     options.min_ring = args.min_ring;
     options.max_nyquist_fraction = args.max_zeta_fraction;
     const surface::ProfileFit result = surface::fit_profile(scan, options);
     const surface::KcFit& kc = result.kc;
-    std::string csv = args.csv;
-    if (csv.empty() && !args.plot.empty()) csv = std::filesystem::path(args.plot).replace_extension(".csv").string();
     const auto write_outputs = [&] {
         if (csv.empty()) return;
         const double variance = kc.sigma_h_um * kc.sigma_h_um;
         const surface::KCorrelation model(kc.sigma_h_um, kc.corr_length_um, kc.gamma);
-        write_profile_plot(args.plot, csv, result.psd, "kc_fit",
+        write_profile_plot(files, args.plot, csv, result.psd, "kc_fit",
                            [&](double z) { return variance * model.profile_psd_unit(z); },
                            [&](double z) { return z >= kc.zeta_min && z <= kc.zeta_max; },
                            fmt::format("{}: {} to the profile's 1-D PSD, sigma_h {:.4g} um, L_c {:.4g} um, gamma {:.3g}",
@@ -461,12 +529,18 @@ void profile_fit(const FitArgs& args, const heightmap::LineScan& scan) {
                     "statistical floor)\n",
                     kc.log_residual_rms, kc.log_residual_rms / kc.statistical_floor);
     write_outputs();
-    if (!csv.empty()) std::printf("%scsv = %s\n", args.plot.empty() ? "" : ("plot = " + args.plot + "\n").c_str(), csv.c_str());
+    if (!csv.empty())
+        std::printf("%scsv = %s\n", args.plot.empty() ? "" : ("plot = " + printable_path(args.plot) + "\n").c_str(),
+                    printable_path(csv).c_str());
 }
 
 void fit(const FitArgs& args) {
     if (const auto scan = read_profile(args.input, args.preparation, args.spacing, args.height_unit))
         return profile_fit(args, *scan);
+    OutputFiles files;
+    files.input(args.input, "height map");
+    const FitPlotFiles out(args);
+    out.declare(files, args);
     if (args.smoothing) require_positive(*args.smoothing, "--smoothing");  // before reading the map
     surface::KcFitOptions options;
     const heightmap::PreparedMap prepared = read_map(args);
@@ -476,13 +550,12 @@ void fit(const FitArgs& args) {
     options.min_ring = args.min_ring;
     options.max_nyquist_fraction = args.max_zeta_fraction;
     const surface::SurfaceFit result = surface::fit_surface(map, options);
-    std::string csv = args.csv;
-    if (csv.empty() && !args.plot.empty()) csv = std::filesystem::path(args.plot).replace_extension(".csv").string();
     // An unresolved fit prints nothing on stdout (a failing command's output is its error line alone) but still
     // writes its plot and CSV: a user must see the PSD that did not fit.
     const auto write_outputs = [&] {
-        if (!csv.empty()) write_psd_csv(result, csv);
-        if (!args.plot.empty()) write_fit_plot(args, map, result, csv);
+        if (!out.csv.empty()) files.write(out.csv, psd_csv(result));
+        if (!out.png.empty()) write_fit_plot(args, map, result, files);
+        files.commit();
     };
     if (!result.kc.failure.empty()) {
         write_outputs();
@@ -530,52 +603,51 @@ void fit(const FitArgs& args) {
 }
 
 // The 2-D periodogram the elliptical fit used beside the fitted PSD and their ratio: <plot>_elliptical.png.
-void write_elliptical_plot(const FitArgs& args, const surface::SurfaceFit& result, std::size_t block) {
-    std::filesystem::path stem = args.plot;
-    stem.replace_extension();
-    const std::string data = stem.string() + "_spectrum.npy", model = stem.string() + "_elliptical.npy";
-    const std::string png = stem.string() + "_elliptical.png";
+void write_elliptical_plot(const FitArgs& args, const surface::SurfaceFit& result, std::size_t block, OutputFiles& files) {
+    const FitPlotFiles out(args);
     const surface::Psd2d& psd = result.spectrum;
     const surface::EllipticalKcFit& e = result.elliptical;
-    write_psd_image(psd, block, data);
-    write_psd_image(surface::fitted_psd(e, psd), block, model);
+    files.write(out.spectrum, psd_image(psd, block));
+    files.write(out.elliptical, psd_image(surface::fitted_psd(e, psd), block));
     const double left = psd_image_edge(psd.nx, psd.dzeta_x), bottom = psd_image_edge(psd.ny, psd.dzeta_y);
-    run_plot_script(
-        "psd2d_fit.py",
-        {data, model, png,
-         fmt::format("{}: {}elliptical KC --corr-length {:.4g} --corr-length-v {:.4g} --lay-angle {:.4g} --gamma "
-                     "{:.4g} (anisotropy {}), misfit {:.3g} / floor {:.3g}",
-                     std::filesystem::path(args.input).filename().string(), e.failure.empty() ? "" : "NO FIT, best attempt: ",
-                     e.corr_length_u_um, e.corr_length_v_um, e.lay_angle_deg, e.gamma,
-                     e.anisotropic() ? "significant" : "not significant", e.log_residual_rms, e.statistical_floor),
-         format_number(left), format_number(left + psd.dzeta_x * static_cast<double>(block * (psd.nx / block))),
-         format_number(bottom), format_number(bottom + psd.dzeta_y * static_cast<double>(block * (psd.ny / block))),
-         format_number(e.zeta_min), format_number(e.zeta_max), format_number(e.lay_angle_deg)});
-    std::printf("elliptical_plot = %s\n", png.c_str());
+    files.write_with(out.elliptical_png, [&](const std::filesystem::path& png) {
+        run_plot_script(
+            "psd2d_fit.py",
+            {files.staged(out.spectrum).string(), files.staged(out.elliptical).string(), png.string(),
+             fmt::format("{}: {}elliptical KC --corr-length {:.4g} --corr-length-v {:.4g} --lay-angle {:.4g} --gamma "
+                         "{:.4g} (anisotropy {}), misfit {:.3g} / floor {:.3g}",
+                         std::filesystem::path(args.input).filename().string(), e.failure.empty() ? "" : "NO FIT, best attempt: ",
+                         e.corr_length_u_um, e.corr_length_v_um, e.lay_angle_deg, e.gamma,
+                         e.anisotropic() ? "significant" : "not significant", e.log_residual_rms, e.statistical_floor),
+             format_number(left), format_number(left + psd.dzeta_x * static_cast<double>(block * (psd.nx / block))),
+             format_number(bottom), format_number(bottom + psd.dzeta_y * static_cast<double>(block * (psd.ny / block))),
+             format_number(e.zeta_min), format_number(e.zeta_max), format_number(e.lay_angle_deg)});
+    });
+    std::printf("elliptical_plot = %s\n", printable_path(out.elliptical_png).c_str());
 }
 
 void write_fit_plot(const FitArgs& args, const heightmap::HeightMap& map, const surface::SurfaceFit& result,
-                    const std::string& csv) {
+                    OutputFiles& files) {
     // The 2-D PSD beside the radial fit: a directional texture shows as a streak through the origin.
-    std::filesystem::path image = args.plot;
-    image.replace_extension();
-    image += "_psd2d.npy";
+    const FitPlotFiles out(args);
     const std::size_t block = std::max<std::size_t>(1, (std::max(map.nx(), map.ny()) + 255) / 256);
-    write_psd_image(result.psd, block, image.string());
-    write_elliptical_plot(args, result, block);
-    run_plot_script("psd_fit.py",
-                    {csv, args.plot,
-                     fmt::format("{}: {} sigma_h = {:.4g} um, L_c = {:.4g} um, gamma = {:.4g}; band {:.3g}-{:.3g} "
-                                 "rad/um",
-                                 std::filesystem::path(args.input).filename().string(),
-                                 result.kc.failure.empty() ? "KC fit" : "NO KC FIT, best attempt", result.kc.sigma_h_um,
-                                 result.kc.corr_length_um, result.kc.gamma, result.kc.zeta_min, result.kc.zeta_max),
-                     image.string(), format_number(psd_image_edge(result.psd.nx, result.psd.dzeta_x)),
-                     format_number(psd_image_edge(result.psd.nx, result.psd.dzeta_x) +
-                                   result.psd.dzeta_x * static_cast<double>(block * (result.psd.nx / block))),
-                     format_number(psd_image_edge(result.psd.ny, result.psd.dzeta_y)),
-                     format_number(psd_image_edge(result.psd.ny, result.psd.dzeta_y) +
-                                   result.psd.dzeta_y * static_cast<double>(block * (result.psd.ny / block)))});
+    files.write(out.psd2d, psd_image(result.psd, block));
+    write_elliptical_plot(args, result, block, files);
+    files.write_with(out.png, [&](const std::filesystem::path& png) {
+        run_plot_script("psd_fit.py",
+                        {files.staged(out.csv).string(), png.string(),
+                         fmt::format("{}: {} sigma_h = {:.4g} um, L_c = {:.4g} um, gamma = {:.4g}; band {:.3g}-{:.3g} "
+                                     "rad/um",
+                                     std::filesystem::path(args.input).filename().string(),
+                                     result.kc.failure.empty() ? "KC fit" : "NO KC FIT, best attempt", result.kc.sigma_h_um,
+                                     result.kc.corr_length_um, result.kc.gamma, result.kc.zeta_min, result.kc.zeta_max),
+                         files.staged(out.psd2d).string(), format_number(psd_image_edge(result.psd.nx, result.psd.dzeta_x)),
+                         format_number(psd_image_edge(result.psd.nx, result.psd.dzeta_x) +
+                                       result.psd.dzeta_x * static_cast<double>(block * (result.psd.nx / block))),
+                         format_number(psd_image_edge(result.psd.ny, result.psd.dzeta_y)),
+                         format_number(psd_image_edge(result.psd.ny, result.psd.dzeta_y) +
+                                       result.psd.dzeta_y * static_cast<double>(block * (result.psd.ny / block)))});
+    });
 }
 
 const Command command("surface", [](CLI::App& app) {

@@ -3,6 +3,8 @@
 #include <string>
 
 #include "command.hpp"
+#include "surfscatter/core/error.hpp"
+#include "surfscatter/core/output_files.hpp"
 #include "surfscatter/photo/photo_io.hpp"
 #include "surfscatter/photo/undistort.hpp"
 
@@ -29,10 +31,17 @@ const Command command("undistort", [](CLI::App& app) {
     sub->add_option("-o,--output", o->output, "undistorted image (.png, .tif, .jpg or .exr)")->required();
     sub->callback([o] {
         const auto encoding = photo::encoding_by_name(o->encoding);
+        OutputFiles files;
+        files.input(o->photo, "photo");
+        files.input(o->camera, "--camera");
+        files.output(o->output, "-o");
         const photo::CameraModel camera = photo::read_camera(o->camera);
         const photo::Photo image = photo::read_photo(o->photo, encoding);
-        photo::write_photo(o->output, photo::undistort_image(image.rgb, camera), encoding);
-        std::fprintf(stderr, "surfscatter: undistort: %s -> %s\n", o->photo.c_str(), o->output.c_str());
+        const cv::Mat undistorted = photo::undistort_image(image.rgb, camera);
+        files.write_with(o->output, [&](const std::filesystem::path& tmp) { photo::write_photo(tmp, undistorted, encoding); });
+        files.commit();
+        std::fprintf(stderr, "surfscatter: undistort: %s -> %s\n", printable_path(o->photo).c_str(),
+                     printable_path(o->output).c_str());
     });
 });
 

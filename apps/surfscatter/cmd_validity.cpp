@@ -22,6 +22,7 @@
 #include "preparation_options.hpp"
 #include "profile_surface_options.hpp"
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/output_files.hpp"
 #include "surfscatter/core/paths.hpp"
 #include "surfscatter/core/progress.hpp"
 #include "surfscatter/core/resources.hpp"
@@ -167,7 +168,7 @@ void print_summary(const std::vector<validity::ProfileCase>& cases) {
 
 void say_if_interrupted(const std::string& output, std::size_t done, std::size_t asked) {
     if (done < asked)
-        std::fprintf(stderr, "surfscatter: interrupted: %s.csv holds %zu of %zu cases\n", output.c_str(), done, asked);
+        std::fprintf(stderr, "surfscatter: interrupted: %s.csv holds %zu of %zu cases\n", printable_path(output).c_str(), done, asked);
 }
 
 // Exit status 2, once the outputs are written, when the reference is outside its validity in any case: one line
@@ -203,7 +204,38 @@ validity::Criteria criteria_from(const ValidityArgs& a) {
     return criteria;
 }
 
+// OUT.csv, OUT.json and the plots of -o OUT, checked against the inputs and each other before any work.
+void declare_outputs(OutputFiles& files, const ValidityArgs& a) {
+    files.input(a.surface_file, "--surface-file");
+    files.input(a.material, "--material");
+    files.output(a.output + ".csv", "-o's CSV");
+    files.output(a.output + ".json", "-o's JSON");
+    files.output(a.output + "_slices.png", "-o's slices plot");
+    files.output(a.output + "_error_map.png", "-o's error map");
+}
+
+// Writes them together: the plots from the JSON, by `script`.
+void write_outputs(OutputFiles& files, const ValidityArgs& a, const std::string& csv, const std::string& json,
+                   const char* script) {
+    const std::string json_path = a.output + ".json";
+    files.write(a.output + ".csv", csv);
+    files.write(json_path, json);
+    files.write_together({a.output + "_slices.png", a.output + "_error_map.png"},
+                         [&](const std::vector<std::filesystem::path>& png) {
+                             run_plot_script(script, {files.staged(json_path).string(), png[0].string(), png[1].string()});
+                         });
+    files.commit();
+}
+
+void print_written(const ValidityArgs& a) {
+    const std::string out = printable_path(a.output);
+    std::printf("wrote %s.csv, %s.json, %s_slices.png and %s_error_map.png\n", out.c_str(), out.c_str(), out.c_str(),
+                out.c_str());
+}
+
 void run_profile_validity(const ValidityArgs& a) {
+    OutputFiles files;
+    declare_outputs(files, a);
     if (!a.surface.psd) fail("validity needs the surface: --psd kc|gaussian --sigma --corr-length [--gamma]");
     if (a.preparation.given())
         fail("{} applies to a measured map (the map route's --surface-file), not to the profiles route",
@@ -253,13 +285,11 @@ void run_profile_validity(const ValidityArgs& a) {
     say_if_interrupted(a.output, cases.size(), asked);
     if (cases.empty()) return;
 
-    const std::string csv_path = a.output + ".csv", json_path = a.output + ".json";
-    write_file_atomically(csv_path, csv_table(validity::table(cases), false));
-    write_file_atomically(json_path, json_report(cases, a,
-                                                fmt::format("{}, sigma_h {} um", statistics->cache_key(),
-                                                            format_number(statistics->sigma_h())),
-                                                conductor.name()).dump() + "\n");
-    run_plot_script("validity.py", {json_path, a.output + "_slices.png", a.output + "_error_map.png"});
+    write_outputs(files, a, csv_table(validity::table(cases), false),
+                  json_report(cases, a,
+                              fmt::format("{}, sigma_h {} um", statistics->cache_key(), format_number(statistics->sigma_h())),
+                              conductor.name()).dump() + "\n",
+                  "validity.py");
     print_summary(cases);
     for (const auto& c : cases)
         if (!c.target_reached)
@@ -270,8 +300,7 @@ void run_profile_validity(const ValidityArgs& a) {
                          format_number(c.wavelength_nm).c_str(), format_number(c.theta_i_deg).c_str(),
                          validity::to_string(c.polarisation).c_str(), 100 * c.reference_rel_stderr,
                          format_number(target).c_str(), c.reference.realizations);
-    std::printf("wrote %s, %s, %s_slices.png and %s_error_map.png\n", csv_path.c_str(), json_path.c_str(),
-                a.output.c_str(), a.output.c_str());
+    print_written(a);
     require_reference_valid(cases, [](const validity::ProfileCase& c) {
         return fmt::format("{} nm, theta_i {} deg, {}", format_number(c.wavelength_nm), format_number(c.theta_i_deg),
                            validity::to_string(c.polarisation));
@@ -356,6 +385,8 @@ void run_map_validity(const ValidityArgs& a, bool polarisation_given) {
     if (a.target_stderr || a.max_realizations)
         fail("--target-stderr and --max-realizations belong to the profiles route (--length-um); the map route's "
              "--realizations is a number of maps");
+    OutputFiles files;
+    declare_outputs(files, a);
     if (a.length > 0 || a.beam_width > 0)
         fail("--length-um and --beam-width belong to the profiles route; the map route's reference is the Kirchhoff "
              "BRDF of the map(s)");
@@ -398,10 +429,8 @@ void run_map_validity(const ValidityArgs& a, bool polarisation_given) {
     say_if_interrupted(a.output, cases.size(), asked);
     if (cases.empty()) return;
 
-    const std::string csv_path = a.output + ".csv", json_path = a.output + ".json";
-    write_file_atomically(csv_path, csv_table(validity::table(cases), true));
-    write_file_atomically(json_path, map_json_report(cases, a, surface, conductor.name()).dump() + "\n");
-    run_plot_script("validity_map.py", {json_path, a.output + "_slices.png", a.output + "_error_map.png"});
+    write_outputs(files, a, csv_table(validity::table(cases), true),
+                  map_json_report(cases, a, surface, conductor.name()).dump() + "\n", "validity_map.py");
     for (const auto& c : cases) {
         for (const std::string& w : c.reference_warnings)
             std::fprintf(stderr, "surfscatter: warning: %s nm, theta_i %s deg: %s\n",
@@ -409,8 +438,7 @@ void run_map_validity(const ValidityArgs& a, bool polarisation_given) {
         std::printf("%s nm, theta_i %s deg, phi_i %s deg: %s\n", format_number(c.wavelength_nm).c_str(),
                     format_number(c.theta_i_deg).c_str(), format_number(c.phi_i_deg).c_str(), c.verdict.text.c_str());
     }
-    std::printf("wrote %s, %s, %s_slices.png and %s_error_map.png\n", csv_path.c_str(), json_path.c_str(),
-                a.output.c_str(), a.output.c_str());
+    print_written(a);
     validity::require_outliers_not_dominant(surface);
     require_reference_valid(cases, [](const validity::MapCase& c) {
         return fmt::format("{} nm, theta_i {} deg, phi_i {} deg", format_number(c.wavelength_nm),

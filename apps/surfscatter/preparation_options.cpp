@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "surfscatter/core/output_files.hpp"
 #include "surfscatter/heightmap/io.hpp"
 
 namespace surfscatter::cli {
@@ -52,7 +53,9 @@ heightmap::PreparedMap read_prepared_map(const std::string& path, std::optional<
     if (as_read) *as_read = std::move(read);
     const heightmap::Outliers& found = prepared.outliers;
     if (found.count > 0)
-        std::fprintf(stderr, "surfscatter: note: %s\n", heightmap::outliers_note(path, found, how.outliers).c_str());
+        // outliers_note begins "warning: " when the outliers kept dominate; otherwise it is a note.
+        std::fprintf(stderr, "surfscatter: %s%s\n", heightmap::kept_and_dominant(found, how.outliers) ? "" : "note: ",
+                     heightmap::outliers_note(printable_path(path), found, how.outliers).c_str());
     return prepared;
 }
 

@@ -1,7 +1,8 @@
 """What every plot script shares: writing a figure and failing in one line.
 
-save(fig, path) checks the extension first (matplotlib picks the format from it), then writes beside the output and
-renames into place, so that a full disk or an interrupted run leaves the old file or none, never part of one. run(main)
+save(fig, path) checks the extension first (matplotlib picks the format from it), then writes beside the output, syncs
+and renames into place, so that a full disk or an interrupted run leaves the old file or none, never part of one
+(surfscatter passes a temporary name of its own and renames it with the command's other outputs). run(main)
 runs a script's main(): any failure (a write refused by the disk, a folder, an extension, Ctrl-C, missing input) is one
 line on stderr naming what failed and why, with exit status 2, which surfscatter's run_plot_script passes on as it is.
 """
@@ -38,10 +39,13 @@ def save(fig, path, **savefig_options):
     if extension not in supported:
         raise PlotError(f"cannot write {path}: the extension {'.' + extension if extension else '(none)'} is not an image "
                         f"format matplotlib writes ({', '.join(sorted(supported))})")
-    folder, name = os.path.split(path)
-    temporary = os.path.join(folder, f".{name}.tmp-{os.getpid()}.{extension}")
+    # A short temporary name (core/output_files.hpp's rule): an output whose own name has the maximum length (255
+    # bytes) still has one.
+    temporary = os.path.join(os.path.dirname(path), f".ss-py-{os.getpid():x}.{extension}")
     try:
         fig.savefig(temporary, format=extension, **savefig_options)
+        with open(temporary, "rb") as written:  # on disk before it replaces the old file
+            os.fsync(written.fileno())
         os.replace(temporary, path)
     except OSError as error:
         raise PlotError(f"cannot write {path}: {error.strerror or error}") from None

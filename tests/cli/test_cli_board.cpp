@@ -160,7 +160,7 @@ TEST(BoardCli, BadOptionsExitWithStatus2AndOneLineNamingTheValue) {
          "--dpi nan"},
         {{"--squares", "10x7", "--square-length", "0.03", "--marker-length", "0.022", "-o",
           (dir / "no" / "such" / "b.png").string()},
-         "cannot open"},
+         "folder " + (dir / "no" / "such").string() + " does not exist"},
     };
     for (const auto& [options, expected] : cases) {
         std::vector<std::string> args{"board"};

@@ -105,5 +105,6 @@ TEST(CliFitBrdf, BadOptionsAreErrors) {
     std::filesystem::copy_file(kExample, copy + ".csv", std::filesystem::copy_options::overwrite_existing);
     const auto r = run_cli({"fit-brdf", "--data", copy + ".csv", "--material", "Au", "-o", copy});
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_NE(r.err.find("would overwrite the input"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("-o's CSV " + copy + ".csv would replace the input --data " + copy + ".csv"), std::string::npos)
+        << r.err;
 }

@@ -39,11 +39,11 @@ void expect_one_line(const CliResult& r, const std::string& expected) {
     EXPECT_EQ(r.err.find("is python3-matplotlib installed"), std::string::npos) << r.err;
 }
 
-// Files in `folder` whose names start with "." + `name` (plotting.py's temporary files).
-std::vector<std::string> temporaries(const fs::path& folder, const std::string& name) {
+// Temporary files in `folder` (core/output_files.hpp's and plotting.py's names start with ".ss-").
+std::vector<std::string> temporaries(const fs::path& folder) {
     std::vector<std::string> found;
     for (const auto& entry : fs::directory_iterator(folder))
-        if (entry.path().filename().string().rfind("." + name, 0) == 0) found.push_back(entry.path().filename());
+        if (entry.path().filename().string().rfind(".ss-", 0) == 0) found.push_back(entry.path().filename());
     return found;
 }
 
@@ -57,7 +57,7 @@ CliResult info_with_plot(const fs::path& plot, const std::string& shell_prefix =
 TEST(CliPlots, APlotIsWritten) {
     CliResult r = slice_with_plot(dir() / "ok.csv", dir() / "ok.png");
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_TRUE(temporaries(dir(), "ok.png").empty());
+    EXPECT_TRUE(temporaries(dir()).empty());
     r = info_with_plot(dir() / "info.png");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_GT(fs::file_size(dir() / "info.png"), 8192u);  // the full-disk case below needs a plot beyond 8 KiB
@@ -69,7 +69,7 @@ TEST(CliPlots, WrongExtensionNamesThePlotAndTheReason) {
     expect_one_line(slice_with_plot(dir() / "ext.csv", plot),
                     "brdf_slice.py: cannot write " + plot.string() + ": the extension .xyz is not an image format");
     EXPECT_FALSE(fs::exists(plot));
-    EXPECT_TRUE(temporaries(dir(), "slice.xyz").empty());
+    EXPECT_TRUE(temporaries(dir()).empty());
 }
 
 TEST(CliPlots, ReadOnlyFolder) {
@@ -85,7 +85,9 @@ TEST(CliPlots, ReadOnlyFolder) {
     const CliResult r = slice_with_plot(dir() / "ro.csv", plot);
     if (root) EXPECT_EQ(std::system(("chattr -i '" + folder.string() + "'").c_str()), 0);
     else fs::permissions(folder, fs::perms::owner_all);
-    expect_one_line(r, "cannot write " + plot.string() + ": " + (root ? "Operation not permitted" : "Permission denied"));
+    // Refused before the work: the folder cannot take the output.
+    expect_one_line(r, "cannot write --plot " + plot.string() + ": folder " + folder.string() + ": " +
+                           (root ? "Operation not permitted" : "Permission denied"));
     EXPECT_TRUE(fs::is_empty(folder));
 }
 
@@ -96,10 +98,12 @@ TEST(CliPlots, FullDiskKeepsTheOldPlotAndLeavesNoTemporaryFile) {
     fs::create_directories(folder);
     const fs::path plot = folder / "slice.png";
     std::ofstream(plot) << "the previous plot";
+    std::ofstream(folder / "slice.csv") << "the previous table";  // the plot's CSV lands with it or not at all
     expect_one_line(info_with_plot(plot, "trap '' XFSZ; ulimit -f 16; "),
                     "psd_fit.py: cannot write " + plot.string() + ": File too large");
     EXPECT_EQ(surfscatter::test::read_whole_file(plot.string()), "the previous plot");
-    EXPECT_TRUE(temporaries(folder, "slice.png").empty());
+    EXPECT_EQ(surfscatter::test::read_whole_file((folder / "slice.csv").string()), "the previous table");
+    EXPECT_TRUE(temporaries(folder).empty());
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "error_of.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/input_file.hpp"
 #include "surfscatter/core/resources.hpp"
@@ -19,18 +20,7 @@
 
 namespace surfscatter {
 
-namespace {
-
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "no error";
-}
-
-}  // namespace
+using test::error_of;
 
 TEST(Printable, EscapesBinaryAndCutsLongText) {
     EXPECT_EQ(printable("plain text"), "plain text");

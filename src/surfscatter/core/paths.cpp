@@ -46,37 +46,6 @@ std::string host_name() {
     return name;
 }
 
-std::filesystem::path temporary_beside(const std::filesystem::path& file) {
-    static const std::string host = host_name();
-    return file.parent_path() / fmt::format(".{}.tmp-{}-{}{}", file.stem().string(), host, static_cast<long>(getpid()),
-                                            file.extension().string());
-}
-
-void write_file_atomically(const std::filesystem::path& file, const std::string& text) {
-    const std::filesystem::path tmp = temporary_beside(file);
-    bool out_ok = false;
-    int error = 0;
-    {
-        errno = 0;
-        std::ofstream out(tmp, std::ios::binary);
-        out << text;
-        out.close();
-        out_ok = bool(out);
-        error = errno;
-    }
-    std::error_code ec;
-    if (!out_ok) {
-        std::filesystem::remove(tmp, ec);
-        fail("cannot write {}{}", file.string(), error != 0 ? fmt::format(": {}", std::strerror(error)) : "");
-    }
-    std::filesystem::rename(tmp, file, ec);
-    if (ec) {
-        const std::string why = ec.message();  // before remove() overwrites ec
-        std::filesystem::remove(tmp, ec);
-        fail("cannot move {} into place: {}", file.string(), why);
-    }
-}
-
 std::filesystem::path plot_script_directory() {
     if (auto d = env("SURFSCATTER_PLOT_SCRIPTS"); !d.empty()) return d;
     return std::filesystem::path(SURFSCATTER_SOURCE_DIR) / "scripts" / "plot";

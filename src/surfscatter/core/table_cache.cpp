@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "surfscatter/core/output_files.hpp"
 #include "surfscatter/core/paths.hpp"
 
 namespace surfscatter {

@@ -15,6 +15,7 @@
 
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/input_file.hpp"
+#include "surfscatter/core/output_files.hpp"
 #include "surfscatter/heightmap/binary.hpp"
 #include "surfscatter/heightmap/gwyddion_file.hpp"
 #include "surfscatter/heightmap/hfm.hpp"
@@ -155,11 +156,7 @@ void write_gsf(const HeightMap& map, const std::filesystem::path& file) {
         const auto word = std::bit_cast<std::uint32_t>(value);
         for (int b = 0; b < 4; ++b) data[4 * i + b] = static_cast<char>((word >> (8 * b)) & 0xffu);
     }
-    std::ofstream out(file, std::ios::binary | std::ios::trunc);
-    if (!out) fail("{}: cannot open for writing", path);
-    out.write(header.data(), static_cast<std::streamsize>(header.size()));
-    out.write(data.data(), static_cast<std::streamsize>(data.size()));
-    if (!out) fail("{}: write error", path);
+    write_file_atomically(file, header + data);
 }
 
 void require_height_map_extension(const std::filesystem::path& path, const std::string& what) {
@@ -169,7 +166,7 @@ void require_height_map_extension(const std::filesystem::path& path, const std::
 
 void write_height_map(const HeightMap& map, const std::filesystem::path& path) {
     require_height_map_extension(path, "height map output");
-    if (path.extension() == ".gwy") gwyddion_write_gwy(map, path);
+    if (path.extension() == ".gwy") write_atomically(path, [&](const std::filesystem::path& tmp) { gwyddion_write_gwy(map, tmp); });
     else write_gsf(map, path);
 }
 

@@ -17,6 +17,7 @@
 
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/input_file.hpp"
+#include "surfscatter/core/output_files.hpp"
 #include "surfscatter/io/raster.hpp"
 
 namespace surfscatter::io {
@@ -241,25 +242,33 @@ void write_exr(const std::filesystem::path& path, const Image& image, const std:
         header.compression() = Imf::ZIP_COMPRESSION;
         const Imf::PixelType pixel_type = type == ExrPixelType::half ? Imf::HALF : Imf::FLOAT;
         for (const std::string& name : channels) header.channels().insert(name, Imf::Channel(pixel_type));
-        Imf::OutputFile file(path.c_str(), header);
-        Imf::FrameBuffer frame;
-        const std::size_t c_count = static_cast<std::size_t>(image.channels);
-        std::vector<Imath::half> halves;
-        char* base = nullptr;
-        std::size_t sample_size = sizeof(float);
-        if (type == ExrPixelType::half) {
-            halves.assign(image.pixels.begin(), image.pixels.end());
-            base = reinterpret_cast<char*>(halves.data());
-            sample_size = sizeof(Imath::half);
-        } else {
-            base = const_cast<char*>(reinterpret_cast<const char*>(image.pixels.data()));
-        }
-        const std::size_t x_stride = sample_size * c_count;
-        const std::size_t y_stride = x_stride * static_cast<std::size_t>(image.width);
-        for (std::size_t c = 0; c < c_count; ++c)
-            frame.insert(channels[c], Imf::Slice(pixel_type, base + c * sample_size, x_stride, y_stride));
-        file.setFrameBuffer(frame);
-        file.writePixels(image.height);
+        // Under a temporary name, renamed into place when whole (core/output_files.hpp).
+        OutputFiles files;
+        files.output(path, "output");
+        files.write_with(path, [&](const std::filesystem::path& tmp) {
+            Imf::OutputFile file(tmp.c_str(), header);
+            Imf::FrameBuffer frame;
+            const std::size_t c_count = static_cast<std::size_t>(image.channels);
+            std::vector<Imath::half> halves;
+            char* base = nullptr;
+            std::size_t sample_size = sizeof(float);
+            if (type == ExrPixelType::half) {
+                halves.assign(image.pixels.begin(), image.pixels.end());
+                base = reinterpret_cast<char*>(halves.data());
+                sample_size = sizeof(Imath::half);
+            } else {
+                base = const_cast<char*>(reinterpret_cast<const char*>(image.pixels.data()));
+            }
+            const std::size_t x_stride = sample_size * c_count;
+            const std::size_t y_stride = x_stride * static_cast<std::size_t>(image.width);
+            for (std::size_t c = 0; c < c_count; ++c)
+                frame.insert(channels[c], Imf::Slice(pixel_type, base + c * sample_size, x_stride, y_stride));
+            file.setFrameBuffer(frame);
+            file.writePixels(image.height);
+        });
+        files.commit();
+    } catch (const Error&) {
+        throw;
     } catch (const std::exception& e) {
         fail("cannot write EXR {}: {}", path.string(), e.what());
     }

@@ -8,7 +8,7 @@
 #include <zlib.h>
 
 #include "surfscatter/core/error.hpp"
-#include "surfscatter/core/paths.hpp"
+#include "surfscatter/core/output_files.hpp"
 
 namespace surfscatter::io {
 namespace {

@@ -16,6 +16,7 @@
 #include <tiffio.h>
 
 #include "surfscatter/core/input_file.hpp"
+#include "surfscatter/core/output_files.hpp"
 #include "surfscatter/core/resources.hpp"
 
 namespace surfscatter::io {
@@ -249,7 +250,10 @@ void write_png(const std::filesystem::path& path, const Raster& raster) {
     point_rows(state, static_cast<std::size_t>(raster.height),
                static_cast<std::size_t>(raster.width) * static_cast<std::size_t>(raster.channels) * bytes_per_sample);
     File file = open_for_writing(path);
-    if (!encode_png(state, file.get(), raster)) fail("cannot write PNG {}: {}", path.string(), state.error);
+    errno = 0;
+    if (!encode_png(state, file.get(), raster))  // libpng says "Write Error" where the system names the reason
+        fail("cannot write PNG {}: {}", path.string(),
+             std::ferror(file.get()) && errno != 0 ? std::strerror(errno) : state.error);
     if (std::fclose(file.release()) != 0) fail("cannot write PNG {}: {}", path.string(), std::strerror(errno));
 }
 
@@ -624,11 +628,13 @@ void write_raster(const std::filesystem::path& path, const Raster& raster, Raste
         raster.samples.size() != static_cast<std::size_t>(raster.width) * raster.height * raster.channels)
         fail("cannot write {}: not a valid image ({}x{}, {} channels, {} bits, {} samples)", path.string(), raster.width,
              raster.height, raster.channels, raster.bit_depth, raster.samples.size());
-    switch (format) {
-        case RasterFormat::png: return write_png(path, raster);
-        case RasterFormat::jpeg: return write_jpeg(path, raster, jpeg_quality);
-        case RasterFormat::tiff: return write_tiff(path, raster);
-    }
+    write_atomically(path, [&](const std::filesystem::path& tmp) {
+        switch (format) {
+            case RasterFormat::png: return write_png(tmp, raster);
+            case RasterFormat::jpeg: return write_jpeg(tmp, raster, jpeg_quality);
+            case RasterFormat::tiff: return write_tiff(tmp, raster);
+        }
+    });
 }
 
 }  // namespace surfscatter::io

@@ -6,7 +6,7 @@
 
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/input_file.hpp"
-#include "surfscatter/core/paths.hpp"
+#include "surfscatter/core/output_files.hpp"
 
 namespace surfscatter::io {
 

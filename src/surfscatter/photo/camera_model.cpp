@@ -6,6 +6,7 @@
 #include <string>
 
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/output_files.hpp"
 #include "surfscatter/photo/file_storage.hpp"
 
 namespace surfscatter::photo {
@@ -13,7 +14,8 @@ namespace surfscatter::photo {
 void write_camera(const std::filesystem::path& path, const CameraModel& camera) {
     cv::FileStorage fs;
     try {
-        fs.open(path.string(), cv::FileStorage::WRITE);
+        // Built in memory (the format from the extension), written atomically (core/output_files.hpp).
+        fs.open(path.string(), cv::FileStorage::WRITE | cv::FileStorage::MEMORY);
     } catch (const cv::Exception& e) {
         fail("camera file '{}' could not be written: {}", path.string(), e.what());
     }
@@ -32,6 +34,7 @@ void write_camera(const std::filesystem::path& path, const CameraModel& camera) 
         for (const auto& w : camera.calibration_warnings) fs << w;
         fs << "]";
     }
+    write_file_atomically(path, fs.releaseAndGetString());
 }
 
 namespace {

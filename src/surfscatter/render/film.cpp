@@ -166,7 +166,8 @@ io::Image Film::develop_pixel_format(const FilmSettings& settings, std::vector<s
     return image;
 }
 
-void write_film(const Film& film, const FilmSettings& settings, const std::filesystem::path& exr_path) {
+void write_film(const Film& film, const FilmSettings& settings, const std::filesystem::path& exr_path,
+                std::filesystem::path png_path) {
     std::vector<std::string> channels;
     const io::Image exr = film.develop_pixel_format(settings, channels);
     io::ExrPixelType type = io::ExrPixelType::half;
@@ -184,8 +185,7 @@ void write_film(const Film& film, const FilmSettings& settings, const std::files
                 png.at(x, y, c) = static_cast<float>(spectrum::srgb_encode(std::clamp(static_cast<double>(rgb.at(x, y, c)), 0.0, 1.0)));
             if (with_alpha) png.at(x, y, 3) = static_cast<float>(std::clamp(film.alpha(x, y), 0.0, 1.0));
         }
-    std::filesystem::path png_path = exr_path;
-    png_path.replace_extension(".png");
+    if (png_path.empty()) png_path = std::filesystem::path(exr_path).replace_extension(".png");
     io::write_png(png_path, png);
 }
 

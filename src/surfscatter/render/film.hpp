@@ -96,8 +96,9 @@ private:
     TiledPixels<Pixel> pixels_;
 };
 
-// Writes `exr_path` in the film's pixel_format and component_format and the same path with extension .png (the
-// linear sRGB image sRGB-encoded to 8 bits, with alpha for the *_alpha / rgba formats).
-void write_film(const Film& film, const FilmSettings& settings, const std::filesystem::path& exr_path);
+// Writes `exr_path` in the film's pixel_format and component_format and `png_path` (default: the same path with
+// extension .png): the linear sRGB image sRGB-encoded to 8 bits, with alpha for the *_alpha / rgba formats.
+void write_film(const Film& film, const FilmSettings& settings, const std::filesystem::path& exr_path,
+                std::filesystem::path png_path = {});
 
 }  // namespace surfscatter::render

@@ -8,7 +8,7 @@
 
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/input_file.hpp"
-#include "surfscatter/core/paths.hpp"
+#include "surfscatter/core/output_files.hpp"
 #include "surfscatter/study/json_input.hpp"
 
 namespace surfscatter::study {

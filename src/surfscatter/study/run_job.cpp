@@ -13,6 +13,7 @@
 #include "surfscatter/bsdf/factory.hpp"
 #include "surfscatter/bsdf/slice.hpp"
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/output_files.hpp"
 #include "surfscatter/core/paths.hpp"
 #include "surfscatter/io/image.hpp"
 #include "surfscatter/render/camera.hpp"
@@ -115,29 +116,16 @@ public:
 private:
     fs::path output(std::size_t i) const { return s_.folder / job_.outputs.at(i); }
 
-    // Writes through `write(temporary path)` and renames the result into place (with the .png of an .exr).
+    // Writes the job's outputs `paths` (core/output_files.hpp) through `write(their temporary paths)`.
     template <typename Write>
-    void write_atomically(const fs::path& path, Write&& write, bool with_png = false) {
-        fs::create_directories(path.parent_path());
-        const fs::path tmp = temporary_beside(path);
-        try {
-            write(tmp);
-        } catch (const Error& e) {  // a plot script's or writer's message names the temporary file: name the output
-            std::error_code ec;
-            fs::remove(tmp, ec);
-            std::string message = e.what();
-            for (std::size_t at = message.find(tmp.string()); at != std::string::npos;
-                 at = message.find(tmp.string(), at + path.string().size()))
-                message.replace(at, tmp.string().size(), path.string());
-            throw Error(message);
+    void write_outputs(const std::vector<fs::path>& paths, Write&& write) {
+        OutputFiles files;
+        for (const fs::path& path : paths) {
+            fs::create_directories(path.parent_path());
+            files.output(path, "the study's output");
         }
-        if (with_png) {
-            fs::path png = path, tmp_png = tmp;
-            png.replace_extension(".png");
-            tmp_png.replace_extension(".png");
-            fs::rename(tmp_png, png);
-        }
-        fs::rename(tmp, path);
+        files.write_together(paths, write);
+        files.commit();
     }
 
     std::unique_ptr<render::Scene> load(const json& defines_json) {
@@ -187,7 +175,9 @@ private:
             scene->film.crop_height = b.y1 - b.y0;
         }
         const render::Film film = render_scene(*scene, job_.parameters["spp"].get<int>());
-        write_atomically(output(0), [&](const fs::path& tmp) { render::write_film(film, scene->film, tmp); }, true);
+        fs::path png = output(0);
+        png.replace_extension(".png");
+        write_outputs({output(0), png}, [&](const std::vector<fs::path>& tmp) { render::write_film(film, scene->film, tmp[0], tmp[1]); });
     }
 
     void overview() {
@@ -223,7 +213,7 @@ private:
                 paint(b.x1 - 1 - t, y);
             }
         }
-        write_atomically(output(0), [&](const fs::path& tmp) { io::write_png(tmp, image); });
+        write_outputs({output(0)}, [&](const std::vector<fs::path>& tmp) { io::write_png(tmp[0], image); });
     }
 
     void brdf_table() {
@@ -254,8 +244,8 @@ private:
             panels.push_back(panel[0].get<std::string>() + "=" + path.string());
         }
         if (missing == panels.size()) fail("none of the sheet's images exists (their jobs failed)");
-        write_atomically(output(0), [&](const fs::path& tmp) {
-            std::vector<std::string> args = {tmp.string(), p["title"].get<std::string>(), std::to_string(p["columns"].get<int>())};
+        write_outputs({output(0)}, [&](const std::vector<fs::path>& tmp) {
+            std::vector<std::string> args = {tmp[0].string(), p["title"].get<std::string>(), std::to_string(p["columns"].get<int>())};
             if (p.value("crop_to_difference", false)) args.push_back("--crop-to-difference");
             args.insert(args.end(), panels.begin(), panels.end());
             run_plot_script("sheet_compare.py", args);
@@ -276,11 +266,10 @@ private:
                 if (!first || text.empty()) text += line + "\n";
         }
         if (text.empty()) fail("none of the models' tables exists (their jobs failed)");
-        fs::create_directories(output(0).parent_path());
-        write_file_atomically(output(0), text);
         const char* script = job_.kind == JobKind::slice_plot ? "brdf_slice.py" : "albedo_curves.py";
-        write_atomically(output(1), [&](const fs::path& tmp) {
-            std::vector<std::string> args{output(0).string(), tmp.string(), job_.parameters["title"].get<std::string>()};
+        write_outputs({output(0), output(1)}, [&](const std::vector<fs::path>& tmp) {
+            write_file_atomically(tmp[0], text);
+            std::vector<std::string> args{tmp[0].string(), tmp[1].string(), job_.parameters["title"].get<std::string>()};
             const json labels = job_.parameters.value("labels", json::object());  // kept: items() refers to it
             for (const auto& [name, label] : labels.items())
                 args.push_back(name + "=" + label.get<std::string>());  // legends show the study's labels
