@@ -61,6 +61,23 @@ Lattice convolve(const Lattice& a, const Lattice& b, long h) {
     return out;
 }
 
+// The orders P-hat^{*m}, m = 1 .. count, of unit-mass node weights p1, each a direct convolution kept on nodes -h .. h.
+std::vector<Lattice> orders_of(const Lattice& p1, int count, long h) {
+    std::vector<Lattice> orders{p1};
+    for (int m = 2; m <= count; ++m) orders.push_back(convolve(orders.back(), p1, h));
+    return orders;
+}
+
+// The Poisson series e^{-g} sum_m g^m / m! P-hat^{*m} at node (i, j), as a density (node weights over dz2), um^2.
+double poisson_series(const std::vector<Lattice>& orders, double g, long i, long j, double dz2) {
+    double direct = 0, term = std::exp(-g);
+    for (std::size_t m = 1; m <= orders.size(); ++m) {
+        term *= g / double(m);
+        direct += term * orders[m - 1].get(i, j);
+    }
+    return direct / dz2;
+}
+
 }  // namespace
 
 TEST(SpectrumLobes2d, MatchesDirectPoissonSeriesOfConvolutions) {
@@ -77,20 +94,14 @@ TEST(SpectrumLobes2d, MatchesDirectPoissonSeriesOfConvolutions) {
     const Lattice p1 = unit_periodogram(spectrum);
     constexpr long kHalf = 40;  // nodes kept (p * Nyquist is node 32)
     constexpr int kOrders = 36;
-    std::vector<Lattice> orders{p1};
-    for (int m = 2; m <= kOrders; ++m) orders.push_back(convolve(orders.back(), p1, kHalf));
+    const std::vector<Lattice> orders = orders_of(p1, kOrders, kHalf);
     const double dz2 = spectrum.dzeta_x * spectrum.dzeta_y;
     double worst = 0;
     for (double g : {0.01, 0.1, 0.3, 1.0, 1.0 * std::pow(10.0, 0.5 / 12), 2.0, 5.0}) {
         double peak = 0, error = 0;
         for (long j = -32; j <= 32; ++j)
             for (long i = -32; i <= 32; ++i) {
-                double direct = 0, term = std::exp(-g);
-                for (int m = 1; m <= kOrders; ++m) {
-                    term *= g / m;
-                    direct += term * orders[std::size_t(m - 1)].get(i, j);
-                }
-                direct /= dz2;  // node weights to a density, um^2
+                const double direct = poisson_series(orders, g, i, j, dz2);
                 const Vec2 zeta(double(i) * spectrum.dzeta_x, double(j) * spectrum.dzeta_y);
                 peak = std::max(peak, direct);
                 error = std::max(error, std::abs(lobes.eval(g, zeta) - direct));
@@ -136,17 +147,9 @@ TEST(SpectrumLobes2d, CoreAtSpecularFollowsTheLowestRings) {
     const Lattice p1 = unit_periodogram(spectrum);
     constexpr long kHalf = 40;
     constexpr int kOrders = 16;  // g <= 1: the series' tail beyond is below 1e-14
-    std::vector<Lattice> orders{p1};
-    for (int m = 2; m <= kOrders; ++m) orders.push_back(convolve(orders.back(), p1, kHalf));
+    const std::vector<Lattice> orders = orders_of(p1, kOrders, kHalf);
     const double dz2 = spectrum.dzeta_x * spectrum.dzeta_y;
-    auto direct = [&](double g, long i, long j) {
-        double sum = 0, term = std::exp(-g);
-        for (int m = 1; m <= kOrders; ++m) {
-            term *= g / m;
-            sum += term * orders[std::size_t(m - 1)].get(i, j);
-        }
-        return sum / dz2;
-    };
+    auto direct = [&](double g, long i, long j) { return poisson_series(orders, g, i, j, dz2); };
     for (double g : {0.001, 0.01, 0.1, 1.0}) {
         const double at_zero = direct(g, 0, 0);
         double neighbours = 0;
@@ -255,18 +258,12 @@ TEST(SpectrumLobes2d, MaskedSpectrumKeepsItsRingsAndLobesArePositive) {
     // The Poisson series of direct convolutions of the kept spectrum (node weights).
     constexpr long kHalf = 40;
     constexpr int kOrders = 36;
-    std::vector<Lattice> orders{kept};
-    for (int m = 2; m <= kOrders; ++m) orders.push_back(convolve(orders.back(), kept, kHalf));
+    const std::vector<Lattice> orders = orders_of(kept, kOrders, kHalf);
     for (double g : {0.1, 1.0, 5.0}) {
         double peak = 0, error = 0;
         for (long j = -32; j <= 32; ++j)
             for (long i = -32; i <= 32; ++i) {
-                double direct = 0, term = std::exp(-g);
-                for (int m = 1; m <= kOrders; ++m) {
-                    term *= g / m;
-                    direct += term * orders[std::size_t(m - 1)].get(i, j);
-                }
-                direct /= dz2;
+                const double direct = poisson_series(orders, g, i, j, dz2);
                 const Vec2 zeta(double(i) * spectrum.dzeta_x, double(j) * spectrum.dzeta_y);
                 peak = std::max(peak, direct);
                 error = std::max(error, std::abs(lobes.eval(g, zeta) - direct));

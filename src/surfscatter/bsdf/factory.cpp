@@ -447,8 +447,10 @@ std::unique_ptr<Bsdf> map_spectrum_bsdf(const ModelOptions& o, SurfaceSource& su
             to_string(o.model), lobes->sigma_h(), lobes->padding(), coverage, lobes->edge_fraction(),
             lobes->edge_fraction() > 1e-3 ? " (warning: the highest orders fold back there)" : "",
             lobes->clipped_fraction() > 0
-                ? fmt::format("the masked periodogram's bins below zero ({:.2g} of its positive sum: its scatter where "
-                              "the PSD lies below it) set to 0, each ring's sum kept; ", lobes->clipped_fraction())
+                ? fmt::format("{}the masked periodogram's bins below zero ({:.2g} of its positive sum: its scatter where "
+                              "the PSD lies below it{}) set to 0, each ring's sum kept; ",
+                              lobes->clipped_fraction() > 0.1 ? "warning: " : "", lobes->clipped_fraction(),
+                              lobes->clipped_fraction() > 0.1 ? ", which holds much of its high frequencies" : "")
                 : std::string(),
             lobes->rough_rows() > 0
                 ? fmt::format("g >= {:.4g} in the rough-surface limit (the Gaussian of the periodogram's slope "
