@@ -1,7 +1,7 @@
 #pragma once
 // Comma-separated list options (--wavelength 400,500,600, --models ggx,ghs). CLI11's own delimiter drops empty
 // items, so "400,,500" would silently be read as two wavelengths: these parse the list themselves and reject an
-// empty item, a non-number, and more than kMaxListItems items. Each occurrence of the option adds its items.
+// empty item, an item with a control character (a line break), a non-number, and more than kMaxListItems items. Each occurrence of the option adds its items.
 #include <cstddef>
 #include <string>
 #include <vector>

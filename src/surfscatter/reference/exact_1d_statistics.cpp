@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/resources.hpp"
 #include "surfscatter/reference/parallel_jobs.hpp"
 #include "surfscatter/surface/synthesis.hpp"
 
@@ -18,7 +19,8 @@ Profile random_profile(const surface::RadialStatistics& statistics, const Exact1
     require_positive(options.lambda_nm, "wavelength (nm)");
     const double spacing = options.lambda_nm * 1e-3 / options.points_per_wavelength;
     const double samples = std::ceil(length_um / spacing) + 1;
-    if (!(samples <= 1e7)) fail("profile length {} um needs {:.3g} samples, more than 1e7", length_um, samples);
+    if (!(samples <= kMaxExact1dNodes))
+        fail("profile length {} um needs {:.3g} samples, more than {:.0e}", length_um, samples, kMaxExact1dNodes);
     const auto n = static_cast<std::size_t>(samples);
     Profile profile;
     profile.spacing_um = spacing;
@@ -33,6 +35,10 @@ StatisticalResult solve_exact_1d_statistics(const surface::RadialStatistics& sta
     if (st.realizations < 2) fail("realizations must be at least 2 (for a standard error), got {}", st.realizations);
     // The first profile is made before any thread starts, so that bad statistics or lengths fail at once.
     const Profile first = random_profile(statistics, options, st.length_um, st.seed);
+    // Every realization's far field is kept until the end (the standard errors): bounded before allocating.
+    const double field_bytes = sizeof(FarField) + 1.0 + (kFarFieldSteps + 1.0) * (sizeof(double) + sizeof(std::complex<double>));
+    require_memory(field_bytes * static_cast<double>(st.realizations),
+                   fmt::format("keeping the far fields of {} realizations", st.realizations));
     std::vector<FarField> fields(st.realizations);
     const std::vector<char> done =
         run_parallel_jobs(st.realizations, st.threads, "exact-1d realizations", st.progress, [&] {
