@@ -173,20 +173,17 @@ void say_if_interrupted(const std::string& output, std::size_t done, std::size_t
         std::fprintf(stderr, "surfscatter: interrupted: %s.csv holds %zu of %zu cases\n", output.c_str(), done, asked);
 }
 
-void check_criteria(const ValidityArgs& a) {
-    require_thread_count(a.threads, "--threads");
-    if (!(a.tolerance > 0 && a.tolerance < 1)) fail("--tolerance must be in (0, 1), got {}", a.tolerance);
-    if (!(a.bin_deg >= 0 && a.bin_deg <= 30)) fail("--bin-deg must be in [0, 30] degrees, got {}", a.bin_deg);
-    if (!(a.max_reference_stderr > 0 && a.max_reference_stderr <= 1))
-        fail("--max-reference-stderr must be in (0, 1], got {}", a.max_reference_stderr);
-}
-
 validity::Criteria criteria_from(const ValidityArgs& a) {
     validity::Criteria criteria;
     criteria.tolerance = a.tolerance;
     criteria.max_reference_stderr = a.max_reference_stderr;
     criteria.bin_deg = a.bin_deg;
     return criteria;
+}
+
+void check_criteria(const ValidityArgs& a) {
+    require_thread_count(a.threads, "--threads");
+    validity::require_valid_criteria(criteria_from(a), "--tolerance", "--bin-deg", "--max-reference-stderr");
 }
 
 void run_profile_validity(const ValidityArgs& a) {

@@ -229,8 +229,8 @@ std::vector<MapCase> map_validity(const MapSurface& surface, const material::Con
     for (const double phi : study.phi_i_deg) require_finite(phi, "phi_i");
     for (const double lambda : study.wavelengths_nm)
         if (!(lambda > 0) || !std::isfinite(lambda)) fail("validity: wavelength must be > 0 nm, got {}", lambda);
-    if (!(study.criteria.bin_deg >= 0 && study.criteria.bin_deg <= 30))
-        fail("validity: bin width must be in [0, 30] degrees, got {}", study.criteria.bin_deg);
+    require_valid_criteria(study.criteria, "tolerance", "bin_deg", "max_reference_stderr");
+    require_thread_count(study.threads, "threads");
     const heightmap::HeightMap& first = surface.maps.front();
     const double subarea = study.subarea_um > 0 ? study.subarea_um : 0.25 * std::min(first.width(), first.height());
 
