@@ -52,7 +52,9 @@ void BoardOptions::add_to(CLI::App& cmd, const std::string& types, const std::st
 }
 
 bool BoardOptions::board_options_given() const {
-    return !squares.empty() || !markers.empty() || square_length != 0.0 || marker_separation != 0.0;
+    for (const char* option : {"--squares", "--markers", "--square-length", "--marker-separation"})
+        if (option_given(*command, option)) return true;
+    return false;
 }
 
 photo::BoardSpec BoardOptions::spec() const {

@@ -17,6 +17,9 @@ struct OptionScope {
     std::string why = {};            // what it does without `needs` ("the surface is isotropic")
 };
 
+// Whether `option` was given to `cmd` (false for an option the command does not have).
+bool option_given(const CLI::App& cmd, const std::string& option);
+
 // Throws Error for the first option of `table` given to `cmd` that does not apply to `mode` ("--seed does not apply to
 // one profile (--profile): it applies to the statistical mode (--psd)") or lacks the option it needs ("--lay-angle
 // needs --corr-length-v: without it the surface is isotropic").

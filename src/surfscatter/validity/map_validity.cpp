@@ -231,6 +231,9 @@ std::vector<MapCase> map_validity(const MapSurface& surface, const material::Con
         if (!(lambda > 0) || !std::isfinite(lambda)) fail("validity: wavelength must be > 0 nm, got {}", lambda);
     require_valid_criteria(study.criteria, "tolerance", "bin_deg", "max_reference_stderr");
     require_thread_count(study.threads, "threads");
+    require_list_size(study.wavelengths_nm.size(), "wavelengths_nm");
+    require_list_size(study.theta_i_deg.size(), "theta_i_deg");
+    require_list_size(study.phi_i_deg.size(), "phi_i_deg");
     const heightmap::HeightMap& first = surface.maps.front();
     const double subarea = study.subarea_um > 0 ? study.subarea_um : 0.25 * std::min(first.width(), first.height());
 

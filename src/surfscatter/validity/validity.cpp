@@ -185,6 +185,8 @@ std::vector<ProfileCase> profile_validity(const surface::RadialStatistics& stati
                                           const material::Conductor& conductor, const ProfileStudy& study) {
     require_valid_criteria(study.criteria, "tolerance", "bin_deg", "max_reference_stderr");
     require_thread_count(study.statistical.threads, "threads");
+    require_list_size(study.wavelengths_nm.size(), "wavelengths_nm");
+    require_list_size(study.theta_i_deg.size(), "theta_i_deg");
     if (study.wavelengths_nm.empty()) fail("validity: no wavelengths given");
     if (study.theta_i_deg.empty()) fail("validity: no angles of incidence given");
     if (study.polarisations.empty()) fail("validity: no polarisations given");
