@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "option_scope.hpp"
 #include "surfscatter/core/error.hpp"
 
 namespace surfscatter::cli {
@@ -19,7 +20,20 @@ void parse_size(const std::string& text, const char* option, int& width, int& he
     }
 }
 
+namespace {
+
+// Which board type each board option describes (modes named as typed: "--board grid").
+const std::string kCharuco = "--board charuco", kChessboard = "--board chessboard", kGrid = "--board grid";
+const std::vector<OptionScope> kBoardScopes = {
+    {"--squares", {kCharuco, kChessboard}},        {"--square-length", {kCharuco, kChessboard}},
+    {"--markers", {kGrid}},                        {"--marker-separation", {kGrid}},
+    {"--marker-length", {kCharuco, kGrid}},        {"--dictionary", {kCharuco, kGrid}},
+};
+
+}  // namespace
+
 void BoardOptions::add_to(CLI::App& cmd, const std::string& types, const std::string& default_board, bool grid) {
+    command = &cmd;
     board = default_board;
     auto* option = cmd.add_option("--board", board, "board type: " + types);
     if (!default_board.empty()) option->capture_default_str();
@@ -38,26 +52,23 @@ void BoardOptions::add_to(CLI::App& cmd, const std::string& types, const std::st
 }
 
 bool BoardOptions::board_options_given() const {
-    return !squares.empty() || !markers.empty() || square_length != 0.0 || marker_separation != 0.0;
+    for (const char* option : {"--squares", "--markers", "--square-length", "--marker-separation"})
+        if (option_given(*command, option)) return true;
+    return false;
 }
 
 photo::BoardSpec BoardOptions::spec() const {
     photo::BoardSpec spec;
     spec.type = photo::board_type_by_name(board);
+    require_applicable_options(*command, "--board " + board, kBoardScopes);
     spec.dictionary = dictionary;
     spec.marker_length = marker_length;
     if (spec.type == photo::BoardType::Grid) {
         if (markers.empty()) fail("--board grid needs --markers WxH");
-        if (!squares.empty()) fail("--squares is for charuco and chess boards; a grid board takes --markers WxH");
-        if (square_length != 0.0) fail("--square-length is for charuco and chess boards, not a grid board");
         parse_size(markers, "--markers", spec.markers_x, spec.markers_y);
         spec.marker_separation = marker_separation;
     } else {
         if (squares.empty()) fail("--board {} needs --squares WxH", board);
-        if (!markers.empty()) fail("--markers is for grid boards; a {} board takes --squares WxH", board);
-        if (marker_separation != 0.0) fail("--marker-separation is for grid boards, not a {} board", board);
-        if (spec.type == photo::BoardType::Chessboard && marker_length != 0.0)
-            fail("--marker-length is for boards with markers, not a chessboard");
         parse_size(squares, "--squares", spec.squares_x, spec.squares_y);
         spec.square_length = square_length;
     }

@@ -29,6 +29,14 @@ struct Options {
     std::string output;
 };
 
+// A text field of the CSV (RFC 4180): quoted when it holds a comma, a quote or a line break (a file name may).
+std::string csv_field(const std::string& text) {
+    if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+    std::string quoted = "\"";
+    for (const char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return quoted + "\"";
+}
+
 void run(const Options& o) {
     const std::filesystem::path stem = std::filesystem::path(o.output).replace_extension();
     const std::string csv_path = stem.string() + ".csv", json_path = stem.string() + ".json";
@@ -69,7 +77,7 @@ void run(const Options& o) {
         const auto& m = metrics[i];
         // PSNR is infinite for an exact match (zero error), the one infinity written on purpose.
         const std::string psnr = std::isinf(m.psnr_db) && m.rmse == 0.0 ? "inf" : format_number(m.psnr_db);
-        const std::string row = m.label + "," + o.renders[i] + "," + format_number(m.exposure_scale) + "," +
+        const std::string row = csv_field(m.label) + "," + csv_field(o.renders[i]) + "," + format_number(m.exposure_scale) + "," +
                                 format_number(m.rmse) + "," + psnr + "," + format_number(m.ssim) + "," +
                                 format_number(m.mean_ciede2000);
         csv << row << "\n";

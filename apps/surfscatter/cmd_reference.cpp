@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "command.hpp"
+#include "option_scope.hpp"
 #include "preparation_options.hpp"
 #include "profile_surface_options.hpp"
 #include "surfscatter/bsdf/model_options.hpp"
@@ -89,7 +90,16 @@ void require_incidence(double theta_i, double wavelength) {
     require_positive(wavelength, "--wavelength");
 }
 
-void run_exact_1d(const Exact1dArgs& a) {
+// exact-1d's two modes and the options only the statistical one takes.
+const std::string kOneProfile = "one profile (--profile)", kRandomProfiles = "the statistical mode (--psd)";
+const std::vector<OptionScope> kExact1dScopes = {
+    {"--sigma", {kRandomProfiles}},       {"--corr-length", {kRandomProfiles}}, {"--gamma", {kRandomProfiles}},
+    {"--length-um", {kRandomProfiles}},   {"--realizations", {kRandomProfiles}}, {"--seed", {kRandomProfiles}},
+    {"--threads", {kRandomProfiles}},
+};
+
+void run_exact_1d(const Exact1dArgs& a, const CLI::App& sub) {
+    require_applicable_options(sub, a.surface.psd ? kRandomProfiles : kOneProfile, kExact1dScopes);
     OutputFiles files;
     files.input(a.profile, "--profile");
     files.input(a.material, "--material");
@@ -104,12 +114,6 @@ void run_exact_1d(const Exact1dArgs& a) {
     options.beam_width_um = a.beam_width;
     options.points_per_wavelength = a.points_per_wavelength;
     if (!a.surface.psd) {
-        for (const auto& [given, name] : {std::pair{a.length.has_value(), "--length-um"},
-                                         std::pair{a.surface.sigma.has_value(), "--sigma"},
-                                         std::pair{a.surface.corr_length.has_value(), "--corr-length"},
-                                         std::pair{a.surface.gamma.has_value(), "--gamma"},
-                                         std::pair{a.realizations != 0, "--realizations"}})
-            if (given) fail("{} applies to the statistical mode (--psd) only", name);
         if (a.profile.empty()) fail("give --profile FILE.csv or the statistical mode --psd kc|gaussian");
         const reference::Profile profile = reference::read_profile_csv(a.profile);
         files.write(a.output, far_field_csv(reference::solve_exact_1d(profile, conductor, options)));
@@ -350,7 +354,7 @@ const Command command("reference", [](CLI::App& app) {
     sub->add_option("--realizations", a->realizations, "number of random profiles (>= 2)");
     sub->add_option("--seed", a->seed, "seed of the first profile; profile r uses seed + r (default 1)");
     sub->add_option("--threads", a->threads, "realizations solved at once, 0 = all cores (default)");
-    sub->callback([a] { run_exact_1d(*a); });
+    sub->callback([a, sub] { run_exact_1d(*a, *sub); });
     add_kirchhoff(cmd);
     add_models_1d(cmd);
 });

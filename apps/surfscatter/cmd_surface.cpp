@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 
 #include "command.hpp"
+#include "option_scope.hpp"
 #include "preparation_options.hpp"
 #include "profile_route.hpp"
 #include "statistics_options.hpp"
@@ -113,7 +114,9 @@ struct FitPlotFiles {
     }
 };
 
-void synth(const SynthArgs& args) {
+void synth(const SynthArgs& args, const CLI::App& cmd) {
+    require_applicable_options(cmd, "surface synth",
+                               {{"--lay-angle", {"surface synth"}, "--corr-length-v", "the surface is isotropic"}});
     OutputFiles files;
     files.output(args.output, "-o");
     const std::shared_ptr<const surface::RadialStatistics> model = args.statistics.make();
@@ -126,7 +129,7 @@ void synth(const SynthArgs& args) {
     if (!std::isfinite(args.lay_angle)) fail("--lay-angle must be finite, got {}", args.lay_angle);
     const auto n = static_cast<std::size_t>(args.size);
     const surface::SynthesisGrid grid{n, n, args.spacing};
-    const bool anisotropic = args.corr_length_v || args.lay_angle != 0.0;
+    const bool anisotropic = args.corr_length_v.has_value();
     heightmap::HeightMap map =
         anisotropic ? surface::synthesize_surface(
                           surface::EllipticalStatistics(model, args.corr_length_v.value_or(model->correlation_length()),
@@ -667,7 +670,7 @@ const Command command("surface", [](CLI::App& app) {
     synth_cmd->add_option("--seed", s->seed, "random seed (same seed, same surface)");
     synth_cmd->add_option("-o,--output", s->output, "output height map (.gsf, or .gwy through Gwyddion)")->required();
     synth_cmd->add_option("--title", s->title, "Title stored in the .gsf header");
-    synth_cmd->callback([s] { synth(*s); });
+    synth_cmd->callback([s, synth_cmd] { synth(*s, *synth_cmd); });
 
     auto i = std::make_shared<InfoArgs>();
     CLI::App* info_cmd = surface_cmd->add_subcommand(

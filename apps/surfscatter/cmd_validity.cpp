@@ -19,6 +19,7 @@
 
 #include "command.hpp"
 #include "list_options.hpp"
+#include "option_scope.hpp"
 #include "preparation_options.hpp"
 #include "profile_surface_options.hpp"
 #include "surfscatter/core/error.hpp"
@@ -45,7 +46,8 @@ struct ValidityArgs {
     std::vector<double> wavelengths, theta_i;
     double length = 0, beam_width = 0, points_per_wavelength = 10;
     double tolerance = 0.10, max_reference_stderr = 0.25, bin_deg = 3;
-    long long realizations = 0, seed = 1;
+    std::optional<long long> realizations;  // profiles: >= 2, no default; synthesised maps: 1 by default
+    long long seed = 1;
     std::optional<double> target_stderr;          // percent
     std::optional<long long> max_realizations;
     int threads = 0;
@@ -56,8 +58,44 @@ struct ValidityArgs {
     std::optional<double> map_size, corr_length_v, lay_angle, subarea;
     long long map_pixels = 256;
     double max_theta_o = 80;
-    bool map_route() const { return !surface_file.empty() || map_size.has_value(); }
 };
+
+// validity's three surfaces and the options each takes; the others apply to all three.
+const std::string kProfiles = "the profiles route (--length-um)", kSynthesised = "synthesised maps (--map-size-um)",
+                  kMeasured = "a measured map (--surface-file)";
+const std::vector<OptionScope> kValidityScopes = {
+    {"--psd", {kProfiles, kSynthesised}},
+    {"--sigma", {kProfiles, kSynthesised}},
+    {"--corr-length", {kProfiles, kSynthesised}},
+    {"--gamma", {kProfiles, kSynthesised}},
+    {"--realizations", {kProfiles, kSynthesised}},
+    {"--seed", {kProfiles, kSynthesised}},
+    {"--length-um", {kProfiles}},
+    {"--beam-width", {kProfiles}},
+    {"--points-per-wavelength", {kProfiles}},
+    {"--polarisation", {kProfiles}},
+    {"--target-stderr", {kProfiles}},
+    {"--max-realizations", {kProfiles}},
+    {"--map-pixels", {kSynthesised}},
+    {"--corr-length-v", {kSynthesised}},
+    {"--lay-angle", {kSynthesised}, "--corr-length-v", "the surface is isotropic"},
+    {"--phi-i", {kSynthesised, kMeasured}},
+    {"--subarea-um", {kSynthesised, kMeasured}},
+    {"--max-theta-o", {kSynthesised, kMeasured}},
+    {"--outliers", {kMeasured}},
+    {"--row-alignment", {kMeasured}},
+    {"--form", {kMeasured}},
+    {"--lambda-s", {kMeasured}},
+    {"--lambda-c", {kMeasured}},
+};
+
+const std::string& validity_mode(const ValidityArgs& a) {
+    if (!a.surface_file.empty()) {
+        if (a.map_size) fail("--surface-file is the surface: --map-size-um synthesises one instead, give one or the other");
+        return kMeasured;
+    }
+    return a.map_size ? kSynthesised : kProfiles;
+}
 
 // One row per model and case; the map route appends its incidence azimuth and whether the reference is valid.
 std::string csv_table(const std::vector<validity::TableRow>& rows, bool map_route) {
@@ -109,9 +147,9 @@ nlohmann::json json_report(const std::vector<validity::ProfileCase>& cases, cons
     j["reference"] = {{"solver", "exact-1d"},
                       {"length_um", a.length},
                       {"beam_width_um", a.beam_width},
-                      {"realizations", a.realizations},
-                      {"target_stderr_pct", a.realizations != 0 ? 0.0 : a.target_stderr.value_or(kDefaultTargetStderrPct)},
-                      {"max_realizations", a.realizations != 0 ? a.realizations
+                      {"realizations", a.realizations.value_or(0)},
+                      {"target_stderr_pct", a.realizations ? 0.0 : a.target_stderr.value_or(kDefaultTargetStderrPct)},
+                      {"max_realizations", a.realizations ? *a.realizations
                                                                : a.max_realizations.value_or(kDefaultMaxRealizations)},
                       {"seed", a.seed},
                       {"points_per_wavelength", a.points_per_wavelength}};
@@ -188,14 +226,6 @@ void require_reference_valid(const std::vector<Case>& cases, Label&& label) {
              invalid, cases.size(), label(*first), first->verdict.reference_problem);
 }
 
-void check_criteria(const ValidityArgs& a) {
-    require_thread_count(a.threads, "--threads");
-    if (!(a.tolerance > 0 && a.tolerance < 1)) fail("--tolerance must be in (0, 1), got {}", a.tolerance);
-    if (!(a.bin_deg >= 0 && a.bin_deg <= 30)) fail("--bin-deg must be in [0, 30] degrees, got {}", a.bin_deg);
-    if (!(a.max_reference_stderr > 0 && a.max_reference_stderr <= 1))
-        fail("--max-reference-stderr must be in (0, 1], got {}", a.max_reference_stderr);
-}
-
 validity::Criteria criteria_from(const ValidityArgs& a) {
     validity::Criteria criteria;
     criteria.tolerance = a.tolerance;
@@ -233,32 +263,30 @@ void print_written(const ValidityArgs& a) {
                 out.c_str());
 }
 
+void check_criteria(const ValidityArgs& a) {
+    require_thread_count(a.threads, "--threads");
+    validity::require_valid_criteria(criteria_from(a), "--tolerance", "--bin-deg", "--max-reference-stderr");
+}
+
 void run_profile_validity(const ValidityArgs& a) {
     OutputFiles files;
     declare_outputs(files, a);
     if (!a.surface.psd) fail("validity needs the surface: --psd kc|gaussian --sigma --corr-length [--gamma]");
-    if (a.preparation.given())
-        fail("{} applies to a measured map (the map route's --surface-file), not to the profiles route",
-             a.preparation.first_given());
-    if (!a.phi_i.empty() || a.corr_length_v || a.lay_angle || a.subarea)
-        fail("--phi-i, --corr-length-v, --lay-angle and --subarea-um belong to the map route "
-             "(--surface-file or --map-size-um); the profiles route (--length-um) takes isotropic statistics in the "
-             "plane of incidence");
     const auto statistics = statistics_from(a.surface);
     const auto conductor = material::Conductor::from_name(a.material);
     if (!(a.length > 0)) fail("the profiles route needs --length-um (> 0), got {}", a.length);
     require_positive(a.beam_width, "--beam-width");
-    if (a.realizations != 0 && a.target_stderr)
+    if (a.realizations && a.target_stderr)
         fail("--realizations and --target-stderr: give one (a fixed count of profiles, or profiles until the "
              "reference's standard error reaches the target)");
-    if (a.realizations != 0 && a.max_realizations)
-        fail("--max-realizations caps --target-stderr's profiles; --realizations {} is a fixed count", a.realizations);
-    if (a.realizations != 0 && a.realizations < 2) fail("--realizations must be at least 2, got {}", a.realizations);
-    const double target = a.realizations != 0 ? 0.0 : a.target_stderr.value_or(kDefaultTargetStderrPct);
-    if (a.realizations == 0 && !(target > 0 && target < 100))
+    if (a.realizations && a.max_realizations)
+        fail("--max-realizations caps --target-stderr's profiles; --realizations {} is a fixed count", *a.realizations);
+    if (a.realizations && *a.realizations < 2) fail("--realizations must be at least 2, got {}", *a.realizations);
+    const double target = a.realizations ? 0.0 : a.target_stderr.value_or(kDefaultTargetStderrPct);
+    if (!a.realizations && !(target > 0 && target < 100))
         fail("--target-stderr must be in (0, 100) percent, got {}", target);
     const long long cap = a.max_realizations.value_or(kDefaultMaxRealizations);
-    if (a.realizations == 0 && !(cap >= 2 && cap <= 1000000))
+    if (!a.realizations && !(cap >= 2 && cap <= 1000000))
         fail("--max-realizations must be in [2, 1000000], got {}", cap);
     if (a.seed < 0) fail("--seed must be >= 0, got {}", a.seed);
     check_criteria(a);
@@ -273,7 +301,7 @@ void run_profile_validity(const ValidityArgs& a) {
     study.beam_width_um = a.beam_width;
     study.points_per_wavelength = a.points_per_wavelength;
     study.statistical.length_um = a.length;
-    study.statistical.realizations = static_cast<std::size_t>(a.realizations != 0 ? a.realizations : cap);
+    study.statistical.realizations = static_cast<std::size_t>(a.realizations ? *a.realizations : cap);
     study.target_rel_stderr = target / 100;
     study.statistical.seed = static_cast<std::uint64_t>(a.seed);
     study.statistical.threads = a.threads;
@@ -358,16 +386,11 @@ nlohmann::json map_json_report(const std::vector<validity::MapCase>& cases, cons
 bsdf::SurfaceOptions map_surface_options(const ValidityArgs& a) {
     bsdf::SurfaceOptions s;
     if (!a.surface_file.empty()) {
-        if (a.surface.psd || a.map_size)
-            fail("--surface-file is the surface: --psd and --map-size-um synthesise one instead, give one or the other");
-        if (a.corr_length_v || a.lay_angle) fail("--corr-length-v and --lay-angle describe a synthesised surface");
         s.psd = bsdf::PsdKind::measured;
         s.surface_file = a.surface_file;
         s.preparation = parse_preparation(a.preparation);
         return s;
     }
-    if (a.preparation.given())
-        fail("{} applies to a measured map (--surface-file), not to synthesised maps", a.preparation.first_given());
     if (!a.surface.psd) fail("--map-size-um synthesises maps from --psd kc|gaussian --sigma --corr-length [--gamma]");
     statistics_from(a.surface);  // checks the options, naming the bad one
     s.psd = *a.surface.psd == "kc" ? bsdf::PsdKind::kc : bsdf::PsdKind::gaussian;
@@ -381,16 +404,9 @@ bsdf::SurfaceOptions map_surface_options(const ValidityArgs& a) {
     return s;
 }
 
-void run_map_validity(const ValidityArgs& a, bool polarisation_given) {
-    if (a.target_stderr || a.max_realizations)
-        fail("--target-stderr and --max-realizations belong to the profiles route (--length-um); the map route's "
-             "--realizations is a number of maps");
+void run_map_validity(const ValidityArgs& a) {
     OutputFiles files;
     declare_outputs(files, a);
-    if (a.length > 0 || a.beam_width > 0)
-        fail("--length-um and --beam-width belong to the profiles route; the map route's reference is the Kirchhoff "
-             "BRDF of the map(s)");
-    if (polarisation_given) fail("--polarisation: the map route is unpolarised (its reference averages s and p)");
     check_criteria(a);
     if (a.seed < 0) fail("--seed must be >= 0, got {}", a.seed);
     if (a.subarea) require_positive(*a.subarea, "--subarea-um");
@@ -398,15 +414,10 @@ void run_map_validity(const ValidityArgs& a, bool polarisation_given) {
     validity::SynthesisSettings synthesis;
     if (a.map_size) {
         synthesis.size_um = *a.map_size;
-        if (a.map_pixels < static_cast<long long>(heightmap::kMinHeightMapSize) || a.map_pixels > 8192)
-            fail("--map-pixels must be in [{}, 8192], got {}", heightmap::kMinHeightMapSize, a.map_pixels);
+        validity::require_synthesis_counts(a.map_pixels, a.realizations.value_or(1), "--map-pixels", "--realizations");
         synthesis.pixels = static_cast<std::size_t>(a.map_pixels);
-        const long long realizations = a.realizations > 0 ? a.realizations : 1;
-        if (realizations > 1000) fail("--realizations must be at most 1000 maps, got {}", realizations);
-        synthesis.realizations = static_cast<std::size_t>(realizations);
+        synthesis.realizations = static_cast<std::size_t>(a.realizations.value_or(1));
         synthesis.seed = static_cast<std::uint64_t>(a.seed);
-    } else if (a.realizations > 1) {
-        fail("--realizations: a measured map (--surface-file) is one realization, got {}", a.realizations);
     }
     const auto conductor = material::Conductor::from_name(a.material);
     const validity::MapSurface surface = validity::map_surface(map_surface_options(a), a.material, synthesis);
@@ -501,10 +512,12 @@ const Command command("validity", [](CLI::App& app) {
     sub->add_option("-o", a->output, "output prefix: OUT.csv, OUT.json, OUT_slices.png, OUT_error_map.png")
         ->required();
     sub->callback([a, sub] {
-        if (a->map_route())
-            run_map_validity(*a, sub->count("--polarisation") > 0);
-        else
+        const std::string& mode = validity_mode(*a);
+        require_applicable_options(*sub, mode, kValidityScopes);
+        if (mode == kProfiles)
             run_profile_validity(*a);
+        else
+            run_map_validity(*a);
     });
 });
 

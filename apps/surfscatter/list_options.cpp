@@ -1,5 +1,6 @@
 #include "list_options.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -26,6 +27,10 @@ std::vector<std::string> parse_string_list(const std::string& text, const std::s
         const auto first = item.find_first_not_of(" \t"), last = item.find_last_not_of(" \t");
         item = first == std::string::npos ? std::string() : item.substr(first, last - first + 1);
         if (item.empty()) fail("{}: item {} of '{}' is empty", option, items.size() + 1, printable(text));
+        // A line break or another control character is no name, label or number (it broke compare's CSV rows).
+        if (std::any_of(item.begin(), item.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }))
+            fail("{}: item {} '{}' holds a control character (a line break, a tab, ...)", option, items.size() + 1,
+                 printable(item));
         items.push_back(std::move(item));
         if (items.size() > kMaxListItems) fail("{}: more than {} items", option, kMaxListItems);
         if (comma == std::string::npos) return items;

@@ -1,17 +1,17 @@
 #pragma once
 // Comma-separated list options (--wavelength 400,500,600, --models ggx,ghs). CLI11's own delimiter drops empty
 // items, so "400,,500" would silently be read as two wavelengths: these parse the list themselves and reject an
-// empty item, a non-number, and more than kMaxListItems items. Each occurrence of the option adds its items.
+// empty item, an item with a control character (a line break), a non-number, and more than kMaxListItems items
+// (core/resources.hpp). Each occurrence of the option adds its items.
 #include <cstddef>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
-namespace surfscatter::cli {
+#include "surfscatter/core/resources.hpp"  // kMaxListItems
 
-// Items per list option (docs/RELIABILITY.md): far beyond any real use, small enough to be evaluated quickly.
-inline constexpr std::size_t kMaxListItems = 100'000;
+namespace surfscatter::cli {
 
 // Parses "x1,x2,..." of finite numbers; `option` names the flag in errors ("--wavelength: item 2 of '400,,500' is
 // empty").

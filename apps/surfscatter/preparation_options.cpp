@@ -7,15 +7,6 @@
 
 namespace surfscatter::cli {
 
-std::string PreparationArgs::first_given() const {
-    if (outliers) return "--outliers";
-    if (row_alignment) return "--row-alignment";
-    if (form) return "--form";
-    if (lambda_s) return "--lambda-s";
-    if (lambda_c) return "--lambda-c";
-    return "";
-}
-
 void add_preparation_options(CLI::App* cmd, PreparationArgs& args, const std::string& map) {
     cmd->add_option("--outliers", args.outliers,
                     map + "'s outliers (points far from their 5 x 5 neighbourhood): keep (default) | fill (each "

@@ -14,10 +14,6 @@ namespace surfscatter::cli {
 struct PreparationArgs {
     // Not given: the defaults of heightmap::Preparation.
     std::optional<std::string> outliers, row_alignment, form, lambda_s, lambda_c;
-
-    bool given() const { return !first_given().empty(); }
-    // The first option given, for "applies to a measured map only" errors ("--form"), or empty.
-    std::string first_given() const;
 };
 
 // `map` names what the options apply to in the help texts ("the map", "--surface").

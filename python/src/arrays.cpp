@@ -111,6 +111,17 @@ double real_scalar(py::handle value, const char* name, Domain domain) {
     return *a.data();
 }
 
+std::string text_option(py::handle value, const char* name) {
+    if (!py::isinstance<py::str>(value))
+        fail("{} must be a string, got {}", name, py::repr(value).cast<std::string>());
+    return value.cast<std::string>();
+}
+
+bool bool_option(py::handle value, const char* name) {
+    if (!py::isinstance<py::bool_>(value)) fail("{} must be True or False, got {}", name, py::repr(value).cast<std::string>());
+    return value.cast<bool>();
+}
+
 std::string nesting_index_text(py::handle value, const char* name) {
     if (py::isinstance<py::str>(value)) return value.cast<std::string>();
     if (py::isinstance<py::bool_>(value)) fail("{} must be a number (um) or a string, got {}", name, py::repr(value).cast<std::string>());

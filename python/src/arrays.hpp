@@ -81,6 +81,11 @@ RealArray real_array(py::handle value, const char* name, Domain domain = Domain:
 // A Python float (or int) as a double, checked like real_array's elements.
 double real_scalar(py::handle value, const char* name, Domain domain = Domain::any);
 
+// A str or a bool argument; Error naming `name` for any other type (pybind11's own cast gave RuntimeError "Unable to
+// cast Python instance to C++ type").
+std::string text_option(py::handle value, const char* name);
+bool bool_option(py::handle value, const char* name);
+
 // A nesting index (lambda_s_um, lambda_c_um) as the CLI and XML take it: a number (um) as its text, or a string
 // ("none", "auto") as it is; heightmap::parse_lambda_s / parse_lambda_c check it.
 std::string nesting_index_text(py::handle value, const char* name);

@@ -33,12 +33,6 @@ struct PyBsdf {
     std::vector<std::string> notes;  // what make_bsdf says about the result (e.g. a measured PSD's extrapolation)
 };
 
-std::string text_option(py::handle value, const char* name) {
-    if (!py::isinstance<py::str>(value))
-        fail("{} must be a string, got {}", name, py::repr(value).cast<std::string>());
-    return value.cast<std::string>();
-}
-
 double number_option(py::handle value, const char* name) {
     if (py::isinstance<py::bool_>(value)) fail("{} must be a number, got {}", name, py::repr(value).cast<std::string>());
     return real_scalar(value, name);
@@ -55,8 +49,7 @@ const std::map<std::string, Setter>& option_setters() {
         {"fresnel", [](ModelOptions& o, py::handle v, const char* n) { o.fresnel = bsdf::parse_fresnel(text_option(v, n), n); }},
         {"renormalization",
          [](ModelOptions& o, py::handle v, const char* n) {
-             if (!py::isinstance<py::bool_>(v)) fail("{} must be True or False, got {}", n, py::repr(v).cast<std::string>());
-             o.renormalization = v.cast<bool>();
+             o.renormalization = bool_option(v, n);
          }},
         {"ssa_form", [](ModelOptions& o, py::handle v, const char* n) { o.ssa_form = bsdf::parse_ssa_form(text_option(v, n), n); }},
         {"alpha", [](ModelOptions& o, py::handle v, const char* n) { o.alpha = number_option(v, n); }},

@@ -25,9 +25,9 @@ py::dict profile_models(const surface::RadialStatistics& surface, const std::str
     const auto conductor = material::Conductor::from_name(material);
     const auto pol = bsdf::parse_profile_polarisation(polarisation, "polarisation");
     bsdf::ProfileModelOptions options;
-    if (!fresnel.is_none()) options.fresnel = bsdf::parse_fresnel(fresnel.cast<std::string>(), "fresnel");
-    if (!ssa_form.is_none()) options.ssa_form = bsdf::parse_ssa_form(ssa_form.cast<std::string>(), "ssa_form");
-    if (!renormalization.is_none()) options.renormalization = renormalization.cast<bool>();
+    if (!fresnel.is_none()) options.fresnel = bsdf::parse_fresnel(text_option(fresnel, "fresnel"), "fresnel");
+    if (!ssa_form.is_none()) options.ssa_form = bsdf::parse_ssa_form(text_option(ssa_form, "ssa_form"), "ssa_form");
+    if (!renormalization.is_none()) options.renormalization = bool_option(renormalization, "renormalization");
     std::vector<bsdf::ProfileModel> kinds;
     for (const auto& name : models) kinds.push_back(bsdf::parse_profile_model(name, "models"));
     if (kinds.empty()) fail("models must name at least one of ghs | ghs_ssa | kirchhoff");
@@ -39,8 +39,10 @@ py::dict profile_models(const surface::RadialStatistics& surface, const std::str
     }
     std::vector<double> theta_o;
     if (theta_o_deg.is_none()) theta_o = bsdf::uniform_theta_grid(reference::kFarFieldSteps);
-    else
-        for (const double t : theta_o_deg.cast<std::vector<double>>()) theta_o.push_back(t * kDegree);
+    else {
+        const RealArray degrees = real_array(theta_o_deg, "theta_o_deg");
+        for (py::ssize_t j = 0; j < degrees.size(); ++j) theta_o.push_back(degrees.data()[j] * kDegree);
+    }
     std::vector<bsdf::ProfileLobe> lobes;
     {
         const py::gil_scoped_release release;

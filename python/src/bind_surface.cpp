@@ -23,6 +23,7 @@
 #include "surfscatter/heightmap/outliers.hpp"
 #include "surfscatter/surface/height_map_slope.hpp"
 #include "surfscatter/surface/elliptical_fit.hpp"
+#include "surfscatter/surface/elliptical_statistics.hpp"
 #include "surfscatter/surface/kc_fit.hpp"
 #include "surfscatter/surface/psd_estimate.hpp"
 #include "surfscatter/surface/map_statistics.hpp"
@@ -124,12 +125,13 @@ py::dict psd2d_dict(const Psd2d& p) {
 // and lay_angle_deg, kept on the Python object beside the radial statistics (bsdf(surface=...) reads them through
 // lay_of): the constructor is wrapped to take the two keywords after the radial ones.
 void set_lay(py::handle self, py::object corr_length_v, double lay_angle_deg) {
-    if (!corr_length_v.is_none()) require_surface_length(py::cast<double>(corr_length_v), "corr_length_v");
+    if (!corr_length_v.is_none()) require_surface_length(real_scalar(corr_length_v, "corr_length_v"), "corr_length_v");
     require_finite(lay_angle_deg, "lay_angle_deg");
     if (corr_length_v.is_none() && lay_angle_deg != 0)
         fail("lay_angle_deg {} needs corr_length_v (without it the surface is isotropic)", lay_angle_deg);
     py::dict attributes = self.attr("__dict__");
-    attributes["_corr_length_v"] = corr_length_v.is_none() ? corr_length_v : py::float_(py::cast<double>(corr_length_v));
+    attributes["_corr_length_v"] =
+        corr_length_v.is_none() ? corr_length_v : py::float_(real_scalar(corr_length_v, "corr_length_v"));
     attributes["_lay_angle_deg"] = py::float_(lay_angle_deg);
 }
 
@@ -534,21 +536,35 @@ void bind_height_maps(py::module_& m) {
 
     m.def(
         "synthesize",
-        [](const RadialStatistics& statistics, py::handle size, double spacing_um, long long seed) {
+        [](py::handle statistics_arg, py::handle size, double spacing_um, long long seed) {
+            if (!py::isinstance<RadialStatistics>(statistics_arg))
+                fail("statistics must be a KCorrelation or a GaussianAcv, got {}", py::repr(statistics_arg).cast<std::string>());
+            const auto statistics = statistics_arg.cast<std::shared_ptr<RadialStatistics>>();
             if (seed < 0) fail("seed must be >= 0, got {}", seed);
             std::size_t nx = 0, ny = 0;
-            if (py::isinstance<py::int_>(size)) nx = ny = size.cast<std::size_t>();
-            else if (py::isinstance<py::sequence>(size) && py::len(size) == 2)
-                std::tie(nx, ny) = size.cast<std::pair<std::size_t, std::size_t>>();
-            else fail("size must be n or (nx, ny) (whole numbers of samples), got {}", py::repr(size).cast<std::string>());
+            const auto count = [&size](py::handle n) {
+                if (!py::isinstance<py::int_>(n) || py::isinstance<py::bool_>(n) || n.cast<long long>() < 0)
+                    fail("size must be n or (nx, ny) (whole numbers of samples), got {}", py::repr(size).cast<std::string>());
+                return n.cast<std::size_t>();
+            };
+            if (py::isinstance<py::sequence>(size) && !py::isinstance<py::str>(size) && py::len(size) == 2)
+                nx = count(size[py::int_(0)]), ny = count(size[py::int_(1)]);
+            else nx = ny = count(size);
             const SynthesisGrid grid{nx, ny, spacing_um};
+            // An elliptical KCorrelation or GaussianAcv (corr_length_v, lay_angle_deg) is synthesised with its lay.
+            const Lay lay = lay_of(statistics_arg);
             py::gil_scoped_release release;
-            return std::make_shared<heightmap::HeightMap>(synthesize_surface(statistics, grid, static_cast<std::uint64_t>(seed)));
+            if (lay.corr_length_v != 0)
+                return std::make_shared<heightmap::HeightMap>(synthesize_surface(
+                    EllipticalStatistics(statistics, lay.corr_length_v, lay.lay_angle_deg * kDegree), grid,
+                    static_cast<std::uint64_t>(seed)));
+            return std::make_shared<heightmap::HeightMap>(synthesize_surface(*statistics, grid, static_cast<std::uint64_t>(seed)));
         },
         py::arg("statistics"), py::arg("size"), py::arg("spacing_um"), py::arg("seed") = 1,
         "A random Gaussian surface with the PSD of `statistics` (spectral synthesis, synthesis.hpp) on an n x n "
         "(size = n) or nx x ny (size = (nx, ny)) grid of spacing_um; the same seed gives the same surface as "
-        "`surfscatter surface synth --seed`.");
+        "`surfscatter surface synth --seed`; elliptical statistics (made with corr_length_v) with their lay, as "
+        "`surface synth --corr-length-v --lay-angle`.");
 
     py::class_<MapStatistics, RadialStatistics, std::shared_ptr<MapStatistics>>(
         m, "MapStatistics",

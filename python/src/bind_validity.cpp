@@ -53,7 +53,7 @@ py::dict verdict_dict(const validity::Verdict& verdict) {
     return v;
 }
 
-py::dict validity(const surface::RadialStatistics& surface, const std::string& material,
+py::dict validity(py::handle surface_arg, const std::string& material,
                   const std::vector<double>& wavelengths_nm, const std::vector<double>& theta_i_deg,
                   double length_um, double beam_width_um, const py::object& realizations,
                   const std::vector<std::string>& polarisations, std::uint64_t seed, double bin_deg,
@@ -73,6 +73,15 @@ py::dict validity(const surface::RadialStatistics& surface, const std::string& m
         max_realizations_arg.is_none() ? 1000 : max_realizations_arg.cast<long long>();
     if (realizations.is_none() && !(max_realizations >= 2 && max_realizations <= 1000000))
         fail("max_realizations must be in [2, 1000000], got {}", max_realizations);
+    if (!py::isinstance<surface::KCorrelation>(surface_arg) && !py::isinstance<surface::GaussianAcv>(surface_arg))
+        fail("surface must be a KCorrelation or a GaussianAcv, got {}", py::repr(surface_arg).cast<std::string>());
+    const auto& surface = surface_arg.cast<const surface::RadialStatistics&>();
+    // The profiles are cuts through isotropic statistics (as the CLI's profiles route): an elliptical surface's
+    // lay would be dropped.
+    const Lay lay = lay_of(surface_arg);
+    if (lay.corr_length_v != 0 || lay.lay_angle_deg != 0)
+        fail("validity: surface is elliptical (corr_length_v {}, lay_angle_deg {}) and the profiles are cuts through "
+             "isotropic statistics: validity_map takes elliptical statistics", lay.corr_length_v, lay.lay_angle_deg);
     const auto conductor = material::Conductor::from_name(material);
     validity::ProfileStudy study;
     study.wavelengths_nm = wavelengths_nm;
@@ -149,7 +158,7 @@ py::dict validity_map(py::handle surface_arg, const std::string& material, const
                       const std::vector<double>& theta_i_deg, const std::vector<double>& phi_i_deg,
                       const std::string& form, const std::string& outliers, const std::string& row_alignment,
                       py::handle lambda_s_um, py::handle lambda_c_um, double map_size_um,
-                      std::size_t map_pixels, std::size_t realizations, std::uint64_t seed, double subarea_um,
+                      long long map_pixels, long long realizations, std::uint64_t seed, double subarea_um,
                       double max_theta_o_deg, double bin_deg, double tolerance, double max_reference_stderr,
                       int threads) {
     const heightmap::Preparation preparation =
@@ -159,8 +168,10 @@ py::dict validity_map(py::handle surface_arg, const std::string& material, const
     if (!measured && preparation != heightmap::Preparation{})
         fail("outliers, row_alignment, form, lambda_s_um and lambda_c_um prepare a measured map (a HeightMap or a "
              "file); synthesised maps take none of them");
-    if (measured && (map_size_um != 0 || realizations != 1))
-        fail("map_size_um and realizations synthesise maps from statistics: a height map is one realization");
+    if (measured && (map_size_um != 0 || realizations != 1 || map_pixels != 256 || seed != 1))
+        fail("map_size_um, map_pixels, realizations and seed synthesise maps from statistics: a height map is one "
+             "realization");
+    if (!measured) validity::require_synthesis_counts(map_pixels, realizations, "map_pixels", "realizations");
     if (!(max_theta_o_deg > 0 && max_theta_o_deg < 90))
         fail("max_theta_o_deg must be in (0, 90) degrees, got {}", max_theta_o_deg);
     if (subarea_um != 0) require_positive(subarea_um, "subarea_um");
@@ -179,7 +190,9 @@ py::dict validity_map(py::handle surface_arg, const std::string& material, const
     validity::MapSurface surface;
     {
         const py::gil_scoped_release release;
-        surface = validity::map_surface(options, material, {map_size_um, map_pixels, realizations, seed});
+        surface = validity::map_surface(options, material,
+                                        {map_size_um, static_cast<std::size_t>(map_pixels),
+                                         static_cast<std::size_t>(realizations), seed});
         cases = validity::map_validity(surface, conductor, study);
     }
     validity::require_outliers_not_dominant(surface);

@@ -2,6 +2,7 @@
 #include <memory>
 #include <mutex>
 
+#include <fmt/format.h>
 #include <pybind11/pybind11.h>
 #include <tbb/global_control.h>
 
@@ -43,6 +44,10 @@ void bind_core(py::module_& m) {
             if (error) std::rethrow_exception(error);
         } catch (const Error& e) {
             PyErr_SetString(error_type.ptr(), printable(e.what(), kShownMessageChars).c_str());
+        } catch (const py::cast_error& e) {
+            // The net behind the checked conversions (text_option, bool_option, real_scalar, real_array name the
+            // argument): a stray pybind11 cast is a TypeError, not RuntimeError "Unable to cast Python instance".
+            PyErr_SetString(PyExc_TypeError, fmt::format("an argument has the wrong type ({})", e.what()).c_str());
         }
     });
     m.attr("Error").attr("__module__") = "surfscatter";

@@ -294,7 +294,7 @@ TEST_F(PhotoPipeline, BoardPoseBadInputsExitWithStatus2AndOneLine) {
     expect_one_line_error(run_cli({"pose", path("marker.png"), "--camera", camera, "--board", "charuco", "--squares",
                                    "10x7", "--square-length", "0.03", "--marker-length", "0.022",
                                    "--marker-separation", "0.01", "-o", path("b.json")}),
-                          {"--marker-separation is for grid boards"});
+                          {"--marker-separation does not apply to --board charuco"});
     expect_one_line_error(run_cli({"pose", path("marker.png"), "--camera", camera, "--marker-length", "0.05",
                                    "--dictionary", path("missing_dictionary.yml"), "-o", path("b.json")}),
                           {"dictionary file", path("missing_dictionary.yml"), "does not exist"});

@@ -92,13 +92,13 @@ TEST(CliPrepare, PreparationOptionsWithoutAMapAreErrors) {
                                    "24", "--beam-width", "4", "--realizations", "2", "--form", "poly2", "-o",
                                    (temp_dir() / "v").string()});
     EXPECT_EQ(profiles.exit_code, 2);
-    EXPECT_NE(profiles.err.find("--form applies to a measured map"), std::string::npos) << profiles.err;
+    EXPECT_NE(profiles.err.find("--form does not apply to the profiles route (--length-um): it applies to a measured map"), std::string::npos) << profiles.err;
     const auto synthesised = run_cli({"validity", "--psd", "kc", "--sigma", "0.01", "--corr-length", "1", "--gamma",
                                       "3", "--material", "perfect", "--wavelengths", "550", "--theta-i", "0",
                                       "--map-size-um", "16", "--row-alignment", "none", "-o",
                                       (temp_dir() / "m").string()});
     EXPECT_EQ(synthesised.exit_code, 2);
-    EXPECT_NE(synthesised.err.find("--row-alignment applies to a measured map"), std::string::npos) << synthesised.err;
+    EXPECT_NE(synthesised.err.find("--row-alignment does not apply to synthesised maps"), std::string::npos) << synthesised.err;
 }
 
 }  // namespace

@@ -112,7 +112,7 @@ TEST(CliReference, BadInputIsOneLine) {
                      "--profile and --psd exclude each other");
     expect_bad_input(with({"--theta-i", "10", "--beam-width", "5"}), "give --profile");
     expect_bad_input(with({"--profile", profile, "--theta-i", "10", "--beam-width", "5", "--realizations", "3"}),
-                     "--realizations applies to the statistical mode");
+                     "--realizations does not apply to one profile (--profile)");
     expect_bad_input(with({"--psd", "kc", "--sigma", "0.1", "--corr-length", "1", "--length-um", "30",
                            "--realizations", "3", "--theta-i", "10", "--beam-width", "5"}),
                      "--gamma is required for --psd kc");
@@ -342,11 +342,14 @@ TEST(CliValidityMap, RefusesBadInput) {
     };
     expect_bad_input(with({"--surface-file", kExampleMap, "--psd", "kc", "--sigma", "0.1", "--corr-length", "2", "--gamma",
                            "3"}),
-                     "--surface-file is the surface");
-    expect_bad_input(with({"--surface-file", kExampleMap, "--polarisation", "s"}), "--polarisation: the map route is unpolarised");
+                     "--psd does not apply to a measured map (--surface-file)");
+    expect_bad_input(with({"--surface-file", kExampleMap, "--map-size-um", "16"}), "--surface-file is the surface");
+    expect_bad_input(with({"--surface-file", kExampleMap, "--polarisation", "s"}),
+                     "--polarisation does not apply to a measured map (--surface-file)");
     expect_bad_input(with({"--surface-file", kExampleMap, "--realizations", "3"}),
-                     "--realizations: a measured map (--surface-file) is one realization, got 3");
-    expect_bad_input(with({"--surface-file", kExampleMap, "--length-um", "12"}), "--length-um and --beam-width belong to");
+                     "--realizations does not apply to a measured map (--surface-file)");
+    expect_bad_input(with({"--surface-file", kExampleMap, "--length-um", "12"}),
+                     "--length-um does not apply to a measured map (--surface-file): it applies to the profiles route");
     expect_bad_input(with({"--surface-file", kExampleMap, "--form", "poly9"}), "--form");
     expect_bad_input(with({"--map-size-um", "16"}), "--map-size-um synthesises maps from --psd");
     expect_bad_input(with({"--psd", "kc", "--sigma", "0.02", "--corr-length", "2", "--gamma", "3", "--map-size-um",
@@ -354,9 +357,9 @@ TEST(CliValidityMap, RefusesBadInput) {
                      "--map-pixels must be in [8, 8192], got 4");
     expect_bad_input(with({"--psd", "kc", "--sigma", "0.02", "--corr-length", "2", "--gamma", "3", "--phi-i", "30",
                            "--length-um", "12", "--beam-width", "2", "--realizations", "4"}),
-                     "belong to the map route");
+                     "--phi-i does not apply to the profiles route (--length-um)");
     expect_bad_input(with({"--surface-file", kExampleMap, "--max-theta-o", "95"}), "--max-theta-o must be in (0, 90)");
     expect_bad_input(with({"--psd", "kc", "--sigma", "0.02", "--corr-length", "2", "--gamma", "3", "--map-size-um",
                            "16", "--outliers", "fill"}),
-                     "--outliers applies to a measured map");
+                     "--outliers does not apply to synthesised maps (--map-size-um): it applies to a measured map");
 }

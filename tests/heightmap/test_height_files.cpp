@@ -246,6 +246,50 @@ TEST(HeightFiles, X3pAsFoundInTheWildIsReadNatively) {
     expect_x3p_content(hm::read_height_map(temp_path("list.x3p"), std::nullopt), list, 1e-12);
 }
 
+// Issue 36 class 2: bad content in the standard layout, which Gwyddion's opengps module read with exit 0 (a zero
+// increment "fixed" to 1 m, a negative or NaN one taken as it comes, an unknown DataType or a non-number among inline
+// values): every edit of a good file is refused, naming the field.
+TEST(HeightFiles, StandardX3pWithBadContentIsRefused) {
+    const auto edited = [](const X3pSpec& spec, const std::string& from, const std::string& to) {
+        std::string xml = x3p_main_xml(spec);
+        const std::size_t at = xml.find(from);
+        EXPECT_NE(at, std::string::npos) << from;
+        return xml.replace(at, from.size(), to);
+    };
+    const std::string cx = fmt::format("<Increment>{:.17g}</Increment>", kDxM);
+    const std::string cz = "<DataType>D</DataType><Increment>1</Increment>";
+    const X3pSpec list{.data_list = true};
+    struct Case {
+        std::string name, main_xml, message;
+        bool data_list = false;
+    };
+    std::string one_short = x3p_main_xml(list);
+    one_short.erase(one_short.rfind("<Datum>"), one_short.rfind("</DataList>") - one_short.rfind("<Datum>"));
+    std::string not_a_number = x3p_main_xml(list);
+    not_a_number.replace(not_a_number.find("<Datum>") + 7, 1, "x");
+    const std::vector<Case> cases = {
+        {"zero_increment", edited({}, cx, "<Increment>0</Increment>"), "axis increments must be positive, got CX 0 m"},
+        {"negative_increment", edited({}, cx, "<Increment>-6.25e-07</Increment>"),
+         "axis increments must be positive, got CX -6.25e-07 m"},
+        {"nan_z_increment", edited({}, cz, "<DataType>D</DataType><Increment>nan</Increment>"),
+         "Record1/Axes/CZ/Increment = 'nan' is not a finite number"},
+        {"missing_x_increment", edited({}, cx, ""), "main.xml has no ISO5436_2/Record1/Axes/CX/Increment"},
+        {"list_bad_data_type", edited(list, "<DataType>D</DataType><Increment>1", "<DataType>Q</DataType><Increment>1"),
+         "CZ DataType 'Q' is not I, L, F or D", true},
+        {"list_not_a_number", not_a_number, "is not a number", true},
+        {"list_one_point_short", one_short, "DataList holds 279 values, but SizeX x SizeY = 280", true},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.name);
+        const fs::path path = temp_path("bad_" + c.name + ".x3p");
+        write_x3p(path, {.data_list = c.data_list, .main_xml_override = c.main_xml});
+        ASSERT_TRUE(hm::x3p_layout(path) && hm::x3p_layout(path)->standard());
+        const std::string message = error_of([&] { hm::read_height_map(path, std::nullopt); });
+        EXPECT_NE(message.find(c.message), std::string::npos) << message;
+        EXPECT_EQ(message.find("Gwyddion"), std::string::npos) << message;
+    }
+}
+
 TEST(HeightFiles, GwyFileWrittenThroughTheGwyddionLibrary) {
     std::vector<double> h(kNx * kNy);
     std::vector<std::uint8_t> valid(h.size(), 1);

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/resources.hpp"
 #include "surfscatter/math/quadrature.hpp"
 #include "surfscatter/surface/relevant_roughness.hpp"
 #include "surfscatter/surface/synthesis.hpp"
@@ -182,6 +183,7 @@ void check_lobe_input(double lambda_nm, double theta_i_rad, const std::vector<do
     require_finite(theta_i_rad, "theta_i");
     if (theta_i_rad < 0 || theta_i_rad >= kPi / 2)
         fail("theta_i must be in [0, 90) degrees, got {}", theta_i_rad * 180 / kPi);
+    require_list_size(theta_o_rad.size(), "theta_o");
     for (const double t : theta_o_rad)
         if (!(std::abs(t) <= kPi / 2)) fail("theta_o must be in [-90, 90] degrees, got {}", t * 180 / kPi);
 }

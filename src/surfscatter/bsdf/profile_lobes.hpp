@@ -27,8 +27,8 @@
 // exponentials and cosines; a 1801-angle GHS lobe with its K at 550 nm 0.10 / 0.22 / 0.84 CPU s for KC L = 0.5 / 2 /
 // 8 um (Kirchhoff 0.07-0.53, SSA 0.01), growing as L / lambda.
 // Bad input throws Error: a wavelength outside [0.1, 1e8] nm, theta_i outside [0, 90) deg, theta_o outside
-// [-90, 90] deg, statistics whose ACV does not decay, a correlation length needing more than 1e6 panels (~1e5
-// wavelengths), a renormalised lobe with no mass over the visible directions.
+// [-90, 90] deg or more than kMaxListItems of them, statistics whose ACV does not decay, a correlation length needing
+// more than 1e6 panels (~1e5 wavelengths), a renormalised lobe with no mass over the visible directions.
 #include <string_view>
 #include <vector>
 

@@ -14,6 +14,10 @@ void require_thread_count(long long threads, const char* what) {
         fail("{} must be between 1 and {} (or 0 for all cores), got {}", what, kMaxThreads, threads);
 }
 
+void require_list_size(std::size_t items, const char* what) {
+    if (items > kMaxListItems) fail("{}: {} items, more than {}", what, items, kMaxListItems);
+}
+
 std::uint64_t available_memory_bytes() {
     std::ifstream meminfo("/proc/meminfo");
     for (std::string key; meminfo >> key;) {

@@ -348,19 +348,18 @@ void reconcile(const HeightMap& map, std::optional<double> spacing_um, std::opti
 }
 
 HeightMap read_x3p_file(const std::string& path, const X3pLayout& layout) {
-    if (!layout.standard()) return read_x3p(path);
-    // Gwyddion's opengps module reads standard X3P files; where it refuses one the native reader may still read
-    // it (and otherwise says precisely what is wrong).
+    // The native reader checks every field it reads; Gwyddion's opengps module lets bad content pass with exit 0 (a
+    // zero increment "fixed" to 1 m, a negative or NaN one, an unknown CZ DataType or a non-number in an inline
+    // DataList): the native reading comes first, for every X3P file, and its refusal is the error.
+    HeightMap native = read_x3p(path);
+    if (!layout.standard()) return native;
+    // Gwyddion reads standard files (its reader is the one results name); where it refuses one, the native reading
+    // stands.
     try {
         return gwyddion_read(path);
     } catch (const Error& gwyddion_error) {
-        try {
-            HeightMap map = read_x3p(path);
-            map.source.warnings.push_back(fmt::format("Gwyddion refused the file ({}); read natively", gwyddion_error.what()));
-            return map;
-        } catch (const Error& native_error) {
-            fail("{} (Gwyddion: {})", native_error.what(), gwyddion_error.what());
-        }
+        native.source.warnings.push_back(fmt::format("Gwyddion refused the file ({}); read natively", gwyddion_error.what()));
+        return native;
     }
 }
 

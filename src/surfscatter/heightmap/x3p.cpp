@@ -229,7 +229,12 @@ HeightMap read_x3p(const std::filesystem::path& file) {
     std::vector<double> values;
     std::vector<std::uint8_t> valid(count, 1);
     const pugi::xml_node record3 = child(document.document_element(), "Record3");
-    if (const pugi::xml_node list = child(record3, "DataList")) {
+    const pugi::xml_node list = child(record3, "DataList");
+    // Binary data need the type; inline values state it too, and an unknown one is refused there as well.
+    const std::string type = xml.text({"Record1", "Axes", "CZ", "DataType"}, !list);
+    if (!(list && type.empty()) && type != "I" && type != "L" && type != "F" && type != "D")
+        fail("{}: CZ DataType '{}' is not I, L, F or D", path, printable(type));
+    if (list) {
         values.reserve(count);
         for (pugi::xml_node datum : list.children()) {
             if (datum.type() != pugi::node_element || local_name(datum.name()) != "Datum") continue;
@@ -249,9 +254,6 @@ HeightMap read_x3p(const std::filesystem::path& file) {
         if (values.size() != count)
             fail("{}: DataList holds {} values, but SizeX x SizeY = {} (inconsistent sizes)", path, values.size(), count);
     } else {
-        const std::string type = xml.text({"Record1", "Axes", "CZ", "DataType"});
-        if (type != "I" && type != "L" && type != "F" && type != "D")
-            fail("{}: CZ DataType '{}' is not I, L, F or D", path, printable(type));
         const std::string link = xml.text({"Record3", "DataLink", "PointDataLink"});
         values = binary_values(path, read_entry(archive.get(), path, resolve_link(archive.get(), folder, link)),
                                type[0], count, z_increment, z_offset);

@@ -48,10 +48,15 @@ struct Surface {
     std::vector<double> x, h, dh, d2h;
 };
 
+// Nodes per profile interval (>= 1); counted in double so that a coarse profile or a tiny wavelength cannot wrap
+// around (check_options bounds the total).
+double subdivisions_of(const Profile& profile, double lambda_um, double points_per_wavelength) {
+    return std::max(1.0, std::ceil(profile.spacing_um * points_per_wavelength / lambda_um - 1e-9));
+}
+
 Surface solver_surface(const Profile& profile, double lambda_um, double points_per_wavelength) {
-    const auto subdivisions =
-        static_cast<std::size_t>(std::ceil(profile.spacing_um * points_per_wavelength / lambda_um - 1e-9));
-    SplineNodes nodes = spline_nodes(profile, std::max<std::size_t>(subdivisions, 1));
+    const auto subdivisions = static_cast<std::size_t>(subdivisions_of(profile, lambda_um, points_per_wavelength));
+    SplineNodes nodes = spline_nodes(profile, subdivisions);
     Surface s;
     s.n = nodes.h.size();
     s.step = nodes.step_um;
@@ -280,6 +285,12 @@ void check_options(const Profile& profile, const Exact1dOptions& o) {
         fail("beam width {} um is too narrow for theta_i = {} deg at {} nm: (1 + 2 tan^2) / (2 (k g cos)^2) = {:.3g} "
              "> 0.01 (Thorsos' beam no longer solves the wave equation)",
              o.beam_width_um, o.theta_i_rad / kDegree, o.lambda_nm, correction);
+    const double nodes =
+        static_cast<double>(profile.h_um.size() - 1) * subdivisions_of(profile, o.lambda_nm * 1e-3, o.points_per_wavelength) + 1;
+    if (!(nodes <= kMaxExact1dNodes))
+        fail("a profile of {} samples {} um apart needs {:.3g} solver nodes at {} nm ({} per wavelength), more than "
+             "{:.0e}: a shorter profile, a finer sampling or a longer wavelength",
+             profile.h_um.size(), profile.spacing_um, nodes, o.lambda_nm, o.points_per_wavelength, kMaxExact1dNodes);
     const double margin = kProfileBeamMargin * o.beam_width_um;
     if (profile.x0_um > -margin || profile.x_end_um() < margin)
         fail("profile x from {} to {} um does not hold the beam: it must reach from -{} to {} um ({} beam widths "

@@ -60,8 +60,12 @@ std::complex<double> thorsos_beam(double k_per_um, double theta_i_rad, double be
 // it leaves; validity estimates it per case and refuses where it exceeds the tolerance).
 inline constexpr double kProfileBeamMargin = 2.0;
 
-// Throws Error naming the value for a bad wavelength, angle, beam width or sampling, or a profile that does not
-// hold the beam (its ends within 2 g of x = 0).
+// Solver nodes of one profile (the profile splined at points_per_wavelength per wavelength): counted before anything
+// is allocated, a profile too long or too coarse for the wavelength is refused (docs/RELIABILITY.md).
+inline constexpr double kMaxExact1dNodes = 1e7;
+
+// Throws Error naming the value for a bad wavelength, angle, beam width or sampling, a profile that does not
+// hold the beam (its ends within 2 g of x = 0), or one that needs more than kMaxExact1dNodes nodes.
 FarField solve_exact_1d(const Profile& profile, const material::Conductor& conductor, const Exact1dOptions& options);
 
 }  // namespace surfscatter::reference

@@ -13,6 +13,7 @@
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/math/vec.hpp"
 #include "surfscatter/reference/far_field_sum.hpp"
+#include "surfscatter/core/resources.hpp"
 #include "surfscatter/reference/parallel_jobs.hpp"
 #include "surfscatter/surface/synthesis.hpp"
 
@@ -214,7 +215,8 @@ Profile random_profile(const surface::RadialStatistics& statistics, const Exact1
     require_positive(options.lambda_nm, "wavelength (nm)");
     const double spacing = options.lambda_nm * 1e-3 / options.points_per_wavelength;
     const double samples = std::ceil(length_um / spacing) + 1;
-    if (!(samples <= 1e7)) fail("profile length {} um needs {:.3g} samples, more than 1e7", length_um, samples);
+    if (!(samples <= kMaxExact1dNodes))
+        fail("profile length {} um needs {:.3g} samples, more than {:.0e}", length_um, samples, kMaxExact1dNodes);
     const auto n = static_cast<std::size_t>(samples);
     Profile profile;
     profile.spacing_um = spacing;
@@ -230,6 +232,8 @@ StatisticalResult solve_exact_1d_statistics(const surface::RadialStatistics& sta
     if (st.more && st.first_round < 2) fail("the first round must be at least 2 realizations, got {}", st.first_round);
     // The first profile is made before any thread starts, so that bad statistics or lengths fail at once.
     const Profile first = random_profile(statistics, options, st.length_um, st.seed);
+    // run_parallel_jobs keeps a done flag per realization: bounded before allocating.
+    require_memory(static_cast<double>(st.realizations), fmt::format("the done flags of {} realizations", st.realizations));
     const KirchhoffControl control(statistics, options, first);
     // Realizations are added to the moments in their order (bit-identical results on any number of threads): a
     // finished one waits in `pending` until those before it are in.

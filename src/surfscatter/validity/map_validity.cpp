@@ -11,6 +11,7 @@
 #include "surfscatter/bsdf/albedo.hpp"
 #include "surfscatter/bsdf/factory.hpp"
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/resources.hpp"
 #include "surfscatter/core/progress.hpp"
 #include "surfscatter/math/vec.hpp"
 #include "surfscatter/reference/kirchhoff_map.hpp"
@@ -173,6 +174,19 @@ void require_outliers_not_dominant(const MapSurface& surface) {
              surface.description, heightmap::describe(surface.outliers));
 }
 
+void require_synthesis_counts(long long pixels, long long realizations, const char* pixels_name,
+                              const char* realizations_name) {
+    const auto min_pixels = static_cast<long long>(heightmap::kMinHeightMapSize);
+    if (pixels < min_pixels || pixels > kMaxSynthesisPixels)
+        fail("{} must be in [{}, {}], got {}", pixels_name, min_pixels, kMaxSynthesisPixels, pixels);
+    if (realizations < 1 || realizations > kMaxSynthesisMaps)
+        fail("{} must be in [1, {}] maps, got {}", realizations_name, kMaxSynthesisMaps, realizations);
+    // The maps' heights, kept together (8 bytes a pixel), and one synthesis at a time (surface/synthesis.cpp).
+    const double pixel_count = static_cast<double>(pixels) * static_cast<double>(pixels);
+    require_memory(8.0 * pixel_count * static_cast<double>(realizations) + 48.0 * pixel_count,
+                   fmt::format("{} synthesised map(s) of {} x {} pixels", realizations, pixels, pixels));
+}
+
 MapSurface map_surface(const bsdf::SurfaceOptions& surface, const std::string& material,
                        const SynthesisSettings& synthesis) {
     MapSurface out;
@@ -194,9 +208,9 @@ MapSurface map_surface(const bsdf::SurfaceOptions& surface, const std::string& m
         return out;
     }
     surface::require_surface_length(synthesis.size_um, "map size");
-    if (synthesis.pixels < heightmap::kMinHeightMapSize)
-        fail("map pixels must be at least {}, got {}", heightmap::kMinHeightMapSize, synthesis.pixels);
-    if (synthesis.realizations < 1) fail("realizations must be at least 1, got {}", synthesis.realizations);
+    // Sizes beyond the long long range are beyond the bounds too.
+    const auto clamp = [](std::size_t n) { return static_cast<long long>(std::min<std::size_t>(n, 1ULL << 62)); };
+    require_synthesis_counts(clamp(synthesis.pixels), clamp(synthesis.realizations), "map pixels", "realizations");
     add_models(out, surface, material, "");
     const auto radial = radial_statistics(surface);
     const surface::SynthesisGrid grid{synthesis.pixels, synthesis.pixels,
@@ -230,8 +244,11 @@ std::vector<MapCase> map_validity(const MapSurface& surface, const material::Con
     for (const double phi : study.phi_i_deg) require_finite(phi, "phi_i");
     for (const double lambda : study.wavelengths_nm)
         if (!(lambda > 0) || !std::isfinite(lambda)) fail("validity: wavelength must be > 0 nm, got {}", lambda);
-    if (!(study.criteria.bin_deg >= 0 && study.criteria.bin_deg <= 30))
-        fail("validity: bin width must be in [0, 30] degrees, got {}", study.criteria.bin_deg);
+    require_valid_criteria(study.criteria, "tolerance", "bin_deg", "max_reference_stderr");
+    require_thread_count(study.threads, "threads");
+    require_list_size(study.wavelengths_nm.size(), "wavelengths_nm");
+    require_list_size(study.theta_i_deg.size(), "theta_i_deg");
+    require_list_size(study.phi_i_deg.size(), "phi_i_deg");
     const heightmap::HeightMap& first = surface.maps.front();
     const double subarea = study.subarea_um > 0 ? study.subarea_um : 0.25 * std::min(first.width(), first.height());
 

@@ -64,6 +64,15 @@ struct SynthesisSettings {
     std::uint64_t seed = 1;
 };
 
+// Synthesised maps: at most kMaxSynthesisPixels a side (0.5 GiB of heights a map) and kMaxSynthesisMaps maps, all
+// within the available memory (docs/RELIABILITY.md).
+inline constexpr long long kMaxSynthesisPixels = 8192, kMaxSynthesisMaps = 1000;
+// Throws Error naming `pixels_name` or `realizations_name` (the front end's spelling) for counts outside those bounds
+// (pixels at least heightmap::kMinHeightMapSize, at least one map) or maps that do not fit in memory; checked before
+// anything is allocated, by map_surface too.
+void require_synthesis_counts(long long pixels, long long realizations, const char* pixels_name,
+                              const char* realizations_name);
+
 // `surface`: psd measured or file with surface_file (both models' routes are built, the map prepared as
 // surface.preparation says), or psd kc / gaussian (then `synthesis` gives the maps). `material` as ModelOptions::material. Throws Error
 // for bad input.

@@ -12,6 +12,7 @@
 
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/progress.hpp"
+#include "surfscatter/core/resources.hpp"
 #include "surfscatter/math/vec.hpp"
 
 namespace surfscatter::validity {
@@ -335,8 +336,20 @@ std::vector<double> edge_diffraction(const material::Conductor& conductor, const
 
 }  // namespace
 
+void require_valid_criteria(const Criteria& c, const char* tolerance_name, const char* bin_name,
+                            const char* stderr_name) {
+    if (!(c.tolerance > 0 && c.tolerance < 1)) fail("{} must be in (0, 1), got {}", tolerance_name, c.tolerance);
+    if (!(c.bin_deg >= 0 && c.bin_deg <= 30)) fail("{} must be in [0, 30] degrees, got {}", bin_name, c.bin_deg);
+    if (!(c.max_reference_stderr > 0 && c.max_reference_stderr <= 1))
+        fail("{} must be in (0, 1], got {}", stderr_name, c.max_reference_stderr);
+}
+
 std::vector<ProfileCase> profile_validity(const surface::RadialStatistics& statistics,
                                           const material::Conductor& conductor, const ProfileStudy& study) {
+    require_valid_criteria(study.criteria, "tolerance", "bin_deg", "max_reference_stderr");
+    require_thread_count(study.statistical.threads, "threads");
+    require_list_size(study.wavelengths_nm.size(), "wavelengths_nm");
+    require_list_size(study.theta_i_deg.size(), "theta_i_deg");
     if (study.wavelengths_nm.empty()) fail("validity: no wavelengths given");
     if (study.theta_i_deg.empty()) fail("validity: no angles of incidence given");
     if (study.polarisations.empty()) fail("validity: no polarisations given");

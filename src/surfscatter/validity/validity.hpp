@@ -44,6 +44,11 @@ struct Criteria {
     double bin_deg = 3.0;               // theta_o bins the curves are averaged over before comparing; 0: none
 };
 
+// Throws Error naming the front end's spelling of the bad value unless tolerance is in (0, 1), bin_deg in [0, 30] and
+// max_reference_stderr in (0, 1]; profile_validity and map_validity check them too (under the Python names).
+void require_valid_criteria(const Criteria& criteria, const char* tolerance_name, const char* bin_name,
+                            const char* stderr_name);
+
 // Curves averaged over theta_o bins of `bin_rad` from -90 deg (the last bin takes the remainder): the speckle of
 // a finite number of random profiles is averaged out over the bin. `theta_o_rad` becomes the bins' mean angles.
 struct BinnedCurves {
