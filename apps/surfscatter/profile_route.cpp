@@ -1,6 +1,7 @@
 #include "profile_route.hpp"
 
 #include <cmath>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -17,9 +18,13 @@ std::optional<heightmap::LineScan> read_profile(const std::string& path, const P
                                                 std::optional<double> spacing_um, std::optional<double> height_unit_um) {
     std::optional<heightmap::LineScan> scan = heightmap::read_line_scan(path);
     if (!scan) return scan;
-    const std::string given = preparation.first_given();
-    if (!given.empty() && given != "--form")
-        fail("{}: {} applies to areal maps; a profile is prepared by its form only (--form none | plane)", path, given);
+    for (const auto& [option, value] : {std::pair{"--outliers", &preparation.outliers},
+                                        std::pair{"--row-alignment", &preparation.row_alignment},
+                                        std::pair{"--lambda-s", &preparation.lambda_s},
+                                        std::pair{"--lambda-c", &preparation.lambda_c}})
+        if (*value)
+            fail("{}: {} applies to areal maps; a profile is prepared by its form only (--form none | plane)", path,
+                 option);
     const heightmap::Form form = profile_form(preparation);
     if (form != heightmap::Form::none && form != heightmap::Form::plane)
         fail("{}: --form {} on a profile: a profile's form is none (its mean) or plane (a least-squares line)", path,
