@@ -65,7 +65,7 @@ def test_validity_map_bounds_its_synthesis_before_starting(keywords, expected):
 
 def test_validity_bounds_the_realizations_before_allocating():
     refused(lambda: ss.validity(KC, "perfect", [550], [0], length_um=24, beam_width_um=4, realizations=10**12),
-            "keeping the far fields of 1000000000000 realizations needs")
+            "the done flags of 1000000000000 realizations needs")
 
 
 @pytest.mark.parametrize("keywords, expected", [

@@ -16,7 +16,11 @@ using surfscatter::test::run_cli;
 
 namespace {
 
-fs::path dir() { return surfscatter::test::scratch_directory("surfscatter_test_cli_options"); }
+// One folder per test: ctest runs the tests of this file in parallel, and each checks which outputs exist.
+fs::path dir() {
+    return surfscatter::test::scratch_directory(std::string("surfscatter_test_cli_options_") +
+                                                ::testing::UnitTest::GetInstance()->current_test_info()->name());
+}
 
 // A profile CSV of `samples` heights `spacing_um` apart centred on x = 0, alternating 0 and 0.1 um.
 std::string profile(const std::string& name, int samples, double spacing_um) {
@@ -168,9 +172,9 @@ TEST(CliOptions, WorkIsBoundedBeforeAllocating) {
           (dir() / "w.csv").string()},
          "solver nodes at 1e-300 nm"},
         {"Exact1dRealizations1e12", random_profiles({"--realizations", "1000000000000"}),
-         "keeping the far fields of 1000000000000 realizations needs"},
+         "the done flags of 1000000000000 realizations needs"},
         {"Exact1dRealizationsInt64Max", random_profiles({"--realizations", "9223372036854775807"}),
-         "keeping the far fields of 9223372036854775807 realizations needs"},
+         "the done flags of 9223372036854775807 realizations needs"},
         {"ValidityMapPixels1e6", validity(concat(kSynthesised, {"--map-pixels", "1000000"})),
          "--map-pixels must be in [8, 8192], got 1000000"},
         {"ValidityMaps1e6", validity(concat(kSynthesised, {"--realizations", "1000000"})),
