@@ -318,7 +318,7 @@ TEST(Validity, ProfileOfFourBeamWidthsRunsWithItsEdgeErrorEstimated) {
     EXPECT_THROW(sv::profile_validity(ss::surface::KCorrelation(0.01, 1.0, 3.0), conductor, study), ss::Error);
 }
 
-// A target standard error: rounds of profiles (16 first, then at most as many again) until the reference's median relative
+// A target standard error: rounds of profiles (24 first, then at most as many again) until the reference's median relative
 // standard error over the bins used reaches it; a cap below what it needs stops short and says so. ~3 CPU s.
 TEST(Validity, TargetStandardErrorRunsProfilesUntilReached) {
     const ss::surface::KCorrelation surface(0.01, 1.0, 3.0);
@@ -331,7 +331,7 @@ TEST(Validity, TargetStandardErrorRunsProfilesUntilReached) {
     EXPECT_TRUE(cases.front().target_reached);
     EXPECT_LE(cases.front().reference_rel_stderr, 0.12);
     const std::size_t n = cases.front().reference.realizations;
-    EXPECT_GE(n, 16u);  // the first round
+    EXPECT_GE(n, ss::reference::kMinControlledRealizations);  // the first round
     EXPECT_LE(n, 200u);
     study.target_rel_stderr = 0.01;
     study.statistical.realizations = 20;

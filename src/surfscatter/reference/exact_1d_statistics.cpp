@@ -148,11 +148,6 @@ double bilinear(const Moments& moments, std::size_t d, const std::array<double, 
     return sum;
 }
 
-// Fewer realizations leave the controlled standard errors too small: between two independent runs (KC sigma 0.1 um,
-// L 1 um, 1000 nm) the rms of the difference over its standard error was 1.5, 1.4, 1.15 and 1.03 at 12, 16, 24 and
-// 48 realizations (the influence values are squares, heavy-tailed, and the fitted coefficient follows them).
-constexpr std::size_t kMinControlledRealizations = 24;
-
 StatisticalResult estimates(const Moments& moments, const KirchhoffControl& control, std::vector<double> theta) {
     StatisticalResult out;
     out.realizations = moments.count();
