@@ -228,6 +228,25 @@ std::unique_ptr<bsdf::Bsdf> single_model(const BrdfArgs& a) {
     return build_model(o);
 }
 
+// --psd measured: directions whose first-order frequency k (wo + wi)_xy lies beyond the map's lattice (periods shorter
+// than two pixels) draw on nothing the map measured (only the self-convolutions reach there): one warning with the count.
+void warn_beyond_the_map(const BrdfArgs& a, const Vec3& wi, const std::vector<Vec3>& wos) {
+    if (!a.prepared || a.psd != "measured") return;
+    const double k = kTwoPi / (a.wavelength * 1e-3);
+    const double nyquist_x = kPi / a.prepared->map.spacing_x(), nyquist_y = kPi / a.prepared->map.spacing_y();
+    const auto beyond = std::count_if(wos.begin(), wos.end(), [&](const Vec3& wo) {
+        return std::abs(k * (wo.x + wi.x)) > nyquist_x || std::abs(k * (wo.y + wi.y)) > nyquist_y;
+    });
+    if (beyond > 0)
+        std::fprintf(stderr,
+                     "surfscatter: brdf: warning: %zu of %zu directions lie beyond the frequencies %s resolves "
+                     "(|zeta_x| > %.3g or |zeta_y| > %.3g rad/um at %s nm: periods shorter than two pixels): the "
+                     "measured spectrum holds nothing there, so their values say nothing about the surface (a finer "
+                     "map, or --psd file for the KC fitted to it, extrapolated)\n",
+                     static_cast<std::size_t>(beyond), wos.size(), printable_path(a.surface_file).c_str(), nyquist_x,
+                     nyquist_y, format_number(a.wavelength).c_str());
+}
+
 void eval(const BrdfArgs& a) {
     check_common(a);
     if (a.theta_i.size() != 1) fail("--theta-i takes one angle for brdf eval, got {}", a.theta_i.size());
@@ -239,11 +258,15 @@ void eval(const BrdfArgs& a) {
     for (double p : phis) require_finite(p, "--phi-o");
     // Evaluated first, so that an error (a wavelength outside the material's data) prints nothing but itself.
     std::string rows = "theta_o,phi_o,brdf\n";
+    std::vector<Vec3> wos;
     for (double t : a.theta_o)
-        for (double p : phis)
+        for (double p : phis) {
+            wos.push_back(incident(t, p));
             rows += fmt::format("{},{},{}\n", format_number(t), format_number(p),
-                                format_number(model->eval(wi, incident(t, p), a.wavelength)));
+                                format_number(model->eval(wi, wos.back(), a.wavelength)));
+        }
     std::fputs(rows.c_str(), stdout);
+    warn_beyond_the_map(a, wi, wos);
 }
 
 void albedo(const BrdfArgs& a) {

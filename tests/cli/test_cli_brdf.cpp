@@ -115,6 +115,31 @@ TEST(CliBrdf, SliceWritesCsvAndPng) {
     std::filesystem::remove_all(dir);
 }
 
+// --psd measured: directions whose first-order frequency lies beyond the map's lattice get one warning with their
+// count. A 0.5 um map resolves |zeta| <= 6.28 rad/um; at 550 nm and theta_i 30 deg (k = 11.4 rad/um), theta_o 60 deg
+// on the incidence side needs 15.6 and theta_o 0 needs 5.7.
+TEST(CliBrdf, MeasuredPsdWarnsOfDirectionsBeyondTheMap) {
+    const auto dir = surfscatter::test::scratch_directory("surfscatter_cli_brdf_beyond");
+    const std::string map = (dir / "coarse.gsf").string();
+    ASSERT_EQ(run_cli({"surface", "synth", "--model", "kc", "--sigma", "0.05", "--corr-length", "2", "--gamma", "3",
+                       "--size", "64", "--spacing", "0.5", "--seed", "4", "-o", map})
+                  .exit_code,
+              0);
+    const std::vector<std::string> eval = {"brdf", "eval", "--model", "ghs", "--psd", "measured", "--surface", map,
+                                           "--material", "perfect", "--wavelength", "550", "--theta-i", "30"};
+    auto with = [&](std::vector<std::string> extra) {
+        std::vector<std::string> args = eval;
+        args.insert(args.end(), extra.begin(), extra.end());
+        return run_cli(args);
+    };
+    const auto beyond = with({"--theta-o", "0,60", "--phi-o", "0"});
+    ASSERT_EQ(beyond.exit_code, 0) << beyond.err;
+    EXPECT_NE(beyond.err.find("warning: 1 of 2 directions lie beyond the frequencies"), std::string::npos) << beyond.err;
+    const auto within = with({"--theta-o", "10,30,50", "--phi-o", "180"});
+    ASSERT_EQ(within.exit_code, 0) << within.err;
+    EXPECT_EQ(within.err.find("directions lie beyond"), std::string::npos) << within.err;
+}
+
 // --psd measured uses the map's own PSD and reports its extrapolation; slice overlays the KC-fit and measured versions
 // of one model (model:psd); --psd kc or gaussian together with --surface is an error.
 TEST(CliBrdf, MeasuredPsdRouteAndOverlay) {
