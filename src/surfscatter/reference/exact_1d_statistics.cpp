@@ -190,11 +190,11 @@ StatisticalResult estimates(const Moments& moments, const KirchhoffControl& cont
         const Complex cov_ab(moments.covariance(d, 1, 4) + moments.covariance(d, 2, 5),
                              moments.covariance(d, 2, 4) - moments.covariance(d, 1, 5));
         const Complex gamma = controlled && spread > 0 ? cov_ab / spread : Complex(0.0);
-        const Complex controlled = centre + u - gamma * v;
-        const double size = std::abs(controlled);
+        const Complex mean_amplitude = centre + u - gamma * v;
+        const double size = std::abs(mean_amplitude);
         out.coherent[d] = size * size;
         if (size > 0) {
-            const Complex direction = std::conj(controlled) / size, turned = gamma * direction;
+            const Complex direction = std::conj(mean_amplitude) / size, turned = gamma * direction;
             const std::array<double, 6> l{0.0, direction.real(), -direction.imag(), 0.0, -turned.real(), turned.imag()};
             out.coherent_stderr[d] = 2.0 * size * std::sqrt(std::max(0.0, bilinear(moments, d, l, l)) * inflation(2) / n);
         }
@@ -204,8 +204,7 @@ StatisticalResult estimates(const Moments& moments, const KirchhoffControl& cont
 
 }  // namespace
 
-Profile random_profile(const surface::RadialStatistics& statistics, const Exact1dOptions& options, double length_um,
-                       std::uint64_t seed) {
+Profile flat_profile(const Exact1dOptions& options, double length_um) {
     require_positive(length_um, "profile length (um)");
     require_positive(options.lambda_nm, "wavelength (nm)");
     const double spacing = options.lambda_nm * 1e-3 / options.points_per_wavelength;
@@ -216,7 +215,15 @@ Profile random_profile(const surface::RadialStatistics& statistics, const Exact1
     Profile profile;
     profile.spacing_um = spacing;
     profile.x0_um = -0.5 * spacing * static_cast<double>(n - 1);
-    profile.h_um = surface::synthesize_profile(statistics, n, spacing, seed, surface::ProfileMean::random);
+    profile.h_um.assign(n, 0.0);
+    return profile;
+}
+
+Profile random_profile(const surface::RadialStatistics& statistics, const Exact1dOptions& options, double length_um,
+                       std::uint64_t seed) {
+    Profile profile = flat_profile(options, length_um);
+    profile.h_um = surface::synthesize_profile(statistics, profile.h_um.size(), profile.spacing_um, seed,
+                                               surface::ProfileMean::random);
     return profile;
 }
 

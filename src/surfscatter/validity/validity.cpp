@@ -321,12 +321,7 @@ std::function<std::size_t(const reference::StatisticalResult&)> realizations_wan
 std::vector<double> edge_diffraction(const material::Conductor& conductor, const reference::Exact1dOptions& options,
                                      double length_um) {
     const auto flat = [&](double length) {
-        reference::Profile profile;
-        profile.spacing_um = options.lambda_nm * 1e-3 / options.points_per_wavelength;
-        const auto n = static_cast<std::size_t>(std::ceil(length / profile.spacing_um)) + 1;
-        profile.x0_um = -0.5 * profile.spacing_um * static_cast<double>(n - 1);
-        profile.h_um.assign(n, 0.0);
-        return reference::solve_exact_1d(profile, conductor, options).intensity_per_rad();
+        return reference::solve_exact_1d(reference::flat_profile(options, length), conductor, options).intensity_per_rad();
     };
     std::vector<double> edge = flat(length_um);
     const std::vector<double> longer = flat(2 * length_um);
