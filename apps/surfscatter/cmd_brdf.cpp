@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <utility>
 #include <random>
 #include <sstream>
 #include <string>
@@ -18,6 +19,7 @@
 #include "profile_route.hpp"
 #include "surfscatter/bsdf/albedo.hpp"
 #include "surfscatter/bsdf/factory.hpp"
+#include "surfscatter/bsdf/measured_band.hpp"
 #include "surfscatter/bsdf/rgl_export.hpp"
 #include "surfscatter/bsdf/slice.hpp"
 #include "surfscatter/core/error.hpp"
@@ -41,8 +43,11 @@ struct BrdfArgs {
     double sigma = 0, corr_length = 0, gamma = 0, corr_length_v = 0, lay_angle = 0;
     // The --surface map, read and prepared when first needed and shared by every model of the command.
     mutable std::shared_ptr<const heightmap::PreparedMap> prepared;
-    // A --surface profile's KC (profile_route.hpp), fitted when first needed; `profile_checked` once looked for.
+    // A --surface profile (profile_route.hpp), read when first needed (`profile_checked` once looked for), and its
+    // KC (--psd file) or its measured statistics (--psd measured, the default), each made when first needed.
+    mutable std::optional<heightmap::LineScan> profile_scan;
     mutable std::optional<ProfileSurface> profile;
+    mutable std::shared_ptr<const surface::ProfileStatistics> profile_measured;
     mutable bool profile_checked = false;
     double wavelength = 0, phi_i = 0;
     std::vector<double> theta_i;
@@ -89,8 +94,10 @@ std::string flag_name(std::string name) {
 void check_given_options_apply(const BrdfArgs& a, const std::vector<bsdf::ModelOptions>& models,
                                const std::vector<std::string>& model_names) {
     for (const std::string& name : a.given) {
-        // A --surface profile stands for the KC fitted to it (model_options): its file, --psd and --form are used.
-        if (a.profile && (name == "surface_file" || name == "psd" || name == "psd_fit" || name == "form")) continue;
+        // A --surface profile stands for the KC fitted to it or its own spectrum (model_options): its file, --psd and
+        // --form are used (--psd-fit by the KC's route, which refuses elliptical).
+        if (a.profile_scan && (name == "surface_file" || name == "psd" || name == "form" || (name == "psd_fit" && a.profile)))
+            continue;
         std::string why;
         for (const bsdf::ModelOptions& o : models) {
             why = bsdf::inapplicable_option(o, name);
@@ -139,19 +146,32 @@ bsdf::ModelOptions model_options(const BrdfArgs& a, const std::string& spec) {
     const bool from_map = psd.empty() || psd == "file" || psd == "measured";
     if (!a.surface_file.empty() && from_map && !a.profile_checked) {
         a.profile_checked = true;
-        if (const auto scan = read_profile(a.surface_file, a.preparation)) {
-            a.profile = profile_surface(*scan, profile_form(a.preparation));
-            std::fprintf(stderr, "surfscatter: brdf: note: %s\n", a.profile->note.c_str());
-        }
+        a.profile_scan = read_profile(a.surface_file, a.preparation);
+        if (a.profile_scan)
+            std::fprintf(stderr, "surfscatter: brdf: %s\n",
+                         describe_profile(*a.profile_scan, profile_form(a.preparation)).c_str());
     }
-    if (a.profile && from_map) {
-        // A profile: --psd file and measured both take the KC fitted to its 1-D PSD as the isotropic surface's.
+    if (a.profile_scan && psd == "file") {
+        // --psd file: the KC fitted to the profile's 1-D PSD as the isotropic surface's.
         if (!a.psd_fit.empty() && bsdf::parse_psd_fit(a.psd_fit, "--psd-fit") == bsdf::PsdFit::elliptical)
             fail("--psd-fit elliptical: {} is a profile, which holds no lay direction", a.surface_file);
+        if (!a.profile) {
+            a.profile = profile_surface(*a.profile_scan, profile_form(a.preparation));
+            print_note("brdf", a.profile->note);
+        }
         o.surface.psd = bsdf::PsdKind::kc;
         o.surface.sigma = a.profile->fit.kc.sigma_h_um;
         o.surface.corr_length = a.profile->fit.kc.corr_length_um;
         o.surface.gamma = a.profile->fit.kc.gamma;
+    } else if (a.profile_scan && from_map) {
+        // --psd measured, a profile's default: its own spectrum as an isotropic surface's (profile_route.hpp).
+        if (!a.profile_measured)
+            a.profile_measured =
+                std::make_shared<const surface::ProfileStatistics>(*a.profile_scan, profile_form(a.preparation));
+        o.surface.psd = bsdf::PsdKind::measured;
+        o.surface.surface_file = a.surface_file;
+        o.surface.measured_profile = a.profile_measured;
+        o.surface.measured_spectrum = bsdf::parse_measured_spectrum(a.measured_spectrum, "--measured-spectrum");
     } else if (!a.surface_file.empty() && from_map) {
         o.surface.psd = psd.empty() ? bsdf::PsdKind::file : bsdf::parse_psd(psd, "--psd");
         o.surface.surface_file = a.surface_file;
@@ -205,7 +225,7 @@ std::unique_ptr<bsdf::Bsdf> build_model(const bsdf::ModelOptions& options) {
     }
     for (const std::string& note : notes)
         if (std::find(printed.begin(), printed.end(), note) == printed.end()) {
-            std::fprintf(stderr, "surfscatter: brdf: note: %s\n", note.c_str());
+            print_note("brdf", note);
             printed.push_back(note);
         }
     return model;
@@ -221,30 +241,23 @@ void check_common(const BrdfArgs& a) {
 
 Vec3 incident(double theta_deg, double phi_deg) { return spherical_direction(theta_deg * kDegree, phi_deg * kDegree); }
 
-// The single model of eval, albedo and sample, checked for options it does not use.
-std::unique_ptr<bsdf::Bsdf> single_model(const BrdfArgs& a) {
+// The single model of eval, albedo and sample, checked for options it does not use; its options in `used` if given.
+std::unique_ptr<bsdf::Bsdf> single_model(const BrdfArgs& a, bsdf::ModelOptions* used = nullptr) {
     const bsdf::ModelOptions o = model_options(a, a.model);
     check_given_options_apply(a, {o}, {bsdf::to_string(o.model)});
+    if (used) *used = o;
     return build_model(o);
 }
 
-// --psd measured: directions whose first-order frequency k (wo + wi)_xy lies beyond the map's lattice (periods shorter
-// than two pixels) draw on nothing the map measured (only the self-convolutions reach there): one warning with the count.
-void warn_beyond_the_map(const BrdfArgs& a, const Vec3& wi, const std::vector<Vec3>& wos) {
-    if (!a.prepared || a.psd != "measured") return;
-    const double k = kTwoPi / (a.wavelength * 1e-3);
-    const double nyquist_x = kPi / a.prepared->map.spacing_x(), nyquist_y = kPi / a.prepared->map.spacing_y();
-    const auto beyond = std::count_if(wos.begin(), wos.end(), [&](const Vec3& wo) {
-        return std::abs(k * (wo.x + wi.x)) > nyquist_x || std::abs(k * (wo.y + wi.y)) > nyquist_y;
-    });
-    if (beyond > 0)
-        std::fprintf(stderr,
-                     "surfscatter: brdf: warning: %zu of %zu directions lie beyond the frequencies %s resolves "
-                     "(|zeta_x| > %.3g or |zeta_y| > %.3g rad/um at %s nm: periods shorter than two pixels): the "
-                     "measured spectrum holds nothing there, so their values say nothing about the surface (a finer "
-                     "map, or --psd file for the KC fitted to it, extrapolated)\n",
-                     static_cast<std::size_t>(beyond), wos.size(), printable_path(a.surface_file).c_str(), nyquist_x,
-                     nyquist_y, format_number(a.wavelength).c_str());
+// --psd measured: one warning with the count of directions whose first-order frequency lies beyond the band the map
+// or profile resolves (bsdf/measured_band.hpp; Python's Bsdf.eval warns alike).
+void warn_beyond_the_band(const bsdf::ModelOptions& o, const std::vector<std::pair<Vec3, Vec3>>& directions,
+                          double lambda_nm) {
+    const auto band = bsdf::measured_band(o.surface);
+    if (!band) return;
+    const auto beyond = std::count_if(directions.begin(), directions.end(),
+                                      [&](const auto& d) { return band->beyond(d.first, d.second, lambda_nm); });
+    print_note("brdf", bsdf::beyond_band_warning(*band, static_cast<std::size_t>(beyond), directions.size(), lambda_nm));
 }
 
 void eval(const BrdfArgs& a) {
@@ -252,21 +265,22 @@ void eval(const BrdfArgs& a) {
     if (a.theta_i.size() != 1) fail("--theta-i takes one angle for brdf eval, got {}", a.theta_i.size());
     if (a.theta_o.empty()) fail("--theta-o is required");
     for (double t : a.theta_o) require_theta(t, "--theta-o");
-    const auto model = single_model(a);
+    bsdf::ModelOptions options;
+    const auto model = single_model(a, &options);
     const std::vector<double> phis = a.phi_o.empty() ? std::vector<double>{a.phi_i + 180.0} : a.phi_o;
     const Vec3 wi = incident(a.theta_i[0], a.phi_i);
     for (double p : phis) require_finite(p, "--phi-o");
     // Evaluated first, so that an error (a wavelength outside the material's data) prints nothing but itself.
     std::string rows = "theta_o,phi_o,brdf\n";
-    std::vector<Vec3> wos;
+    std::vector<std::pair<Vec3, Vec3>> directions;
     for (double t : a.theta_o)
         for (double p : phis) {
-            wos.push_back(incident(t, p));
+            directions.emplace_back(wi, incident(t, p));
             rows += fmt::format("{},{},{}\n", format_number(t), format_number(p),
-                                format_number(model->eval(wi, wos.back(), a.wavelength)));
+                                format_number(model->eval(wi, directions.back().second, a.wavelength)));
         }
     std::fputs(rows.c_str(), stdout);
-    warn_beyond_the_map(a, wi, wos);
+    warn_beyond_the_band(options, directions, a.wavelength);
 }
 
 void albedo(const BrdfArgs& a) {
@@ -328,6 +342,16 @@ void slice(const BrdfArgs& a) {
     for (std::size_t m = 0; m < models.size(); ++m)
         bsdf::write_slice_csv(table, names[m], *models[m], a.theta_i, a.phi_i, a.wavelength, m == 0);
     files.write(csv, table.str());
+    // The slices' directions, counted against the first measured model's band (one surface for all).
+    for (const bsdf::ModelOptions& o : options)
+        if (bsdf::measured_band(o.surface)) {
+            std::vector<std::pair<Vec3, Vec3>> directions;
+            for (double ti : a.theta_i)
+                for (double t : bsdf::slice_angles())
+                    directions.emplace_back(incident(ti, a.phi_i), bsdf::slice_direction(t, a.phi_i));
+            warn_beyond_the_band(o, directions, a.wavelength);
+            break;
+        }
     if (!a.plot.empty())
         files.write_with(a.plot, [&](const std::filesystem::path& png) {
             run_plot_script("brdf_slice.py",
@@ -436,7 +460,8 @@ void add_model_options(CLI::App* cmd, BrdfArgs& a) {
     cmd->add_option("--lay-angle", a.lay_angle, "lay direction u (deg from phi = 0 towards phi = 90, default 0); "
                                                 "docs/SURFACE.md \"Anisotropy\"");
     cmd->add_option("--surface", a.surface_file, "height map (any format `surface info` reads): KC fitted to it "
-                                                 "(--psd file, default) or its own PSD (--psd measured)");
+                                                 "(--psd file, a map's default) or its own PSD (--psd measured, a "
+                                                 "profile's default: docs/HEIGHTMAPS.md \"Profiles\")");
     add_preparation_options(cmd, a.preparation, "--surface");
     cmd->add_option("--measured-spectrum", a.measured_spectrum,
                     "--psd measured: 2d (default: ghs and ghs_ssa on the map's 2-D spectrum) | ring (its ring "

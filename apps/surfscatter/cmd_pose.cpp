@@ -65,7 +65,7 @@ void run(const Options& o) {
                      "image, camera at (%.5f, %.5f, %.5f) m, reprojects almost as well; both are in %s\n",
                      pose.ambiguity_ratio, pose.ambiguity_chi2, pose.alternative->position[0],
                      pose.alternative->position[1], pose.alternative->position[2], printable_path(o.output).c_str());
-    for (const std::string& note : report.notes) std::fprintf(stderr, "surfscatter: pose: note: %s\n", note.c_str());
+    for (const std::string& note : report.notes) print_note("pose", note);
 }
 
 const Command command("pose", [](CLI::App& app) {

@@ -206,7 +206,7 @@ void run_kirchhoff(const KirchhoffArgs& a) {
                                                  fmt::format("{} nm, {}", format_number(a.wavelength), a.material)});
         });
     files.commit();
-    std::fprintf(stderr, "surfscatter: note: %s: %s\n", printable_path(a.surface_file).c_str(), heightmap::describe(prepared).c_str());
+    print_note("", fmt::format("{}: {}", printable_path(a.surface_file), heightmap::describe(prepared)));
     std::printf("subareas = %zu\nsubarea_px = %zu x %zu\n", r.subareas_done, r.subarea_nx, r.subarea_ny);
     std::printf("lattice_step = %s x %s\n", format_number(r.step_x).c_str(), format_number(r.step_y).c_str());
     std::printf("qz_bands = %zu\nffts_per_subarea = %zu\n", r.band_count, r.fft_count);

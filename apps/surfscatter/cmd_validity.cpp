@@ -421,7 +421,7 @@ void run_map_validity(const ValidityArgs& a) {
     }
     const auto conductor = material::Conductor::from_name(a.material);
     const validity::MapSurface surface = validity::map_surface(map_surface_options(a), a.material, synthesis);
-    for (const std::string& note : surface.notes) std::fprintf(stderr, "surfscatter: note: %s\n", note.c_str());
+    for (const std::string& note : surface.notes) print_note("", note);
     for (const std::string& why : surface.refused)
         std::fprintf(stderr, "surfscatter: not compared: %s\n", why.c_str());
 

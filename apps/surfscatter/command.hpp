@@ -17,6 +17,11 @@ struct Command {
 // infinity is an Error instead.
 std::string format_number(double v);
 
+// The one rule for what a command tells the user on stderr besides errors: "surfscatter: <command>: note: <text>", or
+// "surfscatter: <command>: warning: <rest>" when the text (a library's note) begins "warning: " (no "note: warning:").
+// An empty `command` leaves out "<command>: "; an empty text prints nothing.
+void print_note(const std::string& command, const std::string& text);
+
 // Flushes stdout; an Error if anything written to it was lost (a full disk, a closed pipe). main() calls it after
 // every command.
 void flush_standard_output();

@@ -8,6 +8,8 @@
 #include <map>
 #include <mutex>
 #include <set>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include <fmt/format.h>
@@ -34,6 +36,14 @@ Command::Command(std::string name, std::function<void(CLI::App&)> setup) {
 
 // Every number a command prints or writes goes through here: a NaN or infinity is refused (exit 2) instead of
 // printed. The commands refuse the inputs that would make one, naming them; this is the net behind them.
+void print_note(const std::string& command, const std::string& text) {
+    if (text.empty()) return;
+    constexpr std::string_view kWarning = "warning: ";
+    const bool warning = std::string_view(text).substr(0, kWarning.size()) == kWarning;
+    std::fprintf(stderr, "surfscatter: %s%s%s\n", command.empty() ? "" : (command + ": ").c_str(),
+                 warning ? "" : "note: ", text.c_str());
+}
+
 std::string format_number(double v) {
     if (!std::isfinite(v)) fail("a result is {}: the inputs are outside the range where it is defined", v);
     return fmt::format("{:.10g}", v);

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "command.hpp"
 #include "surfscatter/core/output_files.hpp"
 #include "surfscatter/heightmap/io.hpp"
 
@@ -45,8 +46,7 @@ heightmap::PreparedMap read_prepared_map(const std::string& path, std::optional<
     const heightmap::Outliers& found = prepared.outliers;
     if (found.count > 0)
         // outliers_note begins "warning: " when the outliers kept dominate; otherwise it is a note.
-        std::fprintf(stderr, "surfscatter: %s%s\n", heightmap::kept_and_dominant(found, how.outliers) ? "" : "note: ",
-                     heightmap::outliers_note(printable_path(path), found, how.outliers).c_str());
+        print_note("", heightmap::outliers_note(printable_path(path), found, how.outliers));
     return prepared;
 }
 

@@ -1,7 +1,9 @@
 #pragma once
 // Profiles (.hfm exports, Dektak OPDx line scans) where a map is expected: `surface info | fit` report the profile's
-// own statistics, and `brdf --surface` gives the areal models the KC fitted to its 1-D PSD under the assumption of
-// isotropy, stated as a note (surface/profile_statistics.hpp; docs/HEIGHTMAPS.md "Profiles").
+// own statistics, and `brdf --surface` gives the areal models, under the assumption of isotropy stated as a note,
+// the profile's own spectrum (--psd measured, the default: surface::ProfileStatistics, the inverse Abel transform of
+// its 1-D PSD) or the KC fitted to its 1-D PSD (--psd file), which needs a knee within the profile's band
+// (surface/profile_statistics.hpp; docs/HEIGHTMAPS.md "Profiles").
 #include <optional>
 #include <string>
 

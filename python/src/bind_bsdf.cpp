@@ -1,6 +1,9 @@
 // surfscatter.bsdf(...) -> Bsdf: bsdf/factory.hpp and bsdf/model_options.hpp, with eval/sample/pdf/albedo over
 // numpy arrays on TBB's threads.
+#include <atomic>
 #include <cstring>
+#include <limits>
+#include <optional>
 #include <functional>
 #include <map>
 #include <memory>
@@ -13,6 +16,7 @@
 #include "bindings.hpp"
 #include "surfscatter/bsdf/albedo.hpp"
 #include "surfscatter/bsdf/factory.hpp"
+#include "surfscatter/bsdf/measured_band.hpp"
 #include "surfscatter/bsdf/rgl_export.hpp"
 #include "surfscatter/bsdf/rgl_measured.hpp"
 #include "surfscatter/core/error.hpp"
@@ -31,6 +35,7 @@ struct PyBsdf {
     std::shared_ptr<const bsdf::Bsdf> model;
     ModelOptions options;
     std::vector<std::string> notes;  // what make_bsdf says about the result (e.g. a measured PSD's extrapolation)
+    std::optional<bsdf::MeasuredBand> band;  // psd measured: what eval warns about (bsdf/measured_band.hpp)
 };
 
 double number_option(py::handle value, const char* name) {
@@ -144,6 +149,11 @@ void set_surface(ModelOptions& o, py::handle value, bool psd_given) {
              "psd '{}'", to_string(o.surface.psd));
 }
 
+// A note as a UserWarning (an exception when warnings are errors).
+void warn(const std::string& note) {
+    if (PyErr_WarnEx(PyExc_UserWarning, note.c_str(), 1) != 0) throw py::error_already_set();
+}
+
 PyBsdf make(const std::string& model, py::handle surface_arg, py::handle material, const py::kwargs& options) {
     ModelOptions o;
     o.model = bsdf::parse_model(model, "model");
@@ -189,11 +199,13 @@ PyBsdf make(const std::string& model, py::handle surface_arg, py::handle materia
     std::shared_ptr<const bsdf::Bsdf> built;
     {
         py::gil_scoped_release release;
+        bsdf::validate(o);  // before the map is read, so that a bad option is named first, as without it
+        if (needs_surface) bsdf::load_height_map(o.surface);  // prepared once, kept for the band eval warns about
         built = bsdf::make_bsdf(o, &notes);
     }
-    for (const std::string& note : notes)
-        if (PyErr_WarnEx(PyExc_UserWarning, note.c_str(), 1) != 0) throw py::error_already_set();  // warnings as errors
-    return {std::move(built), o, std::move(notes)};
+    for (const std::string& note : notes) warn(note);
+    const auto band = needs_surface ? bsdf::measured_band(o.surface) : std::nullopt;
+    return {std::move(built), o, std::move(notes), band};
 }
 
 py::dict options_dict(const ModelOptions& o) {
@@ -327,12 +339,29 @@ void bind_bsdf(py::module_& m) {
         .def(
             "eval",
             [](const PyBsdf& b, py::handle wi, py::handle wo, py::handle lambda_nm) {
-                return pair_map(wi, wo, lambda_nm,
-                                [&](const Vec3& i, const Vec3& o, double l) { return b.model->eval(i, o, l); });
+                // psd measured: the directions beyond the band the measurement resolves, counted as `brdf eval`
+                // counts them, one UserWarning with the count (at the shortest wavelength among them).
+                std::atomic<std::size_t> beyond{0}, total{0};
+                std::atomic<double> shortest{std::numeric_limits<double>::infinity()};
+                auto values = pair_map(wi, wo, lambda_nm, [&](const Vec3& i, const Vec3& o, double l) {
+                    if (b.band) {
+                        ++total;
+                        if (b.band->beyond(i, o, l)) {
+                            ++beyond;
+                            for (double s = shortest.load(); l < s && !shortest.compare_exchange_weak(s, l);) {
+                            }
+                        }
+                    }
+                    return b.model->eval(i, o, l);
+                });
+                if (b.band && beyond > 0) warn(bsdf::beyond_band_warning(*b.band, beyond, total, shortest));
+                return values;
             },
             py::arg("wi"), py::arg("wo"), py::arg("lambda_nm"),
             "f_r(wi, wo) in 1/sr (no cosine, no specular delta) for unit vectors wi, wo (..., 3) and wavelengths "
-            "lambda_nm (nm), broadcast together; 0 where a direction is below the surface. As `brdf eval`.")
+            "lambda_nm (nm), broadcast together; 0 where a direction is below the surface. As `brdf eval`; with "
+            "psd 'measured', one UserWarning with the count of directions whose first-order frequency lies beyond "
+            "the band the map resolves.")
         .def(
             "pdf",
             [](const PyBsdf& b, py::handle wi, py::handle wo, py::handle lambda_nm) {

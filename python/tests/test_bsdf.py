@@ -2,6 +2,7 @@
 broadcasting, options named as in the XML, and bad input."""
 
 import re
+import warnings
 
 import numpy as np
 import pytest
@@ -351,3 +352,18 @@ def test_psd_fit_elliptical_equals_the_cli_and_reports_the_fit():
         ss.bsdf("ghs", surface=path, psd_fit="radial", material="Ag")
     with pytest.raises(ss.Error, match="elliptical KC fit: no elliptical KC fits"):
         ss.bsdf("ghs", surface=shared("realdata", "heightmaps", "di-1.di"), psd_fit="elliptical", material="Ag")
+
+
+def test_measured_psd_eval_warns_of_directions_beyond_the_map():
+    # As `brdf eval` (tests/cli/test_cli_brdf.cpp): a 0.5 um map resolves |zeta_x|, |zeta_y| <= 6.28 rad/um; at 550 nm
+    # and theta_i 30 deg, theta_o 60 deg on the incidence side needs 15.6 rad/um, theta_o 0 needs 5.7.
+    height_map = ss.synthesize(ss.KCorrelation(**KC), 64, spacing_um=0.5, seed=4)
+    with pytest.warns(UserWarning):
+        model = ss.bsdf("ghs", surface=height_map, psd="measured", material="perfect")
+    wi = ss.direction(30.0, 0.0)
+    with pytest.warns(UserWarning, match=r"^warning: 1 of 2 directions lie beyond the frequencies .* resolves"):
+        values = model.eval(wi, ss.direction(np.array([0.0, 60.0]), np.array([0.0, 0.0])), 550.0)
+    assert np.all(np.isfinite(values))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        model.eval(wi, ss.direction(np.array([10.0, 30.0, 50.0]), np.full(3, 180.0)), 550.0)

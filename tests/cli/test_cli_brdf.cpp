@@ -138,6 +138,18 @@ TEST(CliBrdf, MeasuredPsdWarnsOfDirectionsBeyondTheMap) {
     const auto within = with({"--theta-o", "10,30,50", "--phi-o", "180"});
     ASSERT_EQ(within.exit_code, 0) << within.err;
     EXPECT_EQ(within.err.find("directions lie beyond"), std::string::npos) << within.err;
+    // brdf slice counts its own directions alike (the same mechanism, bsdf/measured_band.hpp): at theta_i 30 deg the
+    // in-plane slice from -89.5 to 89.5 deg in 0.25 deg steps (717 directions) leaves the lattice on the incidence
+    // side where k (sin |theta_o| + sin 30 deg) > 6.28 rad/um, |theta_o| > 2.9 deg: -89.5 .. -3 deg, 347 directions.
+    const std::string csv = (dir / "slice.csv").string();
+    const auto slice = run_cli({"brdf", "slice", "--model", "ghs", "--psd", "measured", "--surface", map, "--material",
+                                "perfect", "--wavelength", "550", "--theta-i", "30", "--csv", csv});
+    ASSERT_EQ(slice.exit_code, 0) << slice.err;
+    EXPECT_NE(slice.err.find("surfscatter: brdf: warning: 347 of 717 directions lie beyond the frequencies"),
+              std::string::npos)
+        << slice.err;
+    // The note printers' one rule (command.hpp print_note): a warning is "<command>: warning: ...", never "note: warning:".
+    for (const auto* r : {&beyond, &within, &slice}) EXPECT_EQ(r->err.find("note: warning"), std::string::npos) << r->err;
 }
 
 // --psd measured uses the map's own PSD and reports its extrapolation; slice overlays the KC-fit and measured versions

@@ -385,7 +385,8 @@ TEST(CliHeightmap, RealFilesFitOrSayWhyWithAPlotAndGiveAFiniteMeasuredBrdf) {
 
 // A profile (.hfm, written here from a synthesised KC profile: sigma_h 0.1 um, L_c 5 um, gamma 3, 8192 points 0.5 um
 // apart): `surface info` reports it as a profile, `surface fit` fits the KC's profile PSD and prints the isotropy
-// note, `brdf --psd measured` uses that KC with the note on stderr; an areal preparation option is an error.
+// note, `brdf` uses the profile's own spectrum by default and the fitted KC with --psd file, with the note on stderr;
+// an areal preparation option is an error.
 TEST(CliHeightmap, ProfileInfoFitAndBrdf) {
     const std::vector<double> h = ss::synthesize_profile(ss::KCorrelation(0.1, 5.0, 3.0), 8192, 0.5, 3);
     const std::string hfm = (temp_dir() / "profile.hfm").string();
@@ -411,16 +412,40 @@ TEST(CliHeightmap, ProfileInfoFitAndBrdf) {
     EXPECT_NE(fit.out.find("note = a profile holds heights along one line: the surface is assumed isotropic"),
               std::string::npos);
 
-    const auto brdf = run_cli({"brdf", "eval", "--model", "ghs", "--psd", "measured", "--surface", hfm, "--material",
-                               "Al", "--wavelength", "550", "--theta-i", "30", "--theta-o", "0,60", "--phi-o", "180"});
-    ASSERT_EQ(brdf.exit_code, 0) << brdf.err;
-    EXPECT_NE(brdf.err.find("the surface is assumed isotropic"), std::string::npos) << brdf.err;
-    const auto lines = brdf.out_lines();
-    ASSERT_EQ(lines.size(), 3u) << brdf.out;
-    for (std::size_t i = 1; i < lines.size(); ++i) {
-        const double value = std::stod(lines[i].substr(lines[i].rfind(',') + 1));
-        EXPECT_TRUE(std::isfinite(value) && value > 0.0) << lines[i];
+    // The profile's own spectrum (--psd measured, a profile's default): each of the four models finite, with the
+    // isotropy note and the route's note. (Its accuracy is tested in tests/surface/test_profile_statistics.cpp.)
+    const std::vector<std::string> angles = {"--material", "Al", "--wavelength", "550", "--theta-i", "30",
+                                             "--theta-o", "20,45", "--phi-o", "180"};
+    const auto values_of = [](const surfscatter::test::CliResult& r) {
+        std::vector<double> out;
+        const auto lines = r.out_lines();
+        for (std::size_t i = 1; i < lines.size(); ++i) out.push_back(std::stod(lines[i].substr(lines[i].rfind(',') + 1)));
+        return out;
+    };
+    for (const char* model : {"ghs", "ghs_ssa", "two_scale", "ggx_stats"}) {
+        std::vector<std::string> args = {"brdf", "eval", "--model", model, "--surface", hfm};
+        args.insert(args.end(), angles.begin(), angles.end());
+        const auto brdf = run_cli(args);
+        ASSERT_EQ(brdf.exit_code, 0) << brdf.err;
+        EXPECT_NE(brdf.err.find("the surface is assumed isotropic"), std::string::npos) << brdf.err;
+        EXPECT_NE(brdf.err.find("inverse Abel transform of the profile's Hann-windowed 1-D PSD"), std::string::npos)
+            << brdf.err;
+        const auto v = values_of(brdf);
+        ASSERT_EQ(v.size(), 2u) << brdf.out;
+        for (double value : v) EXPECT_TRUE(std::isfinite(value) && value > 0.0) << model << " " << brdf.out;
     }
+    // --psd file: the KC fitted to the profile's 1-D PSD, with its note.
+    std::vector<std::string> fitted_args = {"brdf", "eval", "--model", "ghs", "--psd", "file", "--surface", hfm};
+    fitted_args.insert(fitted_args.end(), angles.begin(), angles.end());
+    const auto fitted = run_cli(fitted_args);
+    ASSERT_EQ(fitted.exit_code, 0) << fitted.err;
+    EXPECT_NE(fitted.err.find("the areal models use KC sigma_h"), std::string::npos) << fitted.err;
+    // --measured-spectrum does not apply to a profile (isotropic by assumption).
+    std::vector<std::string> ring_args = {"brdf", "eval", "--model", "ghs", "--surface", hfm, "--measured-spectrum", "ring"};
+    ring_args.insert(ring_args.end(), angles.begin(), angles.end());
+    const auto ring = run_cli(ring_args);
+    EXPECT_EQ(ring.exit_code, 2) << ring.err;
+    EXPECT_NE(ring.err.find("its 2-D spectrum and its ring average are one"), std::string::npos) << ring.err;
 
     const auto areal = run_cli({"surface", "info", hfm, "--lambda-c", "100"});
     EXPECT_EQ(areal.exit_code, 2);

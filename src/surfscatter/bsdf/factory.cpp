@@ -55,7 +55,7 @@ void validate_surface(const SurfaceOptions& s) {
             validate_lay(s);
             break;
         case PsdKind::measured:
-            if (s.measured_psd) break;
+            if (s.measured_psd || s.measured_profile) break;
             [[fallthrough]];
         case PsdKind::file:
             if (s.surface_file.empty()) fail("surface_file is empty: give a height map file for psd {}", to_string(s.psd));
@@ -112,6 +112,14 @@ public:
                 statistics_ = std::make_shared<surface::GaussianAcv>(options_.sigma, options_.corr_length);
                 break;
             case PsdKind::measured: {
+                if (options_.measured_profile) {  // a profile as an isotropic surface
+                    const auto& profile = options_.measured_profile;
+                    check_measured_uncertainty(*profile, notes);
+                    if (notes) notes->push_back(surface::measured_profile_note(*profile, options_.surface_file));
+                    measured_ = profile;
+                    statistics_ = profile;
+                    break;
+                }
                 // Estimated already (Python's measured_statistics), or from the map.
                 auto measured = options_.measured_psd
                                     ? options_.measured_psd
@@ -192,7 +200,7 @@ private:
     // A map whose variance sits in its few longest periods gives a sigma (and so g) no better than those few samples:
     // a warning above kWarnMeasuredSigmaError (surface::MapStatistics::sigma_relative_error()). Never refused: the
     // default L-filter (heightmap/prepare.hpp) leaves such periods to the waviness, and a user who keeps them is told.
-    void check_measured_uncertainty(const surface::MapStatistics& s, std::vector<std::string>* notes) const {
+    void check_measured_uncertainty(const surface::MeasuredStatistics& s, std::vector<std::string>* notes) const {
         const double error = s.sigma_relative_error();
         if (error > kWarnMeasuredSigmaError && notes)
             notes->push_back(fmt::format(
@@ -208,7 +216,7 @@ private:
     // window_scale()). Where the factor departs from 1 by more than the long periods' scatter explains (twice sigma's
     // standard error, and at least 10 %), the roughness varies across the map (or form is left at its edges): the
     // spectrum's shape is the centre's, its level the whole map's, and the note says so.
-    void check_stationarity(const surface::MapStatistics& s, std::vector<std::string>* notes) const {
+    void check_stationarity(const surface::MeasuredStatistics& s, std::vector<std::string>* notes) const {
         const double ratio = std::sqrt(1.0 / s.window_scale());  // the centre's rms over the whole map's
         if (!notes || std::abs(ratio - 1.0) <= std::max(0.1, 2.0 * s.sigma_relative_error())) return;
         notes->push_back(fmt::format(
@@ -245,11 +253,11 @@ private:
     SurfaceOptions options_;
     std::shared_ptr<const surface::RadialStatistics> statistics_;
     std::unique_ptr<const surface::SurfaceFit> map_fit_;
-    std::shared_ptr<const surface::MapStatistics> measured_;
+    std::shared_ptr<const surface::MeasuredStatistics> measured_;
 
 public:
-    // psd measured: the map's statistics (its checks and notes made), for the 2-D spectrum.
-    const surface::MapStatistics& measured(std::vector<std::string>* notes) {
+    // psd measured: the map's or profile's statistics (its checks and notes made).
+    const surface::MeasuredStatistics& measured(std::vector<std::string>* notes) {
         statistics(notes);
         return *measured_;
     }
@@ -351,7 +359,7 @@ double two_scale_resolution_slope2(double dzeta) {
 }
 
 // What two_scale takes from a measured map: the split against the band the map resolves, and the macro NDF's parts.
-std::string two_scale_measured_note(const ModelOptions& o, const surface::MapStatistics& s,
+std::string two_scale_measured_note(const ModelOptions& o, const surface::MeasuredStatistics& s,
                                     const surface::PsdSplit& split, double waviness_slope2, double alpha) {
     const double zeta_c = split.zeta_c;
     std::string note = fmt::format(
@@ -436,7 +444,8 @@ std::unique_ptr<Bsdf> map_spectrum_bsdf(const ModelOptions& o, SurfaceSource& su
         return nullptr;
     }
     if (o.model != ModelKind::ghs && o.model != ModelKind::ghs_ssa) return nullptr;
-    const surface::MapStatistics& stats = surface.measured(notes);
+    // A map's (make_bsdf takes a profile's radial statistics without this route).
+    const auto& stats = static_cast<const surface::MapStatistics&>(surface.measured(notes));
     auto lobes = map_lobes(stats.spectrum());
     if (notes) {
         const double coverage = double(lobes->padding()) * stats.nyquist();
@@ -467,7 +476,9 @@ std::unique_ptr<Bsdf> map_spectrum_bsdf(const ModelOptions& o, SurfaceSource& su
 }  // namespace
 
 void load_height_map(SurfaceOptions& surface) {
-    if (!(surface.psd == PsdKind::file || surface.psd == PsdKind::measured) || surface.measured_psd) return;
+    if (!(surface.psd == PsdKind::file || surface.psd == PsdKind::measured) || surface.measured_psd ||
+        surface.measured_profile)
+        return;
     if (surface.prepared) return;
     if (surface.height_map)
         surface.prepared =
@@ -521,7 +532,9 @@ std::unique_ptr<Bsdf> make_bsdf(const ModelOptions& o, std::vector<std::string>*
                               "waviness tilts it by about +-{:.2g} deg (two_scale adds it to its macro slopes)",
                               to_string(o.model), lambda_c, slope, std::atan(slope) / kDegree));
     }
-    if (needs_surface(o) && o.surface.psd == PsdKind::measured &&
+    // A profile's 2-D PSD is isotropic by assumption: every model reads it as radial statistics, exactly what the
+    // 2-D route would read off a lattice of it.
+    if (needs_surface(o) && o.surface.psd == PsdKind::measured && !o.surface.measured_profile &&
         o.surface.measured_spectrum == MeasuredSpectrum::two_d)
         if (auto bsdf = map_spectrum_bsdf(o, surface, material, notes)) return bsdf;
     // Elliptical statistics (null for an isotropic surface): the GHS family and two_scale's micro lobe take them

@@ -150,6 +150,8 @@ std::string inapplicable_option(const ModelOptions& o, std::string_view name) {
     if (name == "cutoff_wavelengths" || name == "macro_ndf") return unless(m == ModelKind::two_scale, "used by model two_scale only");
     if (name == "measured_spectrum") {
         if (!with_surface) return "model ggx_stats with alpha_from none takes no surface";
+        if (o.surface.measured_profile)
+            return "a profile's 2-D PSD is isotropic by assumption: its 2-D spectrum and its ring average are one";
         return unless(psd == PsdKind::measured, "used with psd measured only");
     }
     if (name == "psd" || name == "sigma" || name == "corr_length" || name == "gamma" || name == "surface_file" ||

@@ -12,6 +12,7 @@
 
 #include "surfscatter/heightmap/prepare.hpp"
 #include "surfscatter/surface/map_statistics.hpp"
+#include "surfscatter/surface/profile_statistics.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
 
 namespace surfscatter::bsdf {
@@ -52,6 +53,9 @@ struct SurfaceOptions {
     std::shared_ptr<const heightmap::PreparedMap> prepared;
     // psd measured only: a map's statistics estimated already (Python's measured_statistics()), used instead of a map.
     std::shared_ptr<const surface::MapStatistics> measured_psd;
+    // psd measured only: a profile's own spectrum as an isotropic surface's (surface/profile_statistics.hpp), used
+    // instead of a map; every model reads it as radial statistics (measured_spectrum does not apply).
+    std::shared_ptr<const surface::ProfileStatistics> measured_profile;
     // psd measured only: 2d, the models ghs (exact) and ghs_ssa on the map's 2-D periodogram (bsdf/map_ghs.hpp) and
     // ggx_stats on the map's slope covariance (alpha_u, alpha_v, lay angle); ring, the ring average and the isotropic
     // rms slope as before. two_scale takes the ring average either way (its note says so).

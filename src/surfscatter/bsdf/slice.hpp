@@ -11,6 +11,10 @@ namespace surfscatter::bsdf {
 // In-plane slices: rows model,theta_i,theta_o_signed,brdf,specular for each incidence angle (degrees), theta_o from
 // -89.5 to 89.5 degrees in 0.25 degree steps, positive on the specular side (phi_o = phi_i + 180); `specular` is
 // the delta lobe's reflectance. `header` writes the header line first.
+// The slices' outgoing angles (theta_o_signed, degrees) and the direction of one for incidence azimuth phi_i_deg.
+std::vector<double> slice_angles();
+Vec3 slice_direction(double theta_o_signed_deg, double phi_i_deg);
+
 void write_slice_csv(std::ostream& out, const std::string& name, const Bsdf& model, const std::vector<double>& theta_i_deg,
                      double phi_i_deg, double lambda_nm, bool header);
 

@@ -38,14 +38,14 @@
 #include "surfscatter/heightmap/height_map.hpp"
 #include "surfscatter/heightmap/form.hpp"
 #include "surfscatter/heightmap/prepare.hpp"
+#include "surfscatter/surface/measured_statistics.hpp"
 #include "surfscatter/surface/psd_estimate.hpp"
-#include "surfscatter/surface/radial_statistics.hpp"
 
 namespace surfscatter::surface {
 
 class MapRingPsd;
 
-class MapStatistics final : public RadialStatistics {
+class MapStatistics final : public MeasuredStatistics {
 public:
     // Error if fewer than kMinFitValidFraction of the points are valid or the form leaves no roughness.
     MapStatistics(const heightmap::HeightMap& map, heightmap::Form form);
@@ -59,18 +59,16 @@ public:
 
     // What the estimate rests on, for reports.
     bool periodic() const { return periodic_; }               // rectangular window (see above)
-    double map_rms() const { return map_rms_; }               // rms of the form-removed map over its valid points, um
-    double first_ring() const { return radial_.zeta.front(); }  // rad/um: the lowest frequency the map resolves
-    double ring_width() const { return radial_.dzeta; }       // dzeta, rad/um
-    double nyquist() const { return nyquist_; }               // top of the band, rad/um
-    double below_band_fraction() const { return radial_cdf(0.5 * ring_width()); }  // of sigma_h^2, continued
-    double above_band_fraction() const { return 1.0 - radial_cdf(nyquist()); }      // of sigma_h^2, rolled off
+    double map_rms() const override { return map_rms_; }      // rms of the form-removed map over its valid points, um
+    double first_ring() const override { return radial_.zeta.front(); }  // the lowest frequency the map resolves
+    double ring_width() const override { return radial_.dzeta; }  // dzeta, rad/um
+    double nyquist() const override { return nyquist_; }      // top of the band, rad/um
     std::size_t skipped_rings() const { return skipped_rings_; }
     // The factor on the ring means that makes the continuous PSD carry the lattice's sum over the band (Parseval).
     double band_scale() const { return band_scale_; }
     // The window correction on the periodogram: the map's variance over the periodogram's (Hann: centre-weighted)
     // total, so that the spectrum carries the whole map's variance; 1 for the rectangular window of a periodic map.
-    double window_scale() const { return window_scale_; }
+    double window_scale() const override { return window_scale_; }
     const Psd2d& spectrum() const { return spectrum_; }       // the 2-D periodogram
     const RadialPsd& rings() const { return radial_; }        // its ring means
     // Independent periodogram samples of the ring holding zeta (relative standard error 1/sqrt of it).
@@ -78,7 +76,7 @@ public:
     // Relative standard error of sigma_h for a random surface of this spectrum: half that of sigma_h^2,
     // sqrt(sum_k M_k^2 / nu_k) / sum_k M_k over the rings' variances M_k and independent samples nu_k, counted as the
     // rectangular window's whatever the window (sigma_h is the window-corrected, unweighted rms: docs/HEIGHTMAPS.md).
-    double sigma_relative_error() const;
+    double sigma_relative_error() const override;
 
 private:
     bool periodic_ = false;
