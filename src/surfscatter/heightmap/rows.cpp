@@ -276,7 +276,8 @@ std::string describe(const RowOffsets& found, RowAlignment how) {
         return fmt::format("row alignment median: offsets rms {:.4g} um, aligned: {}", found.rms_um, found.reason);
     return fmt::format("row alignment auto: row levels rms {:.4g} um, their white part {:.4g} um, {}: {}",
                        found.rms_um, found.white_rms_um,
-                       found.detected ? "white part removed" : (found.lay ? "a lay, left" : "not significant, left"),
+                       found.detected ? "aligned (their white part removed)"
+                                      : (found.lay ? "a lay along the rows, left" : "not significant, left"),
                        found.reason);
 }
 

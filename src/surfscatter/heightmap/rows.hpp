@@ -56,7 +56,8 @@ RowOffsets find_row_offsets(const HeightMap& map);
 // gets what find_row_offsets found.
 HeightMap align_rows(const HeightMap& map, RowAlignment how, RowOffsets& found);
 
-// One line: what was found and done ("row offsets rms 0.012 um (R = 37 over 479 rows): aligned").
+// One line: what was found and done ("row alignment auto: row levels rms 0.012 um, their white part 0.011 um,
+// aligned (their white part removed): R ..., W ...").
 std::string describe(const RowOffsets& found, RowAlignment how);
 
 }  // namespace surfscatter::heightmap
