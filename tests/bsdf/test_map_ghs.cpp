@@ -9,6 +9,7 @@
 #include <cmath>
 #include <memory>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "chi2_harness.hpp"
@@ -201,6 +202,34 @@ TEST(MapGhs, TablesMatchDirectValues) {
         EXPECT_LT(sigma_error, 1e-2);
         EXPECT_LT(norm_error, 8e-3);
     }
+}
+
+// tabulate() (what a render calls first): every wavelength node of the range built over two threads, each with its
+// own disc bins (they once shared one set, rebuilt by every integral when two threads built different nodes), and the
+// tables then read match direct() as in TablesMatchDirectValues, between the nodes too; a range below 360 nm is an
+// Error naming it.
+TEST(MapGhs, TabulateBuildsEveryNodeOfTheRangeOverThreads) {
+    const auto bsdf = make_bsdf(map_options(ModelKind::ghs, measured(gaussian_map(0.08, 5))));
+    const auto& map_ghs = dynamic_cast<const MapGhsBsdf&>(*bsdf);
+    map_ghs.tabulate(530, 565, 2);
+    double sigma_error = 0, norm_error = 0;
+    for (double lambda : {530.0, 541.3, 552.9, 565.0})
+        for (double theta_i : {12.1, 47.7})
+            for (double phi_i = 2.1; phi_i < 360; phi_i += 29.3) {
+                const Vec3 wi = direction_deg(theta_i, phi_i);
+                const GhsBsdf::Direct d = map_ghs.direct(wi, lambda);
+                sigma_error = std::max(sigma_error, std::abs(map_ghs.sigma(wi, lambda) / d.sigma - 1));
+                norm_error = std::max(norm_error, std::abs(map_ghs.normalization(wi, lambda) / d.norm - 1));
+            }
+    EXPECT_LT(sigma_error, 1e-2);
+    EXPECT_LT(norm_error, 8e-3);
+    std::string message;
+    try {
+        map_ghs.tabulate(300, 565, 1);
+    } catch (const Error& e) {
+        message = e.what();
+    }
+    EXPECT_NE(message.find("wavelengths 300 .. 565 nm outside"), std::string::npos) << message;
 }
 
 // The eval reads the azimuth linearly between kRefinement points per tabulated interval, on the periodic cubic

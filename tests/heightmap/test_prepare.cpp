@@ -109,11 +109,11 @@ TEST(Prepare, SynthesisedMapRecoversItsStatistics) {
     // independent points a row holds), which the median of differences takes with them).
     const std::vector<double> expected = test::minus_cubic(offsets), profile = test::row_means(clean);
     double err = 0;
-    for (std::size_t iy = 0; iy < n; ++iy) err += std::pow(found.offset_um[iy] - expected[iy], 2);
+    for (std::size_t iy = 0; iy < n; ++iy) err += std::pow(found.white_um[iy] - expected[iy], 2);
     RecordProperty("offsets_error_um", std::to_string(std::sqrt(err / double(n))));
     RecordProperty("row_profile_um", std::to_string(test::rms(profile)));
     EXPECT_LT(std::sqrt(err / double(n)), 1.5 * test::rms(profile)) << found.reason;
-    EXPECT_NEAR(found.rms_um, test::rms(expected), 1.5 * test::rms(profile));
+    EXPECT_NEAR(found.white_rms_um, test::rms(expected), 1.5 * test::rms(profile));
 }
 
 // A synthesised periodic map stays periodic through the outliers and the form (judged as read), not through a filter.
@@ -178,10 +178,10 @@ TEST(Prepare, RealFilesGetAnEstimableSigma) {
             EXPECT_TRUE(before <= kLambdaCSigmaError || reason.find("no nesting index") != std::string::npos)
                 << name << ": " << reason;
         }
-        std::printf("%-18s %4zu x %-4zu %9.4g x %-9.4g um  rows %-8s R %-9.3g lambda_c %-7g um  rms %-10.4g "
+        std::printf("%-18s %4zu x %-4zu %9.4g x %-9.4g um  rows %-8s R %-9.3g W %-9.3g lambda_c %-7g um  rms %-10.4g "
                     "waviness %-10.4g um  sigma error %5.1f %% -> %5.1f %%\n",
                     name.c_str(), map.nx(), map.ny(), map.width(), map.height(),
-                    rows.detected ? "aligned" : "-", rows.ratio, lc, rms, waviness, 100 * before, 100 * after);
+                    rows.detected ? "aligned" : (rows.lay ? "lay" : "-"), rows.ratio, rows.white_ratio, lc, rms, waviness, 100 * before, 100 * after);
     }
 }
 

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <random>
 #include <vector>
 
@@ -68,12 +69,13 @@ TEST(RowAlignment, AddedOffsetsAreDetectedAndRecovered) {
         RecordProperty("ratio_corr_length_" + std::to_string(int(corr_length * 10)), std::to_string(found.ratio));
         const std::vector<double> expected = minus_cubic(truth), profile = row_means(clean);
         std::vector<double> error(truth.size());
-        for (std::size_t i = 0; i < truth.size(); ++i) error[i] = found.offset_um[i] - expected[i];
+        for (std::size_t i = 0; i < truth.size(); ++i) error[i] = found.white_um[i] - expected[i];
         EXPECT_LT(rms(error), 1.5 * rms(profile) + 1e-4) << corr_length;
         EXPECT_NEAR(found.rms_um, rms(expected), 0.2 * rms(expected) + rms(profile));
+        EXPECT_NEAR(found.white_rms_um, rms(expected), 0.2 * rms(expected) + rms(profile));
         // The aligned map is the clean one less what the method could not tell from offsets.
         for (std::size_t iy = 0; iy < clean.ny(); iy += 37)
-            EXPECT_NEAR(aligned(17, iy) - clean(17, iy), expected[iy] - found.offset_um[iy] + truth[iy] - expected[iy],
+            EXPECT_NEAR(aligned(17, iy) - clean(17, iy), expected[iy] - found.white_um[iy] + truth[iy] - expected[iy],
                         1e-12);
     }
 }
@@ -94,8 +96,9 @@ TEST(RowAlignment, MasksAreRespected) {
     EXPECT_TRUE(found.detected) << found.reason;
     EXPECT_EQ(found.unlinked_rows, 0u);
     EXPECT_EQ(found.offset_um[100], 0.0);
+    EXPECT_EQ(found.white_um[100], 0.0);
     EXPECT_EQ(aligned.validity(), masked.validity());
-    std::vector<double> t = truth, o = found.offset_um;
+    std::vector<double> t = truth, o = found.white_um;
     t.erase(t.begin() + 100), o.erase(o.begin() + 100);
     const std::vector<double> expected = minus_cubic(t);
     std::vector<double> profile = row_means(masked);
@@ -108,6 +111,66 @@ TEST(RowAlignment, MasksAreRespected) {
         if (!aligned.valid(i)) {
             ASSERT_EQ(aligned.heights()[i], 0.0);
         }
+    }
+}
+
+// A lay along the rows: a profile across them, constant along x, the map's own (a sinusoid of 16 rows and the cusps
+// of a turned surface, feed 20 rows), both of peak-to-valley several times the roughness's rms.
+std::vector<double> lay_profile(std::size_t ny, double amplitude_um) {
+    std::vector<double> lay(ny);
+    for (std::size_t iy = 0; iy < ny; ++iy) {
+        const double t = std::fmod(double(iy) / 20.0, 1.0) - 0.5;
+        lay[iy] = amplitude_um * (std::sin(2 * std::numbers::pi * double(iy) / 16.0 + 0.3) + 4.0 * t * t);
+    }
+    return lay;
+}
+
+// (b) A lay and no offsets: the rows' mean steps are significant (R), their white floor is not (W), so `auto` leaves
+// the map exactly as it is; on KC maps of 1-16 pixels a correlation length.
+TEST(RowAlignment, ALayAlongTheRowsIsNotTakenForOffsets) {
+    std::uint64_t seed = 51;
+    for (const double corr_length : {0.25, 1.0, 4.0})
+        for (int s = 0; s < 2; ++s) {
+            const HeightMap clean = synthesize_surface(KCorrelation(0.01, corr_length, 3.0), {256, 240, 0.25}, seed++);
+            const HeightMap laid = with_offsets(clean, lay_profile(clean.ny(), 0.02));
+            RowOffsets found;
+            const HeightMap aligned = align_rows(laid, RowAlignment::automatic, found);
+            EXPECT_TRUE(found.lay) << corr_length << ": " << found.reason;
+            EXPECT_FALSE(found.detected) << corr_length << ": " << found.reason;
+            EXPECT_EQ(aligned.heights(), laid.heights());
+            RecordProperty("W_lay_" + std::to_string(seed), std::to_string(found.white_ratio));
+        }
+}
+
+// (c) The lay (rms ~0.08 um) plus white offsets of 0.01 um on KC roughness of 0.05 um: detected; what `auto` removes
+// is the offsets' white part, within 1.5 x the surface's row-mean profile plus 0.3 x the offsets' rms of the truth
+// (the offsets in the spectral bins the lay holds stay: about sqrt(their share)), and the lay is kept: the aligned
+// map's row means follow the map without offsets within the same bound (measured: 8 % of the lay's rms).
+TEST(RowAlignment, OffsetsOnALayAreRemovedAndTheLayKept) {
+    std::uint64_t seed = 61;
+    for (const double corr_length : {0.5, 4.0}) {
+        const HeightMap clean0 = synthesize_surface(KCorrelation(0.05, corr_length, 3.0), {256, 240, 0.25}, seed++);
+        const std::vector<double> lay = lay_profile(clean0.ny(), 0.1);
+        const HeightMap clean = with_offsets(clean0, lay);
+        const std::vector<double> truth = white(clean.ny(), 0.01, seed++);
+        RowOffsets found;
+        const HeightMap aligned = align_rows(with_offsets(clean, truth), RowAlignment::automatic, found);
+        ASSERT_TRUE(found.detected) << corr_length << ": " << found.reason;
+        const std::vector<double> expected = minus_cubic(truth), profile = row_means(clean0);
+        const std::vector<double> kept = row_means(aligned), wanted = row_means(clean);
+        std::vector<double> error(truth.size()), lay_error(truth.size());
+        for (std::size_t i = 0; i < truth.size(); ++i) {
+            error[i] = found.white_um[i] - expected[i];
+            lay_error[i] = kept[i] - wanted[i];
+        }
+        EXPECT_LT(rms(error), 1.5 * rms(profile) + 0.3 * rms(expected)) << corr_length << ": " << found.reason;
+        EXPECT_LT(rms(lay_error), 1.5 * rms(profile) + 0.3 * rms(expected)) << corr_length;
+        RecordProperty("offsets_error_" + std::to_string(seed), std::to_string(rms(error) / rms(expected)));
+        RecordProperty("lay_error_" + std::to_string(seed), std::to_string(rms(lay_error) / rms(minus_cubic(lay))));
+        // `median` takes the lay with the offsets: what auto keeps.
+        RowOffsets all;
+        align_rows(with_offsets(clean, truth), RowAlignment::median, all);
+        EXPECT_GT(all.rms_um, 0.5 * rms(minus_cubic(lay)));
     }
 }
 

@@ -2,7 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <atomic>
+#include <exception>
 #include <limits>
+#include <thread>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -52,6 +56,11 @@ double MapGhsBsdf::density(double g, double log_g, Vec2 zeta) const {
     return weight * lobes_->first_order(zeta);
 }
 
+[[gnu::always_inline]] inline const MapGhsBsdf::RefinedTables& MapGhsBsdf::table(int slot, bool show_progress) const {
+    return tables_.get(std::size_t(slot),
+                       [&] { return refine(cached_tables(kWavelengthAxis.node(slot), show_progress)); });
+}
+
 // Inlined into its callers, with eval's: as GhsBsdf's (the calls and the Incidence passed through memory cost a
 // fifth of an eval).
 [[gnu::always_inline]] inline MapGhsBsdf::Incidence MapGhsBsdf::interpolate(const Vec3& wi, double lambda_nm) const {
@@ -69,9 +78,6 @@ double MapGhsBsdf::density(double g, double log_g, Vec2 zeta) const {
     if (!(x >= 0.0)) x = 0.0;  // NaN components: a node, and the eval's finite check returns 0
     const int i = std::min(int(x), kRefinedAzimuths - 1), next = i + 1 < kRefinedAzimuths ? i + 1 : 0;
     const double t = x - double(i);
-    auto table = [&](int slot) -> const RefinedTables& {
-        return tables_.get(std::size_t(slot), [&] { return refine(cached_tables(kWavelengthAxis.node(slot))); });
-    };
     auto at = [&](const RefinedTables& tables) {
         const math::Pair a = estrin(tables[std::size_t(i)][std::size_t(c)], d);
         return a + t * (estrin(tables[std::size_t(next)][std::size_t(c)], d) - a);
@@ -138,14 +144,48 @@ double MapGhsBsdf::delta_reflectance(const Vec3& wi, double lambda_nm) const {
     return material_.reflectance(std::min(1.0, wi.z), lambda_nm) * delta_probability(wi, lambda_nm);
 }
 
-MapGhsBsdf::AzimuthTables MapGhsBsdf::cached_tables(double lambda_nm) const {
+void MapGhsBsdf::tabulate(double lambda_lo_nm, double lambda_hi_nm, unsigned threads) const {
+    if (!(lambda_lo_nm >= kMinWavelength && lambda_hi_nm <= kGhsMaxWavelength && lambda_lo_nm <= lambda_hi_nm))
+        fail("wavelengths {} .. {} nm outside [{}, {}] nm, the range of {} on a measured 2-D spectrum", lambda_lo_nm,
+             lambda_hi_nm, kMinWavelength, kGhsMaxWavelength, settings_.name);
+    const int first = kWavelengthAxis.position(lambda_lo_nm).interval;
+    const int last = kWavelengthAxis.position(lambda_hi_nm).interval + 1;
+    // Every node's disc integrals hold about the same cells (k / kDiscCells per cell, or coarser).
+    const double cells = kPi * (kDiscCells + 1.0) * (kDiscCells + 1.0);
+    Progress progress(fmt::format("{} tables of the measured 2-D spectrum, {} wavelengths {:.4g} .. {:.4g} nm",
+                                  settings_.name, last - first + 1, lambda_lo_nm, lambda_hi_nm),
+                      std::uint64_t(last - first + 1), disc_work(cells) * (last - first + 1) > 5e7);
+    std::atomic<int> next{first};
+    std::exception_ptr error;
+    std::mutex error_mutex;
+    const auto work = [&] {
+        try {
+            for (int slot = next++; slot <= last; slot = next++) {
+                table(slot, false);
+                progress.advance();
+            }
+        } catch (...) {
+            std::lock_guard lock(error_mutex);
+            if (!error) error = std::current_exception();
+            next = last + 1;
+        }
+    };
+    std::vector<std::thread> pool;
+    for (unsigned t = 1; t < std::max(1u, threads); ++t) pool.emplace_back(work);
+    work();
+    for (std::thread& t : pool) t.join();
+    if (error) std::rethrow_exception(error);
+    progress.finish();
+}
+
+MapGhsBsdf::AzimuthTables MapGhsBsdf::cached_tables(double lambda_nm, bool show_progress) const {
     constexpr std::uint32_t kVersion = 1;  // of build_tables' construction and the layout
     const std::string key = fmt::format(
         "ghs-map2d-incidence:{}:lobe={}:normalization={}:relevant={}:lambda={:.17g}:nodes={}x{}",
         lobes_->key(), ssa_ ? "first-order-" + to_string(*ssa_) : std::string("full"), int(settings_.normalization),
         settings_.relevant_roughness, lambda_nm, kGhsThetaNodes, kAzimuthNodes);
     return cached_incidence_table<AzimuthTables>("ghs-map2d-incidence", kVersion, key,
-                                                 [&] { return build_tables(lambda_nm); });
+                                                 [&] { return build_tables(lambda_nm, show_progress); });
 }
 
 // The periodic 4-point Lagrange cubic through the tabulated azimuth nodes, at kRefinement points per node interval:
@@ -170,16 +210,18 @@ MapGhsBsdf::RefinedTables MapGhsBsdf::refine(const AzimuthTables& tables) {
     return refined;
 }
 
-MapGhsBsdf::AzimuthTables MapGhsBsdf::build_tables(double lambda_nm) const {
+MapGhsBsdf::AzimuthTables MapGhsBsdf::build_tables(double lambda_nm, bool show_progress) const {
     AzimuthTables tables;
-    // A progress bar on stderr when the disc integrals are more than about a second's work (~5e7 cells).
-    const auto bins = disc_bins(wavenumber(lambda_nm));
+    // Its own bins, passed to every integral: threads building other wavelengths' tables at once (a render) would
+    // otherwise replace disc_bins' one kept set under each other, rebuilding it per integral (3/4 of a render's time).
+    const auto bins = make_disc_bins(wavenumber(lambda_nm));
     const double disc_cells = kPi * std::pow(wavenumber(lambda_nm) / bins->h + 1.0, 2);
     Progress progress(fmt::format("{} tables of the measured 2-D spectrum at {:.4g} nm", settings_.name, lambda_nm),
-                      kAzimuthNodes, disc_cells * kAzimuthNodes * kIncidenceAxis.size() > 5e7);
+                      kAzimuthNodes, show_progress && disc_work(disc_cells) > 5e7);
     for (int a = 0; a < kAzimuthNodes; ++a) {
         tables[std::size_t(a)] = tabulate_incidence(
-            kIncidenceAxis, [&](double cos_theta_i) { return direct(incidence(cos_theta_i, a * kAzimuthStep), lambda_nm); },
+            kIncidenceAxis,
+            [&](double cos_theta_i) { return direct(incidence(cos_theta_i, a * kAzimuthStep), lambda_nm, *bins); },
             [this](double c) { return norm_power(c); });
         progress.advance();
     }
@@ -187,27 +229,34 @@ MapGhsBsdf::AzimuthTables MapGhsBsdf::build_tables(double lambda_nm) const {
     return tables;
 }
 
+std::shared_ptr<const surface::SpectrumLobes2d::Bins> MapGhsBsdf::make_disc_bins(double k) const {
+    // Cells of k / kDiscCells, or the finest row lattice that any g of this wavelength reads if that is coarser, over
+    // every visible disc (|zeta| <= 2 k).
+    const double b = k * lobes_->sigma_h(), g_hi = 4.0 * b * b;
+    const double h = std::max(k / kDiscCells, lobes_->finest_spacing(0.0, g_hi));
+    return std::make_shared<const surface::SpectrumLobes2d::Bins>(lobes_->bins(h, 2.0 * k + h, g_hi));
+}
+
 std::shared_ptr<const surface::SpectrumLobes2d::Bins> MapGhsBsdf::disc_bins(double k) const {
     std::lock_guard lock(bins_mutex_);
     if (!bins_ || bins_k_ != k) {
-        // Cells of k / kDiscCells, or the finest row lattice that any g of this wavelength reads if that is coarser,
-        // over every visible disc (|zeta| <= 2 k).
-        const double b = k * lobes_->sigma_h(), g_hi = 4.0 * b * b;
-        const double h = std::max(k / kDiscCells, lobes_->finest_spacing(0.0, g_hi));
-        bins_ = std::make_shared<const surface::SpectrumLobes2d::Bins>(lobes_->bins(h, 2.0 * k + h, g_hi));
+        bins_ = make_disc_bins(k);
         bins_k_ = k;
     }
     return bins_;
 }
 
 GhsBsdf::Direct MapGhsBsdf::direct(const Vec3& wi, double lambda_nm) const {
+    return direct(wi, lambda_nm, *disc_bins(wavenumber(lambda_nm)));
+}
+
+GhsBsdf::Direct MapGhsBsdf::direct(const Vec3& wi, double lambda_nm, const surface::SpectrumLobes2d::Bins& bins) const {
     const double k = wavenumber(lambda_nm), ci = wi.z;
-    const auto bins = disc_bins(k);
     const Vec2 centre(k * wi.x, k * wi.y);
     const bool needs_mass = settings_.relevant_roughness || settings_.normalization == LobeNormalization::disc_mass;
     const double disc_mass =
-        needs_mass ? std::clamp(lobes_->disc_cells(*bins, centre, k, [&](std::size_t cell, Vec2) {
-                         return bins->mass[0][cell];
+        needs_mass ? std::clamp(lobes_->disc_cells(bins, centre, k, [&](std::size_t cell, Vec2) {
+                         return bins.mass[0][cell];
                      }), 0.0, 1.0)
                    : 1.0;
     const double sigma = settings_.relevant_roughness ? lobes_->sigma_h() * std::sqrt(disc_mass) : lobes_->sigma_h();
@@ -218,11 +267,11 @@ GhsBsdf::Direct MapGhsBsdf::direct(const Vec3& wi, double lambda_nm) const {
             // int over the visible disc of S_{g(o)}(zeta) d^2 zeta, zeta = k (i_xy + o_xy): the product rule over the
             // cells of disc_bins, each cell's mass of every row times the weights of g at its centre.
             const double a = 2.0 * k * sigma * ci, b = k * sigma;
-            const double mass = lobes_->disc_cells(*bins, centre, k, [&](std::size_t cell, Vec2 zeta) {
+            const double mass = lobes_->disc_cells(bins, centre, k, [&](std::size_t cell, Vec2 zeta) {
                 const double ox = zeta.x / k - wi.x, oy = zeta.y / k - wi.y;
                 const double co = std::sqrt(std::max(0.0, 1.0 - ox * ox - oy * oy)), c = b * (ci + co), g = c * c;
                 const double weight = ssa_ == SsaForm::strict ? g : math::one_minus_exp(g);  // as density()
-                return weight * lobes_->binned_shape(*bins, cell, g, ssa_.has_value());
+                return weight * lobes_->binned_shape(bins, cell, g, ssa_.has_value());
             });
             return {sigma, mass > 0 ? -std::expm1(-a * a) / mass : 1.0};
         }

@@ -58,6 +58,12 @@ public:
     std::string name() const override { return settings_.name; }
     bool isotropic() const override { return false; }
 
+    // Builds (or loads from the disk cache) the tables of every wavelength node that [lambda_lo, lambda_hi] reads,
+    // `threads` nodes at a time, with one progress line (percentage, ETA) over them when they are more than about a
+    // second's work. A render calls it before its first path: otherwise each node is built inside the render's own
+    // progress on first use, twice when two threads ask for it at once.
+    void tabulate(double lambda_lo_nm, double lambda_hi_nm, unsigned threads) const;
+
     const surface::SpectrumLobes2d& lobes() const { return *lobes_; }
     // The roughness used in g (um) and N for incidence wi (local frame), as tabulated.
     double sigma(const Vec3& wi, double lambda_nm) const { return std::exp(lookup(wi, lambda_nm).log_sigma); }
@@ -82,11 +88,19 @@ private:
     }
     double eval(const Vec3& wi, const Vec3& wo, double lambda_nm, const Incidence& in) const;
     double pdf(const Vec3& wi, const Vec3& wo, const Incidence& in) const;
-    AzimuthTables cached_tables(double lambda_nm) const;
-    AzimuthTables build_tables(double lambda_nm) const;
+    // show_progress: a progress line of its own when the build is more than about a second's work.
+    AzimuthTables cached_tables(double lambda_nm, bool show_progress = true) const;
+    AzimuthTables build_tables(double lambda_nm, bool show_progress) const;
+    const RefinedTables& table(int slot, bool show_progress = true) const;  // wavelength node `slot`'s, on first use
+    static double disc_work(double disc_cells) {  // cells of a node's disc integrals
+        return disc_cells * kAzimuthNodes * kGhsThetaNodes;
+    }
 
-    // The lobes' bins for the visible-disc integrals of direct() at wavenumber k (the last k asked for is kept).
+    // The lobes' bins for the visible-disc integrals at wavenumber k: made, and made with the last k asked for kept
+    // (direct()'s; build_tables makes its own).
+    std::shared_ptr<const surface::SpectrumLobes2d::Bins> make_disc_bins(double k) const;
     std::shared_ptr<const surface::SpectrumLobes2d::Bins> disc_bins(double k) const;
+    GhsBsdf::Direct direct(const Vec3& wi, double lambda_nm, const surface::SpectrumLobes2d::Bins& bins) const;
 
     std::shared_ptr<const surface::SpectrumLobes2d> lobes_;
     mutable std::mutex bins_mutex_;

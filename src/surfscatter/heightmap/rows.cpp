@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "surfscatter/core/error.hpp"
 
@@ -13,7 +14,11 @@ namespace surfscatter::heightmap {
 namespace {
 
 constexpr std::size_t kMinTestRows = 8;
-constexpr double kMaxRatio = 1e12;  // R when the rows have no roughness of their own and their means still differ
+constexpr double kMaxRatio = 1e12;
+// The median of chi^2_1 (a DCT bin of white noise over its mean), and the relative standard deviation of the median
+// of K such bins times sqrt(K): sqrt(1/4 / f(q)^2) / q, f the chi^2_1 density at its median q.
+constexpr double kChiSquare1Median = 0.454936;
+constexpr double kMedianSpread = 2.33;  // R when the rows have no roughness of their own and their means still differ
 
 // Least-squares polynomial of degree `degree` in y through values[i] at rows[i]; the fitted values at those rows.
 std::vector<double> polynomial_fit(const std::vector<double>& rows, const std::vector<double>& values, int degree,
@@ -48,8 +53,9 @@ double chi_square_quantile_ratio(double nu) {
     return c * c * c;
 }
 
-// The significance ratio R of rows.hpp from the rows directly linked to the row above.
-void significance(const HeightMap& map, const std::vector<std::size_t>& link, RowOffsets& found) {
+// The significance ratio R of rows.hpp from the rows directly linked to the row above; returns the mean variance
+// of a row's mean step that the rows' own roughness gives (0 when not tested).
+double significance(const HeightMap& map, const std::vector<std::size_t>& link, RowOffsets& found) {
     const std::size_t nx = map.nx(), ny = map.ny();
     std::vector<double> w(map.size(), 0.0);   // D minus its row mean, on the rows tested
     std::vector<std::uint8_t> in(map.size(), 0);
@@ -81,7 +87,7 @@ void significance(const HeightMap& map, const std::vector<std::size_t>& link, Ro
     if (m < kMinTestRows) {
         found.reason = fmt::format("{} pairs of neighbouring rows share {} valid points, fewer than the {} the test of "
                                    "row offsets needs: not tested", m, kMinRowOverlap, kMinTestRows);
-        return;
+        return 0.0;
     }
     const double s2 = sum_w2 / dof;
     // Integrated autocorrelation of D along x, up to its first non-positive lag.
@@ -122,11 +128,54 @@ void significance(const HeightMap& map, const std::vector<std::size_t>& link, Ro
     found.threshold = std::max(kRowOffsetRatio, chi_square_quantile_ratio(found.independent_rows));
     scatter *= static_cast<double>(m) / static_cast<double>(m - 3);  // 3 parameters of the quadratic
     found.ratio = expected > 0 ? std::min(scatter / expected, kMaxRatio) : (scatter > 0 ? kMaxRatio : 0.0);
-    found.detected = found.ratio > found.threshold;
     found.reason = fmt::format(
         "rows' mean steps scatter {:.3g} x what the rows' own roughness gives (R over {} pairs of rows, {:.3g} "
         "independent, tau {:.3g}; offsets when R > {:.3g})", found.ratio, m, found.independent_rows, tau,
         found.threshold);
+    return expected / static_cast<double>(m);
+}
+
+// W of rows.hpp and the levels' white part. The levels' DCT-II X_k (the even extension: no jump at the ends to leak
+// into high frequencies), periodogram P_k = 2 X_k^2 / m (a white series of variance s^2 gives E P_k = s^2 for k >= 1);
+// the floor F = the median P_k over k >= 0.7 m (periods 2 - 2.9 rows) over chi^2_1's median (a lay's harmonics are
+// lines there, which the median passes over). Without offsets a row level's noise is at most white
+// with half a step's variance (rows uncorrelated along y), so W = F / (step_variance / 2). The white part: X_k times
+// the Wiener gain min(1, F / S_k), S_k the mean P over k +- 3, taken as 1 where S_k <= 2 F (white within the
+// scatter of 7 bins), then the inverse DCT.
+std::vector<double> white_part(const std::vector<double>& levels, double step_variance, RowOffsets& found) {
+    const std::size_t m = levels.size();
+    if (m < kMinTestRows || !(step_variance >= 0)) return levels;
+    std::vector<double> c(4 * m);  // cos(pi j / (2 m)): the transform's angles pi k (2 n + 1) / (2 m), mod 4 m
+    for (std::size_t j = 0; j < c.size(); ++j) c[j] = std::cos(std::numbers::pi * double(j) / double(2 * m));
+    std::vector<double> x(m, 0.0), p(m, 0.0);
+    for (std::size_t k = 0; k < m; ++k) {
+        for (std::size_t n = 0; n < m; ++n) x[k] += levels[n] * c[(k * (2 * n + 1)) % (4 * m)];
+        p[k] = 2.0 * x[k] * x[k] / double(m);
+    }
+    const std::size_t k0 = static_cast<std::size_t>(std::ceil(0.7 * double(m)));
+    std::vector<double> band(p.begin() + static_cast<std::ptrdiff_t>(k0), p.end());
+    const double floor = median(band) / kChiSquare1Median, bins = double(m - k0);
+    const double null = 0.5 * step_variance;
+    found.white_ratio = null > 0 ? std::min(floor / null, kMaxRatio) : (floor > 0 ? kMaxRatio : 0.0);
+    found.white_threshold = std::max(kWhiteFloorRatio, 1.0 + kRowOffsetFalseAlarmZ * kMedianSpread / std::sqrt(bins));
+    std::vector<double> gained(m);
+    for (std::size_t k = 0; k < m; ++k) {
+        const std::size_t lo = k >= 3 ? k - 3 : 0, hi = std::min(m - 1, k + 3);
+        double smooth = 0;
+        for (std::size_t j = lo; j <= hi; ++j) smooth += p[j];
+        smooth /= double(hi - lo + 1);
+        gained[k] = k == 0 || smooth <= 2.0 * floor ? x[k] : x[k] * floor / smooth;
+    }
+    std::vector<double> white(m);
+    double sum2 = 0;
+    for (std::size_t n = 0; n < m; ++n) {
+        double v = gained[0];
+        for (std::size_t k = 1; k < m; ++k) v += 2.0 * gained[k] * c[(k * (2 * n + 1)) % (4 * m)];
+        white[n] = v / double(m);
+        sum2 += white[n] * white[n];
+    }
+    found.white_rms_um = std::sqrt(sum2 / double(m));
+    return white;
 }
 
 }  // namespace
@@ -187,7 +236,19 @@ RowOffsets find_row_offsets(const HeightMap& map) {
         sum2 += o * o;
     }
     found.rms_um = std::sqrt(sum2 / static_cast<double>(rows.size()));
-    significance(map, link, found);
+    const double step_variance = significance(map, link, found);
+    std::vector<double> detrended(rows.size());
+    for (std::size_t i = 0; i < rows.size(); ++i) detrended[i] = found.offset_um[static_cast<std::size_t>(rows[i])];
+    const std::vector<double> white_levels = white_part(detrended, step_variance, found);
+    found.white_um.assign(ny, 0.0);
+    for (std::size_t i = 0; i < rows.size(); ++i) found.white_um[static_cast<std::size_t>(rows[i])] = white_levels[i];
+    const bool steps = found.ratio > found.threshold, white = found.white_ratio > found.white_threshold;
+    found.detected = steps && white;
+    found.lay = steps && !white;
+    if (found.white_threshold > 0)
+        found.reason += fmt::format("; white floor across the rows W = {:.3g} x the rows' own (periods 2-2.9 rows; "
+                                    "offsets when W > {:.3g}){}", found.white_ratio, found.white_threshold,
+                                    found.lay ? ": a profile across the rows (a lay along them), not offsets" : "");
     if (found.unlinked_rows)
         found.reason += fmt::format("; {} rows share fewer than {} valid points with every row above and keep their "
                                     "own level", found.unlinked_rows, kMinRowOverlap);
@@ -202,17 +263,22 @@ HeightMap align_rows(const HeightMap& map, RowAlignment how, RowOffsets& found) 
     }
     found = find_row_offsets(map);
     if (how == RowAlignment::automatic && !found.detected) return map;
+    const std::vector<double>& offsets = how == RowAlignment::automatic ? found.white_um : found.offset_um;
     std::vector<double> h = map.heights();
     for (std::size_t iy = 0; iy < map.ny(); ++iy)
-        for (std::size_t ix = 0; ix < map.nx(); ++ix) h[iy * map.nx() + ix] -= found.offset_um[iy];
+        for (std::size_t ix = 0; ix < map.nx(); ++ix) h[iy * map.nx() + ix] -= offsets[iy];
     return map.with_heights(std::move(h));
 }
 
 std::string describe(const RowOffsets& found, RowAlignment how) {
     if (how == RowAlignment::none) return "row alignment: none";
-    const bool aligned = how == RowAlignment::median || found.detected;
-    return fmt::format("row alignment {}: offsets rms {:.4g} um, {}: {}", to_string(how), found.rms_um,
-                       aligned ? "aligned" : "not significant, left", found.reason);
+    if (how == RowAlignment::median)
+        return fmt::format("row alignment median: offsets rms {:.4g} um, aligned: {}", found.rms_um, found.reason);
+    return fmt::format("row alignment auto: row levels rms {:.4g} um, their white part {:.4g} um, {}: {}",
+                       found.rms_um, found.white_rms_um,
+                       found.detected ? "aligned (their white part removed)"
+                                      : (found.lay ? "a lay along the rows, left" : "not significant, left"),
+                       found.reason);
 }
 
 }  // namespace surfscatter::heightmap

@@ -15,17 +15,21 @@
 // error at its line (bsdf::inapplicable_option: e.g. `smoothing` without alpha_from smoothed).
 // The models are evaluated for the four wavelengths of a path in one call (Bsdf::eval_packet). One-sided (use
 // twosided).
+#include <algorithm>
 #include <optional>
 #include <string>
+#include <thread>
 #include <variant>
 
 #include <fmt/format.h>
 
 #include "surfscatter/bsdf/factory.hpp"
+#include "surfscatter/bsdf/map_ghs.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/render/model_parameters.hpp"
 #include "surfscatter/render/plugins.hpp"
 #include "surfscatter/heightmap/prepare.hpp"
+#include "surfscatter/spectrum/wavelength_sampling.hpp"
 
 namespace surfscatter::render {
 
@@ -196,6 +200,11 @@ MaterialPtr plugins::scattering_model(Properties& props, const std::string& type
         std::vector<std::string> notes;
         auto model = bsdf::make_bsdf(o, &notes);
         for (const std::string& note : notes) props.add_note(note);
+        // A measured 2-D spectrum's tables, one per wavelength node the render samples: built here, over the
+        // machine's cores with their own progress line, not one by one inside the render's.
+        if (const auto* map = dynamic_cast<const bsdf::MapGhsBsdf*>(model.get()))
+            map->tabulate(spectrum::kSampledLambdaMin, spectrum::kSampledLambdaMax,
+                          std::max(1u, std::thread::hardware_concurrency()));
         return make_model_material(std::shared_ptr<const bsdf::Bsdf>(std::move(model)));
     } catch (const SceneError&) {
         throw;
