@@ -419,6 +419,8 @@ Densities solve_dense_route(const Surface& surface, double k, const material::Co
 // the near system truncated to kPreconditionerWavelengths as its preconditioner.
 constexpr double kFarTolerance = 1e-10;         // tail of the far series against its first term, per entry
 constexpr int kFarTermsWanted = 10;             // widen the near band until the series needs no more terms
+// 6 rather than 1.5: on the supplemental rough surface at 100 um the GMRES products fell from 30 to 18 (perfect s)
+// and from 90 to 61 (Ag p), the set-up barely grew (docs/PERFORMANCE.md).
 constexpr double kPreconditionerWavelengths = 6;
 // Automatic takes the dense route when the near band exceeds n / this: a 60 um profile of KC sigma 0.3 um (k sigma
 // 3.4) at 550 nm solved 1.1-1.25x slower by the iterative route than by the dense LU (perfect s, Ag p).

@@ -116,7 +116,7 @@ FarInteraction::FarInteraction(double step, const std::vector<double>& h, const 
         const std::lock_guard lock(heightmap::fftw_planner_mutex());
         // Out of place (in place, FFTW_ESTIMATE transposes at 4096). Every array the plans run on is an Eigen vector or
         // std::vector of complex<double>, 16-byte aligned like these, so the plans may use SIMD codelets
-        // (FFTW_UNALIGNED forbids them: ~2x slower products).
+        // (FFTW_UNALIGNED forbids them: far products took 1.3x longer with it, docs/PERFORMANCE.md).
         std::vector<Complex> in(size_), out(size_);
         auto* raw_in = reinterpret_cast<fftw_complex*>(in.data());
         auto* raw_out = reinterpret_cast<fftw_complex*>(out.data());
