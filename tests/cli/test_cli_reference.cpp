@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "cli_runner.hpp"
+#include "surfscatter/core/resources.hpp"
 #include "spectrum/test_data.hpp"
 #include "surfscatter/heightmap/io.hpp"
 #include "surfscatter/surface/synthesis.hpp"
@@ -122,6 +123,22 @@ TEST(CliReference, BadInputIsOneLine) {
     expect_bad_input(with({"--profile", profile, "--theta-i", "10", "--beam-width", "5", "--points-per-wavelength",
                            "2"}),
                      "points per wavelength (--points-per-wavelength) must be between 4 and 1000");
+}
+
+// A profile whose solve needs twice the memory available now (about 5 KB per node at 550 nm; 11 samples far apart,
+// splined onto the nodes): refused before the solve's buffers exist, exit status 2, in one line naming the options
+// that set the node count.
+TEST(CliReference, MoreNodesThanMemoryIsOneLine) {
+    const double available = static_cast<double>(surfscatter::available_memory_bytes());
+    const double nodes = std::min(2.0 * available / 4500.0, 0.99e7);  // within kMaxExact1dNodes
+    if (4500.0 * nodes < 1.5 * available) GTEST_SKIP() << "no profile within kMaxExact1dNodes exceeds the memory";
+    const double spacing = nodes / 10.0 * 0.055;  // 10 intervals of nodes / 10 nodes each at 550 nm
+    std::string csv = "x_um,h_um\n";
+    for (int j = -5; j <= 5; ++j) csv += fmt::format("{:.17g},{}\n", j * spacing, j % 2 == 0 ? 0.0 : 0.1);
+    expect_bad_input({"reference", "exact-1d", "--profile", write_temp_file(csv, ".csv"), "--material", "perfect",
+                      "--wavelength", "550", "--theta-i", "0", "--polarisation", "s", "--beam-width", "10", "-o",
+                      "/tmp/surfscatter_ref_unused.csv"},
+                     "a longer --wavelength or fewer --points-per-wavelength");
 }
 
 // reference models-1d: the CSV on exact-1d's grid (GHS's coherent fraction plus its lobe is 1 for a perfect

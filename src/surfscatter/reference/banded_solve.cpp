@@ -22,14 +22,7 @@ Eigen::VectorXcd BandedMatrix::multiply(const Eigen::VectorXcd& v) const {
     Eigen::VectorXcd out(static_cast<Eigen::Index>(n));
     for (std::size_t i = 0; i < n; ++i) {
         const std::size_t lo = i > band ? i - band : 0, hi = std::min(i + band + 1, n);
-        const std::complex<double>* row = &data[i * (2 * band + 1) + band - i];
-        double re = 0.0, im = 0.0;
-        for (std::size_t j = lo; j < hi; ++j) {
-            const std::complex<double> a = row[j], x = v[static_cast<Eigen::Index>(j)];
-            re += a.real() * x.real() - a.imag() * x.imag();
-            im += a.real() * x.imag() + a.imag() * x.real();
-        }
-        out[static_cast<Eigen::Index>(i)] = {re, im};
+        out[static_cast<Eigen::Index>(i)] = dot_segment(&at(i, lo), v.data() + lo, hi - lo);
     }
     return out;
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <tuple>
 
 #include <Eigen/Dense>
 
@@ -41,6 +42,9 @@ constexpr double kLogCorrection[5] = {
     kZetaPrimeMinus2 * 16.0 / 12.0 - 4.0 * kZetaPrimeMinus4 / 12.0,
     kZetaPrimeMinus2 * -1.0 / 12.0 + kZetaPrimeMinus4 / 12.0,
 };
+
+// |(dx, dz)| without std::hypot's overflow guards (slow, and a profile's lengths in um are far from overflow).
+double distance(double dx, double dz) { return std::sqrt(dx * dx + dz * dz); }
 
 struct Surface {
     std::size_t n = 0;
@@ -94,7 +98,7 @@ template <typename At>
 void fill_dirichlet(const Surface& s, double k, std::size_t band, At at) {
     const double step = s.step;
     for_each_pair(s.n, band, [&](std::size_t i, std::size_t j) {
-        const double z = k * std::hypot(s.x[j] - s.x[i], s.h[j] - s.h[i]);
+        const double z = k * distance(s.x[j] - s.x[i], s.h[j] - s.h[i]);
         at(i, j) = at(j, i) = step * 0.25 * Complex(-::y0(z), ::j0(z));
     });
     for (std::size_t i = 0; i < s.n; ++i) {
@@ -103,7 +107,7 @@ void fill_dirichlet(const Surface& s, double k, std::size_t band, At at) {
                            (std::log(0.5 * k * slope_norm) + kEulerGamma) / kTwoPi);
     }
     add_log_corrections(s, [&](std::size_t i, std::size_t j) {
-        return -::j0(k * std::hypot(s.x[j] - s.x[i], s.h[j] - s.h[i])) / kTwoPi;
+        return -::j0(k * distance(s.x[j] - s.x[i], s.h[j] - s.h[i])) / kTwoPi;
     }, at);
 }
 
@@ -115,7 +119,7 @@ void fill_double_layer(const Surface& s, double k, std::size_t band, At at) {
     const double step = s.step;
     for_each_pair(s.n, band, [&](std::size_t i, std::size_t j) {
         const double dx = s.x[j] - s.x[i], dz = s.h[j] - s.h[i];
-        const double r = std::hypot(dx, dz), z = k * r;
+        const double r = distance(dx, dz), z = k * r;
         const Complex h1 = Complex(::j1(z), ::y1(z)) * (-0.25 * k * kI) / r;  // one Hankel call for both entries
         at(i, j) = step * h1 * (dz - s.dh[j] * dx);
         at(j, i) = step * h1 * (-dz + s.dh[i] * dx);
@@ -124,7 +128,7 @@ void fill_double_layer(const Surface& s, double k, std::size_t band, At at) {
     add_log_corrections(s, [&](std::size_t i, std::size_t j) {
         if (i == j) return 0.0;
         const double dx = s.x[j] - s.x[i], dz = s.h[j] - s.h[i];
-        const double r = std::hypot(dx, dz);
+        const double r = distance(dx, dz);
         return k / kTwoPi * ::j1(k * r) * (dz - s.dh[j] * dx) / r;
     }, at);
 }
@@ -169,13 +173,19 @@ struct BandedPair {
     BandedMatrix single, dbl;  // (S2 L)_i and (DL2 psi)_i
 };
 
+// Intervals within reach of a node, and the interior matrices' band (cells plus the interpolation's reach).
+std::size_t interior_cells(std::size_t n, double step, Complex k2, double reach_decay_lengths) {
+    const double reach = reach_decay_lengths / std::max(k2.imag(), 1e-300);
+    return static_cast<std::size_t>(std::min(std::ceil(reach / step), static_cast<double>(n)));
+}
+std::size_t interior_band(std::size_t n, std::size_t cells) { return std::min(cells + 3, n - 1); }
+
 BandedPair interior_matrices(const Surface& s, Complex k2, double reach_decay_lengths) {
     const std::size_t n = s.n;
     const double step = s.step;
-    const double reach = reach_decay_lengths / std::max(k2.imag(), 1e-300);
-    const std::size_t cells = static_cast<std::size_t>(std::min(std::ceil(reach / step), static_cast<double>(n)));
+    const std::size_t cells = interior_cells(n, step, k2, reach_decay_lengths);
     BandedPair out;
-    out.single = BandedMatrix(n, std::min(cells + 3, n - 1));
+    out.single = BandedMatrix(n, interior_band(n, cells));
     out.dbl = BandedMatrix(n, out.single.band);
     const math::GaussLegendreRule near_rule(kInteriorGauss);
     const math::GaussLegendreRule far_rule(std::abs(k2) * step <= 3.0 ? kInteriorGaussFar : kInteriorGauss);
@@ -198,7 +208,7 @@ BandedPair interior_matrices(const Surface& s, Complex k2, double reach_decay_le
                 const double dhx = ((6 * t2 - 6 * t) * s.h[m] + (-6 * t2 + 6 * t) * s.h[m + 1]) / step +
                                    (3 * t2 - 4 * t + 1) * s.dh[m] + (3 * t2 - 2 * t) * s.dh[m + 1];
                 const double dx = step * (static_cast<double>(m) - static_cast<double>(i) + t), dz = hx - s.h[i];
-                const double r = std::hypot(dx, dz);
+                const double r = distance(dx, dz);
                 if (r == 0.0) continue;  // u = 0 is never a Gauss node; guards a degenerate surface only
                 const HankelPair hp = hankel01(k2 * r);
                 const Complex single = 0.25 * kI * hp.h0;
@@ -237,10 +247,13 @@ void banded_lu(BandedMatrix& a) {
 // x = A^{-1} b for the banded LU factors of A.
 Eigen::VectorXcd banded_solve(const BandedMatrix& lu, Eigen::VectorXcd b) {
     const std::size_t n = lu.n, band = lu.band;
-    for (std::size_t r = 0; r < n; ++r)
-        for (std::size_t c = r > band ? r - band : 0; c < r; ++c) b[r] -= lu.at(r, c) * b[c];
+    for (std::size_t r = 0; r < n; ++r) {
+        const std::size_t lo = r > band ? r - band : 0;
+        b[r] -= dot_segment(&lu.at(r, lo), b.data() + lo, r - lo);
+    }
     for (std::size_t r = n; r-- > 0;) {
-        for (std::size_t c = r + 1; c < std::min(r + band + 1, n); ++c) b[r] -= lu.at(r, c) * b[c];
+        const std::size_t hi = std::min(r + band + 1, n);
+        if (hi > r + 1) b[r] -= dot_segment(&lu.at(r, r + 1), b.data() + r + 1, hi - r - 1);
         b[r] /= lu.at(r, r);
     }
     return b;
@@ -266,6 +279,11 @@ Eigen::MatrixXcd banded_right_solve(const BandedMatrix& lu, const Eigen::MatrixX
     return w;
 }
 
+// Solver nodes of the profile at the options' sampling (a double: cannot wrap around).
+double node_count(const Profile& profile, const Exact1dOptions& o) {
+    return static_cast<double>(profile.h_um.size() - 1) * subdivisions_of(profile, o.lambda_nm * 1e-3, o.points_per_wavelength) + 1;
+}
+
 void check_options(const Profile& profile, const Exact1dOptions& o) {
     require_valid_profile(profile, "profile");
     require_positive(o.lambda_nm, "wavelength (nm)");
@@ -285,8 +303,7 @@ void check_options(const Profile& profile, const Exact1dOptions& o) {
         fail("beam width {} um is too narrow for theta_i = {} deg at {} nm: (1 + 2 tan^2) / (2 (k g cos)^2) = {:.3g} "
              "> 0.01 (Thorsos' beam no longer solves the wave equation)",
              o.beam_width_um, o.theta_i_rad / kDegree, o.lambda_nm, correction);
-    const double nodes =
-        static_cast<double>(profile.h_um.size() - 1) * subdivisions_of(profile, o.lambda_nm * 1e-3, o.points_per_wavelength) + 1;
+    const double nodes = node_count(profile, o);
     if (!(nodes <= kMaxExact1dNodes))
         fail("a profile of {} samples {} um apart needs {:.3g} solver nodes at {} nm ({} per wavelength), more than "
              "{:.0e}: a shorter profile, a finer sampling or a longer wavelength",
@@ -370,8 +387,6 @@ Interior interior(const Surface& surface, double k, const material::Conductor& c
 Densities solve_dense_route(const Surface& surface, double k, const material::Conductor& conductor,
                             const Exact1dOptions& options, const Eigen::VectorXcd& incident) {
     const std::size_t n = surface.n;
-    require_memory(2.2 * 16.0 * static_cast<double>(n) * static_cast<double>(n),
-                   fmt::format("an exact-1d dense solve with {} unknowns", n));
     Densities out{Eigen::VectorXcd::Zero(n), Eigen::VectorXcd::Zero(n)};
     if (conductor.is_perfect() && options.polarisation == Polarisation::s) {
         out.normal = solve_dense(dirichlet_matrix(surface, k), incident, "the perfect conductor's s-polarised system");
@@ -404,23 +419,100 @@ Densities solve_dense_route(const Surface& surface, double k, const material::Co
 // the near system truncated to kPreconditionerWavelengths as its preconditioner.
 constexpr double kFarTolerance = 1e-10;         // tail of the far series against its first term, per entry
 constexpr int kFarTermsWanted = 10;             // widen the near band until the series needs no more terms
-constexpr double kPreconditionerWavelengths = 1.5;
+// 6 rather than 1.5: on the supplemental rough surface at 100 um the GMRES products fell from 30 to 18 (perfect s)
+// and from 90 to 61 (Ag p), the set-up barely grew (docs/PERFORMANCE.md).
+constexpr double kPreconditionerWavelengths = 6;
 // Automatic takes the dense route when the near band exceeds n / this: a 60 um profile of KC sigma 0.3 um (k sigma
 // 3.4) at 550 nm solved 1.1-1.25x slower by the iterative route than by the dense LU (perfect s, Ag p).
 constexpr std::size_t kDenseFromNearFraction = 8;
 constexpr double kGmresTolerance = 1e-8;         // relative residual
 constexpr int kGmresRestart = 200, kGmresMaxIterations = 600;
 
-// The near band for the profile's height range, or 0 when none short of the whole matrix keeps the series short.
-std::size_t near_band(const Surface& s, double k, double lambda_um) {
+// The route a solve takes and the widths its buffers scale with, decided before any of them is allocated.
+struct RoutePlan {
+    bool iterative = false;
+    std::size_t near = 0, precondition_band = 0, interior_band = 0;  // interior_band: a metal's, else 0
+    int terms = 0;                                                    // of the far series
+    std::string why;                                                  // why the iterative route declines
+};
+
+// The near band for the profile's height range and its far series' terms, or {0, 0} when none short of the whole
+// matrix keeps the series short.
+std::pair<std::size_t, int> near_band(const Surface& s, double k, double lambda_um) {
     const auto [lo, hi] = std::minmax_element(s.h.begin(), s.h.end());
     std::size_t band = std::max<std::size_t>(4, static_cast<std::size_t>(std::ceil(lambda_um / s.step)));
     while (band + 1 < s.n) {
         const int terms = FarInteraction::terms_needed(s.step, s.n, *hi - *lo, k, band, kFarTolerance);
-        if (terms > 0 && terms <= kFarTermsWanted) return band;
+        if (terms > 0 && terms <= kFarTermsWanted) return {band, terms};
         band = static_cast<std::size_t>(std::ceil(1.25 * static_cast<double>(band))) + 1;
     }
-    return 0;
+    return {0, 0};
+}
+
+RoutePlan plan_route(const Surface& surface, double k, double lambda_um, const material::Conductor& conductor,
+                     const Exact1dOptions& options) {
+    const std::size_t n = surface.n;
+    RoutePlan plan;
+    if (!(options.solver == Exact1dSolver::iterative ||
+          (options.solver == Exact1dSolver::automatic && n >= kIterativeFromUnknowns)))
+        return plan;
+    std::tie(plan.near, plan.terms) = near_band(surface, k, lambda_um);
+    if (plan.near == 0) {
+        plan.why = fmt::format("no near band short of the whole profile keeps the far series within {} terms", kFarTermsWanted);
+        return plan;
+    }
+    if (options.solver == Exact1dSolver::automatic && plan.near > n / kDenseFromNearFraction) {
+        plan.why = fmt::format("a near band of {} of {} nodes: the dense LU is cheaper", plan.near, n);
+        return plan;
+    }
+    plan.iterative = true;
+    plan.precondition_band = std::min(
+        plan.near, static_cast<std::size_t>(std::ceil(kPreconditionerWavelengths * lambda_um / surface.step)));
+    if (!conductor.is_perfect())
+        plan.interior_band = interior_band(
+            n, interior_cells(n, surface.step, conductor.ior(options.lambda_nm) * k, options.interior_reach));
+    return plan;
+}
+
+// Bytes per node that every solve holds: the nodes (x, h, h', h''), the incident field, the two densities, and at
+// the end the far field's three coefficient and three phase arrays.
+constexpr double kCommonBytesPerNode = 4 * 8 + 16 + 2 * 16 + 3 * 16 + 3 * 8;
+
+// The peak bytes of one solve by `plan`'s route (docs/REFERENCE.md, "Memory"): every buffer that scales with the
+// node count, as solve_iterative_route and solve_dense_route allocate them.
+double route_bytes(const RoutePlan& plan, std::size_t nodes, bool perfect) {
+    const double n = static_cast<double>(nodes), c = sizeof(Complex);
+    if (!plan.iterative)  // the matrix, the temporary it is built in, and a metal's S1 (rho S2)^-1 beside them
+        return c * n * n * (perfect ? 2.2 : 3.2);
+    const auto band = [&](std::size_t half_width) { return c * n * (2.0 * static_cast<double>(half_width) + 1.0); };
+    const double pre = static_cast<double>(plan.precondition_band);
+    // The preconditioner's LAPACK factors (3 b + 1 rows, int pivots) and the truncated copy they are made from.
+    double bytes = c * n * (3.0 * pre + 1.0) + 4.0 * n + band(plan.precondition_band);
+    if (perfect) {
+        bytes += band(plan.near);  // S1 or 1/2 - DL1
+    } else {
+        // 1/2 - DL1 and S1; the interior's S2 factors and 1/2 + DL2; Z and S1 Z within the preconditioner's band,
+        // and Z's column.
+        bytes += 2.0 * band(plan.near) + 2.0 * band(plan.interior_band) + 2.0 * band(plan.precondition_band) + c * n;
+    }
+    bytes += FarInteraction::bytes(nodes, plan.terms);
+    // GMRES: the Krylov basis at its full restart length, and ~10 vectors of products, residuals and temporaries.
+    bytes += c * n * (kGmresRestart + 1.0) + c * (kGmresRestart + 1.0) * kGmresRestart + 10.0 * c * n;
+    return bytes;
+}
+
+// One line naming the options that set the node count, exit status 2 at the CLI.
+void require_solve_memory(double bytes, std::size_t nodes, const Profile& profile, const Exact1dOptions& o,
+                          std::size_t concurrent) {
+    const auto available = static_cast<double>(available_memory_bytes());
+    const double total = bytes * static_cast<double>(concurrent);
+    if (total <= available) return;
+    fail("exact-1d: {} solver nodes (a {:.4g} um profile at {} nm, {} points per wavelength){} need {} of memory, more "
+         "than the {} available: a shorter profile (--length-um, or --profile's file), a longer --wavelength or fewer "
+         "--points-per-wavelength{}",
+         nodes, profile.spacing_um * static_cast<double>(profile.h_um.size() - 1), o.lambda_nm,
+         o.points_per_wavelength, concurrent > 1 ? fmt::format(" on {} threads", concurrent) : std::string(),
+         format_bytes(total), format_bytes(available), concurrent > 1 ? ", or fewer --threads" : "");
 }
 
 // Z within `band` of the diagonal, Z = (rho S2)^-1 (1/2 + DL2), column by column against the banded factors on a
@@ -461,24 +553,12 @@ BandedMatrix banded_product(const BandedMatrix& a, const BandedMatrix& b, std::s
     return out;
 }
 
-// The densities by the iterative route, or nothing (with the reason in `why`) when the far series needs the whole
-// matrix or GMRES does not converge.
-std::optional<Densities> solve_iterative_route(const Surface& surface, double k, double lambda_um,
+// The densities by the iterative route planned, or nothing (with the reason in `why`) when GMRES does not converge.
+std::optional<Densities> solve_iterative_route(const Surface& surface, double k, const RoutePlan& plan,
                                                const material::Conductor& conductor, const Exact1dOptions& options,
                                                const Eigen::VectorXcd& incident, std::string& why) {
-    const std::size_t n = surface.n;
-    const std::size_t near = near_band(surface, k, lambda_um);
-    if (near != 0 && options.solver == Exact1dSolver::automatic && near > n / kDenseFromNearFraction) {
-        why = fmt::format("a near band of {} of {} nodes: the dense LU is cheaper", near, n);
-        return std::nullopt;
-    }
-    if (near == 0) {
-        why = fmt::format("no near band short of the whole profile keeps the far series within {} terms", kFarTermsWanted);
-        return std::nullopt;
-    }
+    const std::size_t n = surface.n, near = plan.near, precondition_band = plan.precondition_band;
     const FarInteraction far(surface.step, surface.h, surface.dh, k, near, kFarTolerance);
-    const std::size_t precondition_band = std::min(
-        near, static_cast<std::size_t>(std::ceil(kPreconditionerWavelengths * lambda_um / surface.step)));
     const bool s_pol = options.polarisation == Polarisation::s;
     Densities out{Eigen::VectorXcd::Zero(n), Eigen::VectorXcd::Zero(n)};
     GmresResult result;
@@ -504,12 +584,10 @@ std::optional<Densities> solve_iterative_route(const Surface& surface, double k,
         }
         const BandedLu preconditioner(near_system, "the near-field boundary system");
         auto apply = [&](const Eigen::VectorXcd& psi) -> Eigen::VectorXcd {
-            Eigen::VectorXcd y = half_minus_dbl.multiply(psi) - far.double_layer(psi);
-            if (inside) {
-                const Eigen::VectorXcd normal = inside->normal(psi);
-                y += single.multiply(normal) + far.single(normal);
-            }
-            return y;
+            Eigen::VectorXcd y = half_minus_dbl.multiply(psi);
+            if (!inside) return y - far.double_layer(psi);
+            const Eigen::VectorXcd normal = inside->normal(psi);
+            return y + single.multiply(normal) + far.single_minus_double_layer(normal, psi);
         };
         result = gmres(apply, [&](const Eigen::VectorXcd& v) { return preconditioner.solve(v); }, incident,
                        kGmresTolerance, kGmresRestart, kGmresMaxIterations);
@@ -526,10 +604,28 @@ std::optional<Densities> solve_iterative_route(const Surface& surface, double k,
 
 }  // namespace
 
+double exact_1d_solve_bytes(const Profile& profile, const material::Conductor& conductor, const Exact1dOptions& options) {
+    check_options(profile, options);
+    const double lambda_um = options.lambda_nm * 1e-3, k = kTwoPi / lambda_um;
+    const Surface surface = solver_surface(profile, lambda_um, options.points_per_wavelength);
+    const RoutePlan plan = plan_route(surface, k, lambda_um, conductor, options);
+    return kCommonBytesPerNode * static_cast<double>(surface.n) + route_bytes(plan, surface.n, conductor.is_perfect());
+}
+
+void require_exact_1d_memory(const Profile& profile, const material::Conductor& conductor,
+                             const Exact1dOptions& options, std::size_t concurrent_solves) {
+    check_options(profile, options);
+    require_solve_memory(exact_1d_solve_bytes(profile, conductor, options),
+                         static_cast<std::size_t>(node_count(profile, options)), profile, options, concurrent_solves);
+}
+
 FarField solve_exact_1d(const Profile& profile, const material::Conductor& conductor, const Exact1dOptions& options) {
     check_options(profile, options);
     const double lambda_um = options.lambda_nm * 1e-3, k = kTwoPi / lambda_um;
     const double theta_i = options.theta_i_rad, g = options.beam_width_um;
+    // The nodes' own arrays checked before they exist; the route's once it is planned (docs/REFERENCE.md, "Memory").
+    require_solve_memory(kCommonBytesPerNode * node_count(profile, options), static_cast<std::size_t>(node_count(profile, options)),
+                         profile, options, 1);
     const Surface surface = solver_surface(profile, lambda_um, options.points_per_wavelength);
     const std::size_t n = surface.n;
     Eigen::VectorXcd incident(n);
@@ -539,16 +635,23 @@ FarField solve_exact_1d(const Profile& profile, const material::Conductor& condu
     // a perfect conductor has psi = 0 (s) or L = 0 (p). A metal adds the inside, with its index N and
     // L_inside = rho L (rho = 1 in s, N^2 in p: continuity of H_y / eps's normal derivative),
     //   psi/2 = -int [psi dG2/dn' - G2 rho L] dx',  so  L = (rho S2)^-1 (1/2 + DL2) psi.
-    const bool iterative = options.solver == Exact1dSolver::iterative ||
-                           (options.solver == Exact1dSolver::automatic && n >= kIterativeFromUnknowns);
+    RoutePlan plan = plan_route(surface, k, lambda_um, conductor, options);
+    if (!plan.iterative && options.solver == Exact1dSolver::iterative)
+        fail("exact-1d: the iterative solve of {} unknowns failed: {}", n, plan.why);
     std::optional<Densities> solved;
-    if (iterative) {
-        std::string why;
-        solved = solve_iterative_route(surface, k, lambda_um, conductor, options, incident, why);
+    if (plan.iterative) {
+        require_solve_memory(kCommonBytesPerNode * static_cast<double>(n) + route_bytes(plan, n, conductor.is_perfect()),
+                             n, profile, options, 1);
+        solved = solve_iterative_route(surface, k, plan, conductor, options, incident, plan.why);
         if (!solved && options.solver == Exact1dSolver::iterative)
-            fail("exact-1d: the iterative solve of {} unknowns failed: {}", n, why);
+            fail("exact-1d: the iterative solve of {} unknowns failed: {}", n, plan.why);
     }
-    if (!solved) solved = solve_dense_route(surface, k, conductor, options, incident);
+    if (!solved) {
+        plan.iterative = false;
+        require_solve_memory(kCommonBytesPerNode * static_cast<double>(n) + route_bytes(plan, n, conductor.is_perfect()),
+                             n, profile, options, 1);
+        solved = solve_dense_route(surface, k, conductor, options, incident);
+    }
     const Eigen::VectorXcd& psi = solved->psi;
     const Eigen::VectorXcd& normal = solved->normal;
 

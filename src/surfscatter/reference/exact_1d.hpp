@@ -68,4 +68,15 @@ inline constexpr double kMaxExact1dNodes = 1e7;
 // hold the beam (its ends within 2 g of x = 0), or one that needs more than kMaxExact1dNodes nodes.
 FarField solve_exact_1d(const Profile& profile, const material::Conductor& conductor, const Exact1dOptions& options);
 
+// The bytes one solve holds at its peak (docs/REFERENCE.md, "Memory"): every buffer that scales with the node count
+// (the nodes, the route's matrices, the far series' spectra and workspace, GMRES's Krylov basis at its full restart
+// length, the far field's arrays), planned as the solve plans its route. An upper bound: 1.0-2.5x the measured peak
+// (tests/reference/test_exact_1d_memory.cpp). solve_exact_1d checks it against the available memory before it
+// allocates; this builds the nodes (O(N)) to plan the route.
+double exact_1d_solve_bytes(const Profile& profile, const material::Conductor& conductor, const Exact1dOptions& options);
+// Throws Error (one line naming --length-um / --profile, --wavelength, --points-per-wavelength and, for more than one
+// solve at once, --threads) when `concurrent_solves` such solves exceed the memory available now.
+void require_exact_1d_memory(const Profile& profile, const material::Conductor& conductor,
+                             const Exact1dOptions& options, std::size_t concurrent_solves);
+
 }  // namespace surfscatter::reference

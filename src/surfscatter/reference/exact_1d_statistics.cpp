@@ -6,6 +6,7 @@
 #include <complex>
 #include <map>
 #include <mutex>
+#include <thread>
 #include <utility>
 
 #include <fmt/format.h>
@@ -236,6 +237,12 @@ StatisticalResult solve_exact_1d_statistics(const surface::RadialStatistics& sta
     const Profile first = random_profile(statistics, options, st.length_um, st.seed);
     // run_parallel_jobs keeps a done flag per realization: bounded before allocating.
     require_memory(static_cast<double>(st.realizations), fmt::format("the done flags of {} realizations", st.realizations));
+    // Each thread solves one profile at a time: their buffers together, checked before any thread starts (the
+    // profiles share the first's length and statistics, so its planned route stands for theirs).
+    const std::size_t concurrent = std::min<std::size_t>(
+        st.threads > 0 ? static_cast<std::size_t>(st.threads) : std::max(1u, std::thread::hardware_concurrency()),
+        st.realizations);
+    require_exact_1d_memory(first, conductor, options, concurrent);
     const KirchhoffControl control(statistics, options, first);
     // Realizations are added to the moments in their order (bit-identical results on any number of threads): a
     // finished one waits in `pending` until those before it are in.

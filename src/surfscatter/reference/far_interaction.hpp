@@ -29,16 +29,25 @@ public:
     // sum over far j of step (-ik/4) H1(k R_ij)/R_ij (dz - h'_j dx) v_j: the double layer's far part.
     Eigen::VectorXcd double_layer(const Eigen::VectorXcd& v) const;
 
+    // single(single_density) - double_layer(double_density) with one set of inverse FFTs (a metal's product).
+    Eigen::VectorXcd single_minus_double_layer(const Eigen::VectorXcd& single_density,
+                                               const Eigen::VectorXcd& double_density) const;
+
     int terms() const { return terms_; }  // m = 0 .. terms - 1
 
     // The number of terms the far pairs of a profile with this height range need (0 when kMaxTerms do not suffice).
     static int terms_needed(double step_um, std::size_t nodes, double height_range_um, double k_per_um,
                             std::size_t near, double tolerance);
     static constexpr int kMaxTerms = 40;
+    // Bytes an instance with this many terms holds for `nodes` nodes after its first product: the kernel spectra,
+    // the product workspace, the heights and slopes, and the constructor's and apply's temporaries.
+    static double bytes(std::size_t nodes, int terms);
 
 private:
     struct Plans;
-    Eigen::VectorXcd apply(const Eigen::VectorXcd& v, bool double_layer) const;
+    static constexpr std::size_t kBlock = 256;  // frequencies per cache block of the spectral products
+    // single(*single_density) - double_layer(*double_density); a null density is left out.
+    Eigen::VectorXcd apply(const Eigen::VectorXcd* double_density, const Eigen::VectorXcd* single_density) const;
     std::size_t n_ = 0, size_ = 0;  // nodes, FFT length (>= 2 n)
     int terms_ = 0;
     std::vector<double> h_, dh_;  // heights centred on their mid-range

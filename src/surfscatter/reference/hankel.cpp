@@ -22,7 +22,7 @@ HankelPair series(Complex z) {
     Complex term0 = 1.0, term1 = 1.0;  // (-z^2/4)^m / (m!)^2 and / (m! (m+1)!)
     Complex j0 = 1.0, j1 = 1.0, y0_sum = 0.0, y1_sum = 0.0;
     double harmonic = 0.0;  // H_m
-    double largest = 1.0;
+    double largest = 1.0;  // squared
     y1_sum = (-kEulerGamma + (1.0 - kEulerGamma)) * term1;  // psi(1) + psi(2) at m = 0
     for (int m = 1; m < 200; ++m) {
         const double dm = m;
@@ -34,8 +34,8 @@ HankelPair series(Complex z) {
         y0_sum += harmonic * term0;
         // psi(m+1) + psi(m+2) = 2 (H_m - gamma) + 1/(m+1)
         y1_sum += (2.0 * (harmonic - kEulerGamma) + 1.0 / (dm + 1.0)) * term1;
-        largest = std::max(largest, std::abs(term0));
-        if (std::abs(term0) < 1e-17 * largest && std::abs(term1) < 1e-17 * largest) break;
+        largest = std::max(largest, std::norm(term0));  // squared magnitudes: std::abs is a slow hypot
+        if (std::norm(term0) < 1e-34 * largest && std::norm(term1) < 1e-34 * largest) break;
     }
     const Complex half = 0.5 * z;
     j1 *= half;
@@ -59,6 +59,7 @@ HankelPair asymptotic(Complex z) {
         t1 *= iz * (4.0 - odd * odd) / (8.0 * m);
         sum0 += t0;
         sum1 += t1;
+        if (std::norm(t0) < 1e-34 && std::norm(t1) < 1e-34) break;  // the sums are ~1: the rest is below rounding
     }
     return {prefactor * sum0, prefactor * (-kI) * sum1};  // e^{-i pi/2} = -i for nu = 1
 }
@@ -68,7 +69,7 @@ HankelPair asymptotic(Complex z) {
 HankelPair hankel01(std::complex<double> z) {
     if (!(z.imag() >= 0) || z == Complex(0.0) || !std::isfinite(z.real()) || !std::isfinite(z.imag()))
         fail("Hankel function argument {}{:+}i must be finite, non-zero, with Im z >= 0", z.real(), z.imag());
-    return std::abs(z) <= kSeriesRadius ? series(z) : asymptotic(z);
+    return std::norm(z) <= kSeriesRadius * kSeriesRadius ? series(z) : asymptotic(z);
 }
 
 }  // namespace surfscatter::reference
