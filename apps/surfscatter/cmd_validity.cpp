@@ -1,6 +1,6 @@
 // surfscatter validity: which model to trust for a surface (docs/VALIDITY.md). Two routes:
-// * profiles (--length-um): profiles cut through KC/Gaussian statistics, the 1-D GHS, SSA, Kirchhoff and GGX
-//   forms against exact-1d's average over random profiles (--realizations, or until --target-stderr),
+// * profiles (--length-um): profiles cut through KC/Gaussian statistics, the 1-D GHS, SSA, Kirchhoff, GGX and
+//   two_scale forms against exact-1d's average over random profiles (--realizations, or until --target-stderr),
 //   per wavelength, incidence and polarisation;
 // * maps (--surface-file, or --map-size-um for maps synthesised from --psd statistics, elliptical with
 //   --corr-length-v / --lay-angle): every 2-D model the factory makes against the maps' Kirchhoff BRDF, per
@@ -460,7 +460,7 @@ void run_map_validity(const ValidityArgs& a) {
 const Command command("validity", [](CLI::App& app) {
     auto a = std::make_shared<ValidityArgs>();
     auto* sub = app.add_subcommand(
-        "validity", "Which model to trust: the 1-D GHS, SSA, Kirchhoff and GGX forms against the exact 1-D "
+        "validity", "Which model to trust: the 1-D GHS, SSA, Kirchhoff, GGX and two_scale forms against the exact 1-D "
                     "solution averaged over random profiles, per wavelength, incidence and polarisation "
                     "(--length-um); or "
                     "every 2-D model against the Kirchhoff BRDF of a height map (--surface-file) or of maps "

@@ -237,8 +237,8 @@ void bind_validity(py::module_& m) {
           py::arg("bin_deg") = 3.0, py::arg("tolerance") = 0.1, py::arg("max_reference_stderr") = 0.25,
           py::arg("threads") = 0, py::arg("target_stderr_pct") = py::none(), py::arg("max_realizations") = py::none(),
           R"(Which model to trust for profiles cut through `surface` (KCorrelation or GaussianAcv), as `surfscatter
-validity` (docs/VALIDITY.md): the 1-D GHS, SSA, Kirchhoff and GGX-from-statistics forms against exact-1d
-averaged over random profiles
+validity` (docs/VALIDITY.md): the 1-D GHS, SSA, Kirchhoff, GGX-from-statistics and two_scale forms against
+exact-1d averaged over random profiles
 of length_um (Thorsos beam of width beam_width_um): a fixed number `realizations`, or (the default) as many as bring
 the reference's median relative standard error over the bins used to target_stderr_pct percent (default 2), at
 most max_realizations (default 1000; verdicts' target_reached says whether it did); not both. For every wavelength in wavelengths_nm (nm),

@@ -12,7 +12,8 @@ def test_validity_matches_the_cli(tmp_path):
     surface = ss.KCorrelation(0.01, 1.0, 3.0)
     got = ss.validity(surface, "perfect", wavelengths_nm=[550], theta_i_deg=[0], length_um=12, beam_width_um=2,
                       realizations=4, polarisations=["s"])
-    assert [row["model"] for row in got["table"]] == ["ghs", "ghs_ssa", "kirchhoff"]  # no ggx_stats: gamma 3
+    # no ggx_stats: gamma 3
+    assert [row["model"] for row in got["table"]] == ["ghs", "ghs_ssa", "kirchhoff", "two_scale"]
     assert len(got["verdicts"]) == 1 and not got["verdicts"][0]["conclusive"]
     out = tmp_path / "v"
     r = subprocess.run([CLI, "validity", "--psd", "kc", "--sigma", "0.01", "--corr-length", "1", "--gamma", "3",

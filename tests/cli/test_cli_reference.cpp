@@ -215,8 +215,9 @@ TEST(CliReference, ValidityWritesTheTableAndRefusesAnUnresolvedReference) {
               "model,wavelength_nm,theta_i_deg,polarisation,median_rel_error,worst_rel_error,worst_theta_o_deg,"
               "directions_used,directions_excluded,reference_median_rel_stderr,model_energy,reference_energy,"
               "trusted,verdict");
-    // (ghs, ghs_ssa, kirchhoff; gamma 3: no ggx_stats) x incidences x polarisations
-    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 3 * 2 * 2);
+    // (ghs, ghs_ssa, kirchhoff, two_scale; gamma 3: no ggx_stats) x incidences x polarisations
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 4 * 2 * 2);
+    EXPECT_NE(csv.find("\ntwo_scale,550,40,p,"), std::string::npos) << csv;
     EXPECT_NE(csv.find("\nkirchhoff,550,40,p,"), std::string::npos) << csv;
     EXPECT_NE(read_whole_file(out + ".json").find("\"verdict\""), std::string::npos);
     EXPECT_GT(std::filesystem::file_size(out + "_slices.png"), 1000u);

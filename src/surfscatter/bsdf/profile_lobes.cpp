@@ -11,6 +11,8 @@
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/resources.hpp"
 #include "surfscatter/math/quadrature.hpp"
+#include "surfscatter/bsdf/two_scale.hpp"
+#include "surfscatter/surface/psd_split.hpp"
 #include "surfscatter/surface/relevant_roughness.hpp"
 #include "surfscatter/surface/synthesis.hpp"
 
@@ -23,6 +25,8 @@ constexpr double kIntegralTolerance = 1e-10;
 constexpr double kGrading = 2.0;  // ratio of the panels toward x = 0
 constexpr double kMaxPanels = 1e6;  // 16e6 nodes, 256 MB: a correlation length ~1e5 wavelengths
 constexpr double kMinWavelengthNm = 0.1, kMaxWavelengthNm = 1e8;  // as the 2-D models (GhsBsdf)
+// A PSD with a jump: |rho|'s envelope where the quadrature of the orders >= 2 (~ rho^2) starts its taper.
+constexpr double kJumpTail = 1e-3;
 
 // int_lo^hi f for an f peaked at `peak` with width ~`width`: adaptive Gauss-Kronrod on pieces peak +- width 10^j, so
 // that the bisection starts at the peak's scale however narrow it is.
@@ -114,21 +118,40 @@ std::string inapplicable_profile_option(const std::vector<ProfileModel>& models,
 ProfileAcvTransform::ProfileAcvTransform(const surface::RadialStatistics& statistics, double zeta_max) {
     require_positive(zeta_max, "largest profile frequency");
     const double length = statistics.correlation_length();
-    // The ACV's reach: beyond rho < 1e-17 the integrand (at most g e^{-g} rho <= rho / e) no longer counts.
+    const double jump = statistics.psd_jump_radius();
+    // The ACV's reach: beyond rho < 1e-17 the integrand (at most g e^{-g} rho <= rho / e) no longer counts. A PSD with
+    // a jump at zeta_j (a sharp cut's high-pass part) has an ACV ringing with the period 2 pi / zeta_j and decaying
+    // only as x^-3/2: its first order is taken from the PSD (lobe, order) and the rest, ~rho^2, out to where the
+    // ringing's envelope (|rho| over one period) is below kJumpTail, then tapered to 0 over as long again.
+    const auto reached = [&](double x) {
+        if (jump <= 0) return statistics.acv_normalized(x) < 1e-17;
+        for (int j = 0; j < 16; ++j)
+            if (std::abs(statistics.acv_normalized(x + j * (2 * kPi / jump) / 16)) > kJumpTail) return false;
+        return true;
+    };
     double x_max = length;
-    while (statistics.acv_normalized(x_max) >= 1e-17) {
+    while (!reached(x_max)) {
         x_max *= 2;
         if (x_max > 1e6 * length)
-            fail("the profile ACV of {} does not decay below 1e-17 within 1e6 correlation lengths",
-                 statistics.cache_key());
+            fail("the profile ACV of {} does not decay below {:.0e} within 1e6 correlation lengths",
+                 statistics.cache_key(), jump > 0 ? kJumpTail : 1e-17);
+    }
+    const double taper_from = jump > 0 ? x_max : std::numeric_limits<double>::infinity();
+    if (jump > 0) {
+        x_max *= 2;
+        psd_ = &statistics;
     }
     const double panel = std::min(0.5 * length, 2.0 * kPi / zeta_max);  // one period of the fastest cosine at most
     static const math::GaussLegendreRule rule(16);
     const auto add_panel = [&](double a, double b) {
         for (std::size_t j = 0; j < rule.nodes.size(); ++j) {
             const double x = 0.5 * (a + b) + 0.5 * (b - a) * rule.nodes[j];
+            // cos^2 taper over [taper_from, 2 taper_from]: what it leaves out is the ringing's, at frequencies within
+            // a few zeta_j of 0, so that it moves the lobe near specular only (a hard end would ripple at every zeta)
+            const double taper =
+                x > taper_from ? 0.5 * (1 + std::cos(kPi * (x - taper_from) / taper_from)) : 1.0;
             x_.push_back(x);
-            weight_.push_back(0.5 * (b - a) * rule.weights[j]);
+            weight_.push_back(0.5 * (b - a) * rule.weights[j] * taper);
             rho_.push_back(statistics.acv_normalized(x));
         }
     };
@@ -149,8 +172,27 @@ double ProfileAcvTransform::transform(F&& f, double zeta) const {
     return sum / kPi;  // (2 pi)^-1 int over the whole line of an even function
 }
 
+double ProfileAcvTransform::first_order(double zeta) const {
+    const double sigma = psd_->sigma_h();
+    return surface::profile_psd(*psd_, zeta) / (sigma * sigma);
+}
+
 double ProfileAcvTransform::lobe(double g, double zeta) const {
     const double e_g = std::exp(-g);
+    if (psd_) {  // g e^{-g} P1-hat from the PSD, the orders >= 2 from e^{-g} (e^{g rho} - 1 - g rho)
+        const double rest = transform(
+            [&](double rho) {
+                const double a = g * rho;
+                if (a > 1) return std::exp(-g * (1 - rho)) - e_g * (1 + a);
+                if (std::abs(a) >= 0.5) return e_g * (std::expm1(a) - a);
+                // e^a - 1 - a by its series where it would cancel
+                double term = a * a / 2, sum = 0;
+                for (int n = 3; std::abs(term) > 1e-17 * std::abs(sum); ++n) sum += term, term *= a / n;
+                return e_g * sum;
+            },
+            zeta);
+        return g * e_g * first_order(zeta) + rest;
+    }
     // e^{-g} (e^{g rho} - 1) without overflow for large g nor cancellation for small g rho.
     return transform(
         [&](double rho) { return g * rho > 1 ? std::exp(-g * (1 - rho)) - e_g : e_g * std::expm1(g * rho); }, zeta);
@@ -158,6 +200,7 @@ double ProfileAcvTransform::lobe(double g, double zeta) const {
 
 double ProfileAcvTransform::order(int m, double zeta) const {
     if (m < 1) fail("self-convolution order must be >= 1, got {}", m);
+    if (psd_ && m == 1) return first_order(zeta);
     return transform([&](double rho) { return std::pow(rho, m); }, zeta);
 }
 
@@ -297,6 +340,45 @@ ProfileLobe profile_lobe(const surface::RadialStatistics& statistics, const mate
                  theta_o * 180 / kPi, theta_i_rad * 180 / kPi, lambda_nm);
         out.intensity_per_rad.push_back(std::max(0.0, value));  // the quadrature's round-off below zero
     }
+    return out;
+}
+
+ProfileLobe two_scale_profile_lobe(const surface::RadialStatistics& statistics, const material::Conductor& conductor,
+                                   double lambda_nm, double theta_i_rad, ProfilePolarisation polarisation,
+                                   const std::vector<double>& theta_o_rad, double cutoff_wavelengths) {
+    check_lobe_input(lambda_nm, theta_i_rad, theta_o_rad);
+    require_finite(cutoff_wavelengths, "two_scale cutoff_wavelengths");
+    require_positive(cutoff_wavelengths, "two_scale cutoff_wavelengths");
+    const double zeta_c = surface::cutoff_frequency(kTwoScaleReferenceWavelength, cutoff_wavelengths);
+    // The split keeps its base only for this call: a non-owning pointer.
+    const std::shared_ptr<const surface::RadialStatistics> base(std::shared_ptr<const void>(), &statistics);
+    const surface::PsdSplit split = surface::split_psd(base, zeta_c, surface::LowPassFilter::sharp);
+    if (!(split.slope2_macro > 0) || !std::isfinite(split.slope2_macro))
+        fail("two_scale: the low-pass part of {} below zeta_c {:.4g} rad/um has rms slope {}: no macro NDF",
+             statistics.cache_key(), zeta_c, std::sqrt(split.slope2_macro));
+    ProfileLobe out;
+    double macro_weight = 1, micro_energy = 0;
+    if (split.micro) {
+        out = profile_lobe(*split.micro, conductor, lambda_nm, theta_i_rad, polarisation, ProfileModelOptions{},
+                           theta_o_rad);
+        const double a = 2 * surface::wavenumber_per_um(lambda_nm) * out.sigma_um * std::cos(theta_i_rad);
+        macro_weight = std::exp(-a * a);
+        // R (1 - e^{-g0}): the lobe is K renormalised to it
+        micro_energy = -polarised_reflectance(conductor, std::cos(theta_i_rad), lambda_nm, polarisation) *
+                       std::expm1(-a * a);
+        out.coherent = 0;
+    } else {
+        out.intensity_per_rad.assign(theta_o_rad.size(), 0.0);
+    }
+    const std::vector<double> macro =
+        ggx_lobe(split.slope2_macro, conductor, lambda_nm, theta_i_rad, polarisation, theta_o_rad);
+    for (std::size_t j = 0; j < macro.size(); ++j) out.intensity_per_rad[j] += macro_weight * macro[j];
+    const auto macro_at = [&](double theta_o) {
+        return ggx_lobe(split.slope2_macro, conductor, lambda_nm, theta_i_rad, polarisation, {theta_o}).front();
+    };
+    // The lobe's width in theta_o is about 2 alpha (theta_o = theta_i + 2 b).
+    out.energy = micro_energy + macro_weight * integrate_peaked(macro_at, -kPi / 2, kPi / 2, theta_i_rad,
+                                                                2 * std::sqrt(split.slope2_macro));
     return out;
 }
 

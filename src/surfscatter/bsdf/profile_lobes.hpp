@@ -29,6 +29,7 @@
 // Bad input throws Error: a wavelength outside [0.1, 1e8] nm, theta_i outside [0, 90) deg, theta_o outside
 // [-90, 90] deg or more than kMaxListItems of them, statistics whose ACV does not decay, a correlation length needing
 // more than 1e6 panels (~1e5 wavelengths), a renormalised lobe with no mass over the visible directions.
+#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -61,10 +62,16 @@ struct ProfileLobe {
     double coherent = 0;                    // the specular (coherent) fraction of the incident power
     double sigma_um = 0;                    // sigma in g: sigma_rel or sigma_h
     double normalization = 1;               // K (ghs), K1 (ghs_ssa energy), 1 otherwise
+    // coherent + the integral of the incoherent part over theta_o in [-90, 90] deg, where the model gives it itself
+    // (two_scale: its macro lobe can be narrower than any grid of theta_o); otherwise integrate intensity_per_rad.
+    std::optional<double> energy;
 };
 
 // (2 pi)^-1 int f(rho(x)) e^{-i zeta x} dx for the profile ACV rho of `statistics`, by the fixed rule above, for
-// |zeta| <= zeta_max (rad/um).
+// |zeta| <= zeta_max (rad/um). A PSD with a jump (psd_jump_radius() > 0: the high-pass part of a sharp cut, whose ACV
+// rings and decays as x^-3/2) has its first order read from the PSD (surface::profile_psd) and only the orders >= 2
+// from the ACV, out to where the ringing's envelope falls below 1e-3 and then tapered (cos^2) to 0 over as long again
+// (docs/MODELS.md "One-dimensional forms", two_scale); `statistics` must then outlive the transform.
 class ProfileAcvTransform {
 public:
     ProfileAcvTransform(const surface::RadialStatistics& statistics, double zeta_max);
@@ -75,7 +82,9 @@ public:
 private:
     template <typename F>
     double transform(F&& f, double zeta) const;
+    double first_order(double zeta) const;  // P1-hat(zeta) of psd_
     std::vector<double> x_, weight_, rho_;
+    const surface::RadialStatistics* psd_ = nullptr;  // a PSD with a jump: its first order read from it
 };
 
 // The 1-D relevant roughness: sigma_rel^2 = int P1 over zeta in [-k (1 + sin i), k (1 - sin i)], um.
@@ -102,5 +111,20 @@ ProfileLobe profile_lobe(const surface::RadialStatistics& statistics, const mate
 ProfileLobe ggx_profile_lobe(const surface::RadialStatistics& statistics, const material::Conductor& conductor,
                              double lambda_nm, double theta_i_rad, ProfilePolarisation polarisation,
                              const std::vector<double>& theta_o_rad);
+
+// two_scale in one dimension (docs/MODELS.md "One-dimensional forms", "two_scale"): the cut through the plane of
+// incidence of two_scale.hpp's model with its sharp split at zeta_c = k_ref / cutoff_wavelengths (k_ref at
+// kTwoScaleReferenceWavelength, 550 nm) and its GGX macro NDF:
+//   I(theta_o) = e^{-g0,micro} I_GGX(theta_o; alpha^2 = <|grad h_LP|^2>) + I_GHS,micro(theta_o),
+// I_GGX ggx_profile_lobe's form with the low-pass part's rms slope, I_GHS,micro profile_lobe's renormalised GHS of
+// the high-pass part (surface::SharpCutStatistics; its first order from the PSD, ProfileAcvTransform), e^{-g0,micro}
+// = its coherent fraction, which the macro facets spread: no coherent part. `energy`: R(theta_i) (1 - e^{-g0,micro})
+// (the micro GHS's, exact by K) + e^{-g0,micro} x the GGX lobe's integral (adaptive, 1e-10). Without micro roughness (less than
+// surface::kMinCutFraction of the variance above zeta_c) the GGX lobe alone, of weight 1. Accuracy: the GHS's near
+// its tests' measured bounds (test_profile_lobes.cpp, TwoScale*). Throws Error for bad input as profile_lobe, a
+// cutoff_wavelengths not finite and > 0, or a low-pass part without slope.
+ProfileLobe two_scale_profile_lobe(const surface::RadialStatistics& statistics, const material::Conductor& conductor,
+                                   double lambda_nm, double theta_i_rad, ProfilePolarisation polarisation,
+                                   const std::vector<double>& theta_o_rad, double cutoff_wavelengths = 100);
 
 }  // namespace surfscatter::bsdf

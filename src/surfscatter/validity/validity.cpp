@@ -191,10 +191,11 @@ Verdict decide(const std::vector<ModelResult>& models, const Criteria& criteria,
     v.indistinguishable.push_back(best.model);
     double lead = 0, lead_u = 0;
     std::string runner_up;
+    const double useful = kUsefulLead * criteria.tolerance;
     for (std::size_t i = 1; i < order.size(); ++i) {
         const double u = lead_uncertainty(best, *order[i]);
         const double d = order[i]->comparison.median_rel_error - best.comparison.median_rel_error;
-        if (d <= u) v.indistinguishable.push_back(order[i]->model);
+        if (d <= std::max(u, useful)) v.indistinguishable.push_back(order[i]->model);
         if (i == 1) lead = d, lead_u = u, runner_up = order[i]->model;
     }
     std::string ruled_out;
@@ -222,12 +223,14 @@ Verdict decide(const std::vector<ModelResult>& models, const Criteria& criteria,
     if (v.trusted) {
         v.text = "trust " + best_text;
         if (!runner_up.empty())
-            v.text += fmt::format(": {} points ahead of {}, beyond their uncertainty of {}", points(lead), runner_up,
-                                  points(lead_u));
+            v.text += fmt::format(": {} points ahead of {}, beyond their uncertainty of {} and a tenth of the "
+                                  "tolerance", points(lead), runner_up, points(lead_u));
     } else if (best_within) {
         v.text = fmt::format("no single model can be trusted: {} and {} are indistinguishable at this reference's "
-                             "uncertainty (lead over {} {} points, uncertainty {}); within the tolerance {}:",
-                             best_text, tied, runner_up, points(lead), points(lead_u), percent(criteria.tolerance));
+                             "uncertainty (lead over {} {} points, uncertainty {}, a useful lead at least {}); within "
+                             "the tolerance {}:",
+                             best_text, tied, runner_up, points(lead), points(lead_u), points(useful),
+                             percent(criteria.tolerance));
         for (const std::string& name : v.within_tolerance) v.text += " " + name;
     } else {
         v.text = fmt::format("no model is within the tolerance {}: the closest is {}", percent(criteria.tolerance),
@@ -386,7 +389,9 @@ std::vector<ProfileCase> profile_validity(const surface::RadialStatistics& stati
                     ModelResult m;
                     m.model = name;
                     m.coherent = lobe.coherent;
-                    m.model_energy = lobe.coherent + trapezoid(pc.reference.theta_o_rad, lobe.intensity_per_rad);
+                    m.model_energy = lobe.energy ? *lobe.energy
+                                                 : lobe.coherent + trapezoid(pc.reference.theta_o_rad,
+                                                                             lobe.intensity_per_rad);
                     m.incoherent_per_rad = lobe.intensity_per_rad;
                     curves.push_back(lobe.intensity_per_rad);
                     pc.models.push_back(std::move(m));
@@ -401,6 +406,12 @@ std::vector<ProfileCase> profile_validity(const surface::RadialStatistics& stati
                 try {
                     add("ggx_stats", bsdf::ggx_profile_lobe(statistics, conductor, lambda, theta_i * kDegree,
                                                             polarisation, pc.reference.theta_o_rad));
+                } catch (const Error& e) {
+                    pc.not_compared.push_back(e.what());
+                }
+                try {
+                    add("two_scale", bsdf::two_scale_profile_lobe(statistics, conductor, lambda, theta_i * kDegree,
+                                                                  polarisation, pc.reference.theta_o_rad));
                 } catch (const Error& e) {
                     pc.not_compared.push_back(e.what());
                 }

@@ -1,6 +1,6 @@
 #pragma once
-// Which model to trust for a surface (docs/VALIDITY.md): the 1-D forms of GHS, SSA, Kirchhoff and GGX from statistics
-// (bsdf/profile_lobes.hpp) against the rigorous exact-1d solution averaged over random profiles
+// Which model to trust for a surface (docs/VALIDITY.md): the 1-D forms of GHS, SSA, Kirchhoff, GGX from statistics
+// and two_scale (bsdf/profile_lobes.hpp) against the rigorous exact-1d solution averaged over random profiles
 // (reference/exact_1d_statistics.hpp), per wavelength, incidence and polarisation.
 //
 // The comparison is of the incoherent (diffuse) parts, per radian of scattering angle, over the directions where the
@@ -22,9 +22,11 @@
 //   the same moves (the reference's error is common to both: it cancels where both lie on the same side of the
 //   reference beyond its error, adds where they straddle it, and counts in full where a move would carry it past
 //   one of them), combined with both models' own accuracies in quadrature;
-// * a is trusted when e_a <= tolerance and e_b - e_a > u_ab for every other model b; the models b with
-//   e_b - e_a <= u_ab are indistinguishable from a and the verdict names them; a model with e > tolerance + 2 u is
-//   ruled out.
+// * a is trusted when e_a <= tolerance and e_b - e_a > max(u_ab, kUsefulLead x tolerance) for every other model b:
+//   a lead must be beyond the uncertainty and also worth acting on (docs/VALIDITY.md "Verdicts": below a tenth of
+//   the tolerance, a user who accepts errors up to the tolerance has no reason to prefer one model); the models b
+//   with e_b - e_a <= max(u_ab, kUsefulLead x tolerance) are indistinguishable from a and the verdict names them; a
+//   model with e > tolerance + 2 u is ruled out.
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -36,6 +38,9 @@
 #include "surfscatter/surface/radial_statistics.hpp"
 
 namespace surfscatter::validity {
+
+// The smallest lead, as a fraction of the tolerance, that makes a model trusted over another (header, decide).
+inline constexpr double kUsefulLead = 0.1;
 
 struct Criteria {
     double peak_fraction = 0.01;        // directions used: reference >= this of its peak
@@ -92,7 +97,7 @@ CurveComparison compare_curves(const std::vector<double>& theta_o_rad, const std
                                const Criteria& criteria, const std::vector<char>& left_out = {});
 
 struct ModelResult {
-    std::string model;  // ghs | ghs_ssa | kirchhoff | ggx_stats (map route: the factory's names)
+    std::string model;  // ghs | ghs_ssa | kirchhoff | ggx_stats | two_scale (map route: the factory's names)
     CurveComparison comparison;
     double model_energy = 0;  // coherent + integral of the incoherent part
     std::vector<double> incoherent_per_rad;  // on the reference's grid, before binning
@@ -126,7 +131,7 @@ struct ProfileCase {
     reference::StatisticalResult reference;
     double reference_energy = 0;
     BinnedCurves binned;  // what the comparison used; binned.models in the order of `models`
-    // ghs, ghs_ssa, kirchhoff, then ggx_stats where its rms slope is finite (else in not_compared)
+    // ghs, ghs_ssa, kirchhoff, then ggx_stats where its rms slope is finite and two_scale (else in not_compared)
     std::vector<ModelResult> models;
     std::vector<std::string> not_compared;  // why a model is left out
     Verdict verdict;
