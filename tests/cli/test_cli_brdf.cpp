@@ -425,6 +425,7 @@ TEST(CliBrdf, ExportWritesAnRglFileAndTheDeltaTable) {
     const auto r = with({"--tolerance", "1e6"});  // 3 incidences: 80x off at grazing incidence
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("accuracy: the file against the model at"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.rfind("writing " + out + ": 0 MB at 3 incidences, up to 0 MB if the refinement adds", 0), 0u) << r.out;
     const auto bad_tolerance = with({"--tolerance", "0"});
     EXPECT_EQ(bad_tolerance.exit_code, 2);
     EXPECT_NE(bad_tolerance.err.find("--tolerance must be a percentage > 0, got 0"), std::string::npos)
