@@ -130,10 +130,12 @@ public:
         for (std::size_t k = 0; k < (rgb_ ? 1 : lambdas_.size()); ++k) {
             std::vector<double> f(wos.size());
             double peak = 0;
-            for (std::size_t j = 0; j < wos.size(); ++j) peak = std::max(peak, f[j] = value(model_, wi, wos[j], k));
+            // The peak outside the excluded core, so that the floor is relative to what is compared.
+            for (std::size_t j = 0; j < wos.size(); ++j)
+                if (dot(wos[j], wos[0]) <= mirror_cos_) peak = std::max(peak, f[j] = value(model_, wi, wos[j], k));
             for (std::size_t j = 0; j < wos.size(); ++j) {
-                if (!(f[j] >= kFloor * peak && f[j] > 0) || wos[j].z < std::cos(kMaxThetaO * kDegree) ||
-                    dot(wos[j], wos[0]) > mirror_cos_)
+                if (dot(wos[j], wos[0]) > mirror_cos_ || !(f[j] >= kFloor * peak && f[j] > 0) ||
+                    wos[j].z < std::cos(kMaxThetaO * kDegree))
                     continue;
                 const double e = std::abs(value(file_, wi, wos[j], k) / f[j] - 1);
                 sum_sq_ += e * e;

@@ -57,7 +57,8 @@ RglData export_rgl(const Bsdf& model, const RglExportOptions& options, const std
 // uniform), each with `directions` outgoing directions uniform over the hemisphere, as many drawn from the model's own
 // sampler (where its lobe is), and the specular direction; at `lambda_nm` (spectral files) or as the CIE Y under D65
 // of both spectra over 360-830 nm (rgb files, whose table holds colours); directions within `mirror_exclusion_rad` of
-// the mirror direction are left out (a SpecularAsLobe model: its lobe's core, whose energy the albedo measures).
+// the mirror direction are left out, the 1 % floor then taken of the peak outside them (a SpecularAsLobe model: its
+// lobe's core, whose energy the albedo measures).
 // Deterministic (fixed seed).
 struct RglAccuracy {
     double worst = 0;             // the largest relative error found
