@@ -432,6 +432,7 @@ void bind_bsdf(py::module_& m) {
             bsdf::check_rgl_accuracy({}, tolerance_percent, "tolerance_percent", path);
             std::optional<bsdf::SpecularAsLobe> with_lobe;
             if (specular_lobe_deg) with_lobe.emplace(*b.model, *specular_lobe_deg * kDegree);
+            if (with_lobe) o.mirror_exclusion_rad = with_lobe->core_rad();
             const bsdf::Bsdf& tabulated = with_lobe ? static_cast<const bsdf::Bsdf&>(*with_lobe) : *b.model;
             bsdf::RglAccuracy acc;
             {

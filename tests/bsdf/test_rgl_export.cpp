@@ -133,6 +133,29 @@ TEST(RglExport, AnisotropicReadBack) {
     EXPECT_LT(std::max(on.albedo, off.albedo), 0.02);
 }
 
+// rgl_export_bytes (the size `brdf export` announces before the work) against the written file, isotropic and
+// anisotropic, spectral and rgb: within the header and 1-D fields' few kilobytes.
+TEST(RglExport, AnnouncedSizeIsTheFiles) {
+    ModelOptions mo = test::kc_options(ModelKind::ggx, 0.08, 3.0, 3.5);
+    mo.material = "Au";
+    const auto iso = make_bsdf(mo);
+    mo.surface.corr_length_v = 1.0;
+    const auto aniso = make_bsdf(mo);
+    const auto path = std::filesystem::temp_directory_path() / ("rgl_size_" + std::to_string(::getpid()) + ".bsdf");
+    for (const Bsdf* model : {iso.get(), aniso.get()})
+        for (bool rgb : {false, true}) {
+            RglExportOptions o = fast(4);
+            o.phi_i_count = 5, o.ndf_resolution = 24, o.sample_resolution = 12, o.rgb = rgb;
+            const RglData data = export_rgl(*model, o, "test");
+            write_rgl(path, data);
+            const double announced = rgl_export_bytes(o, model->isotropic(), data.theta_i.size());
+            const double written = double(std::filesystem::file_size(path));
+            EXPECT_GT(written, announced) << model->isotropic() << rgb;
+            EXPECT_LT(written, announced + 4096) << model->isotropic() << rgb;
+        }
+    std::filesystem::remove(path);
+}
+
 // rgl_accuracy (what `brdf export` prints and holds against --tolerance) against this file's own grid measure: both
 // see a fine export within a few percent and a coarse one (6 x 6 samples, NDF 12) far off.
 TEST(RglExport, AccuracyReportAgreesWithTheGrid) {
@@ -204,6 +227,7 @@ TEST(RglExport, SpecularLobeCarriesTheDeltasEnergy) {
     }
     RglExportOptions o = fast(9);
     o.tolerance_percent = 2;
+    o.mirror_exclusion_rad = lobe.core_rad();  // as brdf export: the refinement leaves the lobe's core out
     const RglData data = export_rgl(lobe, o, "test");
     const RglMeasuredBsdf back(data);
     for (double theta : {0.0, 40.0, 70.0}) {

@@ -154,5 +154,25 @@ def test_a_real_script_unreadable_input_and_bad_output(tmp_path):
              f"cannot write {tmp_path / 'sheet.tif2'}: the extension .tif2 is not an image format")
 
 
+def test_measured_vs_model_sheet(tmp_path):
+    # scripts/measured-vs-model's sheet: two renders that differ in a patch make one row; a row without its second
+    # image fails in one line and writes nothing.
+    import numpy
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    a = numpy.zeros((60, 80, 3))
+    b = a.copy()
+    b[20:30, 30:50] = 0.5
+    plt.imsave(tmp_path / "a.png", a)
+    plt.imsave(tmp_path / "b.png", b)
+    sheet = tmp_path / "sheet.png"
+    assert run([PLOT / "measured_vs_model.py", sheet, "title", f"view 1={tmp_path / 'a.png'},{tmp_path / 'b.png'}"]).returncode == 0
+    assert sheet.stat().st_size > 0
+    bad = tmp_path / "bad.png"
+    one_line(run([PLOT / "measured_vs_model.py", bad, "title", f"view 1={tmp_path / 'a.png'}"]), "measured_vs_model.py: ")
+    assert not bad.exists()
+
+
 if __name__ == "__main__":
     sys.exit(pytest.main([__file__, "-q"]))

@@ -104,8 +104,10 @@ namespace {
 // The comparison of rgl_accuracy, one incidence at a time.
 class AccuracyProbe {
 public:
-    AccuracyProbe(const Bsdf& model, const Bsdf& file, const std::vector<double>& lambda_nm, bool rgb, int directions)
-        : model_(model), file_(file), lambdas_(lambda_nm), rgb_(rgb), directions_(directions), rng_(35) {
+    AccuracyProbe(const Bsdf& model, const Bsdf& file, const std::vector<double>& lambda_nm, bool rgb, int directions,
+                  double mirror_exclusion_rad = 0)
+        : model_(model), file_(file), lambdas_(lambda_nm), rgb_(rgb), directions_(directions),
+          mirror_cos_(mirror_exclusion_rad > 0 ? std::cos(mirror_exclusion_rad) : 2.0), rng_(35) {
         if (rgb) {
             lambdas_.clear();
             for (double l = 360; l <= 830 + 1e-9; l += 10) lambdas_.push_back(l);
@@ -128,9 +130,13 @@ public:
         for (std::size_t k = 0; k < (rgb_ ? 1 : lambdas_.size()); ++k) {
             std::vector<double> f(wos.size());
             double peak = 0;
-            for (std::size_t j = 0; j < wos.size(); ++j) peak = std::max(peak, f[j] = value(model_, wi, wos[j], k));
+            // The peak outside the excluded core, so that the floor is relative to what is compared.
+            for (std::size_t j = 0; j < wos.size(); ++j)
+                if (dot(wos[j], wos[0]) <= mirror_cos_) peak = std::max(peak, f[j] = value(model_, wi, wos[j], k));
             for (std::size_t j = 0; j < wos.size(); ++j) {
-                if (!(f[j] >= kFloor * peak && f[j] > 0) || wos[j].z < std::cos(kMaxThetaO * kDegree)) continue;
+                if (dot(wos[j], wos[0]) > mirror_cos_ || !(f[j] >= kFloor * peak && f[j] > 0) ||
+                    wos[j].z < std::cos(kMaxThetaO * kDegree))
+                    continue;
                 const double e = std::abs(value(file_, wi, wos[j], k) / f[j] - 1);
                 sum_sq_ += e * e;
                 ++acc_.compared;
@@ -164,6 +170,7 @@ private:
     std::vector<Vec3> weights_;
     bool rgb_;
     int directions_;
+    double mirror_cos_;  // directions closer than this to the mirror direction are not compared
     std::mt19937_64 rng_;
     RglAccuracy acc_;
     double sum_sq_ = 0;
@@ -172,8 +179,9 @@ private:
 }  // namespace
 
 RglAccuracy rgl_accuracy(const Bsdf& model, const RglMeasuredBsdf& file, double theta_i_max_deg,
-                         const std::vector<double>& lambda_nm, bool rgb, int incidences, int directions) {
-    AccuracyProbe probe(model, file, lambda_nm, rgb, directions);
+                         const std::vector<double>& lambda_nm, bool rgb, int incidences, int directions,
+                         double mirror_exclusion_rad) {
+    AccuracyProbe probe(model, file, lambda_nm, rgb, directions, mirror_exclusion_rad);
     for (int n = 0; n < incidences; ++n) {
         const double theta_i = theta_i_max_deg * probe.uniform() * kDegree;
         const double phi_i = (2 * probe.uniform() - 1) * kPi;
@@ -187,7 +195,7 @@ RglAccuracy rgl_file_accuracy(const Bsdf& model, const std::filesystem::path& pa
     const RglMeasuredBsdf file(data);
     std::vector<double> lambdas;
     if (!data.rgb) lambdas = {data.wavelengths.front(), o.reference_lambda_nm, data.wavelengths.back()};
-    return rgl_accuracy(model, file, o.theta_i_max_deg, lambdas, data.rgb);
+    return rgl_accuracy(model, file, o.theta_i_max_deg, lambdas, data.rgb, 24, 256, o.mirror_exclusion_rad);
 }
 
 std::string rgl_accuracy_where(const RglAccuracy& a) {
@@ -323,7 +331,7 @@ void refine_incidences(const Bsdf& model, const RglExportOptions& o, const Margi
         trial.wavelengths = check;
         tabulate(model, o, ndf, sigma, check, trial);
         const RglMeasuredBsdf file(trial);
-        AccuracyProbe probe(model, file, check, false, 64);
+        AccuracyProbe probe(model, file, check, false, 64, o.mirror_exclusion_rad);
         std::vector<double> nodes;
         for (std::size_t k = 0; k < d.theta_i.size(); ++k) {
             nodes.push_back(d.theta_i[k]);
@@ -339,6 +347,21 @@ void refine_incidences(const Bsdf& model, const RglExportOptions& o, const Margi
 }
 
 }  // namespace
+
+std::vector<double> rgl_export_wavelengths(const RglExportOptions& o) {
+    std::vector<double> lambda;
+    const int n = static_cast<int>(std::ceil((o.lambda_max_nm - o.lambda_min_nm) / o.lambda_step_nm - 1e-9)) + 1;
+    for (int k = 0; k < n; ++k) lambda.push_back(std::min(o.lambda_max_nm, o.lambda_min_nm + o.lambda_step_nm * k));
+    return lambda;
+}
+
+double rgl_export_bytes(const RglExportOptions& o, bool isotropic, std::size_t incidences) {
+    const double slices = double(incidences) * (isotropic ? 1.0 : double(o.phi_i_count));
+    const double channels = o.rgb ? 3.0 : double(rgl_export_wavelengths(o).size());
+    const double ns = o.sample_resolution, nt = o.ndf_resolution, np = isotropic ? 2.0 : nt;
+    // float32 spectra (or rgb) and luminance at ns^2 nodes, the VNDF at nt^2, NDF and sigma; one valid bit per node.
+    return 4 * (slices * ((channels + 1) * ns * ns + nt * nt) + 2 * np * nt) + slices * ns * ns / 8;
+}
 
 RglData export_rgl(const Bsdf& model, const RglExportOptions& o, const std::string& description) {
     check(o.theta_i_count >= 2 && o.theta_i_count <= 256, "--theta-i-count must be in 2..256");
@@ -366,8 +389,7 @@ RglData export_rgl(const Bsdf& model, const RglExportOptions& o, const std::stri
     if (o.rgb) {
         for (double l = 360; l <= 830 + 1e-9; l += 5) lambda.push_back(l);
     } else {
-        const int n = static_cast<int>(std::ceil((o.lambda_max_nm - o.lambda_min_nm) / o.lambda_step_nm - 1e-9)) + 1;
-        for (int k = 0; k < n; ++k) lambda.push_back(std::min(o.lambda_max_nm, o.lambda_min_nm + o.lambda_step_nm * k));
+        lambda = rgl_export_wavelengths(o);
         d.wavelengths = lambda;
     }
     for (double l : lambda) model.eval({0, 0, 1}, {0, 0, 1}, l);  // a wavelength the material lacks fails first

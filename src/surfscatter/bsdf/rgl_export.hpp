@@ -12,6 +12,7 @@
 // reader's own interpolated D and sigma (jacobian = 1), so a reader reproduces f exactly at the nodes. The coherent
 // specular (delta) part of a model is not in the file (eval excludes it): delta_table() gives it for a separate
 // smooth component.
+#include <cmath>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -34,7 +35,16 @@ struct RglExportOptions {
     // > 0: incidences are added (up to 64) between those whose midpoint the file misses by more than this (percent,
     // at the first, reference and last wavelengths; rgl_accuracy's measure); 0: theta_i_count uniform incidences.
     double tolerance_percent = 0;
+    // > 0 (a SpecularAsLobe model: its core_rad()): directions this close to the mirror direction are left out of the
+    // refinement's and rgl_file_accuracy's comparison (the lobe's core, whose energy the albedo measures).
+    double mirror_exclusion_rad = 0;
 };
+
+// The wavelengths a spectral export holds (o.lambda_min_nm to o.lambda_max_nm in o.lambda_step_nm steps).
+std::vector<double> rgl_export_wavelengths(const RglExportOptions& o);
+// Bytes of the file export_rgl writes with `incidences` theta_i nodes (its tables; the rest is a few kilobytes), so
+// that a caller can say how large it will be before the work.
+double rgl_export_bytes(const RglExportOptions& o, bool isotropic, std::size_t incidences);
 
 // Throws Error on an option out of range (each named as the CLI spells it) or a model the material cannot evaluate
 // over the wavelengths (its own message).
@@ -46,7 +56,10 @@ RglData export_rgl(const Bsdf& model, const RglExportOptions& options, const std
 // a render multiplies back), at `incidences` random incidences (theta_i uniform over [0, theta_i_max_deg], phi_i
 // uniform), each with `directions` outgoing directions uniform over the hemisphere, as many drawn from the model's own
 // sampler (where its lobe is), and the specular direction; at `lambda_nm` (spectral files) or as the CIE Y under D65
-// of both spectra over 360-830 nm (rgb files, whose table holds colours). Deterministic (fixed seed).
+// of both spectra over 360-830 nm (rgb files, whose table holds colours); directions within `mirror_exclusion_rad` of
+// the mirror direction are left out, the 1 % floor then taken of the peak outside them (a SpecularAsLobe model: its
+// lobe's core, whose energy the albedo measures).
+// Deterministic (fixed seed).
 struct RglAccuracy {
     double worst = 0;             // the largest relative error found
     double theta_i_deg = 0, phi_i_deg = 0, theta_o_deg = 0, phi_o_deg = 0, lambda_nm = 0;  // where (lambda 0: Y)
@@ -54,7 +67,8 @@ struct RglAccuracy {
     double rms = 0;               // root mean square of the relative errors compared
 };
 RglAccuracy rgl_accuracy(const Bsdf& model, const RglMeasuredBsdf& file, double theta_i_max_deg,
-                         const std::vector<double>& lambda_nm, bool rgb, int incidences = 24, int directions = 256);
+                         const std::vector<double>& lambda_nm, bool rgb, int incidences = 24, int directions = 256,
+                         double mirror_exclusion_rad = 0);
 
 // The file at `path`, as written by export_rgl with options `o`, read back from disk and measured at its lowest,
 // reference and highest wavelengths (rgb files: CIE Y); `where` describes the worst direction in words.
@@ -80,6 +94,8 @@ public:
     double pdf(const Vec3& wi, const Vec3& wo, double lambda_nm) const override { return model_.pdf(wi, wo, lambda_nm); }
     bool isotropic() const override { return model_.isotropic(); }
     std::string name() const override { return model_.name(); }
+    // The lobe's core, 8 standard deviations: what the accuracy measure leaves out (RglExportOptions).
+    double core_rad() const { return 8 / std::sqrt(kappa_); }
 
 private:
     const Bsdf& model_;
