@@ -1,7 +1,7 @@
-// fit_brdf against data the fitted models did not make: the Kirchhoff BRDF (reference/kirchhoff_map) of a synthesised
-// KC map of known statistics, at three wavelengths, with 3 % multiplicative Gaussian noise, over a narrow range that
-// cannot constrain gamma; bad data. (The rough-map recovery and the smooth case against Rayleigh-Rice are not here yet:
-// docs/FIT.md "Left to do".)
+// fit_brdf against data the fitted models did not make: the Kirchhoff BRDF (reference/kirchhoff_map) of synthesised KC
+// maps of known statistics and `reference exact-1d`'s statistical mode, with 3 % multiplicative Gaussian noise: the
+// rough map's sigma and L, the smooth case's PSD against Rayleigh-Rice, 1-D profile data, a narrow range that cannot
+// constrain gamma; bad data (docs/FIT.md "Accuracy").
 #include <gtest/gtest.h>
 
 #include <algorithm>
