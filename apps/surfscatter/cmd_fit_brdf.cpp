@@ -22,7 +22,7 @@ namespace surfscatter::cli {
 namespace {
 
 struct FitArgs {
-    std::string data, material, psd = "kc", output;
+    std::string data, material, psd = "kc", output, profile;
     std::vector<std::string> models, fixes;
     std::vector<double> wavelengths;  // RGL files: the wavelengths read (default 450, 550, 650 nm)
     bool anisotropic = false;
@@ -58,6 +58,10 @@ void run(const FitArgs& a) {
     if (options.psd != bsdf::PsdKind::kc && options.psd != bsdf::PsdKind::gaussian)
         fail("--psd must be kc or gaussian for a fit, got '{}'", printable(a.psd));
     options.anisotropic = a.anisotropic;
+    if (!a.profile.empty()) {
+        if (rgl) fail("--profile applies to CSV data of a profile (1-D), not to an RGL .bsdf file");
+        options.profile = bsdf::parse_profile_polarisation(a.profile, "--profile");
+    }
     options.fixed = parse_fixes(a.fixes);
     if (!a.models.empty()) {
         options.models.clear();
@@ -101,6 +105,10 @@ const Command command("fit-brdf", [](CLI::App& app) {
     add_string_list(sub, "--model", a->models,
                     "models to fit, comma separated: " + bsdf::choices("model") + " (default all)");
     sub->add_option("--psd", a->psd, "surface statistics fitted: kc (sigma, L, gamma; default) | gaussian (sigma, L)");
+    sub->add_option("--profile", a->profile,
+                    "1-D data of this polarisation (s | p): rows in the plane of incidence (phi_i 0, phi_o 0 or 180), "
+                    "the brdf column the scattered power per radian of a profile, as reference exact-1d gives it; "
+                    "fitted with the models' 1-D forms (docs/FIT.md \"Profiles\")");
     sub->add_flag("--anisotropic", a->anisotropic, "also fit corr_length_v_um and lay_angle_deg (elliptical)");
     sub->add_option("--fix", a->fixes,
                     "hold a parameter: NAME=VALUE with NAME sigma_um, corr_length_um, gamma, corr_length_v_um or "

@@ -64,13 +64,18 @@ inverse::BrdfData data_of(const py::handle& data, const std::optional<std::vecto
 
 py::dict fit_brdf(const py::handle& data, const std::string& material, const std::vector<std::string>& models,
                   const std::string& psd, bool anisotropic, const std::map<std::string, double>& fix,
-                  const std::optional<std::vector<double>>& wavelengths_nm) {
+                  const std::optional<std::vector<double>>& wavelengths_nm, const std::optional<std::string>& profile) {
     const inverse::BrdfData brdf = data_of(data, wavelengths_nm);
     inverse::FitOptions options;
     options.material = material;
     options.psd = bsdf::parse_psd(psd, "psd");
     options.anisotropic = anisotropic;
     options.fixed = fix;
+    if (profile) {
+        if (!py::isinstance<py::dict>(data) && std::filesystem::path(path_string(data, "data")).extension() == ".bsdf")
+            fail("profile applies to data of a profile (1-D), not to an RGL .bsdf file");
+        options.profile = bsdf::parse_profile_polarisation(*profile, "profile");
+    }
     if (!models.empty()) {
         options.models.clear();
         for (const std::string& m : models) options.models.push_back(bsdf::parse_model(m, "models"));
@@ -96,12 +101,14 @@ py::dict fit_brdf(const py::handle& data, const std::string& material, const std
 void bind_inverse(py::module_& m) {
     m.def("fit_brdf", &fit_brdf, "data"_a, "material"_a, py::kw_only(),
           "models"_a = std::vector<std::string>{}, "psd"_a = "kc", "anisotropic"_a = false,
-          "fix"_a = std::map<std::string, double>{}, "wavelengths_nm"_a = py::none(),
+          "fix"_a = std::map<std::string, double>{}, "wavelengths_nm"_a = py::none(), "profile"_a = py::none(),
           "Fit each model's surface statistics to a measured BRDF (docs/FIT.md). data: a CSV path, an RGL measured "
           "file (.bsdf: its sample nodes at each incidence, at wavelengths_nm, default 450, 550, 650) or a dict of 1-D "
           "arrays wavelength_nm, theta_i_deg, phi_i_deg, theta_o_deg, phi_o_deg, brdf (1/sr, no cosine) and "
           "optionally brdf_stderr; models: names (default all four); psd: 'kc' or 'gaussian'; fix: "
-          "{'gamma': 3, ...}. Returns the dict of `surfscatter fit-brdf`'s JSON, each model with 'fitted' and "
+          "{'gamma': 3, ...}; profile: 's' or 'p' for 1-D data of that polarisation (rows in the plane of incidence, "
+          "brdf the scattered power per radian of a profile, as reference exact-1d gives it; the models' 1-D forms). "
+          "Returns the dict of `surfscatter fit-brdf`'s JSON, each model with 'fitted' and "
           "'residual' arrays per row.");
 }
 

@@ -61,3 +61,25 @@ def test_fit_brdf_reads_an_rgl_file(tmp_path):
     assert np.all(np.isfinite(got["models"][0]["residual"]))
     with pytest.raises(ss.Error, match=r"wavelengths_nm applies to RGL .bsdf data only"):
         ss.fit_brdf(columns(), "Au", models=["ggx_stats"], wavelengths_nm=[550.0])
+
+
+def test_fit_brdf_profile_data():
+    """profile='s': in-plane rows, exact-1d's signed angles mapped to phi_o (180 on the specular side). A round trip
+    of the format (the 1-D GHS lobe itself, sigma fitted with L and gamma held): an angle mapped to the wrong side
+    would move sigma; the accuracy against exact-1d is tests/inverse's FitBrdf.ProfileDataFromExact1d."""
+    theta_o = np.array([t for t in np.arange(-60.0, 61.0, 4.0) if abs(t - 30.0) > 3.0])
+    surface = ss.KCorrelation(sigma=0.1, corr_length=1.0, gamma=2.5)
+    data = {key: [] for key in ("wavelength_nm", "theta_i_deg", "phi_i_deg", "theta_o_deg", "phi_o_deg", "brdf")}
+    for wavelength in (600.0, 1000.0):
+        lobe = ss.profile_models(surface, "perfect", wavelength, 30.0, "s", theta_o_deg=theta_o, models=["ghs"])
+        for t, value in zip(theta_o, lobe["ghs"]["intensity_per_rad"]):
+            for key, v in zip(data, (wavelength, 30.0, 0.0, abs(t), 180.0 if t > 0 else 0.0, value)):
+                data[key].append(v)
+    data = {key: np.array(v) for key, v in data.items()}
+    got = ss.fit_brdf(data, "perfect", models=["ghs"], profile="s", fix={"corr_length_um": 1.0, "gamma": 2.5})
+    assert got["profile"] == "s"
+    assert got["models"][0]["parameters"]["sigma_um"]["value"] == pytest.approx(0.1, rel=1e-3)
+    with pytest.raises(ss.Error, match=r"profile must be s or p"):
+        ss.fit_brdf(data, "perfect", models=["ghs"], profile="x")
+    with pytest.raises(ss.Error, match=r"phi_o_deg must be 0 or 180 for profile data"):
+        ss.fit_brdf(columns(), "Au", models=["ghs"], profile="s")

@@ -93,7 +93,11 @@ TEST(CliFitBrdf, BadOptionsAreErrors) {
              {{"--psd", "gaussian", "--fix", "gamma=3"}, "fix gamma applies to psd kc only"},
              {{"--psd", "file"}, "--psd must be kc or gaussian"},
              {{"--model", "phong"}, "--model must be one of"},
-             {{"--wavelengths", "550"}, "--wavelengths applies to RGL .bsdf data only"}}) {
+             {{"--wavelengths", "550"}, "--wavelengths applies to RGL .bsdf data only"},
+             {{"--profile", "x"}, "--profile must be"},
+             {{"--profile", "s"}, "phi_o_deg must be 0 or 180 for profile data"},
+             {{"--profile", "s", "--model", "two_scale"}, "two_scale has no 1-D form"},
+             {{"--profile", "p", "--anisotropic"}, "anisotropic does not apply"}}) {
         std::vector<std::string> args = {"fit-brdf", "--data", kExample, "--material", "Au", "-o",
                                          (dir / "opt").string()};
         args.insert(args.end(), extra.begin(), extra.end());

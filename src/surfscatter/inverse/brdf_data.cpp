@@ -117,6 +117,11 @@ BrdfData read_brdf_rgl(const std::string& path, const std::vector<double>& wavel
     return data;
 }
 
+std::string row_name(const BrdfData& data, std::size_t j) {
+    return data.line.empty() || j >= data.line.size() ? fmt::format("{} row {}", data.source, j + 1)
+                                                      : fmt::format("{}:{}", data.source, data.line[j]);
+}
+
 void validate(const BrdfData& data) {
     const std::size_t n = data.brdf.size();
     for (const auto& [column, name] :
@@ -130,8 +135,7 @@ void validate(const BrdfData& data) {
     if (!data.line.empty() && data.line.size() != n) fail("{}: line numbers do not match the rows", data.source);
     std::set<std::tuple<double, double, double, double>> directions;
     for (std::size_t j = 0; j < n; ++j) {
-        const std::string row = data.line.empty() ? fmt::format("{} row {}", data.source, j + 1)
-                                                  : fmt::format("{}:{}", data.source, data.line[j]);
+        const std::string row = row_name(data, j);
         if (!(std::isfinite(data.wavelength_nm[j]) && data.wavelength_nm[j] > 0))
             fail("{}: wavelength_nm must be finite and > 0, got {}", row, data.wavelength_nm[j]);
         if (!(data.theta_i_deg[j] >= 0 && data.theta_i_deg[j] < 90))

@@ -39,4 +39,7 @@ BrdfData read_brdf_rgl(const std::string& path, const std::vector<double>& wavel
 // outgoing directions. Columns of unequal length are an Error too (data given as arrays).
 void validate(const BrdfData& data);
 
+// How messages name row j: "meas.csv:7" (its line), or "data row 8".
+std::string row_name(const BrdfData& data, std::size_t j);
+
 }  // namespace surfscatter::inverse

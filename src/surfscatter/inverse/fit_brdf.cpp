@@ -5,6 +5,9 @@
 #include <cmath>
 #include <ctime>
 #include <limits>
+#include <map>
+#include <memory>
+#include <optional>
 #include <numeric>
 #include <utility>
 
@@ -15,6 +18,7 @@
 #include "surfscatter/bsdf/factory.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/core/table_cache.hpp"
+#include "surfscatter/material/conductor.hpp"
 #include "surfscatter/math/vec.hpp"
 #include "surfscatter/surface/least_squares_functor.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
@@ -58,6 +62,37 @@ double physical_slope(int p, double x) { return is_log(p) ? std::exp(x) : 1.0; }
 
 double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
 
+// The rows of one (wavelength, incidence) of profile data, with exact-1d's signed scattering angles (light in the x-z
+// plane from negative x, specular at theta_o = +theta_i: the local frame's phi_o = 180 side).
+struct ProfileGroup {
+    double lambda_nm = 0, theta_i_rad = 0;
+    std::vector<std::size_t> rows;
+    std::vector<double> theta_o_rad;
+};
+
+// Throws Error naming the first row outside the plane of incidence.
+std::vector<ProfileGroup> profile_groups(const BrdfData& data) {
+    std::map<std::pair<double, double>, ProfileGroup> groups;
+    // An azimuth within 1e-6 degree of a multiple of 180 (of 360 for phi_i) lies in the plane of incidence.
+    const auto off = [](double phi, double period) { return std::abs(std::remainder(phi, period)) > 1e-6; };
+    for (std::size_t j = 0; j < data.size(); ++j) {
+        if (off(data.phi_i_deg[j], 360))
+            fail("{}: phi_i_deg must be 0 for profile data (light in the x-z plane), got {}", row_name(data, j),
+                 data.phi_i_deg[j]);
+        if (off(data.phi_o_deg[j], 180) && data.theta_o_deg[j] != 0)
+            fail("{}: phi_o_deg must be 0 or 180 for profile data (the plane of incidence), got {}", row_name(data, j),
+                 data.phi_o_deg[j]);
+        ProfileGroup& g = groups[{data.wavelength_nm[j], data.theta_i_deg[j]}];
+        g.lambda_nm = data.wavelength_nm[j];
+        g.theta_i_rad = data.theta_i_deg[j] * kDegree;
+        g.rows.push_back(j);
+        g.theta_o_rad.push_back(data.theta_o_deg[j] * kDegree * (std::cos(data.phi_o_deg[j] * kDegree) < 0 ? 1 : -1));
+    }
+    std::vector<ProfileGroup> out;
+    for (auto& entry : groups) out.push_back(std::move(entry.second));
+    return out;
+}
+
 Vec3 direction(double theta_deg, double phi_deg) {
     const double t = theta_deg * kDegree, f = phi_deg * kDegree;
     return {std::sin(t) * std::cos(f), std::sin(t) * std::sin(f), std::cos(t)};
@@ -67,6 +102,11 @@ class Problem {
 public:
     Problem(const BrdfData& data, const FitOptions& options, bsdf::ModelKind model)
         : data_(data), options_(options), model_(model) {
+        if (options.profile) {
+            if (model == bsdf::ModelKind::two_scale) fail("two_scale has no 1-D form: fit profile data with ghs, ghs_ssa or ggx_stats");
+            groups_ = profile_groups(data);
+            conductor_ = material::Conductor::from_name(options.material);
+        }
         for (std::size_t j = 0; j < data.size(); ++j) {
             wi_.push_back(direction(data.theta_i_deg[j], data.phi_i_deg[j]));
             wo_.push_back(direction(data.theta_o_deg[j], data.phi_o_deg[j]));
@@ -115,9 +155,35 @@ public:
         return v;
     }
 
+    // The 1-D model at every row of profile data (bsdf/profile_lobes.hpp), one lobe per (wavelength, incidence).
+    std::vector<double> profile_values(const std::array<double, kParameterCount>& v) const {
+        std::unique_ptr<surface::RadialStatistics> statistics;
+        if (options_.psd == bsdf::PsdKind::kc)
+            statistics = std::make_unique<surface::KCorrelation>(v[kSigma], v[kLength], v[kGamma]);
+        else
+            statistics = std::make_unique<surface::GaussianAcv>(v[kSigma], v[kLength]);
+        bsdf::ProfileModelOptions o;
+        o.model = model_ == bsdf::ModelKind::ghs_ssa ? bsdf::ProfileModel::ghs_ssa : bsdf::ProfileModel::ghs;
+        std::vector<double> f(data_.size());
+        for (const ProfileGroup& g : groups_) {
+            const bsdf::ProfileLobe lobe =
+                model_ == bsdf::ModelKind::ggx
+                    ? bsdf::ggx_profile_lobe(*statistics, *conductor_, g.lambda_nm, g.theta_i_rad, *options_.profile,
+                                             g.theta_o_rad)
+                    : bsdf::profile_lobe(*statistics, *conductor_, g.lambda_nm, g.theta_i_rad, *options_.profile, o,
+                                         g.theta_o_rad);
+            for (std::size_t k = 0; k < g.rows.size(); ++k) f[g.rows[k]] = lobe.intensity_per_rad[k];
+        }
+        return f;
+    }
+
     // The model at every row for the solver variables x.
     std::vector<double> model_values(const Eigen::VectorXd& x) const {
         const auto v = physical(x);
+        if (options_.profile) {
+            ++evaluations_;
+            return profile_values(v);
+        }
         bsdf::ModelOptions o;
         o.model = model_;
         o.material = options_.material;
@@ -176,6 +242,8 @@ private:
     const FitOptions& options_;
     bsdf::ModelKind model_;
     std::vector<Vec3> wi_, wo_;
+    std::vector<ProfileGroup> groups_;          // profile data only
+    std::optional<material::Conductor> conductor_;  // profile data only
     std::array<Bounds, kParameterCount> bounds_{};
     std::array<double, kParameterCount> value_{};
     std::vector<int> active_, free_;
@@ -407,6 +475,8 @@ FitResult fit_brdf(const BrdfData& data, const FitOptions& options) {
     if (options.starts < 1 || options.starts > 3) fail("starts must be 1, 2 or 3, got {}", options.starts);
     if (options.refined < 1 || options.refined > options.starts)
         fail("refined must be between 1 and starts ({}), got {}", options.starts, options.refined);
+    if (options.profile && options.anisotropic)
+        fail("profile data are a cut through isotropic statistics: anisotropic does not apply");
     if (options.max_evaluations_per_start < 1)
         fail("max_evaluations_per_start must be >= 1, got {}", options.max_evaluations_per_start);
     for (const auto& fixed : options.fixed) {

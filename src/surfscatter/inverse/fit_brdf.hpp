@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "surfscatter/bsdf/model_options.hpp"
+#include "surfscatter/bsdf/profile_lobes.hpp"
 #include "surfscatter/inverse/brdf_data.hpp"
 
 namespace surfscatter::inverse {
@@ -26,6 +27,11 @@ struct FitOptions {
     bsdf::PsdKind psd = bsdf::PsdKind::kc;  // kc or gaussian (gaussian has no gamma)
     bool anisotropic = false;               // also corr_length_v_um and lay_angle_deg
     std::map<std::string, double> fixed;    // parameters held at a value (kParameterNames)
+    // 1-D data of this polarisation (docs/FIT.md "Profiles"): the rows lie in the plane of incidence (phi_i 0, phi_o 0
+    // or 180), `brdf` holds the scattered power per radian over the incident power of a profile z = h(x), as
+    // `reference exact-1d`'s statistical mode gives it, and the models are the 1-D forms of bsdf/profile_lobes.hpp
+    // (ghs, ghs_ssa, ggx_stats; two_scale has none); not with `anisotropic`.
+    std::optional<bsdf::ProfilePolarisation> profile;
     int starts = 3;                          // sigma starts at g0 = 3, 0.5, 15 (the first `starts` of them)
     int refined = 1;                         // the solver runs from the `refined` starts of smallest misfit
     int max_evaluations_per_start = 30;      // model evaluations of the residuals per start (Jacobians apart)

@@ -20,6 +20,9 @@ nlohmann::json fit_json(const BrdfData& data, const FitOptions& options, const F
     j["material"] = options.material;
     j["psd"] = bsdf::to_string(options.psd);
     j["anisotropic"] = options.anisotropic;
+    // Profile data (1-D, docs/FIT.md "Profiles"): the polarisation, else null.
+    j["profile"] = options.profile ? nlohmann::json(*options.profile == bsdf::ProfilePolarisation::s ? "s" : "p")
+                                   : nlohmann::json();
     j["fixed"] = options.fixed;
     j["models"] = nlohmann::json::array();
     for (const ModelFit& fit : result.fits) {
