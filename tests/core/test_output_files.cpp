@@ -158,6 +158,40 @@ TEST(OutputFiles, ASetLandsTogetherOrNotAtAll) {
     EXPECT_EQ(others(dir, {"a.csv", "b.json"}), std::vector<std::string>{});
 }
 
+// A rename failing midway (here a folder put where the last output goes, after the outputs were declared) leaves
+// the set as it was: the outputs renamed before it get their old files back, or go where there were none.
+TEST(OutputFiles, ARenameFailingMidwayPutsTheSetBack) {
+    const fs::path dir = scratch("rename");
+    std::ofstream(dir / "a.csv") << "old a";
+    std::ofstream(dir / "c.png") << "old c";
+    OutputFiles files;
+    files.output(dir / "a.csv", "-o");
+    files.output(dir / "b.json", "the JSON beside -o");
+    files.output(dir / "c.png", "the PNG beside -o");
+    files.write(dir / "a.csv", "new a");
+    files.write(dir / "b.json", "new b");
+    files.write(dir / "c.png", "new c");
+    fs::remove(dir / "c.png");
+    fs::create_directories(dir / "c.png" / "inside");
+    EXPECT_EQ(error_of([&] { files.commit(); }),
+              "cannot move " + (dir / "c.png").string() + " into place: Is a directory");
+    EXPECT_EQ(contents(dir / "a.csv"), "old a");
+    EXPECT_FALSE(fs::exists(dir / "b.json"));
+    EXPECT_TRUE(fs::is_directory(dir / "c.png" / "inside"));
+    EXPECT_EQ(others(dir, {"a.csv", "c.png"}), std::vector<std::string>{});  // no temporary or kept file
+    // The same set commits once the folder is gone; the old files kept meanwhile are removed.
+    fs::remove_all(dir / "c.png");
+    std::ofstream(dir / "c.png") << "old c";
+    OutputFiles again;
+    for (const char* name : {"a.csv", "b.json", "c.png"}) {
+        again.output(dir / name, name);
+        again.write(dir / name, std::string("new ") + name[0]);
+    }
+    again.commit();
+    for (const char* name : {"a.csv", "b.json", "c.png"}) EXPECT_EQ(contents(dir / name), std::string("new ") + name[0]);
+    EXPECT_EQ(others(dir, {"a.csv", "b.json", "c.png"}), std::vector<std::string>{});
+}
+
 TEST(OutputFiles, AWritersErrorNamesTheOutputNotTheTemporaryFile) {
     const fs::path dir = scratch("writer");
     OutputFiles files;
