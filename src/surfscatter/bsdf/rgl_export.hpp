@@ -21,6 +21,13 @@
 
 namespace surfscatter::bsdf {
 
+// How messages name the export's options: the CLI's, unless a front end passes its own (Python's keywords), as
+// every library check that names a caller's argument takes the name from the caller (docs/RELIABILITY.md).
+struct RglExportNames {
+    std::string theta_i_count = "--theta-i-count", phi_i_count = "--phi-i-count", ndf_resolution = "--ndf-resolution",
+                sample_resolution = "--sample-resolution";
+};
+
 struct RglExportOptions {
     bool rgb = false;              // rgl-rgb: linear sRGB of each node's spectrum as a reflectance under D65
     int theta_i_count = 16;        // incidences, uniform over [0, theta_i_max_deg] (before refinement)
@@ -34,9 +41,10 @@ struct RglExportOptions {
     // > 0: incidences are added (up to 64) between those whose midpoint the file misses by more than this (percent,
     // at the first, reference and last wavelengths; rgl_accuracy's measure); 0: theta_i_count uniform incidences.
     double tolerance_percent = 0;
+    RglExportNames names;
 };
 
-// Throws Error on an option out of range (each named as the CLI spells it) or a model the material cannot evaluate
+// Throws Error on an option out of range (each named by options.names) or a model the material cannot evaluate
 // over the wavelengths (its own message).
 RglData export_rgl(const Bsdf& model, const RglExportOptions& options, const std::string& description);
 
@@ -73,8 +81,9 @@ void check_rgl_accuracy(const RglAccuracy& accuracy, double tolerance_percent, c
 // direction (what rgl_accuracy probes).
 class SpecularAsLobe final : public Bsdf {
 public:
-    // Throws Error for a width outside (0, 0.2) rad or a model without a delta part (at 550 nm, theta_i 0-89 deg).
-    SpecularAsLobe(const Bsdf& model, double width_rad);
+    // Throws Error for a width outside (0, 0.2) rad or a model without a delta part (at 550 nm, theta_i 0-89 deg);
+    // `name` is how the messages name the width (the CLI's option, Python's keyword).
+    SpecularAsLobe(const Bsdf& model, double width_rad, const std::string& name = "--specular-lobe");
     double eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const override;
     std::optional<BsdfSample> sample(const Vec3& wi, double lambda_nm, double u_lobe, Vec2 u) const override;
     double pdf(const Vec3& wi, const Vec3& wo, double lambda_nm) const override { return model_.pdf(wi, wo, lambda_nm); }
