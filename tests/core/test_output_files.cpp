@@ -162,15 +162,18 @@ TEST(OutputFiles, ASetLandsTogetherOrNotAtAll) {
 // the set as it was: the outputs renamed before it get their old files back, or go where there were none.
 TEST(OutputFiles, ARenameFailingMidwayPutsTheSetBack) {
     const fs::path dir = scratch("rename");
+    const std::vector<std::string> names = {"a.csv", "b.json", "c.png"};
+    // Each declared and written with "new " and its first letter.
+    const auto write_new = [&](OutputFiles& files) {
+        for (const std::string& name : names) {
+            files.output(dir / name, name);
+            files.write(dir / name, "new " + name.substr(0, 1));
+        }
+    };
     std::ofstream(dir / "a.csv") << "old a";
     std::ofstream(dir / "c.png") << "old c";
     OutputFiles files;
-    files.output(dir / "a.csv", "-o");
-    files.output(dir / "b.json", "the JSON beside -o");
-    files.output(dir / "c.png", "the PNG beside -o");
-    files.write(dir / "a.csv", "new a");
-    files.write(dir / "b.json", "new b");
-    files.write(dir / "c.png", "new c");
+    write_new(files);
     fs::remove(dir / "c.png");
     fs::create_directories(dir / "c.png" / "inside");
     EXPECT_EQ(error_of([&] { files.commit(); }),
@@ -183,13 +186,10 @@ TEST(OutputFiles, ARenameFailingMidwayPutsTheSetBack) {
     fs::remove_all(dir / "c.png");
     std::ofstream(dir / "c.png") << "old c";
     OutputFiles again;
-    for (const char* name : {"a.csv", "b.json", "c.png"}) {
-        again.output(dir / name, name);
-        again.write(dir / name, std::string("new ") + name[0]);
-    }
+    write_new(again);
     again.commit();
-    for (const char* name : {"a.csv", "b.json", "c.png"}) EXPECT_EQ(contents(dir / name), std::string("new ") + name[0]);
-    EXPECT_EQ(others(dir, {"a.csv", "b.json", "c.png"}), std::vector<std::string>{});
+    for (const std::string& name : names) EXPECT_EQ(contents(dir / name), "new " + name.substr(0, 1));
+    EXPECT_EQ(others(dir, names), std::vector<std::string>{});
 }
 
 TEST(OutputFiles, AWritersErrorNamesTheOutputNotTheTemporaryFile) {
