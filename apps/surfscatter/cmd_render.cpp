@@ -68,6 +68,7 @@ void run(const RenderArgs& args) {
         if (session.root()) {
             if (!output.parent_path().empty()) std::filesystem::create_directories(output.parent_path());
             files.input(args.scene, "scene");
+            for (const render::Scene::LoadedFile& file : scene->loaded_files) files.input(file.path, file.named_by);
             files.output(output, "-o");
             files.output(png, "the PNG beside -o");
         }

@@ -418,20 +418,24 @@ void bind_bsdf(py::module_& m) {
 
     m.def(
         "export_rgl",
-        [](const PyBsdf& b, const std::string& path, const std::string& format, int theta_i_count, int phi_i_count,
-           int sample_resolution, int ndf_resolution, double lambda_step_nm, double tolerance_percent,
-           std::optional<double> specular_lobe_deg) {
+        [](const PyBsdf& b, const std::string& path, const std::string& format, int theta_i_count,
+           std::optional<int> phi_i_count, int sample_resolution, int ndf_resolution,
+           std::optional<double> lambda_step_nm, double tolerance_percent, std::optional<double> specular_lobe_deg) {
             if (format != "rgl-spectral" && format != "rgl-rgb")
                 fail("format must be one of rgl-spectral | rgl-rgb, got '{}'", printable(format));
+            // None is "not given", as an option the CLI is not given: one that does not apply is an error.
+            if (b.model->isotropic() && phi_i_count) fail("phi_i_count applies to anisotropic surfaces only");
+            if (format == "rgl-rgb" && lambda_step_nm) fail("lambda_step_nm applies to format rgl-spectral only");
             bsdf::RglExportOptions o;
+            o.names = {"theta_i_count", "phi_i_count", "ndf_resolution", "sample_resolution"};
             o.rgb = format == "rgl-rgb";
-            o.theta_i_count = theta_i_count, o.phi_i_count = phi_i_count;
+            o.theta_i_count = theta_i_count, o.phi_i_count = phi_i_count.value_or(o.phi_i_count);
             o.sample_resolution = sample_resolution, o.ndf_resolution = ndf_resolution;
-            o.lambda_step_nm = lambda_step_nm;
+            o.lambda_step_nm = lambda_step_nm.value_or(o.lambda_step_nm);
             o.tolerance_percent = tolerance_percent;
             bsdf::check_rgl_accuracy({}, tolerance_percent, "tolerance_percent", path);
             std::optional<bsdf::SpecularAsLobe> with_lobe;
-            if (specular_lobe_deg) with_lobe.emplace(*b.model, *specular_lobe_deg * kDegree);
+            if (specular_lobe_deg) with_lobe.emplace(*b.model, *specular_lobe_deg * kDegree, "specular_lobe_deg");
             if (with_lobe) o.mirror_exclusion_rad = with_lobe->core_rad();
             const bsdf::Bsdf& tabulated = with_lobe ? static_cast<const bsdf::Bsdf&>(*with_lobe) : *b.model;
             bsdf::RglAccuracy acc;
@@ -448,10 +452,12 @@ void bind_bsdf(py::module_& m) {
                             "lambda_nm"_a = acc.lambda_nm);
         },
         py::arg("model"), py::arg("path"), py::arg("format") = "rgl-spectral", py::arg("theta_i_count") = 16,
-        py::arg("phi_i_count") = 17, py::arg("sample_resolution") = 64, py::arg("ndf_resolution") = 128,
-        py::arg("lambda_step_nm") = 3.2, py::arg("tolerance_percent") = 2.0, py::arg("specular_lobe_deg") = py::none(),
+        py::arg("phi_i_count") = py::none(), py::arg("sample_resolution") = 64, py::arg("ndf_resolution") = 128,
+        py::arg("lambda_step_nm") = py::none(), py::arg("tolerance_percent") = 2.0, py::arg("specular_lobe_deg") = py::none(),
         "Writes the model's continuous part as an RGL measured BSDF file (Mitsuba 3 / pbrt-v4 `measured`), as "
-        "`surfscatter brdf export`: format 'rgl-spectral' (360-1000 nm) or 'rgl-rgb'; the coherent specular part is "
+        "`surfscatter brdf export`: format 'rgl-spectral' (360-1000 nm, every lambda_step_nm, default 3.2) or "
+        "'rgl-rgb'; phi_i_count incidence azimuths for an anisotropic model (default 17; an error for an isotropic "
+        "one); the coherent specular part is "
         "not in the file (model.delta_reflectance gives it) unless specular_lobe_deg carries it as a narrow lobe of that "
         "width (docs/RENDERER.md). Returns the written file's accuracy "
         "against the model (dict: worst and rms relative error where f >= 1 % of its peak and theta_o <= 80 deg, "

@@ -124,10 +124,13 @@ py::dict psd2d_dict(const Psd2d& p) {
 // Elliptical statistics (issue 24): KCorrelation and GaussianAcv take corr_length_v (LV, um; None: LV = corr_length)
 // and lay_angle_deg, kept on the Python object beside the radial statistics (bsdf(surface=...) reads them through
 // lay_of): the constructor is wrapped to take the two keywords after the radial ones.
-void set_lay(py::handle self, py::object corr_length_v, double lay_angle_deg) {
+// lay_angle_deg None is "not given" (0 deg): given without corr_length_v, even as 0, it is an error, as the CLI's
+// --lay-angle without --corr-length-v.
+void set_lay(py::handle self, py::object corr_length_v, py::object lay_angle_arg) {
     if (!corr_length_v.is_none()) require_surface_length(real_scalar(corr_length_v, "corr_length_v"), "corr_length_v");
+    const double lay_angle_deg = lay_angle_arg.is_none() ? 0.0 : real_scalar(lay_angle_arg, "lay_angle_deg");
     require_finite(lay_angle_deg, "lay_angle_deg");
-    if (corr_length_v.is_none() && lay_angle_deg != 0)
+    if (corr_length_v.is_none() && !lay_angle_arg.is_none())
         fail("lay_angle_deg {} needs corr_length_v (without it the surface is isotropic)", lay_angle_deg);
     py::dict attributes = self.attr("__dict__");
     attributes["_corr_length_v"] =
@@ -149,26 +152,27 @@ void add_lay_keywords(Class& cls, int radial_arguments) {
     if (radial_arguments == 3)
         cls.attr("__init__") = py::cpp_function(
             [radial_init](py::object self, py::object sigma, py::object corr_length, py::object gamma,
-                          py::object corr_length_v, double lay_angle_deg) {
+                          py::object corr_length_v, py::object lay_angle_deg) {
                 radial_init(self, sigma, corr_length, gamma);
                 set_lay(self, corr_length_v, lay_angle_deg);
             },
             py::is_method(cls), py::arg("sigma"), py::arg("corr_length"), py::arg("gamma"),
-            py::arg("corr_length_v") = py::none(), py::arg("lay_angle_deg") = 0.0,
+            py::arg("corr_length_v") = py::none(), py::arg("lay_angle_deg") = py::none(),
             "sigma: rms height (um); corr_length: L (um, LU along the lay), both in [1e-9, 1e9]; gamma: exponent in "
             "[1.01, 100]; corr_length_v: LV across the lay (um, None: LV = LU, isotropic); lay_angle_deg: the lay "
-            "direction u from phi = 0 towards phi = 90 deg.");
+            "direction u from phi = 0 towards phi = 90 deg (default 0; only with corr_length_v).");
     else
         cls.attr("__init__") = py::cpp_function(
             [radial_init](py::object self, py::object sigma, py::object corr_length, py::object corr_length_v,
-                          double lay_angle_deg) {
+                          py::object lay_angle_deg) {
                 radial_init(self, sigma, corr_length);
                 set_lay(self, corr_length_v, lay_angle_deg);
             },
             py::is_method(cls), py::arg("sigma"), py::arg("corr_length"), py::arg("corr_length_v") = py::none(),
-            py::arg("lay_angle_deg") = 0.0,
+            py::arg("lay_angle_deg") = py::none(),
             "sigma: rms height (um); corr_length: l (um, along the lay), both in [1e-9, 1e9]; corr_length_v: across "
-            "the lay (um, None: isotropic); lay_angle_deg: the lay direction from phi = 0 towards phi = 90 deg.");
+            "the lay (um, None: isotropic); lay_angle_deg: the lay direction from phi = 0 towards phi = 90 deg "
+            "(default 0; only with corr_length_v).");
     cls.def_property_readonly(
         "corr_length_v", [](py::object self) -> py::object {
             const Lay lay = lay_of(self);

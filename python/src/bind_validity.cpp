@@ -1,5 +1,7 @@
 // surfscatter.validity: which model to trust for a surface (validity/validity.hpp), as `surfscatter validity`.
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <pybind11/stl.h>
@@ -156,22 +158,39 @@ bsdf::SurfaceOptions map_surface_options(py::handle surface, const heightmap::Pr
 
 py::dict validity_map(py::handle surface_arg, const std::string& material, const std::vector<double>& wavelengths_nm,
                       const std::vector<double>& theta_i_deg, const std::vector<double>& phi_i_deg,
-                      const std::string& form, const std::string& outliers, const std::string& row_alignment,
-                      py::handle lambda_s_um, py::handle lambda_c_um, double map_size_um,
-                      long long map_pixels, long long realizations, std::uint64_t seed, double subarea_um,
+                      const py::object& form, const py::object& outliers, const py::object& row_alignment,
+                      const py::object& lambda_s_um, const py::object& lambda_c_um, std::optional<double> map_size_um,
+                      std::optional<long long> map_pixels, std::optional<long long> realizations,
+                      std::optional<std::uint64_t> seed, double subarea_um,
                       double max_theta_o_deg, double bin_deg, double tolerance, double max_reference_stderr,
                       int threads) {
-    const heightmap::Preparation preparation =
-        preparation_arguments(outliers, row_alignment, form, lambda_s_um, lambda_c_um);
+    // None is "not given", as an option the CLI is not given: an argument the surface's route does not use is an
+    // error even at its default value.
+    const auto text_or = [](const py::object& value, const char* name, const char* fallback) {
+        return value.is_none() ? std::string(fallback) : text_option(value, name);
+    };
+    const heightmap::Preparation preparation = preparation_arguments(
+        text_or(outliers, "outliers", "keep"), text_or(row_alignment, "row_alignment", "auto"),
+        text_or(form, "form", "plane"), lambda_s_um.is_none() ? py::str("none") : lambda_s_um,
+        lambda_c_um.is_none() ? py::str("auto") : lambda_c_um);
     const bsdf::SurfaceOptions options = map_surface_options(surface_arg, preparation);
     const bool measured = options.psd == bsdf::PsdKind::measured;
-    if (!measured && preparation != heightmap::Preparation{})
-        fail("outliers, row_alignment, form, lambda_s_um and lambda_c_um prepare a measured map (a HeightMap or a "
-             "file); synthesised maps take none of them");
-    if (measured && (map_size_um != 0 || realizations != 1 || map_pixels != 256 || seed != 1))
-        fail("map_size_um, map_pixels, realizations and seed synthesise maps from statistics: a height map is one "
-             "realization");
-    if (!measured) validity::require_synthesis_counts(map_pixels, realizations, "map_pixels", "realizations");
+    const std::vector<std::pair<const char*, bool>> preparing = {
+        {"outliers", !outliers.is_none()}, {"row_alignment", !row_alignment.is_none()}, {"form", !form.is_none()},
+        {"lambda_s_um", !lambda_s_um.is_none()}, {"lambda_c_um", !lambda_c_um.is_none()}};
+    const std::vector<std::pair<const char*, bool>> synthesising = {
+        {"map_size_um", map_size_um.has_value()}, {"map_pixels", map_pixels.has_value()},
+        {"realizations", realizations.has_value()}, {"seed", seed.has_value()}};
+    for (const auto& [name, given] : measured ? synthesising : preparing) {
+        if (!given) continue;
+        if (measured)
+            fail("{} synthesises maps from statistics (a KCorrelation or GaussianAcv): a height map is one realization", name);
+        fail("{} prepares a measured map (a HeightMap or a file): maps synthesised from statistics take none of "
+             "outliers, row_alignment, form, lambda_s_um and lambda_c_um", name);
+    }
+    if (!measured && !map_size_um) fail("map_size_um: give the side (um) of the maps synthesised from statistics");
+    if (!measured) surface::require_surface_length(*map_size_um, "map_size_um");
+    if (!measured) validity::require_synthesis_counts(map_pixels.value_or(256), realizations.value_or(1), "map_pixels", "realizations");
     if (!(max_theta_o_deg > 0 && max_theta_o_deg < 90))
         fail("max_theta_o_deg must be in (0, 90) degrees, got {}", max_theta_o_deg);
     if (subarea_um != 0) require_positive(subarea_um, "subarea_um");
@@ -191,8 +210,8 @@ py::dict validity_map(py::handle surface_arg, const std::string& material, const
     {
         const py::gil_scoped_release release;
         surface = validity::map_surface(options, material,
-                                        {map_size_um, static_cast<std::size_t>(map_pixels),
-                                         static_cast<std::size_t>(realizations), seed});
+                                        {map_size_um.value_or(0.0), static_cast<std::size_t>(map_pixels.value_or(256)),
+                                         static_cast<std::size_t>(realizations.value_or(1)), seed.value_or(1)});
         cases = validity::map_validity(surface, conductor, study);
     }
     validity::require_outliers_not_dominant(surface);
@@ -247,20 +266,22 @@ the CSV's columns, 'verdicts': one dict per case (conclusive, trusted, best_mode
 reference_problem, text, realizations, reference_median_rel_stderr, target_reached, render_verdict: the same
 over the models a renderer offers (all but kirchhoff), not_compared: why a model is left out)}.)");
     m.def("validity_map", &validity_map, py::arg("surface"), py::arg("material"), py::arg("wavelengths_nm"),
-          py::arg("theta_i_deg"), py::arg("phi_i_deg") = std::vector<double>{0.0}, py::arg("form") = "plane",
-          py::arg("outliers") = "keep", py::arg("row_alignment") = "auto", py::arg("lambda_s_um") = "none",
-          py::arg("lambda_c_um") = "auto", py::arg("map_size_um") = 0.0, py::arg("map_pixels") = 256,
-          py::arg("realizations") = 1,
-          py::arg("seed") = 1, py::arg("subarea_um") = 0.0, py::arg("max_theta_o_deg") = 80.0,
+          py::arg("theta_i_deg"), py::arg("phi_i_deg") = std::vector<double>{0.0}, py::arg("form") = py::none(),
+          py::arg("outliers") = py::none(), py::arg("row_alignment") = py::none(), py::arg("lambda_s_um") = py::none(),
+          py::arg("lambda_c_um") = py::none(), py::arg("map_size_um") = py::none(), py::arg("map_pixels") = py::none(),
+          py::arg("realizations") = py::none(),
+          py::arg("seed") = py::none(), py::arg("subarea_um") = 0.0, py::arg("max_theta_o_deg") = 80.0,
           py::arg("bin_deg") = 3.0, py::arg("tolerance") = 0.1, py::arg("max_reference_stderr") = 0.25,
           py::arg("threads") = 0,
           R"(Which 2-D model to trust for a height map, as `surfscatter validity --surface-file` / `--map-size-um`
 (docs/VALIDITY.md, "Height maps"): every model the factory makes for `surface` against the Kirchhoff BRDF of the
 map(s), with Kirchhoff's own validity. `surface`: a HeightMap or a height map path, prepared as outliers ('keep' or
-'fill', an Error when kept ones dominate), row_alignment, form, lambda_s_um and lambda_c_um say (docs/HEIGHTMAPS.md
+'fill', an Error when kept ones dominate; default 'keep'), row_alignment ('auto'), form ('plane'), lambda_s_um
+('none') and lambda_c_um ('auto') say (docs/HEIGHTMAPS.md
 "Preparation"; the models from psd measured and psd file), or a KCorrelation / GaussianAcv, elliptical if made with corr_length_v /
-lay_angle_deg (`realizations` square maps of map_size_um and map_pixels a side are synthesised, seeds seed,
-seed + 1, ...). Wavelengths in nm, angles in degrees, subarea_um 0: a quarter of the map. Returns {'table': one dict per
+lay_angle_deg (`realizations` (default 1) square maps of map_size_um and map_pixels (default 256) a side are
+synthesised, seeds seed, seed + 1, ... (default 1)). An argument of the other kind of surface is an Error, even
+at its default value. Wavelengths in nm, angles in degrees, subarea_um 0: a quarter of the map. Returns {'table': one dict per
 model and case with the CSV's columns, 'verdicts': one dict per case (the verdict, its reference_validity and
 reference_energy), 'refused_models': the models the factory does not make for this surface and why, 'surface',
 'outliers' for a measured map (policy, points, share, text)}.)");

@@ -1,6 +1,8 @@
 """Issue 36, classes 2 and 3 in Python (docs/RELIABILITY.md): the CLI's checks hold here too, because they live in the
 library (validity's criteria and synthesis counts, exact-1d's node and realization bounds); nothing is dropped
-silently (an elliptical surface's lay in the profiles route); a wrong argument type is surfscatter.Error naming the
+silently (an elliptical surface's lay in the profiles route); an argument whose default is not what "not given"
+means is None until given, so that one that does not apply is an error even at its default value, as an option the
+CLI is given; the library's messages name Python's arguments, not the CLI's options; a wrong argument type is surfscatter.Error naming the
 argument (or a TypeError), never RuntimeError "Unable to cast Python instance to C++ type"; sizes are refused before
 any work starts (each call below returned at once or hung).
 """
@@ -118,3 +120,49 @@ def test_synthesize_keeps_an_elliptical_surface_s_lay():
     refused(lambda: ss.synthesize(KC, size=-3, spacing_um=0.25), "size must be n or (nx, ny)")
     refused(lambda: ss.synthesize(KC, size=(8, "9"), spacing_um=0.25), "size must be n or (nx, ny)")
     refused(lambda: ss.synthesize("kc", size=8, spacing_um=0.25), "statistics must be a KCorrelation or a GaussianAcv")
+
+
+# Given means given (None is "not given"), as the CLI's options: an argument the chosen route does not use is an
+# error even at its default value; each message names the Python argument, never a CLI option.
+@pytest.mark.parametrize("call, expected", [
+    (lambda: ss.validity_map(MAP, "perfect", [550], [0], map_pixels=256),
+     "map_pixels synthesises maps from statistics (a KCorrelation or GaussianAcv): a height map is one realization"),
+    (lambda: ss.validity_map(MAP, "perfect", [550], [0], seed=1), "seed synthesises maps from statistics"),
+    (lambda: ss.validity_map(MAP, "perfect", [550], [0], realizations=1), "realizations synthesises maps"),
+    (lambda: ss.validity_map(MAP, "perfect", [550], [0], map_size_um=0), "map_size_um synthesises maps"),
+    (lambda: ss.validity_map(KC, "perfect", [550], [0], map_size_um=16, form="plane"),
+     "form prepares a measured map (a HeightMap or a file)"),
+    (lambda: ss.validity_map(KC, "perfect", [550], [0], map_size_um=16, lambda_c_um="auto"), "lambda_c_um prepares"),
+    (lambda: ss.validity_map(KC, "perfect", [550], [0]), "map_size_um: give the side (um) of the maps"),
+    (lambda: ss.validity_map(KC, "perfect", [550], [0], map_size_um=-1), "map_size_um must be"),
+    (lambda: ss.KCorrelation(0.01, 1.0, 3.0, lay_angle_deg=0), "lay_angle_deg 0 needs corr_length_v"),
+    (lambda: ss.GaussianAcv(0.01, 1.0, lay_angle_deg=0.0), "lay_angle_deg 0 needs corr_length_v"),
+    (lambda: ss.export_rgl(ss.bsdf("ggx_stats", alpha=0.2, material="Au"), "/nonexistent/x.bsdf", phi_i_count=17),
+     "phi_i_count applies to anisotropic surfaces only"),
+    (lambda: ss.export_rgl(ss.bsdf("ggx_stats", alpha=0.2, material="Au"), "/nonexistent/x.bsdf", format="rgl-rgb",
+                           lambda_step_nm=3.2), "lambda_step_nm applies to format rgl-spectral only"),
+    (lambda: ss.export_rgl(ss.bsdf("ggx_stats", alpha=0.2, material="Au"), "/nonexistent/x.bsdf", theta_i_count=1),
+     "theta_i_count must be in 2..256"),
+    (lambda: ss.export_rgl(ss.bsdf("ggx_stats", alpha=0.2, material="Au"), "/nonexistent/x.bsdf", ndf_resolution=2),
+     "ndf_resolution must be in 8..1024"),
+    (lambda: ss.export_rgl(ss.bsdf("ggx_stats", alpha=0.2, material="Au"), "/nonexistent/x.bsdf", sample_resolution=2),
+     "sample_resolution must be in 4..512"),
+    (lambda: ss.export_rgl(ss.bsdf("ghs", surface=ss.KCorrelation(0.05, 1.0, 3.0, corr_length_v=2.0),
+                                   material="Au"), "/nonexistent/x.bsdf", phi_i_count=2),
+     "phi_i_count must be in 3..256"),
+    (lambda: ss.export_rgl(ss.bsdf("ggx_stats", alpha=0.2, material="Au"), "/nonexistent/x.bsdf",
+                           specular_lobe_deg=1), "specular_lobe_deg: the model ggx_stats has no coherent specular part"),
+    (lambda: ss.export_rgl(ss.bsdf("ghs", surface=KC, material="Au"), "/nonexistent/x.bsdf", specular_lobe_deg=30),
+     "specular_lobe_deg must be in (0, "),
+], ids=["map_pixels", "seed", "realizations", "map_size_um", "form", "lambda_c_um", "no map_size_um",
+        "negative map_size_um", "kc lay_angle_deg 0", "gaussian lay_angle_deg 0", "phi_i_count isotropic",
+        "lambda_step_nm rgb", "theta_i_count", "ndf_resolution", "sample_resolution", "phi_i_count range",
+        "specular_lobe_deg no delta", "specular_lobe_deg range"])
+def test_an_argument_given_is_given_and_named_as_python_names_it(call, expected):
+    start = time.monotonic()
+    with pytest.raises(ss.Error) as raised:
+        call()
+    assert time.monotonic() - start < 20, "refused only after working"
+    message = str(raised.value)
+    assert expected in message, message
+    assert "--" not in message, message

@@ -91,7 +91,7 @@ def test_validity_map_refuses_bad_input():
     with pytest.raises(ss.Error, match="a height map is one realization"):
         ss.validity_map(str(SOURCE_DIR / "examples" / "data" / "kc_surface.gsf"), "perfect", [550], [0],
                         realizations=2)
-    with pytest.raises(ss.Error, match="map size"):
+    with pytest.raises(ss.Error, match="map_size_um: give the side"):
         ss.validity_map(ss.KCorrelation(0.02, 2.0, 3.0), "perfect", [550], [0])
     with pytest.raises(ss.Error, match="surface must be"):
         ss.validity_map(3, "perfect", [550], [0])
@@ -115,5 +115,5 @@ def test_outliers_of_a_map_are_found_filled_and_decide_the_map_route():
     assert got["outliers"]["policy"] == "fill" and got["outliers"]["points"] == 8
     with pytest.raises(ss.Error, match="outliers must be keep or fill"):
         ss.validity_map(spiked, "perfect", [550], [0], outliers="drop")
-    with pytest.raises(ss.Error, match="prepare a measured map"):
+    with pytest.raises(ss.Error, match="outliers prepares a measured map"):
         ss.validity_map(ss.KCorrelation(0.02, 2.0, 3.0), "perfect", [550], [0], map_size_um=16, outliers="fill")

@@ -159,6 +159,48 @@ INSTANTIATE_TEST_SUITE_P(
                    "-o @D@/folder.gsf is a folder", ""}),
     [](const testing::TestParamInfo<OutputCase>& param) { return param.param.name; });
 
+// render: every file the scene loads (here a bitmap texture named through -D) is an input its EXR and the PNG
+// beside it must not replace; refused after loading the scene, before rendering. (A folder of its own: ctest runs
+// CliOutputs' cases, whose setup empties dir(), in parallel with this.)
+TEST(CliOutputsRender, FilesTheSceneLoadsAreInputs) {
+    const fs::path folder = surfscatter::test::scratch_directory("surfscatter_test_cli_outputs_render");
+    const auto scene = [](const std::string& bsdf) {
+        return "<scene version=\"3.0.0\">\n"
+               "  <sensor type=\"perspective\">\n"
+               "    <transform name=\"to_world\"><lookat origin=\"0, -2, 2\" target=\"0, 0, 0\" up=\"0, 0, 1\"/></transform>\n"
+               "    <film type=\"hdrfilm\"><integer name=\"width\" value=\"8\"/><integer name=\"height\" value=\"8\"/></film>\n"
+               "    <sampler type=\"independent\"><integer name=\"sample_count\" value=\"2\"/></sampler>\n"
+               "  </sensor>\n"
+               "  <shape type=\"rectangle\">" + bsdf + "</shape>\n"
+               "  <emitter type=\"point\"><point name=\"position\" x=\"0\" y=\"0\" z=\"1\"/><rgb name=\"intensity\" value=\"1\"/></emitter>\n"
+               "</scene>\n";
+    };
+    std::ofstream(folder / "plain.xml") << scene("");
+    std::ofstream(folder / "textured.xml")
+        << scene("\n    <bsdf type=\"diffuse\"><texture type=\"bitmap\" name=\"reflectance\">\n"
+                 "      <string name=\"filename\" value=\"$tex\"/></texture></bsdf>");
+    const std::string textured = (folder / "textured.xml").string(), tex_exr = (folder / "tex.exr").string(),
+                      tex_png = (folder / "tex.png").string();
+    CliResult r = run_cli({"render", (folder / "plain.xml").string(), "-o", tex_exr, "--quiet"}, 60);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::string exr = read_whole_file(tex_exr), png = read_whole_file(tex_png);
+    // The texture is the EXR itself, then the PNG derived from -o.
+    r = run_cli({"render", textured, "-D", "tex=tex.exr", "-o", tex_exr, "--quiet"}, 60);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(r.err, "surfscatter: error: -o " + tex_exr + " would replace the input filename at " + textured + ":9 " +
+                         tex_exr + ": name another output\n");
+    r = run_cli({"render", textured, "-D", "tex=tex.png", "-o", tex_exr, "--quiet"}, 60);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(r.err, "surfscatter: error: the PNG beside -o " + tex_png + " would replace the input filename at " +
+                         textured + ":9 " + tex_png + ": name another output\n");
+    EXPECT_EQ(read_whole_file(tex_exr), exr);
+    EXPECT_EQ(read_whole_file(tex_png), png);
+    // Elsewhere the same scene renders.
+    r = run_cli({"render", textured, "-D", "tex=tex.png", "-o", (folder / "out.exr").string(), "--quiet"}, 60);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(temporaries(folder), std::vector<std::string>{});
+}
+
 TEST(CliOutputsWritten, NamesOf255BytesAndPrintableNotes) {
     const fs::path folder = dir() / "long";
     fs::remove_all(folder);

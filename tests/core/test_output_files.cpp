@@ -158,6 +158,40 @@ TEST(OutputFiles, ASetLandsTogetherOrNotAtAll) {
     EXPECT_EQ(others(dir, {"a.csv", "b.json"}), std::vector<std::string>{});
 }
 
+// A rename failing midway (here a folder put where the last output goes, after the outputs were declared) leaves
+// the set as it was: the outputs renamed before it get their old files back, or go where there were none.
+TEST(OutputFiles, ARenameFailingMidwayPutsTheSetBack) {
+    const fs::path dir = scratch("rename");
+    const std::vector<std::string> names = {"a.csv", "b.json", "c.png"};
+    // Each declared and written with "new " and its first letter.
+    const auto write_new = [&](OutputFiles& files) {
+        for (const std::string& name : names) {
+            files.output(dir / name, name);
+            files.write(dir / name, "new " + name.substr(0, 1));
+        }
+    };
+    std::ofstream(dir / "a.csv") << "old a";
+    std::ofstream(dir / "c.png") << "old c";
+    OutputFiles files;
+    write_new(files);
+    fs::remove(dir / "c.png");
+    fs::create_directories(dir / "c.png" / "inside");
+    EXPECT_EQ(error_of([&] { files.commit(); }),
+              "cannot move " + (dir / "c.png").string() + " into place: Is a directory");
+    EXPECT_EQ(contents(dir / "a.csv"), "old a");
+    EXPECT_FALSE(fs::exists(dir / "b.json"));
+    EXPECT_TRUE(fs::is_directory(dir / "c.png" / "inside"));
+    EXPECT_EQ(others(dir, {"a.csv", "c.png"}), std::vector<std::string>{});  // no temporary or kept file
+    // The same set commits once the folder is gone; the old files kept meanwhile are removed.
+    fs::remove_all(dir / "c.png");
+    std::ofstream(dir / "c.png") << "old c";
+    OutputFiles again;
+    write_new(again);
+    again.commit();
+    for (const std::string& name : names) EXPECT_EQ(contents(dir / name), "new " + name.substr(0, 1));
+    EXPECT_EQ(others(dir, names), std::vector<std::string>{});
+}
+
 TEST(OutputFiles, AWritersErrorNamesTheOutputNotTheTemporaryFile) {
     const fs::path dir = scratch("writer");
     OutputFiles files;

@@ -61,21 +61,21 @@ std::vector<Vec3> colour_weights(const std::vector<double>& lambda) {
     return w;
 }
 
-void check(bool ok, const char* what) {
-    if (!ok) fail("{}", what);
+void check(bool ok, const std::string& name, const char* range) {
+    if (!ok) fail("{} must be in {}", name, range);
 }
 
 }  // namespace
 
-SpecularAsLobe::SpecularAsLobe(const Bsdf& model, double width_rad)
+SpecularAsLobe::SpecularAsLobe(const Bsdf& model, double width_rad, const std::string& name)
     : model_(model), kappa_(1 / (width_rad * width_rad)),
       norm_(kappa_ / (kTwoPi * -std::expm1(-2 * kappa_))) {
     if (!(width_rad > 0 && width_rad < 0.2))
-        fail("--specular-lobe must be in (0, {:.3g}) degrees, got {:.6g}", 0.2 / kDegree, width_rad / kDegree);
+        fail("{} must be in (0, {:.3g}) degrees, got {:.6g}", name, 0.2 / kDegree, width_rad / kDegree);
     bool has_delta = false;
     for (int t = 0; t < 90 && !has_delta; ++t)
         has_delta = model.delta_reflectance(spherical_direction(t * kDegree, 0), 550) > 0;
-    if (!has_delta) fail("--specular-lobe: the model {} has no coherent specular part", model.name());
+    if (!has_delta) fail("{}: the model {} has no coherent specular part", name, model.name());
 }
 
 double SpecularAsLobe::eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
@@ -364,13 +364,13 @@ double rgl_export_bytes(const RglExportOptions& o, bool isotropic, std::size_t i
 }
 
 RglData export_rgl(const Bsdf& model, const RglExportOptions& o, const std::string& description) {
-    check(o.theta_i_count >= 2 && o.theta_i_count <= 256, "--theta-i-count must be in 2..256");
-    check(o.theta_i_max_deg > 0 && o.theta_i_max_deg < 90, "--theta-i-max must be in (0, 90) degrees");
-    check(o.phi_i_count >= 3 && o.phi_i_count <= 256, "--phi-i-count must be in 3..256");  // 2 reads as isotropic
-    check(o.ndf_resolution >= 8 && o.ndf_resolution <= 1024, "--ndf-resolution must be in 8..1024");
-    check(o.sample_resolution >= 4 && o.sample_resolution <= 512, "--sample-resolution must be in 4..512");
-    check(o.lambda_step_nm > 0 && o.lambda_min_nm > 0 && o.lambda_max_nm > o.lambda_min_nm,
-          "the spectral grid needs 0 < lambda_min < lambda_max and a step > 0");
+    check(o.theta_i_count >= 2 && o.theta_i_count <= 256, o.names.theta_i_count, "2..256");
+    check(o.theta_i_max_deg > 0 && o.theta_i_max_deg < 90, "theta_i_max_deg", "(0, 90) degrees");
+    check(o.phi_i_count >= 3 && o.phi_i_count <= 256, o.names.phi_i_count, "3..256");  // 2 reads as isotropic
+    check(o.ndf_resolution >= 8 && o.ndf_resolution <= 1024, o.names.ndf_resolution, "8..1024");
+    check(o.sample_resolution >= 4 && o.sample_resolution <= 512, o.names.sample_resolution, "4..512");
+    if (!(o.lambda_step_nm > 0 && o.lambda_min_nm > 0 && o.lambda_max_nm > o.lambda_min_nm))
+        fail("the spectral grid needs 0 < lambda_min < lambda_max and a step > 0");
     const bool iso = model.isotropic();
     RglData d;
     d.description = description;

@@ -22,6 +22,13 @@
 
 namespace surfscatter::bsdf {
 
+// How messages name the export's options: the CLI's, unless a front end passes its own (Python's keywords), as
+// every library check that names a caller's argument takes the name from the caller (docs/RELIABILITY.md).
+struct RglExportNames {
+    std::string theta_i_count = "--theta-i-count", phi_i_count = "--phi-i-count", ndf_resolution = "--ndf-resolution",
+                sample_resolution = "--sample-resolution";
+};
+
 struct RglExportOptions {
     bool rgb = false;              // rgl-rgb: linear sRGB of each node's spectrum as a reflectance under D65
     int theta_i_count = 16;        // incidences, uniform over [0, theta_i_max_deg] (before refinement)
@@ -38,6 +45,7 @@ struct RglExportOptions {
     // > 0 (a SpecularAsLobe model: its core_rad()): directions this close to the mirror direction are left out of the
     // refinement's and rgl_file_accuracy's comparison (the lobe's core, whose energy the albedo measures).
     double mirror_exclusion_rad = 0;
+    RglExportNames names;
 };
 
 // The wavelengths a spectral export holds (o.lambda_min_nm to o.lambda_max_nm in o.lambda_step_nm steps).
@@ -46,7 +54,7 @@ std::vector<double> rgl_export_wavelengths(const RglExportOptions& o);
 // that a caller can say how large it will be before the work.
 double rgl_export_bytes(const RglExportOptions& o, bool isotropic, std::size_t incidences);
 
-// Throws Error on an option out of range (each named as the CLI spells it) or a model the material cannot evaluate
+// Throws Error on an option out of range (each named by options.names) or a model the material cannot evaluate
 // over the wavelengths (its own message).
 RglData export_rgl(const Bsdf& model, const RglExportOptions& options, const std::string& description);
 
@@ -87,8 +95,9 @@ void check_rgl_accuracy(const RglAccuracy& accuracy, double tolerance_percent, c
 // direction (what rgl_accuracy probes).
 class SpecularAsLobe final : public Bsdf {
 public:
-    // Throws Error for a width outside (0, 0.2) rad or a model without a delta part (at 550 nm, theta_i 0-89 deg).
-    SpecularAsLobe(const Bsdf& model, double width_rad);
+    // Throws Error for a width outside (0, 0.2) rad or a model without a delta part (at 550 nm, theta_i 0-89 deg);
+    // `name` is how the messages name the width (the CLI's option, Python's keyword).
+    SpecularAsLobe(const Bsdf& model, double width_rad, const std::string& name = "--specular-lobe");
     double eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const override;
     std::optional<BsdfSample> sample(const Vec3& wi, double lambda_nm, double u_lobe, Vec2 u) const override;
     double pdf(const Vec3& wi, const Vec3& wo, double lambda_nm) const override { return model_.pdf(wi, wo, lambda_nm); }

@@ -181,15 +181,58 @@ const fs::path& OutputFiles::staged(const fs::path& path) const {
 }
 
 void OutputFiles::commit() {
+    std::vector<Entry*> pending;
+    for (Entry& e : entries_)
+        if (e.written) pending.push_back(&e);
+    // A set of outputs lands together: before the first rename, each old file of a set of several is kept under a
+    // temporary name (a hard link, else a copy), so that a rename failing midway can put back the ones done before.
+    std::vector<fs::path> kept(pending.size());
+    const auto drop_kept = [&](std::size_t from) {
+        for (std::size_t i = from; i < kept.size(); ++i)
+            if (!kept[i].empty()) remove_quietly(kept[i]);
+    };
+    for (std::size_t i = 0; pending.size() > 1 && i < pending.size(); ++i) {
+        const Entry& e = *pending[i];
+        std::error_code ec;
+        if (!fs::is_regular_file(e.destination, ec)) continue;  // none (or a folder put there since: its rename fails)
+        kept[i] = temporary_beside(e.destination);
+        if (::link(e.destination.c_str(), kept[i].c_str()) == 0) continue;
+        fs::copy_file(e.destination, kept[i], ec);  // a file system without hard links
+        if (ec) {
+            drop_kept(0);
+            fail("cannot write {}: its old file cannot be kept until the set is in place: {}", printable_path(e.given), ec.message());
+        }
+    }
     std::set<fs::path> folders;
-    for (Entry& e : entries_) {
-        if (!e.written) continue;
+    for (std::size_t i = 0; i < pending.size(); ++i) {
+        Entry& e = *pending[i];
         std::error_code ec;
         fs::rename(e.temporary, e.destination, ec);
-        if (ec) fail("cannot move {} into place: {}", printable_path(e.given), ec.message());  // the destructor removes the rest
-        e.written = false;
+        if (ec) {
+            // The outputs moved before this one go back to their old files (or away, where there were none); the
+            // temporary files of the rest go.
+            std::string message = fmt::format("cannot move {} into place: {}", printable_path(e.given), ec.message());
+            for (std::size_t j = 0; j < i; ++j) {
+                Entry& done = *pending[j];
+                done.written = false;
+                std::error_code back;
+                if (kept[j].empty()) fs::remove(done.destination, back);
+                else fs::rename(kept[j], done.destination, back);
+                if (back)
+                    message += fmt::format("; {} could not be put back ({}){}", printable_path(done.given), back.message(),
+                                           kept[j].empty() ? "" : ": its old file is " + printable_path(kept[j]));
+            }
+            for (std::size_t j = i; j < pending.size(); ++j) {
+                remove_quietly(pending[j]->temporary);
+                pending[j]->written = false;
+            }
+            drop_kept(i);
+            throw Error(message);
+        }
         folders.insert(e.destination.parent_path());
     }
+    for (Entry* e : pending) e->written = false;
+    drop_kept(0);
     for (const fs::path& folder : folders) sync_path(folder, O_RDONLY | O_DIRECTORY);  // the renames, best effort
 }
 

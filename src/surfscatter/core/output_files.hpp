@@ -49,7 +49,9 @@ public:
     // Where a written output waits until commit() (a plot script reads the CSV written before it).
     const std::filesystem::path& staged(const std::filesystem::path& path) const;
 
-    // Renames every written output into place (then none is pending).
+    // Renames every written output into place (then none is pending). If a rename fails, the outputs renamed before
+    // it get their old files back (kept under a temporary name until all are in place), so that no new file stays
+    // beside an old one of the same set; the Error names the output that failed.
     void commit();
 
 private:

@@ -1,6 +1,7 @@
 #pragma once
 // A loaded scene: shapes in an Embree 3 BVH, their materials and emitters, the camera, film, sampler and integrator
 // settings. Immutable after commit(); intersect() and occluded() may be called from many threads.
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -114,6 +115,14 @@ public:
     // For the user, from the loader: each height map read and its valid fraction, what the models report about
     // themselves (e.g. how a measured PSD is extrapolated, with the bsdf's file and line).
     std::vector<std::string> notes;
+    // Every file the loader read besides the scene file itself (includes, meshes, textures, spectra, height maps,
+    // measured BSDFs, index tables), as resolved (-D values substituted), each with what named it ("filename at
+    // scene.xml:9"): a render's outputs must replace none of them (core/output_files.hpp).
+    struct LoadedFile {
+        std::filesystem::path path;
+        std::string named_by;
+    };
+    std::vector<LoadedFile> loaded_files;
 
 private:
     struct Shape;

@@ -942,6 +942,8 @@ private:
         fs::path p(filename);
         if (p.is_relative()) p = node.source->path.parent_path() / p;
         located(node, "", [&] { require_readable_file(p, "file"); });
+        const std::string label = node.xml.attribute("name") ? node.xml.attribute("name").value() : "<" + node.tag() + ">";
+        scene_->loaded_files.push_back({p, fmt::format("{} at {}", printable(label), node.where())});
         return p;
     }
 
