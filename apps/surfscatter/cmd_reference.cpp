@@ -113,6 +113,8 @@ void run_exact_1d(const Exact1dArgs& a, const CLI::App& sub) {
     options.polarisation = a.polarisation == "s" ? reference::Polarisation::s : reference::Polarisation::p;
     options.beam_width_um = a.beam_width;
     options.points_per_wavelength = a.points_per_wavelength;
+    options.option_names = {a.surface.psd ? "--length-um" : "the profile in --profile", "--wavelength",
+                            "--points-per-wavelength", "--threads"};
     if (!a.surface.psd) {
         if (a.profile.empty()) fail("give --profile FILE.csv or the statistical mode --psd kc|gaussian");
         const reference::Profile profile = reference::read_profile_csv(a.profile);

@@ -300,6 +300,7 @@ void run_profile_validity(const ValidityArgs& a) {
         study.polarisations = {bsdf::parse_profile_polarisation(a.polarisation, "--polarisation")};
     study.beam_width_um = a.beam_width;
     study.points_per_wavelength = a.points_per_wavelength;
+    study.option_names = {"--length-um", "--wavelengths", "--points-per-wavelength", "--threads"};
     study.statistical.length_um = a.length;
     study.statistical.realizations = static_cast<std::size_t>(a.realizations ? *a.realizations : cap);
     study.target_rel_stderr = target / 100;

@@ -138,7 +138,7 @@ TEST(CliReference, MoreNodesThanMemoryIsOneLine) {
     expect_bad_input({"reference", "exact-1d", "--profile", write_temp_file(csv, ".csv"), "--material", "perfect",
                       "--wavelength", "550", "--theta-i", "0", "--polarisation", "s", "--beam-width", "10", "-o",
                       "/tmp/surfscatter_ref_unused.csv"},
-                     "a longer --wavelength or fewer --points-per-wavelength");
+                     "reduce the profile in --profile, raise --wavelength or lower --points-per-wavelength");
 }
 
 // reference models-1d: the CSV on exact-1d's grid (GHS's coherent fraction plus its lobe is 1 for a perfect

@@ -501,18 +501,19 @@ double route_bytes(const RoutePlan& plan, std::size_t nodes, bool perfect) {
     return bytes;
 }
 
-// One line naming the options that set the node count, exit status 2 at the CLI.
+// One line naming the options that set the node count (as the caller spells them), exit status 2 at the CLI.
 void require_solve_memory(double bytes, std::size_t nodes, const Profile& profile, const Exact1dOptions& o,
                           std::size_t concurrent) {
     const auto available = static_cast<double>(available_memory_bytes());
     const double total = bytes * static_cast<double>(concurrent);
     if (total <= available) return;
+    const Exact1dOptionNames& names = o.option_names;
     fail("exact-1d: {} solver nodes (a {:.4g} um profile at {} nm, {} points per wavelength){} need {} of memory, more "
-         "than the {} available: a shorter profile (--length-um, or --profile's file), a longer --wavelength or fewer "
-         "--points-per-wavelength{}",
+         "than the {} available: reduce {}, raise {} or lower {}{}",
          nodes, profile.spacing_um * static_cast<double>(profile.h_um.size() - 1), o.lambda_nm,
          o.points_per_wavelength, concurrent > 1 ? fmt::format(" on {} threads", concurrent) : std::string(),
-         format_bytes(total), format_bytes(available), concurrent > 1 ? ", or fewer --threads" : "");
+         format_bytes(total), format_bytes(available), names.length, names.wavelength, names.points_per_wavelength,
+         concurrent > 1 ? fmt::format(", or {}", names.threads) : std::string());
 }
 
 // Z within `band` of the diagonal, Z = (rho S2)^-1 (1/2 + DL2), column by column against the banded factors on a

@@ -6,6 +6,7 @@
 // centred at x = 0 with its taper width g along x. Time dependence exp(-i omega t).
 #include <complex>
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "surfscatter/material/conductor.hpp"
@@ -22,6 +23,16 @@ enum class Polarisation { s, p };  // s (TE): E along y; p (TM): H along y
 enum class Exact1dSolver { automatic, dense, iterative };
 inline constexpr std::size_t kIterativeFromUnknowns = 500;
 
+// How the caller's interface spells the settings that fix the node count, for the memory refusal to name them: the
+// CLI commands pass their option names (`surfscatter validity` says --wavelengths, `reference exact-1d` --wavelength);
+// the defaults are plain words.
+struct Exact1dOptionNames {
+    std::string length = "the profile's length";
+    std::string wavelength = "the wavelength";
+    std::string points_per_wavelength = "the points per wavelength";
+    std::string threads = "the threads";
+};
+
 struct Exact1dOptions {
     double lambda_nm = 0.0;
     double theta_i_rad = 0.0;          // in [0, pi/2)
@@ -32,6 +43,7 @@ struct Exact1dOptions {
     // exp(-interior_reach) of the nearest ones): 10..100.
     double interior_reach = 30;
     Exact1dSolver solver = Exact1dSolver::automatic;
+    Exact1dOptionNames option_names;
 };
 
 // The scattered far field on the grid theta_o = -90, -89.9, ..., 90 deg: amplitude[j] with |amplitude|^2 the
@@ -74,8 +86,8 @@ FarField solve_exact_1d(const Profile& profile, const material::Conductor& condu
 // (tests/reference/test_exact_1d_memory.cpp). solve_exact_1d checks it against the available memory before it
 // allocates; this builds the nodes (O(N)) to plan the route.
 double exact_1d_solve_bytes(const Profile& profile, const material::Conductor& conductor, const Exact1dOptions& options);
-// Throws Error (one line naming --length-um / --profile, --wavelength, --points-per-wavelength and, for more than one
-// solve at once, --threads) when `concurrent_solves` such solves exceed the memory available now.
+// Throws Error (one line naming options.option_names' length, wavelength, points per wavelength and, for more than
+// one solve at once, threads) when `concurrent_solves` such solves exceed the memory available now.
 void require_exact_1d_memory(const Profile& profile, const material::Conductor& conductor,
                              const Exact1dOptions& options, std::size_t concurrent_solves);
 

@@ -373,6 +373,7 @@ std::vector<ProfileCase> profile_validity(const surface::RadialStatistics& stati
                                                                                     : reference::Polarisation::p;
                 options.beam_width_um = study.beam_width_um;
                 options.points_per_wavelength = study.points_per_wavelength;
+                options.option_names = study.option_names;
                 ProfileCase pc;
                 pc.wavelength_nm = lambda;
                 pc.theta_i_deg = theta_i;

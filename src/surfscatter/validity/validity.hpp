@@ -151,6 +151,7 @@ struct ProfileStudy {
     std::vector<bsdf::ProfilePolarisation> polarisations;
     double beam_width_um = 0;
     double points_per_wavelength = 10;
+    reference::Exact1dOptionNames option_names;  // as the caller spells them (exact-1d's memory refusal)
     // length, realizations (a fixed count; with a target, the cap), seed, threads (progress: per case)
     reference::StatisticalOptions statistical;
     // > 0: realizations run until the reference's median relative standard error over the bins used reaches it
