@@ -63,7 +63,8 @@ double measured_peak(const sr::Profile& profile, const sm::Conductor& conductor,
 
 // A 400 um KC profile (sigma 0.05 um, L 2 um, gamma 3) at 550 nm, 10 points per wavelength (7,273 nodes, the
 // iterative route): the bound is at least the measured peak and at most 2.5 times it, for the perfect conductor in
-// s (~30 GMRES products: most of the Krylov basis the bound counts is never touched) and silver in p (~100).
+// s and silver in p (a few to a few tens of GMRES products: most of the Krylov basis the bound counts is never
+// touched).
 TEST(Exact1dMemory, BoundHoldsThePeak) {
     const surfscatter::surface::KCorrelation kc(0.05, 2.0, 3.0);
     for (const char* metal : {"perfect", "Ag"}) {

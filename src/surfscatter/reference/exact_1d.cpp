@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <optional>
 #include <string>
 #include <tuple>
@@ -13,6 +14,7 @@
 #include "surfscatter/math/quadrature.hpp"
 #include "surfscatter/math/vec.hpp"
 #include "surfscatter/reference/banded_solve.hpp"
+#include "surfscatter/reference/circulant.hpp"
 #include "surfscatter/reference/dense_solve.hpp"
 #include "surfscatter/reference/far_field_sum.hpp"
 #include "surfscatter/reference/far_interaction.hpp"
@@ -91,6 +93,11 @@ void add_log_corrections(const Surface& s, LogPart log_part, At at) {
         }
 }
 
+// The s kernel's entry step (i/4) H0(k r) between nodes r apart (beyond Navot's corrected entries).
+Complex dirichlet_entry(double step, double k, double r) {
+    return step * 0.25 * Complex(-::y0(k * r), ::j0(k * r));
+}
+
 // s (Dirichlet): psi_inc(x_i) = int (i/4) H0(k R) U(x') dx', U = dpsi/dn sqrt(1 + h'^2). Log part of the kernel
 // -J0(kR)/(2 pi) ln|x - x'|; the rest tends to i/4 - (ln(k s/2) + gamma)/(2 pi), s = sqrt(1 + h'^2).
 // Entries with |i - j| <= band (>= 2) through at(i, j).
@@ -98,8 +105,7 @@ template <typename At>
 void fill_dirichlet(const Surface& s, double k, std::size_t band, At at) {
     const double step = s.step;
     for_each_pair(s.n, band, [&](std::size_t i, std::size_t j) {
-        const double z = k * distance(s.x[j] - s.x[i], s.h[j] - s.h[i]);
-        at(i, j) = at(j, i) = step * 0.25 * Complex(-::y0(z), ::j0(z));
+        at(i, j) = at(j, i) = dirichlet_entry(step, k, distance(s.x[j] - s.x[i], s.h[j] - s.h[i]));
     });
     for (std::size_t i = 0; i < s.n; ++i) {
         const double slope_norm = std::sqrt(1.0 + s.dh[i] * s.dh[i]);
@@ -415,12 +421,13 @@ Densities solve_dense_route(const Surface& surface, double k, const material::Co
 }
 
 // The iterative route (docs/REFERENCE.md, "Solve"): the operators' entries within `near` nodes of the diagonal are
-// computed as the dense route computes them, the rest by FarInteraction's FFT series; GMRES with the banded LU of
-// the near system truncated to kPreconditionerWavelengths as its preconditioner.
+// computed as the dense route computes them, the rest by FarInteraction's FFT series; GMRES preconditioned by the
+// inverse of the flat surface's operator (a circulant, by FFT), or for a perfect conductor in p (whose flat operator
+// is 1/2) by the banded LU of the near system truncated to kPreconditionerWavelengths.
 constexpr double kFarTolerance = 1e-10;         // tail of the far series against its first term, per entry
 constexpr int kFarTermsWanted = 10;             // widen the near band until the series needs no more terms
-// 6 rather than 1.5: on the supplemental rough surface at 100 um the GMRES products fell from 30 to 18 (perfect s)
-// and from 90 to 61 (Ag p), the set-up barely grew (docs/PERFORMANCE.md).
+// A perfect conductor in p: 9 GMRES products on the 100 um profiles of docs/PERFORMANCE.md. (6 rather than 1.5 when
+// the band preconditioned every case: on the supplemental rough surface perfect s fell from 30 to 18 products.)
 constexpr double kPreconditionerWavelengths = 6;
 // Automatic takes the dense route when the near band exceeds n / this: a 60 um profile of KC sigma 0.3 um (k sigma
 // 3.4) at 550 nm solved 1.1-1.25x slower by the iterative route than by the dense LU (perfect s, Ag p).
@@ -431,9 +438,11 @@ constexpr int kGmresRestart = 200, kGmresMaxIterations = 600;
 // The route a solve takes and the widths its buffers scale with, decided before any of them is allocated.
 struct RoutePlan {
     bool iterative = false;
-    std::size_t near = 0, precondition_band = 0, interior_band = 0;  // interior_band: a metal's, else 0
-    int terms = 0;                                                    // of the far series
-    std::string why;                                                  // why the iterative route declines
+    std::size_t near = 0, interior_band = 0;  // interior_band: a metal's, else 0
+    std::size_t precondition_band = 0;        // a perfect conductor in p: its banded LU's; else 0 (the flat operator)
+    std::size_t flat_size = 0;                // the flat operator's circulant: a power of 2 >= 2 n
+    int terms = 0;                            // of the far series
+    std::string why;                          // why the iterative route declines
 };
 
 // The near band for the profile's height range and its far series' terms, or {0, 0} when none short of the whole
@@ -466,8 +475,11 @@ RoutePlan plan_route(const Surface& surface, double k, double lambda_um, const m
         return plan;
     }
     plan.iterative = true;
-    plan.precondition_band = std::min(
-        plan.near, static_cast<std::size_t>(std::ceil(kPreconditionerWavelengths * lambda_um / surface.step)));
+    if (conductor.is_perfect() && options.polarisation == Polarisation::p)
+        plan.precondition_band = std::min(
+            plan.near, static_cast<std::size_t>(std::ceil(kPreconditionerWavelengths * lambda_um / surface.step)));
+    else
+        plan.flat_size = padded_fft_size(n);
     if (!conductor.is_perfect())
         plan.interior_band = interior_band(
             n, interior_cells(n, surface.step, conductor.ior(options.lambda_nm) * k, options.interior_reach));
@@ -486,15 +498,16 @@ double route_bytes(const RoutePlan& plan, std::size_t nodes, bool perfect) {
         return c * n * n * (perfect ? 2.2 : 3.2);
     const auto band = [&](std::size_t half_width) { return c * n * (2.0 * static_cast<double>(half_width) + 1.0); };
     const double pre = static_cast<double>(plan.precondition_band);
-    // The preconditioner's LAPACK factors (3 b + 1 rows, int pivots) and the truncated copy they are made from.
-    double bytes = c * n * (3.0 * pre + 1.0) + 4.0 * n + band(plan.precondition_band);
-    if (perfect) {
-        bytes += band(plan.near);  // S1 or 1/2 - DL1
-    } else {
-        // 1/2 - DL1 and S1; the interior's S2 factors and 1/2 + DL2; Z and S1 Z within the preconditioner's band,
-        // and Z's column.
-        bytes += 2.0 * band(plan.near) + 2.0 * band(plan.interior_band) + 2.0 * band(plan.precondition_band) + c * n;
-    }
+    // A perfect conductor in p: the preconditioner's LAPACK factors (3 b + 1 rows, int pivots) and the truncated copy
+    // they are made from, beside 1/2 - DL1. Otherwise the flat operator's circulant (symbol and FFT buffers: 3 L)
+    // and, while it is built, its kernel column and a metal's two interior circulants (7 L more), beside S1 and for a
+    // metal 1/2 - DL1 and the interior's S2 factors and 1/2 + DL2.
+    double bytes = 0.0;
+    if (plan.precondition_band > 0)
+        bytes += c * n * (3.0 * pre + 1.0) + 4.0 * n + band(plan.precondition_band) + band(plan.near);
+    else
+        bytes += c * static_cast<double>(plan.flat_size) * (perfect ? 4.0 : 10.0) +
+                 (perfect ? band(plan.near) : 2.0 * band(plan.near) + 2.0 * band(plan.interior_band));
     bytes += FarInteraction::bytes(nodes, plan.terms);
     // GMRES: the Krylov basis at its full restart length, and ~10 vectors of products, residuals and temporaries.
     bytes += c * n * (kGmresRestart + 1.0) + c * (kGmresRestart + 1.0) * kGmresRestart + 10.0 * c * n;
@@ -516,84 +529,95 @@ void require_solve_memory(double bytes, std::size_t nodes, const Profile& profil
          concurrent > 1 ? fmt::format(", or {}", names.threads) : std::string());
 }
 
-// Z within `band` of the diagonal, Z = (rho S2)^-1 (1/2 + DL2), column by column against the banded factors on a
-// window of the column's support widened by twice the factors' band (the preconditioner only: Z decays within a
-// few skin depths, the window's truncation changes the preconditioner and not the solution).
-BandedMatrix interior_map_band(const Interior& inside, std::size_t band) {
-    const BandedMatrix& lu = inside.single_lu;
-    const std::size_t n = lu.n, b2 = lu.band, tb = inside.half_plus_dbl.band, window = band + 2 * b2;
-    BandedMatrix z(n, band);
-    std::vector<Complex> y(n);
-    for (std::size_t j = 0; j < n; ++j) {
-        const std::size_t lo = j > window ? j - window : 0, hi = std::min(j + window, n - 1);
-        for (std::size_t r = lo; r <= hi; ++r)
-            y[r] = (r + tb >= j && r <= j + tb) ? inside.half_plus_dbl.at(r, j) : Complex(0.0);
-        for (std::size_t r = lo; r <= hi; ++r)
-            for (std::size_t c = std::max(r > b2 ? r - b2 : 0, lo); c < r; ++c) y[r] -= lu.at(r, c) * y[c];
-        for (std::size_t r = hi + 1; r-- > lo;) {
-            for (std::size_t c = r + 1; c <= std::min(r + b2, hi); ++c) y[r] -= lu.at(r, c) * y[c];
-            y[r] /= lu.at(r, r);
-        }
-        for (std::size_t r = j > band ? j - band : 0; r <= std::min(j + band, n - 1); ++r) z.at(r, j) = y[r] / inside.rho;
-    }
-    return z;
+// A flat surface of n nodes `step` apart.
+Surface flat_surface(std::size_t n, double step) {
+    Surface s;
+    s.n = n;
+    s.step = step;
+    s.x.resize(n);
+    for (std::size_t j = 0; j < n; ++j) s.x[j] = step * static_cast<double>(j);
+    s.h.assign(n, 0.0);
+    s.dh = s.d2h = s.h;
+    return s;
 }
 
-// a b truncated to `band` (a and b banded at least that wide).
-BandedMatrix banded_product(const BandedMatrix& a, const BandedMatrix& b, std::size_t band) {
-    const std::size_t n = a.n;
-    BandedMatrix out(n, band);
-    for (std::size_t i = 0; i < n; ++i)
-        for (std::size_t j = i > band ? i - band : 0; j <= std::min(i + band, n - 1); ++j) {
-            Complex sum = 0.0;
-            const std::size_t lo = std::max(i > a.band ? i - a.band : 0, j > b.band ? j - b.band : 0);
-            const std::size_t hi = std::min(std::min(i + a.band, j + b.band), n - 1);
-            for (std::size_t l = lo; l <= hi; ++l) sum += a.at(i, l) * b.at(l, j);
-            out.at(i, j) = sum;
-        }
-    return out;
+// The circulant column c(d) = m(mid, mid - d), |d| <= m's band, of a matrix translation invariant around row mid.
+Eigen::VectorXcd band_column(const BandedMatrix& m, std::size_t mid, std::size_t size) {
+    Eigen::VectorXcd c = Eigen::VectorXcd::Zero(static_cast<Eigen::Index>(size));
+    for (std::size_t d = 0; d <= m.band; ++d) {
+        c[static_cast<Eigen::Index>(d)] = m.at(mid, mid - d);
+        if (d > 0) c[static_cast<Eigen::Index>(size - d)] = m.at(mid, mid + d);
+    }
+    return c;
+}
+
+// The boundary operator of a flat surface with the profile's node spacing, periodic over `size` nodes: the same
+// Nystrom and product-integration entries as a profile's, translation invariant on a flat line, hence a circulant
+// (its kernels reach size / 2 nodes either way). A perfect conductor in s: S1; a metal: 1/2 - DL1 + S1 Z with
+// Z = (rho S2)^-1 (1/2 + DL2) and DL1 = 0 (its numerator dz - h' dx and h'' vanish on a flat line). Its inverse is
+// the iterative route's preconditioner: it holds what couples distant nodes on a nearly flat surface (a silver
+// surface's plasmons in p, which cross a 100 um profile), which no band does.
+std::unique_ptr<Circulant> flat_operator(double step, double k, std::size_t size, const material::Conductor& conductor,
+                                         const Exact1dOptions& options) {
+    Eigen::VectorXcd column = band_column(dirichlet_band(flat_surface(5, step), k, 4), 2, size);  // Navot's within 2
+    for (std::size_t d = 3; d <= size / 2; ++d)
+        column[static_cast<Eigen::Index>(d)] = column[static_cast<Eigen::Index>(size - d)] =
+            dirichlet_entry(step, k, step * static_cast<double>(d));
+    auto op = std::make_unique<Circulant>(column);
+    if (conductor.is_perfect()) return op;
+    const Complex index = conductor.ior(options.lambda_nm);
+    // The interior's rows on a flat surface long enough that the middle one sees neither end.
+    const std::size_t cells = interior_cells(size, step, index * k, options.interior_reach);
+    const std::size_t m = 2 * (cells + 8) + 1, mid = m / 2;
+    BandedPair inside = interior_matrices(flat_surface(m, step), index * k, options.interior_reach);
+    inside.dbl.at(mid, mid) += 0.5;
+    const Circulant single(band_column(inside.single, mid, size)), dbl(band_column(inside.dbl, mid, size));
+    const Complex rho = options.polarisation == Polarisation::s ? Complex(1.0) : index * index;
+    op->symbol() = (0.5 + op->symbol().array() * dbl.symbol().array() / (rho * single.symbol().array())).matrix();
+    return op;
 }
 
 // The densities by the iterative route planned, or nothing (with the reason in `why`) when GMRES does not converge.
 std::optional<Densities> solve_iterative_route(const Surface& surface, double k, const RoutePlan& plan,
                                                const material::Conductor& conductor, const Exact1dOptions& options,
                                                const Eigen::VectorXcd& incident, std::string& why) {
-    const std::size_t n = surface.n, near = plan.near, precondition_band = plan.precondition_band;
+    const std::size_t n = surface.n, near = plan.near;
     const FarInteraction far(surface.step, surface.h, surface.dh, k, near, kFarTolerance);
-    const bool s_pol = options.polarisation == Polarisation::s;
+    std::unique_ptr<Circulant> flat;
+    if (plan.flat_size > 0) flat = flat_operator(surface.step, k, plan.flat_size, conductor, options);
+    const LinearOperator flat_inverse = [&](const Eigen::VectorXcd& v) { return flat->solve_head(v); };
     Densities out{Eigen::VectorXcd::Zero(n), Eigen::VectorXcd::Zero(n)};
     GmresResult result;
-    if (conductor.is_perfect() && s_pol) {
+    if (conductor.is_perfect() && options.polarisation == Polarisation::s) {
         const BandedMatrix single = dirichlet_band(surface, k, near);
-        const BandedLu preconditioner(single.truncated(precondition_band), "the s-polarised near-field system");
         result = gmres([&](const Eigen::VectorXcd& v) -> Eigen::VectorXcd { return single.multiply(v) + far.single(v); },
+                       flat_inverse, incident, kGmresTolerance, kGmresRestart, kGmresMaxIterations);
+        out.normal = result.x;
+    } else if (conductor.is_perfect()) {
+        BandedMatrix half_minus_dbl = double_layer_band(surface, k, near);
+        for (auto& a : half_minus_dbl.data) a = -a;
+        for (std::size_t i = 0; i < n; ++i) half_minus_dbl.at(i, i) += 0.5;
+        const BandedLu preconditioner(half_minus_dbl.truncated(plan.precondition_band), "the near-field boundary system");
+        result = gmres([&](const Eigen::VectorXcd& psi) -> Eigen::VectorXcd {
+                           return half_minus_dbl.multiply(psi) - far.double_layer(psi);
+                       },
                        [&](const Eigen::VectorXcd& v) { return preconditioner.solve(v); }, incident, kGmresTolerance,
                        kGmresRestart, kGmresMaxIterations);
-        out.normal = result.x;
+        out.psi = result.x;
     } else {
         BandedMatrix half_minus_dbl = double_layer_band(surface, k, near);
         for (auto& a : half_minus_dbl.data) a = -a;
         for (std::size_t i = 0; i < n; ++i) half_minus_dbl.at(i, i) += 0.5;
-        std::optional<Interior> inside;
-        BandedMatrix single, near_system = half_minus_dbl.truncated(precondition_band);
-        if (!conductor.is_perfect()) {
-            inside = interior(surface, k, conductor, options);
-            single = dirichlet_band(surface, k, near);
-            const BandedMatrix coupling =
-                banded_product(single, interior_map_band(*inside, precondition_band), precondition_band);
-            for (std::size_t c = 0; c < near_system.data.size(); ++c) near_system.data[c] += coupling.data[c];
-        }
-        const BandedLu preconditioner(near_system, "the near-field boundary system");
-        auto apply = [&](const Eigen::VectorXcd& psi) -> Eigen::VectorXcd {
-            Eigen::VectorXcd y = half_minus_dbl.multiply(psi);
-            if (!inside) return y - far.double_layer(psi);
-            const Eigen::VectorXcd normal = inside->normal(psi);
-            return y + single.multiply(normal) + far.single_minus_double_layer(normal, psi);
-        };
-        result = gmres(apply, [&](const Eigen::VectorXcd& v) { return preconditioner.solve(v); }, incident,
-                       kGmresTolerance, kGmresRestart, kGmresMaxIterations);
+        const Interior inside = interior(surface, k, conductor, options);
+        const BandedMatrix single = dirichlet_band(surface, k, near);
+        result = gmres([&](const Eigen::VectorXcd& psi) -> Eigen::VectorXcd {
+                           const Eigen::VectorXcd normal = inside.normal(psi);
+                           return half_minus_dbl.multiply(psi) + single.multiply(normal) +
+                                  far.single_minus_double_layer(normal, psi);
+                       },
+                       flat_inverse, incident, kGmresTolerance, kGmresRestart, kGmresMaxIterations);
         out.psi = result.x;
-        if (inside) out.normal = inside->normal(out.psi);
+        out.normal = inside.normal(out.psi);
     }
     if (!result.converged) {
         why = fmt::format("GMRES reached a relative residual of {:.2g} after {} products (tolerance {:.0e})",

@@ -8,6 +8,7 @@
 #include <fftw3.h>
 
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/reference/circulant.hpp"
 #include "surfscatter/heightmap/fftw_planner.hpp"
 
 namespace surfscatter::reference {
@@ -26,12 +27,6 @@ void hankel_orders(double z, int count, std::vector<Complex>& out) {
     out[0] = {::j0(z), ::y0(z)};
     if (count > 1) out[1] = {::j1(z), ::y1(z)};
     for (int m = 1; m + 1 < count; ++m) out[m + 1] = (2.0 * m / z) * out[m] - out[m - 1];
-}
-
-std::size_t fft_size(std::size_t at_least) {
-    std::size_t size = 1;
-    while (size < at_least) size *= 2;
-    return size;
 }
 
 // y += c * a .* b without libgcc's NaN-recovering complex multiply.
@@ -103,7 +98,7 @@ int FarInteraction::terms_needed(double step, std::size_t nodes, double range, d
 
 FarInteraction::FarInteraction(double step, const std::vector<double>& h, const std::vector<double>& dh, double k,
                                std::size_t near, double tolerance)
-    : n_(h.size()), size_(fft_size(2 * h.size())), dh_(dh), plans_(std::make_unique<Plans>()) {
+    : n_(h.size()), size_(padded_fft_size(h.size())), dh_(dh), plans_(std::make_unique<Plans>()) {
     const auto [lo, hi] = std::minmax_element(h.begin(), h.end());
     const double mid = 0.5 * (*lo + *hi), range = *hi - *lo;
     h_.resize(n_);
@@ -156,7 +151,7 @@ FarInteraction::FarInteraction(double step, const std::vector<double>& h, const 
 FarInteraction::~FarInteraction() = default;
 
 double FarInteraction::bytes(std::size_t nodes, int terms) {
-    const double size = static_cast<double>(fft_size(2 * nodes)), n = static_cast<double>(nodes), c = sizeof(Complex);
+    const double size = static_cast<double>(padded_fft_size(nodes)), n = static_cast<double>(nodes), c = sizeof(Complex);
     // 3 terms kernel spectra, 2 terms density and 2 terms output spectra, padded_ and one spectrum-sized temporary; h_, dh_
     // and apply's result and power arrays.
     return c * size * (7.0 * terms + 2.0) + 2.0 * 8.0 * n + (c + 8.0) * n;
