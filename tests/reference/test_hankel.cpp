@@ -69,3 +69,61 @@ TEST(Hankel, RefusesTheLowerHalfPlaneAndZero) {
     EXPECT_THROW(sr::hankel01(Complex(0.0, 0.0)), surfscatter::Error);
     EXPECT_THROW(sr::hankel01(Complex(std::nan(""), 1.0)), surfscatter::Error);
 }
+
+// The interpolated ray k r against SciPy at 201 radii over [r_lo, r_hi] (hankel01's own bounds: absolute 2e-11 x
+// max(1, |H|), relative 1e-11 from |k r| = 13, past the interval that holds hankel01's switch from its series to
+// Hankel's expansion at 12) and against hankel01 itself where that is accurate to rounding (|k r| >= 13: within
+// 1e-12 of |H|), for the interior wavenumbers of silver at 550 nm and
+// aluminium at 450 nm (N = 0.055 + 3.32i and 0.49 + 5.47i, node spacings 55 and 45 nm, 30 decay lengths) and a
+// weakly absorbing medium (N = 1.5 + 0.01i, to 40 um).
+TEST(Hankel, RayMatchesDirectEvaluation) {
+    struct Case {
+        Complex index;
+        double lambda_um, step_um;
+    };
+    for (const Case& c : {Case{{0.055, 3.32}, 0.55, 0.055}, Case{{0.49, 5.47}, 0.45, 0.045}, Case{{1.5, 0.01}, 0.55, 0.055}}) {
+        const Complex k = c.index * surfscatter::kTwoPi / c.lambda_um;
+        const double r_lo = c.step_um, r_hi = std::min(30.0 / k.imag(), 40.0) + 0.5;
+        const sr::HankelRay ray(k, r_lo, r_hi);
+        double worst_asymptotic = 0;
+        for (int q = 0; q <= 20000; ++q) {
+            const double r = r_lo + (r_hi - r_lo) * q / 20000.0;
+            if (std::abs(k * r) < 13) continue;
+            const auto direct = sr::hankel01(k * r), table = ray(r);
+            worst_asymptotic = std::max({worst_asymptotic, std::abs(table.h0 - direct.h0) / std::abs(direct.h0),
+                                         std::abs(table.h1 - direct.h1) / std::abs(direct.h1)});
+        }
+        EXPECT_LT(worst_asymptotic, 1e-12) << c.index;
+        std::string list;
+        std::vector<Complex> z;
+        for (int q = 0; q <= 200; ++q) {
+            z.push_back(k * (r_lo + (r_hi - r_lo) * q / 200.0));
+            list += fmt::format("complex({:.17g},{:.17g}),", z.back().real(), z.back().imag());
+        }
+        const std::string command = fmt::format(
+            "/usr/bin/python3 -c \"import scipy.special as s\nfor z in [{}]:\n print(repr(s.hankel1(0, z).real), "
+            "repr(s.hankel1(0, z).imag), repr(s.hankel1(1, z).real), repr(s.hankel1(1, z).imag))\"",
+            list);
+        std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
+        ASSERT_TRUE(pipe);
+        double worst_near = 0, worst_far = 0;
+        for (const Complex& zq : z) {
+            double a, b, cr, ci;
+            ASSERT_EQ(std::fscanf(pipe.get(), "%lf %lf %lf %lf", &a, &b, &cr, &ci), 4) << "python3 with scipy is needed";
+            const Complex h0(a, b), h1(cr, ci);
+            const auto table = ray(std::abs(zq) / std::abs(k));
+            worst_near = std::max({worst_near, std::abs(table.h0 - h0) / std::max(1.0, std::abs(h0)),
+                                   std::abs(table.h1 - h1) / std::max(1.0, std::abs(h1))});
+            if (std::abs(zq) >= 13) {
+                worst_far = std::max({worst_far, std::abs(table.h0 - h0) / std::abs(h0),
+                                      std::abs(table.h1 - h1) / std::abs(h1)});
+            }
+        }
+        std::printf("N = %g%+gi: against SciPy %.2g (absolute), %.2g (relative, |k r| >= 13); against "
+                    "hankel01 beyond |k r| = 13: %.2g\n",
+                    c.index.real(), c.index.imag(), worst_near, worst_far, worst_asymptotic);
+        EXPECT_LT(worst_near, 2e-11) << c.index;
+        EXPECT_LT(worst_far, 1e-11) << c.index;
+    }
+    EXPECT_THROW(sr::HankelRay(Complex(1.0, 1.0), 0.0, 1.0), surfscatter::Error);
+}

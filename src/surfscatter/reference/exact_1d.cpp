@@ -195,6 +195,10 @@ BandedPair interior_matrices(const Surface& s, Complex k2, double reach_decay_le
     out.dbl = BandedMatrix(n, out.single.band);
     const math::GaussLegendreRule near_rule(kInteriorGauss);
     const math::GaussLegendreRule far_rule(std::abs(k2) * step <= 3.0 ? kInteriorGaussFar : kInteriorGauss);
+    // Interpolated from one node spacing on (every interval but the two at x_i lies that far): the Hankel functions
+    // were more than half the interior's set-up time (docs/REFERENCE.md, "Speed").
+    const auto [h_lo, h_hi] = std::minmax_element(s.h.begin(), s.h.end());
+    const HankelRay hankel(k2, step, step * static_cast<double>(cells + 1) + (*h_hi - *h_lo));
     for (std::size_t i = 0; i < n; ++i) {
         const std::size_t first = i > cells ? i - cells : 0, last = std::min(i + cells, n - 1);  // intervals [m, m+1]
         for (std::size_t m = first; m < last; ++m) {
@@ -216,7 +220,7 @@ BandedPair interior_matrices(const Surface& s, Complex k2, double reach_decay_le
                 const double dx = step * (static_cast<double>(m) - static_cast<double>(i) + t), dz = hx - s.h[i];
                 const double r = distance(dx, dz);
                 if (r == 0.0) continue;  // u = 0 is never a Gauss node; guards a degenerate surface only
-                const HankelPair hp = hankel01(k2 * r);
+                const HankelPair hp = hankel(r);
                 const Complex single = 0.25 * kI * hp.h0;
                 const Complex dbl = -0.25 * kI * k2 * hp.h1 * (dz - dhx * dx) / r;
                 const double v = static_cast<double>(m - start) + t;  // position among the four nodes

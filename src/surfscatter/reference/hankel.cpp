@@ -72,4 +72,48 @@ HankelPair hankel01(std::complex<double> z) {
     return std::norm(z) <= kSeriesRadius * kSeriesRadius ? series(z) : asymptotic(z);
 }
 
+HankelRay::HankelRay(std::complex<double> k, double r_lo, double r_hi) : k_(k), r_lo_(r_lo), r_hi_(r_hi) {
+    if (!(r_lo > 0 && r_hi >= r_lo && std::isfinite(r_hi)))
+        fail("Hankel table: radii must satisfy 0 < r_lo <= r_hi, got {} and {}", r_lo, r_hi);
+    width_ = 0.5 * std::min(r_lo, 1.0 / std::abs(k));
+    const auto intervals = static_cast<std::size_t>(std::ceil((r_hi - r_lo) / width_)) + 1;
+    coefficients_.assign(intervals * 2 * kDegree, Complex(0.0));
+    HankelPair samples[kDegree];
+    for (std::size_t q = 0; q < intervals; ++q) {
+        const double centre = r_lo + width_ * (static_cast<double>(q) + 0.5);
+        for (int j = 0; j < kDegree; ++j)
+            samples[j] = hankel01(k * (centre + 0.5 * width_ * std::cos(kPi * (j + 0.5) / kDegree)));
+        Complex* c = &coefficients_[q * 2 * kDegree];
+        for (int m = 0; m < kDegree; ++m) {  // c_m = (2 / n) sum_j f(x_j) T_m(x_j), halved at m = 0
+            Complex a0 = 0.0, a1 = 0.0;
+            for (int j = 0; j < kDegree; ++j) {
+                const double t = std::cos(kPi * m * (j + 0.5) / kDegree);
+                a0 += t * samples[j].h0;
+                a1 += t * samples[j].h1;
+            }
+            const double scale = (m == 0 ? 1.0 : 2.0) / kDegree;
+            c[m] = scale * a0;
+            c[kDegree + m] = scale * a1;
+        }
+    }
+}
+
+HankelPair HankelRay::operator()(double r) const {
+    if (!(r >= r_lo_ && r <= r_hi_)) return hankel01(k_ * r);
+    const double position = (r - r_lo_) / width_;
+    const auto q = static_cast<std::size_t>(position);
+    const double x = 2.0 * (position - static_cast<double>(q)) - 1.0, twice = 2.0 * x;
+    const Complex* c = &coefficients_[q * 2 * kDegree];
+    // Clenshaw's recurrence for both series, in real arithmetic (libgcc's complex multiply checks for NaN).
+    double b0r = 0, b0i = 0, b1r = 0, b1i = 0, d0r = 0, d0i = 0, d1r = 0, d1i = 0;
+    for (int m = kDegree - 1; m >= 1; --m) {
+        const double n0r = twice * b0r - b1r + c[m].real(), n0i = twice * b0i - b1i + c[m].imag();
+        const double e0r = twice * d0r - d1r + c[kDegree + m].real(), e0i = twice * d0i - d1i + c[kDegree + m].imag();
+        b1r = b0r, b1i = b0i, b0r = n0r, b0i = n0i;
+        d1r = d0r, d1i = d0i, d0r = e0r, d0i = e0i;
+    }
+    return {Complex(x * b0r - b1r + c[0].real(), x * b0i - b1i + c[0].imag()),
+            Complex(x * d0r - d1r + c[kDegree].real(), x * d0i - d1i + c[kDegree].imag())};
+}
+
 }  // namespace surfscatter::reference
