@@ -10,6 +10,32 @@
 
 namespace surfscatter::reference {
 
+std::size_t padded_fft_size(std::size_t nodes) {
+    std::size_t size = 1;
+    while (size < 2 * nodes) size *= 2;
+    return size;
+}
+
+struct FftPlans::Plans {
+    fftw_plan forward = nullptr, backward = nullptr;
+    ~Plans() {
+        const std::lock_guard lock(heightmap::fftw_planner_mutex());
+        if (forward) fftw_destroy_plan(forward);
+        if (backward) fftw_destroy_plan(backward);
+    }
+};
+
+FftPlans::FftPlans(std::size_t size) : plans_(std::make_unique<Plans>()) {
+    const std::lock_guard lock(heightmap::fftw_planner_mutex());
+    Eigen::VectorXcd in(static_cast<Eigen::Index>(size)), out(static_cast<Eigen::Index>(size));
+    auto* raw_in = reinterpret_cast<fftw_complex*>(in.data());
+    auto* raw_out = reinterpret_cast<fftw_complex*>(out.data());
+    plans_->forward = fftw_plan_dft_1d(static_cast<int>(size), raw_in, raw_out, FFTW_FORWARD, FFTW_ESTIMATE);
+    plans_->backward = fftw_plan_dft_1d(static_cast<int>(size), raw_in, raw_out, FFTW_BACKWARD, FFTW_ESTIMATE);
+}
+
+FftPlans::~FftPlans() = default;
+
 namespace {
 
 void execute(fftw_plan plan, const Eigen::VectorXcd& in, Eigen::VectorXcd& out) {
@@ -19,53 +45,31 @@ void execute(fftw_plan plan, const Eigen::VectorXcd& in, Eigen::VectorXcd& out) 
 
 }  // namespace
 
-std::size_t padded_fft_size(std::size_t nodes) {
-    std::size_t size = 1;
-    while (size < 2 * nodes) size *= 2;
-    return size;
-}
-
-struct Circulant::Plans {
-    fftw_plan forward = nullptr, backward = nullptr;
-    ~Plans() {
-        const std::lock_guard lock(heightmap::fftw_planner_mutex());
-        if (forward) fftw_destroy_plan(forward);
-        if (backward) fftw_destroy_plan(backward);
-    }
-};
+void FftPlans::forward(const Eigen::VectorXcd& in, Eigen::VectorXcd& out) const { execute(plans_->forward, in, out); }
+void FftPlans::backward(const Eigen::VectorXcd& in, Eigen::VectorXcd& out) const { execute(plans_->backward, in, out); }
 
 Circulant::Circulant(const Eigen::VectorXcd& column)
-    : symbol_(column.size()), plans_(std::make_unique<Plans>()), padded_(column.size()), spectrum_(column.size()) {
-    const auto size = static_cast<int>(column.size());
-    {
-        const std::lock_guard lock(heightmap::fftw_planner_mutex());
-        // Out of place, on 16-byte aligned Eigen vectors like every array they run on (SIMD codelets allowed).
-        auto* in = reinterpret_cast<fftw_complex*>(padded_.data());
-        auto* out = reinterpret_cast<fftw_complex*>(spectrum_.data());
-        plans_->forward = fftw_plan_dft_1d(size, in, out, FFTW_FORWARD, FFTW_ESTIMATE);
-        plans_->backward = fftw_plan_dft_1d(size, in, out, FFTW_BACKWARD, FFTW_ESTIMATE);
-    }
-    execute(plans_->forward, column, symbol_);
+    : symbol_(column.size()), plans_(static_cast<std::size_t>(column.size())), padded_(column.size()),
+      spectrum_(column.size()) {
+    plans_.forward(column, symbol_);
 }
-
-Circulant::~Circulant() = default;
 
 Eigen::VectorXcd Circulant::solve_head(const Eigen::VectorXcd& v) const {
     const Eigen::Index size = symbol_.size(), n = v.size();
     padded_.head(n) = v;
     padded_.tail(size - n).setZero();
-    execute(plans_->forward, padded_, spectrum_);
+    plans_.forward(padded_, spectrum_);
     for (Eigen::Index q = 0; q < size; ++q) {
         if (symbol_[q] == std::complex<double>(0.0)) fail("circulant solve: the symbol vanishes at frequency {}", q);
         spectrum_[q] /= symbol_[q] * static_cast<double>(size);
     }
-    execute(plans_->backward, spectrum_, padded_);
+    plans_.backward(spectrum_, padded_);
     return padded_.head(n);
 }
 
 Eigen::VectorXcd Circulant::column() const {
     Eigen::VectorXcd out(symbol_.size());
-    execute(plans_->backward, symbol_, out);
+    plans_.backward(symbol_, out);
     return out / static_cast<double>(symbol_.size());
 }
 

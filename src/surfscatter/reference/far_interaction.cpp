@@ -3,13 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
-#include <mutex>
-
-#include <fftw3.h>
 
 #include "surfscatter/core/error.hpp"
-#include "surfscatter/reference/circulant.hpp"
-#include "surfscatter/heightmap/fftw_planner.hpp"
 
 namespace surfscatter::reference {
 
@@ -41,15 +36,6 @@ void multiply_add(Complex* y, const Complex* a, const Complex* b, double c, std:
 }
 
 }  // namespace
-
-struct FarInteraction::Plans {
-    fftw_plan forward = nullptr, backward = nullptr;
-    ~Plans() {
-        const std::lock_guard lock(heightmap::fftw_planner_mutex());
-        if (forward) fftw_destroy_plan(forward);
-        if (backward) fftw_destroy_plan(backward);
-    }
-};
 
 int FarInteraction::terms_needed(double step, std::size_t nodes, double range, double k, std::size_t near,
                                  double tolerance) {
@@ -98,7 +84,7 @@ int FarInteraction::terms_needed(double step, std::size_t nodes, double range, d
 
 FarInteraction::FarInteraction(double step, const std::vector<double>& h, const std::vector<double>& dh, double k,
                                std::size_t near, double tolerance)
-    : n_(h.size()), size_(padded_fft_size(h.size())), dh_(dh), plans_(std::make_unique<Plans>()) {
+    : n_(h.size()), size_(padded_fft_size(h.size())), dh_(dh), plans_(size_) {
     const auto [lo, hi] = std::minmax_element(h.begin(), h.end());
     const double mid = 0.5 * (*lo + *hi), range = *hi - *lo;
     h_.resize(n_);
@@ -107,18 +93,6 @@ FarInteraction::FarInteraction(double step, const std::vector<double>& h, const 
     if (terms_ == 0)
         fail("exact-1d: the far-field expansion does not converge for a height range of {} um beyond {} nodes", range,
              near);
-    {
-        const std::lock_guard lock(heightmap::fftw_planner_mutex());
-        // Out of place (in place, FFTW_ESTIMATE transposes at 4096). Every array the plans run on is an Eigen vector or
-        // std::vector of complex<double>, 16-byte aligned like these, so the plans may use SIMD codelets
-        // (FFTW_UNALIGNED forbids them: far products took 1.3x longer with it, docs/PERFORMANCE.md).
-        std::vector<Complex> in(size_), out(size_);
-        auto* raw_in = reinterpret_cast<fftw_complex*>(in.data());
-        auto* raw_out = reinterpret_cast<fftw_complex*>(out.data());
-        const int size = static_cast<int>(size_);
-        plans_->forward = fftw_plan_dft_1d(size, raw_in, raw_out, FFTW_FORWARD, FFTW_ESTIMATE);
-        plans_->backward = fftw_plan_dft_1d(size, raw_in, raw_out, FFTW_BACKWARD, FFTW_ESTIMATE);
-    }
     const auto count = static_cast<std::size_t>(terms_);
     single_.assign(count, Eigen::VectorXcd::Zero(static_cast<Eigen::Index>(size_)));
     odd_ = single_;
@@ -142,8 +116,7 @@ FarInteraction::FarInteraction(double step, const std::vector<double>& h, const 
     Eigen::VectorXcd spectrum(static_cast<Eigen::Index>(size_));
     for (auto* family : {&single_, &odd_, &slope_})
         for (auto& v : *family) {
-            fftw_execute_dft(plans_->forward, reinterpret_cast<fftw_complex*>(v.data()),
-                             reinterpret_cast<fftw_complex*>(spectrum.data()));
+            plans_.forward(v, spectrum);
             v = spectrum;
         }
 }
@@ -180,10 +153,6 @@ Eigen::VectorXcd FarInteraction::apply(const Eigen::VectorXcd* double_density, c
     if (single_density) families.push_back({&single_, single_density, 0, false, 1.0});
     const int max_power = 2 * (terms_ - 1) + 1;
     const auto size = static_cast<Eigen::Index>(size_);
-    auto fft = [](fftw_plan plan, const Eigen::VectorXcd& in, Eigen::VectorXcd& out) {
-        fftw_execute_dft(plan, reinterpret_cast<fftw_complex*>(const_cast<Complex*>(in.data())),
-                         reinterpret_cast<fftw_complex*>(out.data()));
-    };
     if (out_spectra_.empty()) {
         out_spectra_.assign(static_cast<std::size_t>(max_power + 1), Eigen::VectorXcd(size));
         density_.assign(static_cast<std::size_t>(max_power + 1), Eigen::VectorXcd(size));
@@ -197,7 +166,7 @@ Eigen::VectorXcd FarInteraction::apply(const Eigen::VectorXcd* double_density, c
         if (family.slope)
             for (std::size_t j = 0; j < n_; ++j) padded_[static_cast<Eigen::Index>(j)] *= dh_[j];
         for (int b = 0; b <= top; ++b) {  // FFT of h^b w v
-            fft(plans_->forward, padded_, density_[b]);
+            plans_.forward(padded_, density_[b]);
             for (std::size_t j = 0; j < n_; ++j) padded_[static_cast<Eigen::Index>(j)] *= h_[j];
         }
         // The (terms)^2 spectral products block by block of frequencies, so that the spectra they read stay in cache
@@ -220,7 +189,7 @@ Eigen::VectorXcd FarInteraction::apply(const Eigen::VectorXcd* double_density, c
     Eigen::VectorXcd out = Eigen::VectorXcd::Zero(static_cast<Eigen::Index>(n_));
     std::vector<double> power(n_, 1.0 / static_cast<double>(size_));  // h^a / size (FFTW does not normalise)
     for (int a = 0; a <= used; ++a) {
-        fft(plans_->backward, out_spectra_[a], padded_);
+        plans_.backward(out_spectra_[a], padded_);
         for (std::size_t j = 0; j < n_; ++j) out[static_cast<Eigen::Index>(j)] += power[j] * padded_[static_cast<Eigen::Index>(j)];
         for (std::size_t j = 0; j < n_; ++j) power[j] *= h_[j];
     }

@@ -7,10 +7,11 @@
 // tolerance needs). The terms are counted for the profile's height range: the tail is below `tolerance` times the
 // series' first term at every far separation.
 #include <cstddef>
-#include <memory>
 #include <vector>
 
 #include <Eigen/Dense>
+
+#include "surfscatter/reference/circulant.hpp"
 
 namespace surfscatter::reference {
 
@@ -44,7 +45,6 @@ public:
     static double bytes(std::size_t nodes, int terms);
 
 private:
-    struct Plans;
     static constexpr std::size_t kBlock = 256;  // frequencies per cache block of the spectral products
     // single(*single_density) - double_layer(*double_density); a null density is left out.
     Eigen::VectorXcd apply(const Eigen::VectorXcd* double_density, const Eigen::VectorXcd* single_density) const;
@@ -53,7 +53,7 @@ private:
     std::vector<double> h_, dh_;  // heights centred on their mid-range
     // Kernel spectra: single_[m], odd_[m] (f_m for dz^(2m+1)) and slope_[m] (-f_m dx for h'_j dz^(2m)).
     std::vector<Eigen::VectorXcd> single_, odd_, slope_;
-    std::unique_ptr<Plans> plans_;
+    FftPlans plans_;
     // Workspace of apply, kept between products (a solve applies the operators tens of times).
     mutable std::vector<Eigen::VectorXcd> density_, out_spectra_;
     mutable Eigen::VectorXcd padded_;
