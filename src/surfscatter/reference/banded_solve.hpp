@@ -1,7 +1,7 @@
 #pragma once
 // A banded complex matrix (entries with |i - j| <= band) and its LU factors with partial pivoting by LAPACK's
 // zgbtrf / zgbtrs (O(N band^2) to factor, O(N band) per solve): the near-field preconditioner of the exact 1-D
-// solver's iterative route (docs/REFERENCE.md, "Solve").
+// solver's iterative route for a perfect conductor in p (docs/REFERENCE.md, "Solve").
 #include <complex>
 #include <cstddef>
 #include <string_view>

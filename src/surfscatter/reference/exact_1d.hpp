@@ -16,8 +16,9 @@ namespace surfscatter::reference {
 
 enum class Polarisation { s, p };  // s (TE): E along y; p (TM): H along y
 
-// How the boundary system is solved (docs/REFERENCE.md, "Solve"): dense LU; GMRES with an FFT far part and a banded
-// near-field preconditioner (O(N log N) per product); or automatic: iterative from kIterativeFromUnknowns
+// How the boundary system is solved (docs/REFERENCE.md, "Solve"): dense LU; GMRES with an FFT far part,
+// preconditioned by the flat surface's operator (a circulant, by FFT) or for a perfect conductor in p by a banded
+// near-field LU (O(N log N) per product); or automatic: iterative from kIterativeFromUnknowns
 // unknowns, dense below and wherever the iterative route declines (a height range its far series cannot span, or
 // no convergence).
 enum class Exact1dSolver { automatic, dense, iterative };
