@@ -504,14 +504,19 @@ double route_bytes(const RoutePlan& plan, std::size_t nodes, bool perfect) {
     const double pre = static_cast<double>(plan.precondition_band);
     // A perfect conductor in p: the preconditioner's LAPACK factors (3 b + 1 rows, int pivots) and the truncated copy
     // they are made from, beside 1/2 - DL1. Otherwise the flat operator's circulant (symbol and FFT buffers: 3 L)
-    // and, while it is built, its kernel column and a metal's two interior circulants (7 L more), beside S1 and for a
-    // metal 1/2 - DL1 and the interior's S2 factors and 1/2 + DL2.
+    // and, while it is built, its kernel column and a metal's two interior circulants (7 L more) and the two interior
+    // matrices of its short flat surface (m = 2 b + 17 nodes, half-width at most m), beside S1 and for a metal
+    // 1/2 - DL1 and the interior's S2 factors and 1/2 + DL2.
     double bytes = 0.0;
-    if (plan.precondition_band > 0)
+    if (plan.precondition_band > 0) {
         bytes += c * n * (3.0 * pre + 1.0) + 4.0 * n + band(plan.precondition_band) + band(plan.near);
-    else
-        bytes += c * static_cast<double>(plan.flat_size) * (perfect ? 4.0 : 10.0) +
-                 (perfect ? band(plan.near) : 2.0 * band(plan.near) + 2.0 * band(plan.interior_band));
+    } else if (perfect) {
+        bytes += c * 4.0 * static_cast<double>(plan.flat_size) + band(plan.near);
+    } else {
+        const double m = 2.0 * static_cast<double>(plan.interior_band) + 17.0;
+        bytes += c * 10.0 * static_cast<double>(plan.flat_size) + 2.0 * c * m * (2.0 * m + 1.0) + 2.0 * band(plan.near) +
+                 2.0 * band(plan.interior_band);
+    }
     bytes += FarInteraction::bytes(nodes, plan.terms);
     // GMRES: the Krylov basis at its full restart length, and ~10 vectors of products, residuals and temporaries.
     bytes += c * n * (kGmresRestart + 1.0) + c * (kGmresRestart + 1.0) * kGmresRestart + 10.0 * c * n;
@@ -545,10 +550,11 @@ Surface flat_surface(std::size_t n, double step) {
     return s;
 }
 
-// The circulant column c(d) = m(mid, mid - d), |d| <= m's band, of a matrix translation invariant around row mid.
+// The circulant column c(d) = m(mid, mid - d), |d| <= m's band and < size / 2, of a matrix translation invariant
+// around row mid.
 Eigen::VectorXcd band_column(const BandedMatrix& m, std::size_t mid, std::size_t size) {
     Eigen::VectorXcd c = Eigen::VectorXcd::Zero(static_cast<Eigen::Index>(size));
-    for (std::size_t d = 0; d <= m.band; ++d) {
+    for (std::size_t d = 0; d <= std::min(m.band, size / 2 - 1); ++d) {
         c[static_cast<Eigen::Index>(d)] = m.at(mid, mid - d);
         if (d > 0) c[static_cast<Eigen::Index>(size - d)] = m.at(mid, mid + d);
     }
@@ -561,8 +567,8 @@ Eigen::VectorXcd band_column(const BandedMatrix& m, std::size_t mid, std::size_t
 // Z = (rho S2)^-1 (1/2 + DL2) and DL1 = 0 (its numerator dz - h' dx and h'' vanish on a flat line). Its inverse is
 // the iterative route's preconditioner: it holds what couples distant nodes on a nearly flat surface (a silver
 // surface's plasmons in p, which cross a 100 um profile), which no band does.
-std::unique_ptr<Circulant> flat_operator(double step, double k, std::size_t size, const material::Conductor& conductor,
-                                         const Exact1dOptions& options) {
+std::unique_ptr<Circulant> flat_operator(double step, double k, std::size_t nodes, std::size_t size,
+                                         const material::Conductor& conductor, const Exact1dOptions& options) {
     Eigen::VectorXcd column = band_column(dirichlet_band(flat_surface(5, step), k, 4), 2, size);  // Navot's within 2
     for (std::size_t d = 3; d <= size / 2; ++d)
         column[static_cast<Eigen::Index>(d)] = column[static_cast<Eigen::Index>(size - d)] =
@@ -570,8 +576,9 @@ std::unique_ptr<Circulant> flat_operator(double step, double k, std::size_t size
     auto op = std::make_unique<Circulant>(column);
     if (conductor.is_perfect()) return op;
     const Complex index = conductor.ior(options.lambda_nm);
-    // The interior's rows on a flat surface long enough that the middle one sees neither end.
-    const std::size_t cells = interior_cells(size, step, index * k, options.interior_reach);
+    // The interior's rows on a flat surface long enough that the middle one sees neither end (and reaches no further
+    // than the profile's `nodes`).
+    const std::size_t cells = interior_cells(nodes, step, index * k, options.interior_reach);
     const std::size_t m = 2 * (cells + 8) + 1, mid = m / 2;
     BandedPair inside = interior_matrices(flat_surface(m, step), index * k, options.interior_reach);
     inside.dbl.at(mid, mid) += 0.5;
@@ -588,7 +595,7 @@ std::optional<Densities> solve_iterative_route(const Surface& surface, double k,
     const std::size_t n = surface.n, near = plan.near;
     const FarInteraction far(surface.step, surface.h, surface.dh, k, near, kFarTolerance);
     std::unique_ptr<Circulant> flat;
-    if (plan.flat_size > 0) flat = flat_operator(surface.step, k, plan.flat_size, conductor, options);
+    if (plan.flat_size > 0) flat = flat_operator(surface.step, k, n, plan.flat_size, conductor, options);
     const LinearOperator flat_inverse = [&](const Eigen::VectorXcd& v) { return flat->solve_head(v); };
     Densities out{Eigen::VectorXcd::Zero(n), Eigen::VectorXcd::Zero(n)};
     GmresResult result;
