@@ -91,6 +91,7 @@ py::dict validity(py::handle surface_arg, const std::string& material,
     for (const auto& p : polarisations)
         study.polarisations.push_back(bsdf::parse_profile_polarisation(p, "polarisations"));
     study.beam_width_um = beam_width_um;
+    study.option_names = {"length_um", "wavelengths_nm", "the points per wavelength (10)", "threads"};
     study.statistical.length_um = length_um;
     study.statistical.realizations = realizations.is_none() ? static_cast<std::size_t>(max_realizations)
                                                             : realizations.cast<std::size_t>();
