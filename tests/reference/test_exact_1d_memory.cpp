@@ -81,7 +81,7 @@ TEST(Exact1dMemory, BoundHoldsThePeak) {
     }
 }
 
-// Nodes enough that the bound exceeds twice the memory available now (a flat profile; a few million nodes on any
+// Nodes enough that the bound exceeds 1.5 times the memory available now (a flat profile; a few million nodes on any
 // machine within kMaxExact1dNodes, which refuses the rest): refused before the solve's buffers exist, in one line
 // naming the settings that fix the node count as the caller spells them (plain words by default; `surfscatter
 // validity`'s --wavelengths here), for one solve and for the statistical mode's threads.
@@ -89,10 +89,10 @@ TEST(Exact1dMemory, RefusesBeyondTheAvailableMemory) {
     auto o = solver_options(550, 0, sr::Polarisation::s, 10);
     const double per_node = sr::exact_1d_solve_bytes(sr::flat_profile(o, 200.0), sm::Conductor::perfect(), o) /
                             (200.0 / 0.055);
-    const double length = 2.0 * static_cast<double>(surfscatter::available_memory_bytes()) / per_node * 0.055;
+    const double length = 1.5 * static_cast<double>(surfscatter::available_memory_bytes()) / per_node * 0.055;
     o.beam_width_um = 10;
-    const auto profile = sr::flat_profile(o, std::min(length, 0.055 * sr::kMaxExact1dNodes * 1.1));
-    try {
+    try {  // beyond kMaxExact1dNodes (a machine with that much memory), flat_profile refuses it in one line
+        const auto profile = sr::flat_profile(o, std::min(length, 0.055 * sr::kMaxExact1dNodes * 1.1));
         sr::solve_exact_1d(profile, sm::Conductor::perfect(), o);
         ADD_FAILURE() << "a profile of " << profile.h_um.size() << " samples was solved";
     } catch (const surfscatter::Error& e) {
