@@ -91,9 +91,10 @@ ProfileFit fit_profile(const heightmap::LineScan& scan, KcFitOptions options = {
 //    construction, and the knots' spacing, not the bins', sets how finely the noisy spectrum is resolved.
 // 3. The knots' ln P maximise the likelihood of the bands (Levenberg-Marquardt on the deviance residuals of a mean of
 //    n exponential samples, 2 n (q - 1 - ln q), q = band / model), the model being the forward Abel transform of P
-//    at each band's centre (Gauss-Legendre in t, z = u cosh t, on each knot interval: no singularity). The forward
-//    transform smooths, so the fit is stable where the inverse was not. A smoothness prior, kProfileSmoothing^2 x
-//    the bending energy of ln P in ln z, ties the knots the data hardly constrain (the lowest) to their neighbours.
+//    averaged over each band's bins (at most 8 of them; Gauss-Legendre in t, z = u cosh t, on each knot interval: no
+//    singularity). The forward transform smooths, so the fit is stable where the inverse was not. A smoothness
+//    prior, kProfileSmoothing^2 x the bending energy of ln P in ln z, ties the knots the data hardly constrain (the
+//    lowest) to their neighbours.
 // 4. P is evaluated at z = k dzeta, k = 0 .. n/2 (the profile's own bins) and read as a map's ring means are
 //    (ring_psd.hpp), sigma_h^2, its integral, scaled to the profile's variance (band_scale(), as a map's): the fit's
 //    variance is within a few % of the profile's, the scale corrects what the band beyond Nyquist holds.
