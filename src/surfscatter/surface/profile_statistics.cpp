@@ -3,14 +3,18 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <limits>
 #include <vector>
 
+#include <Eigen/Core>
+#include <unsupported/Eigen/NonLinearOptimization>
 #include <fmt/format.h>
 
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/heightmap/height_map_fft.hpp"
 #include "surfscatter/math/quadrature.hpp"
 #include "surfscatter/math/vec.hpp"
+#include "surfscatter/surface/least_squares_functor.hpp"
 #include "surfscatter/surface/radial_statistics.hpp"
 #include "surfscatter/surface/ring_psd.hpp"
 
@@ -139,24 +143,180 @@ namespace surfscatter::surface {
 
 namespace {
 
-constexpr int kAbelPoints = 8;          // Gauss-Legendre points per power-law segment of P1 (in t)
-constexpr double kTailStep = 0.5;       // t-width of the tail's pieces
-constexpr double kTailDecay = 40.0;     // the tail is integrated until (a + 1) t has grown by this (e^-40)
+constexpr int kAbelPoints = 12;        // Gauss-Legendre points per knot interval (in t) of the forward transform
+constexpr double kTailStep = 1.0;      // t-width of the tail's pieces
+constexpr double kTailDecay = 40.0;    // the tail is integrated until its integrand has fallen by e^-kTailDecay
 
 const math::GaussLegendreRule& abel_rule() {
     static const math::GaussLegendreRule rule(kAbelPoints);
     return rule;
 }
 
-// int_{t0}^{t1} f(t) dt by the rule mapped from [-1, 1].
-template <typename F>
-double integrate_gl(const F& f, double t0, double t1) {
-    const math::GaussLegendreRule& rule = abel_rule();
-    const double half = 0.5 * (t1 - t0), middle = 0.5 * (t1 + t0);
-    double sum = 0.0;
-    for (std::size_t i = 0; i < rule.nodes.size(); ++i) sum += rule.weights[i] * f(middle + half * rule.nodes[i]);
-    return sum * half;
+// The knots' bins: 1, then each max(min(2 x previous, previous + kProfileKnotBins), kProfileKnotRatio x previous)
+// (octaves at the lowest bins, where a long first interval put a kink of 9 % into a KC's P), the last at `top`
+// (an interval shorter than half the rule's merged into the one before).
+std::vector<std::size_t> knot_bins(std::size_t top) {
+    std::vector<std::size_t> bins = {1};
+    while (bins.back() < top) {
+        const std::size_t last = bins.back();
+        const auto next = std::max(std::min(2 * last, last + kProfileKnotBins),
+                                   static_cast<std::size_t>(std::ceil(kProfileKnotRatio * static_cast<double>(last))));
+        bins.push_back(std::min(next, top));
+    }
+    const std::size_t n = bins.size();
+    if (n > 2 && 2 * (bins[n - 1] - bins[n - 2]) < std::max(kProfileKnotBins, bins[n - 2] / 5)) bins.erase(bins.end() - 2);
+    return bins;
 }
+
+// The power a of P ~ z^-a beyond the last knot: the last interval's, at least kProfileMinTailPower (so that the
+// forward transform converges).
+double profile_tail_power(const std::vector<double>& log_knots, const std::vector<double>& log_psd) {
+    const std::size_t m = log_knots.size() - 1;
+    const double slope = (log_psd[m] - log_psd[m - 1]) / (log_knots[m] - log_knots[m - 1]);
+    return std::max(kProfileMinTailPower, -slope);
+}
+
+// P(z) of ln P piecewise linear in ln z at the knots, constant below the first and z^-a beyond the last; its
+// gradient in the knots' ln P if asked.
+double knot_psd(const std::vector<double>& log_knots, const std::vector<double>& log_psd, double z,
+                std::vector<double>* gradient) {
+    const std::size_t m = log_knots.size() - 1;
+    if (gradient) std::fill(gradient->begin(), gradient->end(), 0.0);
+    const double s = z > 0.0 ? std::log(z) : -std::numeric_limits<double>::infinity();
+    if (s <= log_knots[0]) {
+        if (gradient) (*gradient)[0] = 1.0;
+        return std::exp(log_psd[0]);
+    }
+    if (s >= log_knots[m]) {
+        const double slope = (log_psd[m] - log_psd[m - 1]) / (log_knots[m] - log_knots[m - 1]);
+        const double x = s - log_knots[m];
+        const double value = std::exp(log_psd[m] - profile_tail_power(log_knots, log_psd) * x);
+        if (gradient) {
+            (*gradient)[m] = value;
+            if (-slope > kProfileMinTailPower) {  // the tail's power is the last interval's
+                const double w = x / (log_knots[m] - log_knots[m - 1]);
+                (*gradient)[m] += value * w, (*gradient)[m - 1] = -value * w;
+            }
+        }
+        return value;
+    }
+    const std::size_t j = static_cast<std::size_t>(std::upper_bound(log_knots.begin(), log_knots.end(), s) - log_knots.begin()) - 1;
+    const double w = (s - log_knots[j]) / (log_knots[j + 1] - log_knots[j]);
+    const double value = std::exp((1.0 - w) * log_psd[j] + w * log_psd[j + 1]);
+    if (gradient) (*gradient)[j] = value * (1.0 - w), (*gradient)[j + 1] = value * w;
+    return value;
+}
+
+// The profile PSD P1(u) of the isotropic 2-D PSD knot_psd (the Abel transform), and its gradient if asked.
+double abel_forward(const std::vector<double>& log_knots, const std::vector<double>& log_psd, double u,
+                    std::vector<double>* gradient) {
+    // P1(u) = 2 int_u^inf P(z) z / sqrt(z^2 - u^2) dz = 2 int_0^inf P(u cosh t) u cosh t dt (z = u cosh t), over
+    // each knot interval by Gauss-Legendre in t (P a power law there: the integrand is smooth), below the first knot
+    // (P constant) in closed form: 2 P0 sqrt(z0^2 - u^2).
+    const std::size_t knots = log_knots.size();
+    std::vector<double> local(gradient ? knots : 0);
+    if (gradient) std::fill(gradient->begin(), gradient->end(), 0.0);
+    double sum = 0.0;
+    const double z0 = std::exp(log_knots[0]);
+    if (u < z0) {
+        const double value = 2.0 * std::exp(log_psd[0]) * std::sqrt(z0 * z0 - u * u);
+        sum += value;
+        if (gradient) (*gradient)[0] += value;
+    }
+    const math::GaussLegendreRule& rule = abel_rule();
+    // At u = 0 the variable is ln z (P1(0) = 2 int P(z) z d ln z), else t.
+    const auto z_of = [&](double t) { return u > 0.0 ? u * std::cosh(t) : std::exp(t); };
+    const auto piece = [&](double t0, double t1) {
+        const double half = 0.5 * (t1 - t0), middle = 0.5 * (t1 + t0);
+        for (std::size_t i = 0; i < rule.nodes.size(); ++i) {
+            const double z = z_of(middle + half * rule.nodes[i]), weight = 2.0 * rule.weights[i] * half * z;
+            sum += weight * knot_psd(log_knots, log_psd, z, gradient ? &local : nullptr);
+            if (gradient)
+                for (std::size_t j = 0; j < knots; ++j) (*gradient)[j] += weight * local[j];
+        }
+    };
+    const auto t_of = [&](double z) { return u > 0.0 ? (z > u ? std::acosh(z / u) : 0.0) : std::log(z); };
+    for (std::size_t j = 0; j + 1 < knots; ++j) {
+        const double hi = std::exp(log_knots[j + 1]);
+        if (hi > u) piece(t_of(std::exp(log_knots[j])), t_of(hi));
+    }
+    // Beyond the last knot P ~ z^-a: the integrand falls as e^{(1 - a) t} (t >> 1 or t = ln z).
+    const double start = t_of(std::exp(log_knots.back())), a = profile_tail_power(log_knots, log_psd);
+    for (double t = start; (t - start) * (a - 1.0) < kTailDecay; t += kTailStep) piece(t, t + kTailStep);
+    return sum;
+}
+
+// The band means the fit reads, and where the model's band mean is taken: at every bin of a band of up to
+// kBandSamples bins, else at the centres of kBandSamples equal parts (a red spectrum's band mean is far above its
+// value at the band's centre: at the centre, the fit raised the lowest knots until P held 38 x the variance of hfm-1).
+constexpr std::size_t kBandSamples = 8;
+struct BandData {
+    std::vector<double> zeta, psd, bins;
+    std::vector<std::vector<double>> samples;
+};
+
+// The forward transform's residuals against the bands (deviance residuals of a band mean of `bins` exponential
+// samples: r^2 = 2 n (q - 1 - ln q), q = data / model), and their Jacobian in the knots' ln P.
+struct ProfileFitFunctor : DynamicLeastSquaresFunctor {
+    const BandData* data;
+    const std::vector<double>* log_knots;
+    int inputs() const { return static_cast<int>(log_knots->size()); }
+    int values() const { return static_cast<int>(data->zeta.size() + log_knots->size() - 1); }
+    void evaluate(const Eigen::VectorXd& x, Eigen::VectorXd& residuals, Eigen::MatrixXd* jacobian) const {
+        const std::size_t bands = data->zeta.size(), knots = log_knots->size();
+        residuals.resize(static_cast<Eigen::Index>(bands + knots - 1));
+        if (jacobian) jacobian->setZero(static_cast<Eigen::Index>(bands + knots - 1), static_cast<Eigen::Index>(knots));
+        std::vector<double> log_psd(x.data(), x.data() + x.size()), gradient(knots), band_gradient(knots);
+        for (std::size_t b = 0; b < bands; ++b) {
+            const auto& samples = data->samples[b];
+            double model = 0.0;
+            if (jacobian) std::fill(band_gradient.begin(), band_gradient.end(), 0.0);
+            for (double u : samples) {
+                model += abel_forward(*log_knots, log_psd, u, jacobian ? &gradient : nullptr) / samples.size();
+                if (jacobian)
+                    for (std::size_t j = 0; j < knots; ++j) band_gradient[j] += gradient[j] / samples.size();
+            }
+            const double q = data->psd[b] / model, n = data->bins[b];
+            const double deviance = 2.0 * n * std::max(0.0, q - 1.0 - std::log(q));
+            const double r = q >= 1.0 ? std::sqrt(deviance) : -std::sqrt(deviance);
+            residuals[static_cast<Eigen::Index>(b)] = r;
+            if (!jacobian) continue;
+            // dr / d ln M = -n (q - 1) / r, -sqrt(n) at q = 1.
+            const double dr = std::abs(q - 1.0) < 1e-8 ? -std::sqrt(n) : -n * (q - 1.0) / r;
+            for (std::size_t j = 0; j < knots; ++j)
+                (*jacobian)(static_cast<Eigen::Index>(b), static_cast<Eigen::Index>(j)) = dr * band_gradient[j] / model;
+        }
+        // The smoothness prior, kProfileSmoothing^2 x the bending energy int (d^2 ln P / d ln z^2)^2 d ln z of the
+        // knots' polygon: the change of its slope at each knot but the last (at the first, from the constant below
+        // it, over as long an interval as the first) over the root of the mean length of the intervals beside it. It
+        // ties knots the data hardly constrain to their neighbours.
+        const auto& s = *log_knots;
+        for (std::size_t j = 0; j + 1 < knots; ++j) {
+            const double h1 = s[j + 1] - s[j], slope = (x[static_cast<Eigen::Index>(j + 1)] - x[static_cast<Eigen::Index>(j)]) / h1;
+            const double h0 = j > 0 ? s[j] - s[j - 1] : h1;
+            const double before = j > 0 ? (x[static_cast<Eigen::Index>(j)] - x[static_cast<Eigen::Index>(j - 1)]) / h0 : 0.0;
+            const double weight = kProfileSmoothing / std::sqrt(0.5 * (h0 + h1));
+            const auto row = static_cast<Eigen::Index>(bands + j);
+            residuals[row] = weight * (slope - before);
+            if (!jacobian) continue;
+            (*jacobian)(row, static_cast<Eigen::Index>(j + 1)) += weight / h1;
+            (*jacobian)(row, static_cast<Eigen::Index>(j)) -= weight / h1;
+            if (j > 0) {
+                (*jacobian)(row, static_cast<Eigen::Index>(j)) -= weight / h0;
+                (*jacobian)(row, static_cast<Eigen::Index>(j - 1)) += weight / h0;
+            }
+        }
+    }
+    int operator()(const Eigen::VectorXd& x, Eigen::VectorXd& residuals) const {
+        evaluate(x, residuals, nullptr);
+        return 0;
+    }
+    int df(const Eigen::VectorXd& x, Eigen::MatrixXd& jacobian) const {
+        Eigen::VectorXd residuals;
+        evaluate(x, residuals, &jacobian);
+        return 0;
+    }
+};
 
 }  // namespace
 
@@ -176,6 +336,7 @@ ProfileStatistics::ProfileStatistics(ProfilePeriodogram p) : dzeta_(p.dzeta), rm
     for (double& v : p.psd) v *= window_scale_;
     for (std::size_t k = 1; k <= top; ++k) bin_variance_.push_back((2 * k == p.points ? 1.0 : 2.0) * p.psd[k] * dzeta_);
     // Bands: kProfileBandBins bins, widening to kProfileBandWidth of their frequency.
+    BandData data;
     for (std::size_t first = 1; first <= top;) {
         const std::size_t width = std::max<std::size_t>(
             kProfileBandBins, static_cast<std::size_t>(std::ceil(kProfileBandWidth * static_cast<double>(first))));
@@ -185,68 +346,62 @@ ProfileStatistics::ProfileStatistics(ProfilePeriodogram p) : dzeta_(p.dzeta), rm
         for (std::size_t k = first; k <= last; ++k) zeta += static_cast<double>(k), psd += p.psd[k];
         const double bins = static_cast<double>(last - first + 1);
         if (psd > 0.0) {
-            band_zeta_.push_back(zeta / bins * dzeta_);
-            band_psd_.push_back(psd / bins);
+            data.zeta.push_back(zeta / bins * dzeta_);
+            data.psd.push_back(psd / bins);
+            data.bins.push_back(bins);
+            std::vector<double> samples;
+            const std::size_t parts = std::min<std::size_t>(kBandSamples, last - first + 1);
+            for (std::size_t i = 0; i < parts; ++i)
+                samples.push_back((static_cast<double>(first) - 0.5 + (static_cast<double>(i) + 0.5) * bins / static_cast<double>(parts)) * dzeta_);
+            data.samples.push_back(std::move(samples));
         }
         first = last + 1;
     }
-    if (band_zeta_.size() < 2) fail("{}: fewer than 2 bands of its spectrum hold power", p.origin);
-    // The tail: the least-squares power law over the last octave's bands (at least the last two), not rising.
-    const double top_band = band_zeta_.back();
-    double sx = 0, sy = 0, sxx = 0, sxy = 0, count = 0;
-    for (std::size_t j = 0; j < band_zeta_.size(); ++j)
-        if (band_zeta_[j] >= 0.5 * top_band || j + 2 >= band_zeta_.size()) {
-            const double x = std::log(band_zeta_[j]), y = std::log(band_psd_[j]);
-            sx += x, sy += y, sxx += x * x, sxy += x * y, count += 1;
-        }
-    tail_power_ = std::max(0.0, -(count * sxy - sx * sy) / (count * sxx - sx * sx));
-    // The slopes d ln P1 / d ln u at the band centres: the secants' mean weighted by the opposite interval (exact for
-    // a parabola in ln u), the last band's the tail's, the first band's that of the even parabola P1(0) - b u^2
-    // through the first two bands (b >= 0), which continues P1 below the first centre (abel_inverse()).
-    const std::size_t bands = band_zeta_.size();
-    for (std::size_t j = 0; j < bands; ++j) {
-        const auto secant = [&](std::size_t i) {
-            return std::log(band_psd_[i + 1] / band_psd_[i]) / std::log(band_zeta_[i + 1] / band_zeta_[i]);
-        };
-        if (j == 0) {
-            const double u0 = band_zeta_[0], u1 = band_zeta_[1];
-            parabola_ = std::max(0.0, (band_psd_[0] - band_psd_[1]) / (u1 * u1 - u0 * u0));
-            band_slope_.push_back(-2.0 * parabola_ * u0 * u0 / band_psd_[0]);
-        } else if (j + 1 == bands) {
-            band_slope_.push_back(-tail_power_);
-        } else {
-            const double before = std::log(band_zeta_[j] / band_zeta_[j - 1]), after = std::log(band_zeta_[j + 1] / band_zeta_[j]);
-            band_slope_.push_back((after * secant(j - 1) + before * secant(j)) / (before + after));
-        }
+    band_zeta_ = data.zeta, band_psd_ = data.psd;
+    for (std::size_t bin : knot_bins(top)) log_knots_.push_back(std::log(static_cast<double>(bin) * dzeta_));
+    if (data.zeta.size() < log_knots_.size() + 1)
+        fail("{}: {} bands of its spectrum hold power; the fit of its 2-D PSD at {} knots needs at least {}", p.origin,
+             data.zeta.size(), log_knots_.size(), log_knots_.size() + 1);
+    // Start: at each knot the power law of the bands over the octave above it, P1 ~ u^-beta, read as the 2-D
+    // P(z) = P1(z) / (z B(beta)) that a power law P ~ z^-(beta + 1) has (B as in KCorrelation::profile_psd_unit);
+    // below the first knot where beta >= 1, that knot's value (a flat spectrum's P1 is no power law: read as one,
+    // P would start far too high where the data constrain it least).
+    const auto log_band_psd = [&](double s) {  // ln P1 linear in ln u between band centres, held beyond them
+        std::size_t b = 0;
+        while (b + 2 < data.zeta.size() && std::log(data.zeta[b + 1]) < s) ++b;
+        const double s0 = std::log(data.zeta[b]), s1 = std::log(data.zeta[b + 1]);
+        const double y0 = std::log(data.psd[b]), y1 = std::log(data.psd[b + 1]);
+        return y0 + (y1 - y0) * std::clamp((s - s0) / (s1 - s0), 0.0, 1.0);
+    };
+    Eigen::VectorXd x(static_cast<Eigen::Index>(log_knots_.size()));
+    std::size_t first_steep = log_knots_.size();
+    for (std::size_t j = log_knots_.size(); j-- > 0;) {
+        const double s = log_knots_[j], log_p1 = log_band_psd(s);
+        const double beta = -(log_band_psd(s + std::log(2.0)) - log_p1) / std::log(2.0);
+        if (beta >= 1.0) first_steep = j;
+        const double b = std::clamp(beta, 1.0, 5.0);
+        const double log_b = 0.5 * std::log(kPi) + std::lgamma(0.5 * b) - std::lgamma(0.5 * (b + 1.0));
+        x[static_cast<Eigen::Index>(j)] = log_p1 - s - log_b;
     }
-    // P at the profile's bins; P(0) from the transform's limit. A bin where P came out <= 0 is skipped: ln P runs
-    // linearly across it between its positive neighbours, written into the bin so that the grid stays uniform (the
-    // models read P in O(1): MapRingPsd's first guess of the segment is then exact).
-    const double dc = abel_inverse(0.0);
-    std::vector<double> zeta, psd, log_psd;
-    std::vector<std::size_t> kept;
+    for (std::size_t j = 0; j < first_steep && first_steep < log_knots_.size(); ++j)
+        x[static_cast<Eigen::Index>(j)] = x[static_cast<Eigen::Index>(first_steep)];
+    ProfileFitFunctor functor;
+    functor.data = &data;
+    functor.log_knots = &log_knots_;
+    Eigen::LevenbergMarquardt<ProfileFitFunctor> solver(functor);
+    solver.parameters.xtol = 1e-10;
+    solver.parameters.ftol = 1e-12;
+    solver.parameters.maxfev = 400;
+    solver.minimize(x);
+    if (!x.allFinite() || x.minCoeff() < std::log(std::numeric_limits<double>::min())) fail("{}: the fit of its 2-D PSD to its 1-D PSD did not converge", p.origin);
+    log_psd_.assign(x.data(), x.data() + x.size());
+    // P at the profile's bins, read as a map's ring means are (ring_psd.hpp), P(0) that below the first knot.
+    std::vector<double> zeta, psd;
     for (std::size_t k = 1; k <= top; ++k) {
         zeta.push_back(static_cast<double>(k) * dzeta_);
-        const double value = abel_inverse(zeta.back());
-        log_psd.push_back(value > 0.0 && std::isfinite(value) ? std::log(value) : 0.0);
-        if (value > 0.0 && std::isfinite(value)) kept.push_back(zeta.size() - 1);
+        psd.push_back(fitted_psd(zeta.back()));
     }
-    nodes_ = zeta.size();
-    clipped_ = nodes_ - kept.size();
-    if (kept.size() < 4)
-        fail("{}: the inverse Abel transform of its spectrum is positive at {} frequencies; the measured route needs "
-             "at least 4", p.origin, kept.size());
-    for (std::size_t i = 0, next = 0; i < nodes_; ++i) {
-        while (next < kept.size() && kept[next] < i) ++next;
-        if (next < kept.size() && kept[next] == i) continue;
-        const std::size_t hi = next < kept.size() ? kept[next] : kept.back(), lo = next > 0 ? kept[next - 1] : hi;
-        const double w = hi == lo ? 0.0 : static_cast<double>(i - lo) / static_cast<double>(hi - lo);
-        log_psd[i] = hi == lo ? log_psd[hi] : (1 - w) * log_psd[lo] + w * log_psd[hi];
-    }
-    for (double v : log_psd) psd.push_back(std::exp(v));
-    // The model carries the profile's variance, as a map's carries the map's (MapStatistics::band_scale()): the one
-    // factor that makes it so corrects what the skipped bins and the continuations add or leave out.
-    double p0 = dc > 0.0 ? dc : psd.front();
+    double p0 = std::exp(log_psd_.front());
     band_scale_ = rms_um_ * rms_um_ / std::pow(MapRingPsd(p0, zeta, psd, nyquist_, "unscaled").sigma_h(), 2);
     p0 *= band_scale_;
     for (double& v : psd) v *= band_scale_;
@@ -255,42 +410,11 @@ ProfileStatistics::ProfileStatistics(ProfilePeriodogram p) : dzeta_(p.dzeta), rm
     psd_ = std::make_shared<const MapRingPsd>(p0, std::move(zeta), std::move(psd), nyquist_, key + ")");
 }
 
-double ProfileStatistics::abel_inverse(double z) const {
-    // P1 between band centres j and j + 1: ln P1 a cubic Hermite polynomial in s = ln u through the centres with
-    // their slopes (so that P1' is continuous and P has no cusps); P1'(u) = P1 (d ln P1 / ds) / u.
-    const std::size_t bands = band_zeta_.size();
-    const auto derivative = [&](std::size_t j, double u) {
-        const double s0 = std::log(band_zeta_[j]), width = std::log(band_zeta_[j + 1]) - s0;
-        const double t = (std::log(u) - s0) / width, y0 = std::log(band_psd_[j]), y1 = std::log(band_psd_[j + 1]);
-        const double m0 = band_slope_[j] * width, m1 = band_slope_[j + 1] * width;
-        const double y = (2 * t * t * t - 3 * t * t + 1) * y0 + (t * t * t - 2 * t * t + t) * m0 +
-                         (-2 * t * t * t + 3 * t * t) * y1 + (t * t * t - t * t) * m1;
-        const double dy = ((6 * t * t - 6 * t) * (y0 - y1) + (3 * t * t - 4 * t + 1) * m0 + (3 * t * t - 2 * t) * m1) / width;
-        return std::exp(y) * dy / u;
-    };
-    const double u_top = band_zeta_.back(), p_top = band_psd_.back();
-    const auto tail = [&](double u) { return -tail_power_ * p_top * std::pow(u / u_top, -tail_power_) / u; };
-    double sum = 0.0;
-    const auto segment = [&](double lo, double hi, const auto& slope) {
-        if (hi <= std::max(lo, z)) return;
-        lo = std::max(lo, z);
-        if (z == 0.0)  // int P1'(u) / u du over s = ln u
-            sum += integrate_gl([&](double s) { return slope(std::exp(s)); }, std::log(lo), std::log(hi));
-        else           // u = z cosh t: du / sqrt(u^2 - z^2) = dt
-            sum += integrate_gl([&](double t) { return slope(z * std::cosh(t)); }, std::acosh(lo / z), std::acosh(hi / z));
-    };
-    // Below the first centre u0 the even parabola P1(u0) + b (u0^2 - u^2): P1'(u) = -2 b u, closed-form integrals.
-    const double u0 = band_zeta_.front();
-    if (z < u0) sum -= 2.0 * parabola_ * (z == 0.0 ? u0 : std::sqrt(u0 * u0 - z * z));
-    for (std::size_t j = 0; j + 1 < bands; ++j)
-        segment(band_zeta_[j], band_zeta_[j + 1], [&](double u) { return derivative(j, u); });
-    // The tail, in pieces of kTailStep in ln u (~ t where u >> z) until its integrand has fallen by e^-kTailDecay.
-    if (tail_power_ > 0.0) {
-        const double reach = kTailDecay / (tail_power_ + 1.0);
-        for (double s = 0.0; s < reach; s += kTailStep) segment(u_top * std::exp(s), u_top * std::exp(s + kTailStep), tail);
-    }
-    return -sum / kPi;
-}
+double ProfileStatistics::fitted_psd(double z) const { return knot_psd(log_knots_, log_psd_, z, nullptr); }
+
+double ProfileStatistics::fitted_profile_psd(double u) const { return abel_forward(log_knots_, log_psd_, u, nullptr); }
+
+double ProfileStatistics::tail_power() const { return profile_tail_power(log_knots_, log_psd_); }
 
 double ProfileStatistics::sigma_relative_error() const {
     // Each bin pair (+-k) of the rectangular periodogram is one exponential sample of its variance (the window
@@ -303,16 +427,16 @@ double ProfileStatistics::sigma_relative_error() const {
 std::string measured_profile_note(const ProfileStatistics& s, const std::string& origin) {
     return fmt::format(
         "measured profile PSD of {}: {}; the 2-D PSD is the inverse Abel transform of the profile's Hann-windowed 1-D "
-        "PSD in {} bands ({} bins, widening to {:.0f} % of their frequency), continued below the first band ({:.3g} "
-        "rad/um) as an even parabola with its value and slope and beyond the last as zeta^-{:.3g} (the last octave's "
-        "power law; only the transform near Nyquist reads it); used over zeta {:.3g} .. {:.3g} rad/um (periods {:.3g} "
-        ".. {:.3g} um) and rolled off as zeta^-200 beyond ({:.2g} % of sigma^2); {} of {} frequencies where the "
-        "transform of the noisy spectrum came out <= 0 skipped; scaled by {:.4g} to carry the profile's variance: "
-        "model sigma {:.6g} um, the profile's rms {:.6g} um (standard error of sigma {:.2g} %)",
-        origin, kMeasuredIsotropyNote, s.band_zeta().size(), kProfileBandBins, 100 * kProfileBandWidth,
-        s.band_zeta().front(), s.tail_power(), s.first_ring(), s.nyquist(), kTwoPi / s.nyquist(),
-        kTwoPi / s.first_ring(), 100.0 * s.above_band_fraction(), s.clipped_nodes(), s.nodes(), s.band_scale(),
-        s.sigma_h(), s.map_rms(), 100.0 * s.sigma_relative_error());
+        "PSD, fitted: ln P piecewise linear in ln zeta at {} knots (constant below the first, {:.3g} rad/um, and "
+        "continued beyond the last as zeta^-{:.3g}), whose Abel transform fits the 1-D PSD in {} bands ({} bins, "
+        "widening to {:.0f} % of their frequency) by maximum likelihood, so that P >= 0 without clipping the noise; "
+        "used over zeta {:.3g} .. {:.3g} rad/um (periods {:.3g} .. {:.3g} um) and rolled off as zeta^-200 beyond "
+        "({:.2g} % of sigma^2); scaled by {:.4g} to carry the profile's variance: model sigma {:.6g} um, the "
+        "profile's rms {:.6g} um (standard error of sigma {:.2g} %)",
+        origin, kMeasuredIsotropyNote, s.knots(), s.first_ring(), s.tail_power(), s.band_zeta().size(),
+        kProfileBandBins, 100 * kProfileBandWidth, s.first_ring(), s.nyquist(), kTwoPi / s.nyquist(),
+        kTwoPi / s.first_ring(), 100.0 * s.above_band_fraction(), s.band_scale(), s.sigma_h(), s.map_rms(),
+        100.0 * s.sigma_relative_error());
 }
 
 }  // namespace surfscatter::surface

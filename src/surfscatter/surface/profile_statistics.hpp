@@ -78,28 +78,33 @@ RadialPsd estimate_profile_psd(const heightmap::LineScan& scan, heightmap::Form 
 ProfileFit fit_profile(const heightmap::LineScan& scan, KcFitOptions options = {});
 
 // A profile's own spectrum as an isotropic surface's (`--psd measured` with a profile; docs/HEIGHTMAPS.md "The
-// measured route for profiles"): the isotropic 2-D PSD whose line scans have the profile's 1-D PSD, by the inverse
-// Abel transform of P1(zeta_x) = 2 int_{zeta_x}^inf P(z) z / sqrt(z^2 - zeta_x^2) dz,
-//     P(z) = -(1 / pi) int_z^inf P1'(u) / sqrt(u^2 - z^2) du = -(1 / pi) int_0^inf P1'(z cosh t) dt.
+// measured route for profiles"): the isotropic 2-D PSD P whose line scans have the profile's 1-D PSD, i.e. the
+// inverse of the Abel transform P1(u) = 2 int_u^inf P(z) z / sqrt(z^2 - u^2) dz. The inverse differentiates P1, so
+// applied to a measured spectrum (each periodogram bin has a standard error of 100 %) it comes out negative wherever
+// the noise makes P1 rise locally; made positive there it gained variance that a scale on the whole spectrum then
+// took from every frequency (ghs 0.71 x the truth's on a synthesised KC profile). Instead P is fitted:
 // 1. The periodogram (profile_periodogram) is scaled to the profile's variance (window correction, as a map's) and
-//    averaged over bands of kProfileBandBins bins that widen to kProfileBandWidth of their frequency, so that the
-//    high frequencies, where a profile has many bins, rest on many samples: the derivative the transform takes
-//    then follows the spectrum, not the periodogram's scatter (each bin's standard error is 100 %).
-// 2. ln P1 between band centres is a cubic Hermite polynomial in ln zeta through the centres with slopes from the
-//    neighbouring secants (P1' continuous, so P has no cusps; exact for power laws); below the first band's centre
-//    u0, P1 continues as the even parabola P1(0) - b u^2 through the first two bands (b >= 0: not rising towards
-//    zero; the 1-D PSD of a surface with a finite correlation range is smooth and even at zero; measured on KC, a
-//    flat continuation read P 9 % low at the first bins); beyond the last band it continues as the power law fitted to the last octave's
-//    bands (a spectrum rising there is continued flat), only so that P near Nyquist has the integral's tail: the
-//    models use P up to Nyquist and roll it off beyond, as a map's.
-// 3. P is evaluated at z = k dzeta, k = 0 .. n/2 (the profile's own bins, Gauss-Legendre in t on each power-law
-//    segment: the quadrature error is far below the spectrum's scatter) and read as a map's ring means are
-//    (ring_psd.hpp). Where the transform of a noisy spectrum comes out <= 0 (P1 locally rising), the node is skipped
-//    and counted (clipped_nodes()).
-// 4. sigma_h^2, the integral of P, is scaled to the profile's variance (band_scale()), as a map's is to the map's:
-//    the factor corrects what skipped nodes and the continuations add or leave out (measured 0.93-1.0 on rows of a
-//    synthesised map; without it sigma came out 7 % high on average, the skipped nodes' interpolation).
+//    averaged over bands of kProfileBandBins bins that widen to kProfileBandWidth of their frequency.
+// 2. ln P is piecewise linear in ln z at knots an octave apart at the lowest bins (1, 2, 4, ...), then
+//    kProfileKnotBins bins apart, widening to kProfileKnotRatio (the last at Nyquist), constant below the first knot
+//    and falling as z^-a beyond the last (a the last interval's power, at least kProfileMinTailPower): P > 0 by
+//    construction, and the knots' spacing, not the bins', sets how finely the noisy spectrum is resolved.
+// 3. The knots' ln P maximise the likelihood of the bands (Levenberg-Marquardt on the deviance residuals of a mean of
+//    n exponential samples, 2 n (q - 1 - ln q), q = band / model), the model being the forward Abel transform of P
+//    averaged over each band's bins (at most 8 of them; Gauss-Legendre in t, z = u cosh t, on each knot interval: no
+//    singularity). The forward transform smooths, so the fit is stable where the inverse was not. A smoothness
+//    prior, kProfileSmoothing^2 x the bending energy of ln P in ln z, ties the knots the data hardly constrain (the
+//    lowest) to their neighbours.
+// 4. P is evaluated at z = k dzeta, k = 0 .. n/2 (the profile's own bins) and read as a map's ring means are
+//    (ring_psd.hpp), sigma_h^2, its integral, scaled to the profile's variance (band_scale(), as a map's): the fit's
+//    variance is within a few % of the profile's, the scale corrects what the band beyond Nyquist holds.
+// Accuracy (tests/surface/test_profile_statistics.cpp, docs/HEIGHTMAPS.md): on the KC's exact profile PSD, and on
+// synthesised KC profiles, P and the ghs lobe against the KC's closed forms.
 inline constexpr double kProfileBandWidth = 0.1;
+inline constexpr std::size_t kProfileKnotBins = 16;
+inline constexpr double kProfileKnotRatio = 1.25;
+inline constexpr double kProfileMinTailPower = 2.0;
+inline constexpr double kProfileSmoothing = 0.5;
 
 class ProfileStatistics final : public MeasuredStatistics {
 public:
@@ -120,21 +125,21 @@ public:
     double sigma_relative_error() const override;
     double window_scale() const override { return window_scale_; }
 
-    // The banded 1-D PSD the transform read (window-corrected, um^3) and the tail's power beyond it (P1 ~ zeta^-a).
+    // The banded 1-D PSD the fit read (window-corrected, um^3).
     const std::vector<double>& band_zeta() const { return band_zeta_; }
     const std::vector<double>& band_psd() const { return band_psd_; }
-    double tail_power() const { return tail_power_; }
-    std::size_t clipped_nodes() const { return clipped_; }
-    std::size_t nodes() const { return nodes_; }
-    // The factor on the transform that makes sigma_h the profile's rms (step 4 above).
+    std::size_t knots() const { return log_knots_.size(); }
+    double tail_power() const;  // a of P ~ z^-a beyond the last knot
+    // The fitted P(z) (um^4, before band_scale()) and its Abel transform, the profile PSD P1(u) it implies (um^3).
+    double fitted_psd(double z) const;
+    double fitted_profile_psd(double u) const;
+    // The factor on the fit that makes sigma_h the profile's rms (step 4 above).
     double band_scale() const { return band_scale_; }
-    // P(z) (um^4) by the inverse Abel transform of the banded P1 (before clipping): what the nodes hold.
-    double abel_inverse(double z) const;
 
 private:
-    double dzeta_ = 0, nyquist_ = 0, rms_um_ = 0, window_scale_ = 1, tail_power_ = 0, parabola_ = 0, band_scale_ = 1;
-    std::size_t clipped_ = 0, nodes_ = 0;
-    std::vector<double> band_zeta_, band_psd_, band_slope_;  // band_slope_: d ln P1 / d ln zeta at each centre
+    double dzeta_ = 0, nyquist_ = 0, rms_um_ = 0, window_scale_ = 1, band_scale_ = 1;
+    std::vector<double> band_zeta_, band_psd_;
+    std::vector<double> log_knots_, log_psd_;  // ln z and the fitted ln P at the knots
     std::vector<double> bin_variance_;  // dzeta x multiplicity x P1 of each non-DC bin (the standard error's)
     std::shared_ptr<const RadialStatistics> psd_;
 };
