@@ -149,7 +149,7 @@ bsdf::ModelOptions model_options(const BrdfArgs& a, const std::string& spec) {
         a.profile_scan = read_profile(a.surface_file, a.preparation);
         if (a.profile_scan)
             std::fprintf(stderr, "surfscatter: brdf: %s\n",
-                         describe_profile(*a.profile_scan, profile_form(a.preparation)).c_str());
+                         heightmap::describe_profile(*a.profile_scan, profile_form(a.preparation)).c_str());
     }
     if (a.profile_scan && psd == "file") {
         // --psd file: the KC fitted to the profile's 1-D PSD as the isotropic surface's.

@@ -236,7 +236,7 @@ void profile_info(const InfoArgs& args, const heightmap::LineScan& scan) {
     declare_profile_outputs(files, args.input, args.plot, csv, "--plot's CSV");
     const heightmap::Form form = profile_form(args.preparation);
     const surface::ProfileMoments moments = surface::profile_moments(scan, form);
-    std::printf("preparation = %s\n", describe_profile(scan, form).c_str());
+    std::printf("preparation = %s\n", heightmap::describe_profile(scan, form).c_str());
     std::printf("format = %s\n", scan.source.format.c_str());
     std::printf("reader = %s%s\n", scan.source.reader.c_str(),
                 scan.source.channel.empty() ? "" : (", channel " + scan.source.channel).c_str());
@@ -509,7 +509,7 @@ void profile_fit(const FitArgs& args, const heightmap::LineScan& scan) {
         write_outputs();
         surface::require_resolved(kc);
     }
-    std::printf("preparation = %s\n", describe_profile(scan, options.form).c_str());
+    std::printf("preparation = %s\n", heightmap::describe_profile(scan, options.form).c_str());
     std::printf("sigma_h = %s\n", format_number(kc.sigma_h_um).c_str());
     std::printf("corr_length = %s\n", format_number(kc.corr_length_um).c_str());
     std::printf("gamma = %s\n", format_number(kc.gamma).c_str());

@@ -38,13 +38,6 @@ std::optional<heightmap::LineScan> read_profile(const std::string& path, const P
     return scan;
 }
 
-std::string describe_profile(const heightmap::LineScan& scan, heightmap::Form form) {
-    return fmt::format("profile: form {}{}, {} points {:.6g} um apart ({:.6g} um long), {:.4g} % valid",
-                       heightmap::to_string(form), form == heightmap::Form::plane ? " (a least-squares line)" : " (mean)",
-                       scan.size(), scan.spacing_um, scan.length_um(),
-                       100.0 * static_cast<double>(scan.valid_count()) / static_cast<double>(scan.size()));
-}
-
 ProfileSurface profile_surface(const heightmap::LineScan& scan, heightmap::Form form) {
     surface::KcFitOptions options;
     options.form = form;

@@ -23,9 +23,6 @@ std::optional<heightmap::LineScan> read_profile(const std::string& path, const P
 // The form --form asks for on a profile (default plane: a least-squares line).
 heightmap::Form profile_form(const PreparationArgs& preparation);
 
-// "profile: form plane (a least-squares line), <N> points <d> um apart"
-std::string describe_profile(const heightmap::LineScan& scan, heightmap::Form form);
-
 // The fit the areal models use, resolved (its failure an Error), with the note they print.
 struct ProfileSurface {
     surface::ProfileFit fit;

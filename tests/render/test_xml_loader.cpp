@@ -88,6 +88,54 @@ TEST(XmlLoader, MeasuredPsdFromASurfaceFile) {
     EXPECT_EQ(note->rfind((dir / "measured.xml").string() + ":", 0), 0u) << *note;
 }
 
+// A profile as a scene's surface_file (issue 33: the real profiles gave BRDFs but no render). Written here as an .hfm
+// export of a synthesised KC profile (sigma_h 0.1 um, L_c 5 um, gamma 3, 4096 points 0.5 um apart): each model plugin
+// (ghs_ssa and ggx_stats here) takes the profile's own spectrum as an isotropic surface's (psd measured), noting the
+// profile's preparation and the route; its BSDF is finite and positive off specular. An areal preparation option or psd file is an error naming
+// the file.
+TEST(XmlLoader, ProfileAsSurfaceFile) {
+    const fs::path dir = temp_dir("test_xml_profile");
+    const std::vector<double> h = surface::synthesize_profile(surface::KCorrelation(0.1, 5.0, 3.0), 4096, 0.5, 7);
+    const std::string hfm = (dir / "profile.hfm").string();
+    {
+        std::ofstream out(hfm);
+        out << "X;Y;valid\n[mm];[mm];[1/0]\n";
+        for (std::size_t i = 0; i < h.size(); ++i)
+            out << fmt::format("{:.7f};{:.10f};1\n", 0.0005 * static_cast<double>(i), h[i] * 1e-3);
+    }
+    const auto bsdf = [&](const std::string& model, const std::string& extra) {
+        return "<bsdf type=\"" + model + "\"><string name=\"material\" value=\"Al\"/><string name=\"surface_file\" value=\"" +
+               hfm + "\"/>" + extra + "</bsdf>";
+    };
+    const SampledWavelengths lambda = SampledWavelengths::sample_visible(0.37);
+    const Vec3 wi = spherical_direction(30 * kDegree, 0), wo = spherical_direction(45 * kDegree, kPi);
+    // Two models: the route (load_height_map) is the same for all four, and ghs's and two_scale's tables cost
+    // minutes here.
+    for (const std::string model : {"ghs_ssa", "ggx_stats"}) {
+        const LoadedMaterial m = load_material(bsdf(model, "<string name=\"psd\" value=\"measured\"/>"));
+        const auto& notes = m.scene->notes;
+        const auto has = [&](const std::string& text) {
+            return std::any_of(notes.begin(), notes.end(), [&](const std::string& n) { return n.find(text) != std::string::npos; });
+        };
+        EXPECT_TRUE(has("profile.hfm: profile: form plane (a least-squares line), 4096 points 0.5 um apart")) << model;
+        EXPECT_TRUE(has("inverse Abel transform of the profile's Hann-windowed 1-D PSD")) << model;
+        const SampledSpectrum f = m.material->eval({}, wi, wo, lambda, nullptr);
+        for (int k = 0; k < spectrum::kSpectrumSamples; ++k)
+            EXPECT_TRUE(std::isfinite(f[k]) && f[k] > 0) << model << " " << f[k];
+    }
+    const std::string areal = load_error(scene_xml("<shape type=\"rectangle\">" +
+                                                   bsdf("ghs", "<string name=\"outliers\" value=\"fill\"/>") + "</shape>"));
+    EXPECT_NE(areal.find(hfm + ": outliers, row_alignment, lambda_s and lambda_c apply to areal maps; a profile is "
+                               "prepared by its form only"),
+              std::string::npos)
+        << areal;
+    const std::string file =
+        load_error(scene_xml("<shape type=\"rectangle\">" + bsdf("ghs", "<string name=\"psd\" value=\"file\"/>") + "</shape>"));
+    EXPECT_NE(file.find("psd file: " + hfm + " is a profile: its own spectrum is the surface (psd measured)"),
+              std::string::npos)
+        << file;
+}
+
 // psd_fit elliptical: the elliptical KC fitted to surface_file, its fit a scene note; with psd kc an error at its line.
 TEST(XmlLoader, PsdFitEllipticalFromASurfaceFile) {
     const std::string opd = (fs::path(SURFSCATTER_SHARED_DATA) / "realdata" / "heightmaps" / "opd-1.opd").string();

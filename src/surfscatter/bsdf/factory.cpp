@@ -473,6 +473,24 @@ std::unique_ptr<Bsdf> map_spectrum_bsdf(const ModelOptions& o, SurfaceSource& su
     return std::make_unique<MapGhsBsdf>(std::move(lobes), std::nullopt, material, ghs_settings(o));
 }
 
+// A profile where a map is expected (scenes, studies, Python; the CLI's brdf checks which options were given): its own
+// spectrum as an isotropic surface's (psd measured); prepared by its form only.
+void load_profile(SurfaceOptions& s, heightmap::LineScan scan) {
+    const heightmap::Preparation& p = s.preparation;
+    const heightmap::Preparation defaults;
+    if (p.outliers != defaults.outliers || p.rows != defaults.rows || p.lambda_s_um != 0 || p.lambda_c_um)
+        fail("{}: outliers, row_alignment, lambda_s and lambda_c apply to areal maps; a profile is prepared by its form "
+             "only (form none | plane)", s.surface_file);
+    if (p.form != heightmap::Form::none && p.form != heightmap::Form::plane)
+        fail("{}: form {} on a profile: a profile's form is none (its mean) or plane (a least-squares line)",
+             s.surface_file, heightmap::to_string(p.form));
+    if (s.psd != PsdKind::measured)
+        fail("psd {}: {} is a profile: its own spectrum is the surface (psd measured); the KC fitted to its 1-D PSD is "
+             "the CLI's `brdf --psd file`", to_string(s.psd), s.surface_file);
+    s.profile = std::make_shared<const heightmap::LineScan>(std::move(scan));
+    s.measured_profile = std::make_shared<const surface::ProfileStatistics>(*s.profile, p.form);
+}
+
 }  // namespace
 
 void load_height_map(SurfaceOptions& surface) {
@@ -480,15 +498,19 @@ void load_height_map(SurfaceOptions& surface) {
         surface.measured_profile)
         return;
     if (surface.prepared) return;
-    if (surface.height_map)
+    if (surface.height_map) {
         surface.prepared =
             std::make_shared<const heightmap::PreparedMap>(heightmap::prepare(*surface.height_map, surface.preparation));
-    else if (!surface.surface_file.empty())
+    } else if (!surface.surface_file.empty()) {
+        if (auto scan = heightmap::read_line_scan(surface.surface_file)) return load_profile(surface, std::move(*scan));
         surface.prepared = std::make_shared<const heightmap::PreparedMap>(heightmap::prepare(
             heightmap::read_height_map(surface.surface_file, std::nullopt), surface.preparation));
+    }
 }
 
 std::vector<std::string> preparation_notes(const SurfaceOptions& surface) {
+    if (surface.profile) return {fmt::format("{}: {}", surface.surface_file,
+                                             heightmap::describe_profile(*surface.profile, surface.preparation.form))};
     const heightmap::PreparedMap& p = *surface.prepared;
     const std::string name = surface.surface_file.empty() ? p.map.origin() : surface.surface_file;
     std::vector<std::string> notes{fmt::format("{}: {}", name, heightmap::describe(p))};
@@ -516,7 +538,8 @@ std::unique_ptr<Bsdf> make_bsdf(const ModelOptions& o, std::vector<std::string>*
     validate(o);
     auto material = material::Conductor::from_name(o.material);
     SurfaceSource surface(needs_surface(o) ? o.surface : SurfaceOptions{});
-    if (notes && surface.options().prepared && !surface.options().measured_psd && !surface.options().preparation_noted)
+    if (notes && (surface.options().prepared || surface.options().profile) && !surface.options().measured_psd &&
+        !surface.options().preparation_noted)
         for (std::string& note : preparation_notes(surface.options())) notes->push_back(std::move(note));
     // The waviness's mean-square slope, once: the note below and two_scale's macro NDF take it.
     const double waviness_slope2 = needs_surface(o) ? surface.waviness_slope2() : 0.0;
@@ -534,7 +557,7 @@ std::unique_ptr<Bsdf> make_bsdf(const ModelOptions& o, std::vector<std::string>*
     }
     // A profile's 2-D PSD is isotropic by assumption: every model reads it as radial statistics, exactly what the
     // 2-D route would read off a lattice of it.
-    if (needs_surface(o) && o.surface.psd == PsdKind::measured && !o.surface.measured_profile &&
+    if (needs_surface(o) && o.surface.psd == PsdKind::measured && !surface.options().measured_profile &&
         o.surface.measured_spectrum == MeasuredSpectrum::two_d)
         if (auto bsdf = map_spectrum_bsdf(o, surface, material, notes)) return bsdf;
     // Elliptical statistics (null for an isotropic surface): the GHS family and two_scale's micro lobe take them

@@ -10,6 +10,7 @@
 #include <string>
 #include <string_view>
 
+#include "surfscatter/heightmap/line_scan.hpp"
 #include "surfscatter/heightmap/prepare.hpp"
 #include "surfscatter/surface/map_statistics.hpp"
 #include "surfscatter/surface/profile_statistics.hpp"
@@ -56,6 +57,9 @@ struct SurfaceOptions {
     // psd measured only: a profile's own spectrum as an isotropic surface's (surface/profile_statistics.hpp), used
     // instead of a map; every model reads it as radial statistics (measured_spectrum does not apply).
     std::shared_ptr<const surface::ProfileStatistics> measured_profile;
+    // The profile (line scan) surface_file holds, when it holds one: load_height_map reads it instead of a map and
+    // makes measured_profile of it (a profile is prepared by its form only, none or plane).
+    std::shared_ptr<const heightmap::LineScan> profile;
     // psd measured only: 2d, the models ghs (exact) and ghs_ssa on the map's 2-D periodogram (bsdf/map_ghs.hpp) and
     // ggx_stats on the map's slope covariance (alpha_u, alpha_v, lay angle); ring, the ring average and the isotropic
     // rms slope as before. two_scale takes the ring average either way (its note says so).

@@ -19,4 +19,11 @@ std::string line_scan_refusal(const LineScan& scan) {
         100.0 * static_cast<double>(scan.valid_count()) / static_cast<double>(std::max<std::size_t>(scan.size(), 1)));
 }
 
+std::string describe_profile(const LineScan& scan, Form form) {
+    return fmt::format("profile: form {}{}, {} points {:.6g} um apart ({:.6g} um long), {:.4g} % valid", to_string(form),
+                       form == Form::plane ? " (a least-squares line)" : " (mean)", scan.size(), scan.spacing_um,
+                       scan.length_um(),
+                       100.0 * static_cast<double>(scan.valid_count()) / static_cast<double>(scan.size()));
+}
+
 }  // namespace surfscatter::heightmap

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "surfscatter/heightmap/form.hpp"
 #include "surfscatter/heightmap/height_map.hpp"
 
 namespace surfscatter::heightmap {
@@ -28,5 +29,9 @@ struct LineScan {
 // "<file>: a profile (<format>: one line of N points 0.5 um apart, 4799.5 um long, 100 % valid), not a height map:
 // the scattering models need heights over an area (x and y)".
 std::string line_scan_refusal(const LineScan& scan);
+
+// How a profile is prepared (its form only, none or plane), as every front end states it: "profile: form plane (a
+// least-squares line), <N> points <d> um apart (<length> um long), <v> % valid".
+std::string describe_profile(const LineScan& scan, Form form);
 
 }  // namespace surfscatter::heightmap

@@ -654,12 +654,13 @@ private:
     }
 
     // Each surface_file is read and prepared once per scene and preparation (several BSDFs may use it) and reported in
-    // the scene's notes.
+    // the scene's notes. A profile (line scan) is read by each BSDF that names it, and noted by make_bsdf.
     void share_height_map(bsdf::SurfaceOptions& surface) {
         if (surface.psd != bsdf::PsdKind::file && surface.psd != bsdf::PsdKind::measured) return;
         std::shared_ptr<const heightmap::PreparedMap>& shared = height_maps_[{surface.surface_file, surface.preparation}];
         if (!shared) {
             bsdf::load_height_map(surface);
+            if (surface.profile) return;
             shared = surface.prepared;
             std::string note = heightmap::describe(shared->map);
             for (const std::string& line : bsdf::preparation_notes(surface)) note += "; " + line;

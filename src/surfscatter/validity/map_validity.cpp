@@ -17,6 +17,7 @@
 #include "surfscatter/reference/kirchhoff_map.hpp"
 #include "surfscatter/surface/elliptical_statistics.hpp"
 #include "surfscatter/heightmap/form.hpp"
+#include "surfscatter/heightmap/io.hpp"
 #include "surfscatter/surface/synthesis.hpp"
 
 namespace surfscatter::validity {
@@ -192,6 +193,9 @@ MapSurface map_surface(const bsdf::SurfaceOptions& surface, const std::string& m
     MapSurface out;
     if (surface.psd == bsdf::PsdKind::file || surface.psd == bsdf::PsdKind::measured) {
         if (surface.surface_file.empty()) fail("validity: a height map needs its file (surface_file)");
+        // Kirchhoff needs heights over an area: a profile is refused with the line saying what the file holds.
+        if (const auto scan = heightmap::read_line_scan(surface.surface_file))
+            fail("{}", heightmap::line_scan_refusal(*scan));
         bsdf::SurfaceOptions measured = surface;
         bsdf::load_height_map(measured);
         out.outlier_policy = surface.preparation.outliers;
