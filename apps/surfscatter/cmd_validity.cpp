@@ -134,7 +134,18 @@ nlohmann::json model_json(const validity::ModelResult& m) {
             {"directions_excluded", m.comparison.directions_excluded},
             {"used_bins", m.comparison.used},
             {"model_energy", m.model_energy},
-            {"coherent", m.coherent}};
+            {"coherent", m.coherent},
+            {"own_rel_uncertainty", m.own_rel_uncertainty},
+            {"beam_blur_nodes", m.blur_nodes}};
+}
+
+// How the profile route's models are made comparable with the reference's beam (validity::beam_blurred).
+std::string beam_note(double beam_width_um) {
+    return fmt::format("each model's incoherent part is averaged over the reference beam's incident plane waves, as "
+                       "exact-1d's mean is: K = k sin theta weighted by cos theta exp(-(K - k sin theta_i)^2 g^2 / 2), "
+                       "a Gaussian of standard deviation 1/g = {:.3g} rad/um in K (docs/VALIDITY.md, \"The beam's "
+                       "kernel\"); energies are the plane-wave models'",
+                       1.0 / beam_width_um);
 }
 
 nlohmann::json json_report(const std::vector<validity::ProfileCase>& cases, const ValidityArgs& a,
@@ -153,6 +164,7 @@ nlohmann::json json_report(const std::vector<validity::ProfileCase>& cases, cons
                                                                : a.max_realizations.value_or(kDefaultMaxRealizations)},
                       {"seed", a.seed},
                       {"points_per_wavelength", a.points_per_wavelength}};
+    j["notes"] = nlohmann::json::array({beam_note(a.beam_width)});
     j["cases"] = nlohmann::json::array();
     for (const auto& c : cases) {
         nlohmann::json jc;
@@ -190,7 +202,8 @@ nlohmann::json json_report(const std::vector<validity::ProfileCase>& cases, cons
 }
 
 // Per case the verdict over every model, and the render models' own (Kirchhoff is not a render model).
-void print_summary(const std::vector<validity::ProfileCase>& cases) {
+void print_summary(const std::vector<validity::ProfileCase>& cases, double beam_width_um) {
+    std::printf("models: %s\n", beam_note(beam_width_um).c_str());
     for (const auto& c : cases) {
         std::printf("%s nm, theta_i %s deg, %s: %s\n", format_number(c.wavelength_nm).c_str(),
                     format_number(c.theta_i_deg).c_str(), validity::to_string(c.polarisation).c_str(),
@@ -319,7 +332,7 @@ void run_profile_validity(const ValidityArgs& a) {
                               fmt::format("{}, sigma_h {} um", statistics->cache_key(), format_number(statistics->sigma_h())),
                               conductor.name()).dump() + "\n",
                   "validity.py");
-    print_summary(cases);
+    print_summary(cases, a.beam_width);
     for (const auto& c : cases)
         if (!c.target_reached)
             std::fprintf(stderr,

@@ -3,8 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
+#include "surfscatter/bsdf/profile_lobes.hpp"
 #include "surfscatter/core/error.hpp"
 #include "surfscatter/material/conductor.hpp"
 #include "surfscatter/math/vec.hpp"
@@ -310,6 +312,105 @@ TEST(Validity, SmoothProfileTrustsGhsAndSsaNotKirchhoffAtWideAngles) {
     // A perfect conductor: every model and the reference conserve energy.
     EXPECT_NEAR(c.reference_energy, 1.0, 2e-3);
     for (const auto& m : c.models) EXPECT_NEAR(m.model_energy, 1.0, 2e-3) << m.model;
+}
+
+// The beam's kernel (docs/VALIDITY.md "The beam's kernel") on a lobe whose closed-form average is known: a Gaussian
+// of standard deviation s in q - K (q = k sin theta_o, K = k sin theta), over cos theta, so that the kernel's weight
+// cos theta(K) cancels its 1 / cos theta. Averaged over K ~ N(k sin theta_i, 1/g) it becomes the convolution of the two
+// Gaussians, s / sqrt(s^2 + 1/g^2) exp(-(q - k sin theta_i)^2 / (2 (s^2 + 1/g^2))), over the kernel's mean of
+// cos theta(K), cos theta_i - 1 / (2 g^2 k^2 cos^3 theta_i) to O((k g)^-4). s = 1/g (a lobe as narrow as the
+// kernel: the average doubles its variance and halves its peak over sqrt 2) needs more nodes than s = 4/g.
+TEST(Validity, BeamKernelOnAGaussianLobeIsTheConvolutionOfTwoGaussians) {
+    const double lambda = 550, g = 6, k = 2 * ss::kPi / (lambda * 1e-3), sigma = 1 / g;
+    const auto theta_o = ss::bsdf::uniform_theta_grid(1800);
+    for (const double theta_i_deg : {0.0, 40.0})
+        for (const double s : {sigma, 4 * sigma}) {
+            const double theta_i = theta_i_deg * ss::kDegree, k0 = k * std::sin(theta_i);
+            int calls = 0;
+            const sv::LobeAtIncidence lobe = [&](double theta, const std::vector<double>& directions) {
+                ++calls;
+                std::vector<double> out;
+                for (const double t : directions)
+                    out.push_back(std::exp(-std::pow(k * std::sin(t) - k * std::sin(theta), 2) / (2 * s * s)) /
+                                  std::cos(theta));
+                return out;
+            };
+            const std::vector<double> nominal = lobe(theta_i, theta_o);
+            calls = 0;
+            const sv::BlurredLobe b = sv::beam_blurred(lobe, nominal, theta_o, k, theta_i, g);
+            const double c = std::cos(theta_i), mean_cos = c - 1 / (2 * g * g * k * k * c * c * c);
+            const double var = s * s + sigma * sigma;
+            double worst = 0, peak_ratio = 0;
+            for (std::size_t j = 0; j < theta_o.size(); ++j) {
+                const double d = k * std::sin(theta_o[j]) - k0;
+                const double expected = s / std::sqrt(var) * std::exp(-d * d / (2 * var)) / mean_cos;
+                if (expected < 0.01 * s / std::sqrt(var) / mean_cos) continue;
+                worst = std::max(worst, std::abs(b.intensity_per_rad[j] / expected - 1));
+                if (std::abs(d) < 1e-9) peak_ratio = b.intensity_per_rad[j] / nominal[j];
+            }
+            std::printf("[ measured ] theta_i %g deg, s = %g/g: %d nodes, rule error %.2g, worst |blurred / closed "
+                        "form - 1| %.2g\n",
+                        theta_i_deg, s * g, b.nodes, b.rule_error, worst);
+            EXPECT_LE(worst, 2e-3) << "theta_i " << theta_i_deg << ", s " << s;
+            EXPECT_LE(b.rule_error, sv::kBlurRuleTolerance);
+            EXPECT_EQ(calls, b.nodes - 1);  // the middle node is the nominal curve
+            if (s == sigma) {
+                EXPECT_GT(b.nodes, 3);
+                if (theta_i_deg == 0) EXPECT_NEAR(peak_ratio, 1 / std::sqrt(2.0), 2e-3);
+            }
+        }
+    // Only the directions asked for are averaged; the others keep the nominal value.
+    std::vector<char> needed(theta_o.size(), 0);
+    for (std::size_t j = 900; j < 950; ++j) needed[j] = 1;
+    const sv::LobeAtIncidence narrow = [&](double theta, const std::vector<double>& directions) {
+        std::vector<double> out;
+        for (const double t : directions) out.push_back(std::exp(-std::pow(k * (std::sin(t) - std::sin(theta)) * g, 2) / 2));
+        return out;
+    };
+    const auto nominal = narrow(0, theta_o);
+    const sv::BlurredLobe part = sv::beam_blurred(narrow, nominal, theta_o, k, 0, g, needed);
+    const sv::BlurredLobe all = sv::beam_blurred(narrow, nominal, theta_o, k, 0, g);
+    for (std::size_t j = 0; j < theta_o.size(); ++j)
+        EXPECT_DOUBLE_EQ(part.intensity_per_rad[j], needed[j] ? all.intensity_per_rad[j] : nominal[j]) << j;
+    EXPECT_THROW(sv::beam_blurred(narrow, nominal, theta_o, k, 0, -1), ss::Error);
+    EXPECT_THROW(sv::beam_blurred(narrow, {1.0}, theta_o, k, 0, g), ss::Error);
+}
+
+// Issue 34 item 3's smooth surface (KC sigma 0.005 um, L 1.5 um, gamma 3; k sigma 0.057, where first-order
+// perturbation theory is exact), a perfect conductor, s, 550 nm, normal incidence, 30 um profiles under a 6 um beam,
+// 24 profiles: the models averaged over the reference's beam agree with exact-1d in every bin validity uses (3 deg,
+// specular zone left out), to 2 % + 2 standard errors (measured 0.3-0.6 %); plane-wave, they fell up to 8 % short
+// next to the specular zone. (At oblique incidence GHS and SSA differ from first-order theory in s by their own
+// (cos i + cos o)^2 / (4 cos i cos o), 3.9 % at 40 / 58.5 deg: a model error, not the beam's.) ~8 CPU s.
+TEST(Validity, BlurredModelsMatchTheReferenceOnTheSmoothSurface) {
+    const ss::surface::KCorrelation surface(0.005, 1.5, 3.0);
+    const auto conductor = ss::material::Conductor::from_name("perfect");
+    auto study = smooth_study(0);
+    study.beam_width_um = 6;
+    study.statistical.length_um = 30;
+    study.statistical.realizations = 24;
+    study.criteria.bin_deg = 3;
+    const auto cases = sv::profile_validity(surface, conductor, study);
+    ASSERT_EQ(cases.size(), 1u);
+    const auto& c = cases.front();
+    ASSERT_TRUE(c.verdict.conclusive) << c.verdict.text;
+    for (std::size_t m = 0; m < c.models.size(); ++m) {
+        const auto& model = c.models[m];
+        if (model.model == "kirchhoff") continue;  // not first-order exact: (1 + cos o)^2 / (4 cos^2 o) off
+        const auto& used = model.comparison.used;
+        ASSERT_GE(used.size(), 6u) << model.model;
+        double worst = 0;
+        for (const std::size_t b : used) {
+            const double r = c.binned.reference[b], e = c.binned.reference_stderr[b], v = c.binned.models[m][b];
+            worst = std::max(worst, std::abs(v / r - 1));
+            EXPECT_LE(std::abs(v - r), 0.02 * r + 2 * e)
+                << model.model << ", bin " << c.binned.theta_o_rad[b] / ss::kDegree << " deg: model / reference "
+                << v / r << ", relative standard error " << e / r;
+        }
+        EXPECT_GE(model.blur_nodes, 3) << model.model;
+        std::printf("[ measured ] %s: %zu bins, worst |blurred model / reference - 1| %.4f, median %.4f, %d nodes\n",
+                    model.model.c_str(), used.size(), worst, model.comparison.median_rel_error, model.blur_nodes);
+    }
 }
 
 // Thorsos' L = 4 g runs, with the error the profile's ends leave estimated (a flat profile of that length against

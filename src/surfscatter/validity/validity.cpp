@@ -8,6 +8,7 @@
 #include <limits>
 #include <memory>
 
+#include <Eigen/Eigenvalues>
 #include <fmt/format.h>
 
 #include "surfscatter/core/error.hpp"
@@ -109,6 +110,7 @@ BinnedCurves bin_curves(const std::vector<double>& theta_o_rad, const std::vecto
         const double centre = theta / count;
         const double speckle = 2.0 / (k_per_um * beam_width_um * std::max(std::cos(centre), 1e-3));
         const double independent = std::max(1.0, bin_rad / speckle);
+        out.first_direction.push_back(j);
         out.theta_o_rad.push_back(centre);
         out.reference.push_back(ref / count);
         out.reference_stderr.push_back(std::sqrt(var / count / independent));
@@ -251,6 +253,125 @@ std::vector<TableRow> table(const std::vector<ProfileCase>& cases) {
     return rows;
 }
 
+namespace {
+
+// Gauss-Hermite rule for the weight exp(-x^2 / 2) (Golub-Welsch: the eigenvalues of the probabilists' Hermite
+// recurrence's Jacobi matrix; weights the squared first components), weights summing to 1.
+void gauss_hermite(int n, std::vector<double>& nodes, std::vector<double>& weights) {
+    Eigen::MatrixXd jacobi = Eigen::MatrixXd::Zero(n, n);
+    for (int j = 1; j < n; ++j) jacobi(j, j - 1) = jacobi(j - 1, j) = std::sqrt(static_cast<double>(j));
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(jacobi);
+    nodes.assign(solver.eigenvalues().data(), solver.eigenvalues().data() + n);
+    weights.resize(static_cast<std::size_t>(n));
+    for (int j = 0; j < n; ++j) weights[static_cast<std::size_t>(j)] = std::pow(solver.eigenvectors()(0, j), 2);
+}
+
+// A curve per radian on the increasing grid theta_o, read at the direction whose k sin theta is q (linear in theta;
+// 0 beyond the horizon, the end values beyond the grid).
+double at_wavenumber(const std::vector<double>& theta_o, const std::vector<double>& curve, double q, double k) {
+    if (!(std::abs(q) < k)) return 0.0;
+    const double theta = std::asin(q / k);
+    const auto it = std::upper_bound(theta_o.begin(), theta_o.end(), theta);
+    if (it == theta_o.begin()) return curve.front();
+    if (it == theta_o.end()) return curve.back();
+    const auto j = static_cast<std::size_t>(it - theta_o.begin());
+    const double t = (theta - theta_o[j - 1]) / (theta_o[j] - theta_o[j - 1]);
+    return (1 - t) * curve[j - 1] + t * curve[j];
+}
+
+}  // namespace
+
+BlurredLobe beam_blurred(const LobeAtIncidence& lobe, const std::vector<double>& nominal,
+                         const std::vector<double>& theta_o, double k, double theta_i, double g,
+                         const std::vector<char>& needed) {
+    const std::size_t n = theta_o.size();
+    if (nominal.size() != n || (!needed.empty() && needed.size() != n))
+        fail("beam_blurred: grid of {} directions, nominal lobe of {}, flags {}", n, nominal.size(), needed.size());
+    const auto wanted = [&](std::size_t j) { return needed.empty() || needed[j]; };
+    for (std::size_t j = 0; j < n; ++j)
+        if (!(std::abs(theta_o[j]) <= kPi / 2) || (j > 0 && !(theta_o[j] > theta_o[j - 1])))
+            fail("beam_blurred: theta_o must increase within [-90, 90] deg (at {}: {} rad)", j, theta_o[j]);
+    if (!(theta_i >= 0 && theta_i < kPi / 2)) fail("beam_blurred: theta_i must be in [0, 90) deg, got {} rad", theta_i);
+    if (!(k > 0) || !(g > 0) || !std::isfinite(k) || !std::isfinite(g))
+        fail("beam_blurred: k ({} rad/um) and the beam width ({} um) must be > 0", k, g);
+    const double k0 = k * std::sin(theta_i), sigma = 1.0 / g;
+    // The weight of the plane wave K = k0 + u: |A|^2 cos theta(K) (0 beyond the horizon).
+    const auto weight = [&](double u) {
+        const double kx = k0 + u;
+        return std::abs(kx) < k ? std::exp(-0.5 * u * u * g * g) * std::sqrt(1.0 - kx * kx / (k * k)) : 0.0;
+    };
+    // The nominal curve averaged over shifts u in k sin theta_o with weights c (normalised).
+    const auto shifted = [&](const std::vector<double>& u, const std::vector<double>& c, std::size_t j) {
+        const double q = k * std::sin(theta_o[j]);
+        double sum = 0, total = 0;
+        for (std::size_t m = 0; m < u.size(); ++m) {
+            sum += c[m] * at_wavenumber(theta_o, nominal, q - u[m], k);
+            total += c[m];
+        }
+        return sum / total;
+    };
+    // Where the rule's error is estimated: the nominal curve >= 1 % of its peak outside the specular zone.
+    const double zone = 4.0 / (k * g * std::cos(theta_i));
+    double peak = 0;
+    for (std::size_t j = 0; j < n; ++j)
+        if (std::abs(theta_o[j] - theta_i) >= zone) peak = std::max(peak, nominal[j]);
+    std::vector<std::size_t> judged;
+    for (std::size_t j = 0; j < n; ++j)
+        if (wanted(j) && std::abs(theta_o[j] - theta_i) >= zone && peak > 0 && nominal[j] >= 0.01 * peak)
+            judged.push_back(j);
+    std::vector<double> fine_u, fine_c;
+    for (int m = -48; m <= 48; ++m) {
+        fine_u.push_back(m * sigma / 8);
+        fine_c.push_back(weight(fine_u.back()) * (std::abs(m) == 48 ? 0.5 : 1.0));
+    }
+    std::vector<double> fine(judged.size());
+    for (std::size_t i = 0; i < judged.size(); ++i) fine[i] = shifted(fine_u, fine_c, judged[i]);
+    BlurredLobe out;
+    std::vector<double> x, w, u, c;
+    for (const int nodes : {3, 5, 9, 17}) {
+        gauss_hermite(nodes, x, w);
+        u.clear();
+        c.clear();
+        for (std::size_t m = 0; m < x.size(); ++m) {
+            u.push_back(x[m] * sigma);
+            c.push_back(w[m] * weight(u.back()) / std::exp(-0.5 * x[m] * x[m]));
+        }
+        std::vector<double> errors;
+        for (std::size_t i = 0; i < judged.size(); ++i)
+            if (fine[i] > 0) errors.push_back(std::abs(shifted(u, c, judged[i]) / fine[i] - 1.0));
+        out.nodes = nodes;
+        out.rule_error = errors.empty() ? 0.0 : median(errors);
+        if (out.rule_error <= kBlurRuleTolerance) break;
+    }
+    // The model at each node's incidence on the directions wanted, weighted; the middle node (u = 0) is the nominal.
+    std::vector<std::size_t> at;
+    std::vector<double> grid, mirrored;
+    for (std::size_t j = 0; j < n; ++j)
+        if (wanted(j)) {
+            at.push_back(j);
+            grid.push_back(theta_o[j]);
+            mirrored.push_back(-theta_o[j]);
+        }
+    std::vector<double> sum(at.size(), 0.0);
+    double total = 0;
+    for (std::size_t m = 0; m < u.size() && !at.empty(); ++m) {
+        if (!(c[m] > 0)) continue;
+        const double theta = std::asin((k0 + u[m]) / k);
+        std::vector<double> curve;
+        if (2 * m + 1 == u.size())
+            for (const std::size_t j : at) curve.push_back(nominal[j]);
+        else
+            curve = theta >= 0 ? lobe(theta, grid) : lobe(-theta, mirrored);
+        if (curve.size() != at.size())
+            fail("beam_blurred: the lobe gave {} values for {} directions", curve.size(), at.size());
+        for (std::size_t i = 0; i < at.size(); ++i) sum[i] += c[m] * curve[i];
+        total += c[m];
+    }
+    out.intensity_per_rad = nominal;
+    for (std::size_t i = 0; i < at.size(); ++i) out.intensity_per_rad[at[i]] = sum[i] / total;
+    return out;
+}
+
 double near_specular_half_width_rad(const reference::StatisticalResult& reference) {
     return 2.0 * reference.beam_half_width_rad;
 }
@@ -288,6 +409,21 @@ double reference_rel_stderr(const reference::StatisticalResult& reference, const
     return c.directions_used > 0 ? c.reference_median_rel_stderr : std::numeric_limits<double>::infinity();
 }
 
+// The directions of the bins a comparison can use (outside the specular zone, the reference >= peak_fraction of its
+// peak): where the models are averaged over the beam.
+std::vector<char> compared_directions(const reference::StatisticalResult& reference, const ProfileStudy& study,
+                                      double lambda_nm, double theta_i_deg) {
+    const BinnedCurves b = comparison_bins(reference, {}, study, lambda_nm, theta_i_deg);
+    const double peak = b.reference.empty() ? 0.0 : *std::max_element(b.reference.begin(), b.reference.end());
+    std::vector<char> needed(reference.theta_o_rad.size(), 0);
+    for (std::size_t i = 0; i < b.reference.size(); ++i) {
+        if (b.near_specular[i] || !(b.reference[i] >= study.criteria.peak_fraction * peak)) continue;
+        const std::size_t end = i + 1 < b.first_direction.size() ? b.first_direction[i + 1] : needed.size();
+        std::fill(needed.begin() + static_cast<std::ptrdiff_t>(b.first_direction[i]),
+                  needed.begin() + static_cast<std::ptrdiff_t>(end), 1);
+    }
+    return needed;
+}
 
 // With a target: after each round, how many more realizations the reference needs, from its standard error falling
 // as 1 / sqrt(n) (10 % margin, at most doubling per round: the estimate is noisy); a line with the ETA per round.
@@ -386,33 +522,50 @@ std::vector<ProfileCase> profile_validity(const surface::RadialStatistics& stati
                 pc.target_reached = pc.reference_rel_stderr <= study.target_rel_stderr || study.target_rel_stderr == 0;
                 pc.reference_energy = trapezoid(pc.reference.theta_o_rad, pc.reference.intensity);
                 std::vector<std::vector<double>> curves;
-                const auto add = [&](const std::string& name, const bsdf::ProfileLobe& lobe) {
+                const double k = 2 * kPi / (lambda * 1e-3);
+                const std::vector<char> needed = compared_directions(pc.reference, study, lambda, theta_i);
+                // A model's lobe at any incidence on any directions (the beam's kernel needs its neighbours).
+                using MakeLobe = std::function<bsdf::ProfileLobe(double, const std::vector<double>&)>;
+                const auto add = [&](const std::string& name, const MakeLobe& make) {
+                    const bsdf::ProfileLobe lobe = make(theta_i * kDegree, pc.reference.theta_o_rad);
                     ModelResult m;
                     m.model = name;
                     m.coherent = lobe.coherent;
                     m.model_energy = lobe.energy ? *lobe.energy
                                                  : lobe.coherent + trapezoid(pc.reference.theta_o_rad,
                                                                              lobe.intensity_per_rad);
-                    m.incoherent_per_rad = lobe.intensity_per_rad;
-                    curves.push_back(lobe.intensity_per_rad);
+                    const BlurredLobe blurred = beam_blurred(
+                        [&make](double theta, const std::vector<double>& theta_o) {
+                            return make(theta, theta_o).intensity_per_rad;
+                        },
+                        lobe.intensity_per_rad, pc.reference.theta_o_rad, k, theta_i * kDegree, study.beam_width_um,
+                        needed);
+                    m.incoherent_per_rad = blurred.intensity_per_rad;
+                    m.own_rel_uncertainty = blurred.rule_error;
+                    m.blur_nodes = blurred.nodes;
+                    curves.push_back(m.incoherent_per_rad);
                     pc.models.push_back(std::move(m));
                 };
                 for (const auto kind : model_kinds) {
                     bsdf::ProfileModelOptions model_options;
                     model_options.model = kind;
-                    add(bsdf::to_string(kind), bsdf::profile_lobe(statistics, conductor, lambda, theta_i * kDegree,
-                                                                  polarisation, model_options,
-                                                                  pc.reference.theta_o_rad));
+                    add(bsdf::to_string(kind), [&, model_options](double theta, const std::vector<double>& theta_o) {
+                        return bsdf::profile_lobe(statistics, conductor, lambda, theta, polarisation, model_options,
+                                                  theta_o);
+                    });
                 }
                 try {
-                    add("ggx_stats", bsdf::ggx_profile_lobe(statistics, conductor, lambda, theta_i * kDegree,
-                                                            polarisation, pc.reference.theta_o_rad));
+                    add("ggx_stats", [&](double theta, const std::vector<double>& theta_o) {
+                        return bsdf::ggx_profile_lobe(statistics, conductor, lambda, theta, polarisation, theta_o);
+                    });
                 } catch (const Error& e) {
                     pc.not_compared.push_back(e.what());
                 }
                 try {
-                    add("two_scale", bsdf::two_scale_profile_lobe(statistics, conductor, lambda, theta_i * kDegree,
-                                                                  polarisation, pc.reference.theta_o_rad));
+                    add("two_scale", [&](double theta, const std::vector<double>& theta_o) {
+                        return bsdf::two_scale_profile_lobe(statistics, conductor, lambda, theta, polarisation,
+                                                            theta_o);
+                    });
                 } catch (const Error& e) {
                     pc.not_compared.push_back(e.what());
                 }

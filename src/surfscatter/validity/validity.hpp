@@ -10,7 +10,8 @@
 // worst over the directions used. Energies are coherent + the trapezoidal integral of the incoherent part over the
 // 0.1 deg grid (the reference's coherent part is the Monte Carlo |<a>|^2 spread over the beam's angular width).
 //
-// Before comparing, the curves are averaged over theta_o bins (Criteria::bin_deg, bin_curves below).
+// Before comparing, the profile route averages each model over the reference beam's incident plane waves
+// (beam_blurred below) and the curves are averaged over theta_o bins (Criteria::bin_deg, bin_curves below).
 // Verdict per (wavelength, incidence, polarisation), validity::decide (docs/VALIDITY.md "Verdicts"):
 // * the reference is outside its own validity (no direction usable, its median relative standard error above the
 //   tolerance, or a reason the route gives, e.g. map sub-areas too small to resolve the lobe): nothing is concluded
@@ -28,6 +29,7 @@
 //   with e_b - e_a <= max(u_ab, kUsefulLead x tolerance) are indistinguishable from a and the verdict names them; a
 //   model with e > tolerance + 2 u is ruled out.
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -59,6 +61,7 @@ void require_valid_criteria(const Criteria& criteria, const char* tolerance_name
 struct BinnedCurves {
     std::vector<double> theta_o_rad, reference, reference_stderr;
     std::vector<std::vector<double>> models;
+    std::vector<std::size_t> first_direction;  // per bin, the index of its first direction on the input grid
     std::vector<char> near_specular;     // 1 for a bin mark_near_specular leaves out of the comparison (or empty)
     std::size_t near_specular_bins = 0;
 };
@@ -77,6 +80,33 @@ double near_specular_half_width_rad(const reference::StatisticalResult& referenc
 // Marks the bins of `bin_rad` any part of which lies within `half_width_rad` of theta_i (near_specular, counted in
 // near_specular_bins): compare_curves leaves them out, so that a verdict never rests on them.
 void mark_near_specular(BinnedCurves& binned, double theta_i_rad, double half_width_rad, double bin_rad);
+
+// The reference beam's kernel (docs/VALIDITY.md "The beam's kernel"): exact-1d's statistical mean is the plane-wave
+// ensemble's lobe averaged over the beam's incident plane waves, in the incident horizontal wavenumber
+// K = k sin theta with the weight cos theta(K) exp(-(K - k sin theta_i)^2 g^2 / 2) (Thorsos' beam's |A(K)|^2, a
+// Gaussian of standard deviation 1/g in K, times the power each plane wave carries down; docs/REFERENCE.md). A
+// plane-wave model is averaged the same way before it is compared, so that like is compared with like.
+// `lobe(theta, theta_o)`: the model's incoherent part per radian at incidence theta in [0, 90) deg on the directions
+// theta_o (a negative incidence is read from the mirrored directions, the profiles' statistics being symmetric).
+using LobeAtIncidence = std::function<std::vector<double>(double theta_i_rad, const std::vector<double>& theta_o_rad)>;
+// Gauss-Hermite in K with 3, 5, 9 or 17 nodes, the fewest whose error, estimated on the lobe's fast dependence (the
+// nominal curve shifted by K - k sin theta_i in k sin theta_o, against a 97-point trapezoid of the same shifts),
+// is <= kBlurRuleTolerance: the median over the directions where the nominal curve is >= 1 % of its peak outside
+// twice the beam's 1/e^2 half-width 2 / (k g cos theta_i) of specular (where validity compares). Lobes that change
+// within 1/g in K (correlation lengths above about g / 2) may need 17 and keep a larger error, stated.
+inline constexpr double kBlurRuleTolerance = 1e-3;
+struct BlurredLobe {
+    std::vector<double> intensity_per_rad;  // on theta_o_rad
+    int nodes = 0;                          // Gauss-Hermite nodes used (the model evaluated at nodes - 1 more incidences)
+    double rule_error = 0;                  // the estimate above, relative
+};
+// `nominal` = lobe(theta_i_rad, theta_o_rad); theta_o_rad strictly increasing within [-pi/2, pi/2]. `needed` (empty:
+// all): the directions where the average is wanted (the others keep the nominal value, and the lobe is evaluated
+// at the other incidences only there; the rule's error is estimated there). Throws Error for mismatched sizes, a
+// grid out of order, theta_i outside [0, 90) deg or a beam width or k not > 0.
+BlurredLobe beam_blurred(const LobeAtIncidence& lobe, const std::vector<double>& nominal,
+                         const std::vector<double>& theta_o_rad, double k_per_um, double theta_i_rad,
+                         double beam_width_um, const std::vector<char>& needed = {});
 
 struct CurveComparison {
     double median_rel_error = 0;
@@ -100,9 +130,12 @@ struct ModelResult {
     std::string model;  // ghs | ghs_ssa | kirchhoff | ggx_stats | two_scale (map route: the factory's names)
     CurveComparison comparison;
     double model_energy = 0;  // coherent + integral of the incoherent part
-    std::vector<double> incoherent_per_rad;  // on the reference's grid, before binning
+    // On the reference's grid, before binning: the profile route's as compared, averaged over the reference beam's
+    // incident plane waves (beam_blurred); model_energy and coherent are the plane-wave model's.
+    std::vector<double> incoherent_per_rad;
     double coherent = 0;
-    double own_rel_uncertainty = 0;  // the model's stated numerical accuracy, relative
+    double own_rel_uncertainty = 0;  // the model's stated numerical accuracy, relative (with beam_blurred's rule_error)
+    int blur_nodes = 0;              // beam_blurred's nodes (0: not blurred, the map route)
 };
 
 // Uncertainty of a model's median error from the reference's noise and its own accuracy (header).
