@@ -1,8 +1,8 @@
 // brdf export (bsdf/rgl_export.hpp) at its default resolution and tolerance (16 incidences refined where the file
 // misses the model by more than 2 %, 64 x 64 samples, NDF 128, 201 wavelengths 360-1000 nm): the time of the export
 // and write, and the accuracy `brdf export` prints (rgl_file_accuracy: the written file read back against the model)
-// as counters: worst_pct and rms_pct (relative error of f in percent where f >= 1 % of its peak and theta_o <= 80),
-// incidences after refinement, file_MB. Surface: photo-setup's plate (Al, KC sigma 0.15 um, L 4 um, gamma 4); the
+// as counters: worst_pct and rms_pct (relative error of f in percent where f >= 1 % of its peak and theta_o <= 80;
+// two_scale outside its jump band, bsdf/rgl_export.hpp), incidences after refinement, file_MB. Surface: photo-setup's plate (Al, KC sigma 0.15 um, L 4 um, gamma 4); the
 // anisotropic case adds corr_length_v 1.5 um and a lay at 30 degrees (17 azimuths). docs/PERFORMANCE.md.
 #include <benchmark/benchmark.h>
 

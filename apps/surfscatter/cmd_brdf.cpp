@@ -446,6 +446,11 @@ void export_rgl_file(const BrdfArgs& a) {
                                         format_number(o.mirror_exclusion_rad / kDegree)).c_str()
                           : "",
                 100 * acc.worst, bsdf::rgl_accuracy_where(acc).c_str(), 100 * acc.rms);
+    if (acc.jump_band > 0)
+        std::printf("the model jumps on a circle about the specular direction (the micro lobe's edge); %zu directions "
+                    "within %.0f %% of its radius, compared apart: worst %.2f %% (no table follows a jump; "
+                    "docs/MODELS.md \"Export to the RGL format\")\n",
+                    acc.jump_compared, 100 * acc.jump_band, 100 * acc.jump_worst);
     bsdf::check_rgl_accuracy(acc, a.tolerance_percent, "--tolerance", a.output);
 }
 

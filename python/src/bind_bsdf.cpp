@@ -449,7 +449,8 @@ void bind_bsdf(py::module_& m) {
             return py::dict("worst"_a = acc.worst, "rms"_a = acc.rms, "compared"_a = acc.compared,
                             "theta_i_deg"_a = acc.theta_i_deg, "phi_i_deg"_a = acc.phi_i_deg,
                             "theta_o_deg"_a = acc.theta_o_deg, "phi_o_deg"_a = acc.phi_o_deg,
-                            "lambda_nm"_a = acc.lambda_nm);
+                            "lambda_nm"_a = acc.lambda_nm, "jump_band"_a = acc.jump_band,
+                            "jump_worst"_a = acc.jump_worst, "jump_compared"_a = acc.jump_compared);
         },
         py::arg("model"), py::arg("path"), py::arg("format") = "rgl-spectral", py::arg("theta_i_count") = 16,
         py::arg("phi_i_count") = py::none(), py::arg("sample_resolution") = 64, py::arg("ndf_resolution") = 128,
@@ -461,7 +462,9 @@ void bind_bsdf(py::module_& m) {
         "not in the file (model.delta_reflectance gives it) unless specular_lobe_deg carries it as a narrow lobe of that "
         "width (docs/RENDERER.md). Returns the written file's accuracy "
         "against the model (dict: worst and rms relative error where f >= 1 % of its peak and theta_o <= 80 deg, "
-        "directions compared, where the worst is; lambda_nm 0 for rgb files, compared in CIE Y); raises Error after "
+        "directions compared, where the worst is; lambda_nm 0 for rgb files, compared in CIE Y; for a model whose "
+        "lobe jumps, two_scale, jump_band, jump_worst and jump_compared: the directions within jump_band (relative) "
+        "of the jump's radius, compared apart and left out of worst; docs/MODELS.md); raises Error after "
         "writing when the worst exceeds tolerance_percent.");
 
     m.def(

@@ -27,6 +27,7 @@ def test_export_round_trip(tmp_path):
     acc = ss.export_rgl(model, str(path), format="rgl-spectral", theta_i_count=3, sample_resolution=8,
                         ndf_resolution=16, lambda_step_nm=80, tolerance_percent=1e6)
     assert acc["compared"] > 1000 and 0.02 < acc["worst"] < 1e4 and acc["lambda_nm"] in (360, 550, 1000)
+    assert acc["jump_band"] == 0 and acc["jump_compared"] == 0  # a lobe without a jump (two_scale's: docs/MODELS.md)
     d = ss.read_rgl(str(path))
     assert d["spectra"].shape == (1, 3, len(d["wavelengths"]), 8, 8)
     assert d["wavelengths"][0] == 360 and d["wavelengths"][-1] == 1000

@@ -113,6 +113,7 @@ public:
             for (double l = 360; l <= 830 + 1e-9; l += 10) lambdas_.push_back(l);
             weights_ = colour_weights(lambdas_);
         }
+        acc_.jump_band = model.jump_radius(lambdas_.front()) > 0 ? kRglJumpBand : 0.0;
     }
     double uniform() { return std::uniform_real_distribution<double>(0.0, 1.0)(rng_); }
 
@@ -138,6 +139,11 @@ public:
                     wos[j].z < std::cos(kMaxThetaO * kDegree))
                     continue;
                 const double e = std::abs(value(file_, wi, wos[j], k) / f[j] - 1);
+                if (on_jump(wi, wos[j], k)) {
+                    ++acc_.jump_compared;
+                    acc_.jump_worst = std::max(acc_.jump_worst, e);
+                    continue;
+                }
                 sum_sq_ += e * e;
                 ++acc_.compared;
                 worst_here = std::max(worst_here, e);
@@ -158,6 +164,15 @@ public:
     }
 
 private:
+    // Whether wo is within kRglJumpBand of the circle on which the model jumps (Bsdf::jump_radius, in the distance q
+    // of the projected wo from the specular point); rgb: of any of the colour sums' wavelengths.
+    bool on_jump(const Vec3& wi, const Vec3& wo, std::size_t k) const {
+        if (acc_.jump_band == 0) return false;
+        const double q = std::hypot(wo.x + wi.x, wo.y + wi.y);
+        const double lo = model_.jump_radius(rgb_ ? lambdas_.front() : lambdas_[k]);
+        const double hi = model_.jump_radius(rgb_ ? lambdas_.back() : lambdas_[k]);
+        return q > (1 - kRglJumpBand) * std::min(lo, hi) && q < (1 + kRglJumpBand) * std::max(lo, hi);
+    }
     double value(const Bsdf& b, const Vec3& wi, const Vec3& wo, std::size_t k) const {
         if (!rgb_) return b.eval(wi, wo, lambdas_[k]);
         double y = 0;

@@ -66,13 +66,20 @@ RglData export_rgl(const Bsdf& model, const RglExportOptions& options, const std
 // sampler (where its lobe is), and the specular direction; at `lambda_nm` (spectral files) or as the CIE Y under D65
 // of both spectra over 360-830 nm (rgb files, whose table holds colours); directions within `mirror_exclusion_rad` of
 // the mirror direction are left out, the 1 % floor then taken of the peak outside them (a SpecularAsLobe model: its
-// lobe's core, whose energy the albedo measures).
+// lobe's core, whose energy the albedo measures). A model whose lobe jumps (Bsdf::jump_radius: two_scale's micro part,
+// whose PSD is 0 below the split) is compared apart within kRglJumpBand of the jump circle: linear interpolation
+// across a jump misses it by up to the jump's size wherever a cell straddles it, at any resolution (docs/MODELS.md
+// "Export to the RGL format"); those directions give jump_worst, not worst or rms.
 // Deterministic (fixed seed).
+inline constexpr double kRglJumpBand = 0.3;  // relative half-width in q about the jump radius (measured)
 struct RglAccuracy {
     double worst = 0;             // the largest relative error found
     double theta_i_deg = 0, phi_i_deg = 0, theta_o_deg = 0, phi_o_deg = 0, lambda_nm = 0;  // where (lambda 0: Y)
     std::size_t compared = 0;     // directions compared (those where f >= 1 % of the peak, theta_o <= 80)
     double rms = 0;               // root mean square of the relative errors compared
+    double jump_band = 0;         // kRglJumpBand for a model that jumps, else 0
+    double jump_worst = 0;        // the largest relative error within the band (not in worst)
+    std::size_t jump_compared = 0;
 };
 RglAccuracy rgl_accuracy(const Bsdf& model, const RglMeasuredBsdf& file, double theta_i_max_deg,
                          const std::vector<double>& lambda_nm, bool rgb, int incidences = 24, int directions = 256,
