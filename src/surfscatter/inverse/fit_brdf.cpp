@@ -390,7 +390,7 @@ ModelFit fit_model(const BrdfData& data, const FitOptions& options, bsdf::ModelK
     }
     if (free_count > 0) {
         // Several starts, screened by their misfit (one model each); the solver runs from the best `refined` of them
-        // (a GHS model costs ~0.5 CPU s to build, the solver ~50 of them per start).
+        // (a GHS model costs 0.1-0.3 CPU s to build, the solver 30-60 of them per start).
         std::vector<std::pair<double, Eigen::VectorXd>> starts;
         for (const Eigen::VectorXd& x : starting_points(data, problem, std::max(1, options.starts))) {
             const double cost = problem.residuals(x).squaredNorm();
