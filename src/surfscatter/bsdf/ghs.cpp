@@ -81,7 +81,15 @@ double GhsBsdf::eval(const Vec3& wi, const Vec3& wo, double lambda_nm) const {
     return eval(wi, wo, lambda_nm, lookup(wi.z, lambda_nm, k), LobeLogs(wi, wo, k));
 }
 
-// Inlined into its three callers: a call here, and to lookup, cost 20 % of an exact-GHS eval (register saves and
+double GhsBsdf::eval(const Vec3& wi, const Vec3& wo, double lambda_nm, const Direct& at) const {
+    if (wi.z <= 0 || wo.z <= 0) return 0.0;
+    const double k = wavenumber(lambda_nm);
+    const double floor = std::numeric_limits<double>::min();  // as tabulate_incidence: finite logarithms
+    const Incidence in{k, std::log(std::max(at.sigma, floor)), std::log(std::max(at.norm / norm_power(wi.z), floor))};
+    return eval(wi, wo, lambda_nm, in, LobeLogs(wi, wo, k));
+}
+
+// Inlined into its four callers: a call here, and to lookup, cost 20 % of an exact-GHS eval (register saves and
 // the Incidence passed through memory).
 [[gnu::always_inline]] inline double GhsBsdf::eval(const Vec3& wi, const Vec3& wo, double lambda_nm,
                                                    const Incidence& in, const LobeLogs& logs) const {

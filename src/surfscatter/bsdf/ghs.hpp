@@ -79,6 +79,10 @@ public:
         double sigma, norm;
     };
     Direct direct(double theta_i, double lambda_nm) const;
+    // eval with sigma and N given (direct() at wi's incidence) instead of read from the tables, which are then never
+    // built: for a few incidences (a fit's data, inverse/fit_brdf.cpp) far cheaper than the tables' 64 incidences per
+    // wavelength node, and free of their interpolation error (eval is within it of this).
+    double eval(const Vec3& wi, const Vec3& wo, double lambda_nm, const Direct& at) const;
     // The core lobe without Fresnel and normalisation: k^2 density(g, zeta) (symmetric in wi <-> wo when sigma is).
     double core_lobe(const Vec3& wi, const Vec3& wo, double lambda_nm, double sigma_um) const;
 
