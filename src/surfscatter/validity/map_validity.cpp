@@ -193,9 +193,11 @@ MapSurface map_surface(const bsdf::SurfaceOptions& surface, const std::string& m
     MapSurface out;
     if (surface.psd == bsdf::PsdKind::file || surface.psd == bsdf::PsdKind::measured) {
         if (surface.surface_file.empty()) fail("validity: a height map needs its file (surface_file)");
-        // Kirchhoff needs heights over an area: a profile is refused with the line saying what the file holds.
-        if (const auto scan = heightmap::read_line_scan(surface.surface_file))
-            fail("{}", heightmap::line_scan_refusal(*scan));
+        // Kirchhoff needs heights over an area: a profile file is refused with the line saying what it holds (a map
+        // given in memory, whose surface_file is only its name, is already a map).
+        if (!surface.height_map && !surface.prepared)
+            if (const auto scan = heightmap::read_line_scan(surface.surface_file))
+                fail("{}", heightmap::line_scan_refusal(*scan));
         bsdf::SurfaceOptions measured = surface;
         bsdf::load_height_map(measured);
         out.outlier_policy = surface.preparation.outliers;
