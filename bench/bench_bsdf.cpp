@@ -271,3 +271,27 @@ BENCHMARK(BM_profile_lobe)
     ->MeasureProcessCPUTime()
     ->UseRealTime()
     ->Iterations(3);
+
+// The 1-D two_scale lobe (its micro GHS with K and the macro GGX's energy) of the supplemental's rough surface (KC
+// sigma 0.15 um, L 4 um, gamma 4), Ag, 550 nm, p, at theta_i range(0) deg, on every range(1)-th direction of exact-1d's
+// 1801-angle grid: what docs/VALIDITY.md's cases spend per model and incidence.
+namespace {
+void BM_two_scale_profile_lobe(benchmark::State& state) {
+    namespace sb = surfscatter::bsdf;
+    const surfscatter::surface::KCorrelation kc(0.15, 4.0, 4.0);
+    const auto ag = surfscatter::material::Conductor::from_name("Ag");
+    std::vector<double> grid;
+    const auto all = sb::uniform_theta_grid(1800);
+    for (std::size_t j = 0; j < all.size(); j += static_cast<std::size_t>(state.range(1))) grid.push_back(all[j]);
+    for (auto _ : state)
+        benchmark::DoNotOptimize(sb::two_scale_profile_lobe(kc, ag, 550, static_cast<double>(state.range(0)) *
+                                                                             surfscatter::kDegree,
+                                                            sb::ProfilePolarisation::p, grid));
+}
+}  // namespace
+BENCHMARK(BM_two_scale_profile_lobe)
+    ->ArgsProduct({{0, 60}, {1, 16}})
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime()
+    ->Iterations(1);

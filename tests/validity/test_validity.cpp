@@ -353,13 +353,16 @@ TEST(Validity, BeamKernelOnAGaussianLobeIsTheConvolutionOfTwoGaussians) {
                         theta_i_deg, s * g, b.nodes, b.rule_error, worst);
             EXPECT_LE(worst, 2e-3) << "theta_i " << theta_i_deg << ", s " << s;
             EXPECT_LE(b.rule_error, sv::kBlurRuleTolerance);
-            EXPECT_EQ(calls, b.nodes - 1);  // the middle node is the nominal curve
+            EXPECT_GE(calls, b.nodes - 1);  // the middle node is the nominal curve
             if (s == sigma) {
                 EXPECT_GT(b.nodes, 3);
-                if (theta_i_deg == 0) EXPECT_NEAR(peak_ratio, 1 / std::sqrt(2.0), 2e-3);
+                if (theta_i_deg == 0) {
+                    EXPECT_NEAR(peak_ratio, 1 / std::sqrt(2.0), 2e-3);
+                }
             }
         }
-    // Only the directions asked for are averaged; the others keep the nominal value.
+    // Only the directions asked for are averaged (to the side lobes' interpolation tolerance: whether they are
+    // interpolated is decided on each set of directions); the others keep the nominal value.
     std::vector<char> needed(theta_o.size(), 0);
     for (std::size_t j = 900; j < 950; ++j) needed[j] = 1;
     const sv::LobeAtIncidence narrow = [&](double theta, const std::vector<double>& directions) {
@@ -371,9 +374,65 @@ TEST(Validity, BeamKernelOnAGaussianLobeIsTheConvolutionOfTwoGaussians) {
     const sv::BlurredLobe part = sv::beam_blurred(narrow, nominal, theta_o, k, 0, g, needed);
     const sv::BlurredLobe all = sv::beam_blurred(narrow, nominal, theta_o, k, 0, g);
     for (std::size_t j = 0; j < theta_o.size(); ++j)
-        EXPECT_DOUBLE_EQ(part.intensity_per_rad[j], needed[j] ? all.intensity_per_rad[j] : nominal[j]) << j;
+        if (needed[j]) {
+            EXPECT_NEAR(part.intensity_per_rad[j] / all.intensity_per_rad[j], 1.0, 4e-4) << j;
+        } else {
+            EXPECT_DOUBLE_EQ(part.intensity_per_rad[j], nominal[j]) << j;
+        }
     EXPECT_THROW(sv::beam_blurred(narrow, nominal, theta_o, k, 0, -1), ss::Error);
     EXPECT_THROW(sv::beam_blurred(narrow, {1.0}, theta_o, k, 0, g), ss::Error);
+}
+
+// The side incidences' lobes are computed on a subset of the directions and interpolated (their factor over the
+// shifted nominal curve): a lobe whose shape changes with the incidence other than through k sin theta_o - K (and, as
+// the profiles' statistics, mirror-symmetric: I(-theta, theta_o) = I(theta, -theta_o)), against
+// the kernel's integral by a 4001-point trapezoid in K written here, at 0, 30 and 60 deg.
+TEST(Validity, BeamKernelWithInterpolatedSideLobesMatchesDirectQuadrature) {
+    const double lambda = 550, g = 8, k = 2 * ss::kPi / (lambda * 1e-3), s = 3 / g;
+    const auto theta_o = ss::bsdf::uniform_theta_grid(1800);
+    const auto shape = [&](double theta, double t) {
+        return std::exp(-std::pow(k * (std::sin(t) - std::sin(theta)), 2) / (2 * s * s)) * std::cos(t) *
+               (1 + 2 * std::sin(t) * std::sin(theta)) / std::cos(theta);
+    };
+    for (const double theta_i_deg : {0.0, 30.0, 60.0}) {
+        const double theta_i = theta_i_deg * ss::kDegree, k0 = k * std::sin(theta_i);
+        std::size_t evaluated = 0;
+        const sv::LobeAtIncidence lobe = [&](double theta, const std::vector<double>& directions) {
+            evaluated += directions.size();
+            std::vector<double> out;
+            for (const double t : directions) out.push_back(shape(theta, t));
+            return out;
+        };
+        const std::vector<double> nominal = lobe(theta_i, theta_o);
+        evaluated = 0;
+        const sv::BlurredLobe b = sv::beam_blurred(lobe, nominal, theta_o, k, theta_i, g);
+        double worst = 0, peak = 0;
+        for (const double v : nominal) peak = std::max(peak, v);
+        for (std::size_t j = 0; j < theta_o.size(); j += 7) {
+            if (nominal[j] < 0.01 * peak || std::abs(theta_o[j] - theta_i) < 4 / (k * g * std::cos(theta_i))) continue;
+            // The plane waves K = k0 + u, weight cos theta(K) exp(-u^2 g^2 / 2), u within 8 / g.
+            double sum = 0, total = 0;
+            for (int m = -2000; m <= 2000; ++m) {
+                const double u = m * 8.0 / (2000 * g), kx = k0 + u;
+                if (!(std::abs(kx) < k)) continue;
+                const double w = std::exp(-0.5 * u * u * g * g) * std::sqrt(1 - kx * kx / (k * k));
+                const double theta = std::asin(kx / k);
+                sum += w * (theta >= 0 ? shape(theta, theta_o[j]) : shape(-theta, -theta_o[j]));
+                total += w;
+            }
+            worst = std::max(worst, std::abs(b.intensity_per_rad[j] / (sum / total) - 1));
+        }
+        std::printf("[ measured ] theta_i %g deg: %d nodes, worst |blurred / quadrature - 1| %.2g, %zu directions "
+                    "evaluated for %d side incidences of 1801\n",
+                    theta_i_deg, b.nodes, worst, evaluated, b.nodes - 1);
+        EXPECT_LE(worst, 2e-3) << theta_i_deg;
+        // At 60 deg the lobe reaches 82 deg, where the ratio of cos theta_o at the shifted directions curves within
+        // the sparse grid's step: the side lobes are then evaluated everywhere.
+        if (theta_i_deg < 45)
+            EXPECT_LT(evaluated, static_cast<std::size_t>(b.nodes - 1) * 1801 / 4) << theta_i_deg;
+        else
+            EXPECT_EQ(evaluated, static_cast<std::size_t>(b.nodes - 1) * 1801) << theta_i_deg;
+    }
 }
 
 // Issue 34 item 3's smooth surface (KC sigma 0.005 um, L 1.5 um, gamma 3; k sigma 0.057, where first-order

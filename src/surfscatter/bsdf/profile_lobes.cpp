@@ -27,10 +27,15 @@ constexpr double kMaxPanels = 1e6;  // 16e6 nodes, 256 MB: a correlation length 
 constexpr double kMinWavelengthNm = 0.1, kMaxWavelengthNm = 1e8;  // as the 2-D models (GhsBsdf)
 // A PSD with a jump: |rho|'s envelope where the quadrature of the orders >= 2 (~ rho^2) starts its taper.
 constexpr double kJumpTail = 1e-3;
+// Such a lobe is accurate to ~2e-4 (its taper; TwoScaleMicroLobeMatchesThePoissonSeriesOfItsPsd): its normalisation
+// is integrated to 1e-7, not kIntegralTolerance, which the taper's ripples kept the bisection from reaching (50 CPU s
+// for one lobe of the supplemental's rough surface at 60 deg, bench_bsdf BM_two_scale_profile_lobe).
+constexpr double kJumpIntegralTolerance = 1e-7;
 
 // int_lo^hi f for an f peaked at `peak` with width ~`width`: adaptive Gauss-Kronrod on pieces peak +- width 10^j, so
 // that the bisection starts at the peak's scale however narrow it is.
-double integrate_peaked(const std::function<double(double)>& f, double lo, double hi, double peak, double width) {
+double integrate_peaked(const std::function<double(double)>& f, double lo, double hi, double peak, double width,
+                        double rel_tol = kIntegralTolerance) {
     peak = std::clamp(peak, lo, hi);
     // Far pieces hold values at the round-off of the peak's: an absolute floor keeps the bisection off that noise.
     const double floor = 1e-13 * std::abs(f(peak)) * width;
@@ -40,7 +45,7 @@ double integrate_peaked(const std::function<double(double)>& f, double lo, doubl
         double from = peak;
         for (double w = width; side * (end - from) > 0; w *= 10) {
             const double to = side > 0 ? std::min(end, peak + w) : std::max(end, peak - w);
-            total += math::integrate_adaptive(f, std::min(from, to), std::max(from, to), kIntegralTolerance, floor);
+            total += math::integrate_adaptive(f, std::min(from, to), std::max(from, to), rel_tol, floor);
             from = to;
         }
     }
@@ -314,7 +319,9 @@ ProfileLobe profile_lobe(const surface::RadialStatistics& statistics, const mate
     if (renormalised) {
         const auto integrand = [&](double u) { return density(std::sqrt(std::max(0.0, 1 - u * u)), k * (u - si)); };
         const double width = std::min(1.0, 1.0 / (k * statistics.correlation_length()));
-        const double mass = integrate_peaked(integrand, -1.0, 1.0, si, width);
+        const double mass = integrate_peaked(integrand, -1.0, 1.0, si, width,
+                                             statistics.psd_jump_radius() > 0 ? kJumpIntegralTolerance
+                                                                              : kIntegralTolerance);
         if (!(mass > 0))
             fail("the {} lobe of {} has no mass over the visible directions at {} nm, theta_i {} deg",
                  to_string(options.model), statistics.cache_key(), lambda_nm, theta_i_rad * 180 / kPi);
