@@ -101,6 +101,8 @@ void run(const RenderArgs& args) {
                  session.size() > 1 ? fmt::format(" on {} ranks", session.size()).c_str() : "",
                  static_cast<double>(stats.rays) / std::max(stats.seconds, 1e-9) * 1e-6, printable(output.string(), kShownPathChars).c_str(),
                  printable(png.string(), kShownPathChars).c_str());
+    if (const std::string note = render::nonfinite_note(stats); !note.empty())
+        std::fprintf(stderr, "warning: %s\n", note.c_str());
 }
 
 const Command command("render", [](CLI::App& app) {

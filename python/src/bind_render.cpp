@@ -154,11 +154,15 @@ py::dict render_scene(py::handle scene_path, std::optional<int> spp, py::handle 
         const std::string text = "surfscatter.render interrupted: its pixels hold " + held + " samples each";
         if (PyErr_WarnEx(PyExc_RuntimeWarning, text.c_str(), 1) != 0) throw py::error_already_set();
     }
+    if (const std::string note = render::nonfinite_note(stats); !note.empty())
+        if (PyErr_WarnEx(PyExc_RuntimeWarning, ("surfscatter.render: " + note).c_str(), 1) != 0)
+            throw py::error_already_set();
     return py::dict("rgb"_a = to_float_image(rgb.pixels.data(), rgb.height, rgb.width, 3), "xyz"_a = xyz_image(*film),
                     "alpha"_a = alpha_image(*film),
                     "spp"_a = stats.samples_per_pixel, "max_spp"_a = stats.max_samples_per_pixel,
                     "interrupted"_a = stats.interrupted,
-                    "seconds"_a = stats.seconds, "rays"_a = stats.rays, "notes"_a = scene->notes);
+                    "seconds"_a = stats.seconds, "rays"_a = stats.rays, "nonfinite_samples"_a = stats.nonfinite_samples,
+                    "notes"_a = scene->notes);
 }
 
 }  // namespace

@@ -87,6 +87,23 @@ TEST(Integrators, HideEmittersAndAlpha) {
     }
 }
 
+// Non-finite spectral samples are counted, not silently dropped: none on an ordinary scene (every sample of every
+// pixel accounted for), and the note the CLI, Python and study jobs print names their number.
+TEST(Integrators, NonFiniteSamplesAreCountedAndReported) {
+    auto scene = load_scene_from_string(scene_xml(kLitScene, "0, -3, 2", "0, 0, 0.3", 35, 12), "test.xml");
+    RenderOptions options;
+    options.spp = 8;
+    options.progress = false;
+    RenderStats stats;
+    surfscatter::render::render(*scene, options, &stats);
+    EXPECT_EQ(stats.nonfinite_samples, 0u);
+    EXPECT_EQ(stats.samples_per_pixel, 8);
+    EXPECT_EQ(nonfinite_note(stats), "");
+    stats.nonfinite_samples = 3;
+    EXPECT_NE(nonfinite_note(stats).find("3 spectral samples had a NaN or infinite radiance"), std::string::npos)
+        << nonfinite_note(stats);
+}
+
 TEST(Film, WritesTheRequestedPixelAndComponentFormats) {
     const fs::path dir = temp_dir("test_film");
     const std::string body = R"(<shape type="rectangle"><transform name="to_world"><scale value="0.5"/><translate x="-0.5"/></transform>

@@ -20,7 +20,7 @@ constexpr auto kReportInterval = std::chrono::milliseconds(200);
 constexpr auto kCollectInterval = std::chrono::milliseconds(20);
 
 // A rank's progress message: "p <pixel samples since the last one>", or at the end
-// "d <pixel samples> <fewest samples per pixel> <most samples per pixel> <interrupted 0|1> <rays>".
+// "d <pixel samples> <fewest samples per pixel> <most samples per pixel> <interrupted 0|1> <rays> <non-finite>".
 struct Report {
     bool final = false;
     std::uint64_t advance = 0;
@@ -28,12 +28,13 @@ struct Report {
     int max_samples_per_pixel = 0;
     bool interrupted = false;
     std::uint64_t rays = 0;
+    std::uint64_t nonfinite_samples = 0;
 };
 
 std::string encode(const Report& r) {
     if (!r.final) return fmt::format("p {}", r.advance);
-    return fmt::format("d {} {} {} {} {}", r.advance, r.samples_per_pixel, r.max_samples_per_pixel, r.interrupted ? 1 : 0,
-                       r.rays);
+    return fmt::format("d {} {} {} {} {} {}", r.advance, r.samples_per_pixel, r.max_samples_per_pixel,
+                       r.interrupted ? 1 : 0, r.rays, r.nonfinite_samples);
 }
 
 Report decode(const std::string& text) {
@@ -44,7 +45,7 @@ Report decode(const std::string& text) {
     r.final = kind == 'd';
     if (r.final) {
         int interrupted = 0;
-        in >> r.samples_per_pixel >> r.max_samples_per_pixel >> interrupted >> r.rays;
+        in >> r.samples_per_pixel >> r.max_samples_per_pixel >> interrupted >> r.rays >> r.nonfinite_samples;
         r.interrupted = interrupted != 0;
     }
     if (!in || (kind != 'p' && kind != 'd')) fail("malformed progress message '{}'", text);
@@ -91,6 +92,7 @@ render::Film render(const Session& session, const render::Scene& scene, const re
                         combined.max_samples_per_pixel = std::max(combined.max_samples_per_pixel, r.max_samples_per_pixel);
                         combined.interrupted = combined.interrupted || r.interrupted;
                         combined.rays += r.rays;
+                        combined.nonfinite_samples += r.nonfinite_samples;
                     }
                     std::this_thread::sleep_for(kCollectInterval);
                 }
@@ -107,7 +109,7 @@ render::Film render(const Session& session, const render::Scene& scene, const re
                 }
                 session.send(0, Tag::progress,
                              encode({true, progress.done() - sent, local.samples_per_pixel, local.max_samples_per_pixel,
-                                                     local.interrupted, local.rays}));
+                                     local.interrupted, local.rays, local.nonfinite_samples}));
             }
         } catch (...) {
             relay_error = std::current_exception();
@@ -133,6 +135,7 @@ render::Film render(const Session& session, const render::Scene& scene, const re
         stats->max_samples_per_pixel = std::max(combined.max_samples_per_pixel, local.max_samples_per_pixel);
         stats->interrupted = combined.interrupted || local.interrupted;
         stats->rays = combined.rays + local.rays;
+        stats->nonfinite_samples = combined.nonfinite_samples + local.nonfinite_samples;
         stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
     return std::move(*film);

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 
+#include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -88,7 +89,7 @@ Film render(const Scene& scene, const RenderOptions& options, RenderStats* stats
     Progress own_progress("render", part_pixels * static_cast<std::uint64_t>(spp),
                           options.progress && !options.shared_progress);
     Progress& progress = options.shared_progress ? *options.shared_progress : own_progress;
-    std::atomic<std::uint64_t> rays{0};
+    std::atomic<std::uint64_t> rays{0}, nonfinite{0};
     const auto start = std::chrono::steady_clock::now();
     int done = 0;
 
@@ -100,6 +101,7 @@ Film render(const Scene& scene, const RenderOptions& options, RenderStats* stats
         arena.execute([&] {
             tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tiles.size()), [&](const tbb::blocked_range<std::size_t>& range) {
                 const std::unique_ptr<RadianceEstimator> estimator = make_estimator(scene);
+                std::uint64_t left_out = 0;
                 for (std::size_t i = range.begin(); i != range.end(); ++i) {
                     const int tile = tiles[i];
                     const int x0 = (tile % tiles_x) * kTileSize, y0 = (tile / tiles_x) * kTileSize;
@@ -119,7 +121,10 @@ Film render(const Scene& scene, const RenderOptions& options, RenderStats* stats
                                 for (int k = 0; k < kN; ++k) {
                                     const double lambda = w.lambda[static_cast<std::size_t>(k)];
                                     const double value = l[k] / (w.pdf[static_cast<std::size_t>(k)] * kN * y_integral);
-                                    if (!std::isfinite(value)) continue;  // a degenerate path; never seen in tests
+                                    if (!std::isfinite(value)) {  // a degenerate path: counted and reported
+                                        ++left_out;
+                                        continue;
+                                    }
                                     xyz += cie.xyz_bar(lambda) * value;
                                 }
                                 film.add(x, y, xyz, fs.weight, covered);
@@ -128,6 +133,7 @@ Film render(const Scene& scene, const RenderOptions& options, RenderStats* stats
                     progress.advance(tile_pixels(tile) * static_cast<std::uint64_t>(count));
                 }
                 rays += estimator->rays;
+                nonfinite += left_out;
             });
         });
         done += count;
@@ -151,8 +157,16 @@ Film render(const Scene& scene, const RenderOptions& options, RenderStats* stats
         stats->interrupted = static_cast<int>(fewest) < spp;
         stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         stats->rays = rays.load();
+        stats->nonfinite_samples = nonfinite.load();
     }
     return film;
+}
+
+std::string nonfinite_note(const RenderStats& stats) {
+    if (stats.nonfinite_samples == 0) return {};
+    return fmt::format("{} spectral samples had a NaN or infinite radiance (degenerate paths) and were left out: the "
+                       "pixels they fell in are biased low",
+                       stats.nonfinite_samples);
 }
 
 }  // namespace surfscatter::render

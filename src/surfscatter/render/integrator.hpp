@@ -4,6 +4,7 @@
 // and strategy MIS they share), accumulated as XYZ on the film.
 #include <cstdint>
 #include <optional>
+#include <string>
 
 #include "surfscatter/render/film.hpp"
 
@@ -37,7 +38,13 @@ struct RenderStats {
     bool interrupted = false;
     double seconds = 0;
     std::uint64_t rays = 0;     // intersection and shadow rays traced
+    // Spectral samples whose radiance was NaN or infinite (a degenerate path), left out of the film: the callers
+    // report them, since the pixels they fell in are biased.
+    std::uint64_t nonfinite_samples = 0;
 };
+
+// One line telling how many spectral samples were left out as non-finite, or empty if none.
+std::string nonfinite_note(const RenderStats& stats);
 
 // Renders the scene. Deterministic: every pixel owns a PCG32 stream seeded by (seed, pixel index), and samples are
 // taken in passes, so the image is identical for any thread count and any split into parts. On Ctrl-C or SIGTERM

@@ -145,6 +145,7 @@ private:
         render::Film film = render::render(scene, options, &stats);
         interrupted_ = interrupted_ || stats.interrupted;
         if (stats.interrupted) notes_.push_back(fmt::format("interrupted after {} of {} spp", stats.samples_per_pixel, spp));
+        if (const std::string note = render::nonfinite_note(stats); !note.empty()) notes_.push_back(note);
         return film;
     }
 
