@@ -502,9 +502,10 @@ void load_height_map(SurfaceOptions& surface) {
         surface.prepared =
             std::make_shared<const heightmap::PreparedMap>(heightmap::prepare(*surface.height_map, surface.preparation));
     } else if (!surface.surface_file.empty()) {
-        if (auto scan = heightmap::read_line_scan(surface.surface_file)) return load_profile(surface, std::move(*scan));
-        surface.prepared = std::make_shared<const heightmap::PreparedMap>(heightmap::prepare(
-            heightmap::read_height_map(surface.surface_file, std::nullopt), surface.preparation));
+        auto data = heightmap::read_surface_file(surface.surface_file, std::nullopt);
+        if (auto* scan = std::get_if<heightmap::LineScan>(&data)) return load_profile(surface, std::move(*scan));
+        surface.prepared = std::make_shared<const heightmap::PreparedMap>(
+            heightmap::prepare(std::get<heightmap::HeightMap>(std::move(data)), surface.preparation));
     }
 }
 

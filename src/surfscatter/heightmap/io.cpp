@@ -376,6 +376,13 @@ std::optional<LineScan> read_line_scan(const std::filesystem::path& file) {
 
 HeightMap read_height_map(const std::filesystem::path& file, std::optional<double> spacing_um,
                           std::optional<double> height_unit_um) {
+    auto data = read_surface_file(file, spacing_um, height_unit_um);
+    if (const LineScan* scan = std::get_if<LineScan>(&data)) fail("{}", line_scan_refusal(*scan));
+    return std::get<HeightMap>(std::move(data));
+}
+
+std::variant<HeightMap, LineScan> read_surface_file(const std::filesystem::path& file, std::optional<double> spacing_um,
+                                                   std::optional<double> height_unit_um) {
     const std::string path = file.string();
     require_readable_file(file, "height map file");
     const std::string head = file_head(path, 65536);
@@ -388,12 +395,12 @@ HeightMap read_height_map(const std::filesystem::path& file, std::optional<doubl
         map = read_tmd(file);
     } else if (is_opdx(head)) {
         auto data = read_opdx(file);
-        if (const LineScan* scan = std::get_if<LineScan>(&data)) fail("{}", line_scan_refusal(*scan));
+        if (LineScan* scan = std::get_if<LineScan>(&data)) return std::move(*scan);
         map = std::move(std::get<HeightMap>(data));
     } else if (is_nms(head)) {
         map = read_nms(file);
     } else if (is_hfm(head)) {
-        fail("{}", line_scan_refusal(read_hfm(file)));
+        return read_hfm(file);
     } else if (is_mnt(file, head)) {
         map = read_mnt(file);
     } else if (head.compare(0, kZipMagic.size(), kZipMagic) == 0) {

@@ -23,6 +23,7 @@
 // surfscatter::Error whose message starts with the file name (and line for text grids).
 #include <filesystem>
 #include <optional>
+#include <variant>
 
 #include "surfscatter/heightmap/height_map.hpp"
 #include "surfscatter/heightmap/line_scan.hpp"
@@ -38,6 +39,11 @@ HeightMap read_height_map(const std::filesystem::path& path, std::optional<doubl
 // The profile a file holds (an .hfm export, a Dektak OPDx line scan: the files read_height_map refuses as
 // profiles), or nullopt for any other file (which read_height_map reads or refuses).
 std::optional<LineScan> read_line_scan(const std::filesystem::path& path);
+
+// Any surface file read once: the profile it holds (as read_line_scan) or else its map (as read_height_map), for the
+// callers that take either (an areal OPDx file was read twice, once to find it is not a line scan).
+std::variant<HeightMap, LineScan> read_surface_file(const std::filesystem::path& path, std::optional<double> spacing_um,
+                                                   std::optional<double> height_unit_um = std::nullopt);
 
 HeightMap read_gsf(const std::filesystem::path& path);
 

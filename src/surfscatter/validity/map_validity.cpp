@@ -194,11 +194,11 @@ MapSurface map_surface(const bsdf::SurfaceOptions& surface, const std::string& m
     if (surface.psd == bsdf::PsdKind::file || surface.psd == bsdf::PsdKind::measured) {
         if (surface.surface_file.empty()) fail("validity: a height map needs its file (surface_file)");
         // Kirchhoff needs heights over an area: a profile file is refused with the line saying what it holds (a map
-        // given in memory, whose surface_file is only its name, is already a map).
-        if (!surface.height_map && !surface.prepared)
-            if (const auto scan = heightmap::read_line_scan(surface.surface_file))
-                fail("{}", heightmap::line_scan_refusal(*scan));
+        // given in memory, whose surface_file is only its name, is already a map). The file is read once.
         bsdf::SurfaceOptions measured = surface;
+        if (!surface.height_map && !surface.prepared)
+            measured.height_map = std::make_shared<const heightmap::HeightMap>(
+                heightmap::read_height_map(surface.surface_file, std::nullopt));
         bsdf::load_height_map(measured);
         out.outlier_policy = surface.preparation.outliers;
         out.outliers = measured.prepared->outliers;
