@@ -250,9 +250,9 @@ std::vector<MapCase> map_validity(const MapSurface& surface, const material::Con
     for (const double phi : study.phi_i_deg) require_finite(phi, "phi_i");
     for (const double lambda : study.wavelengths_nm)
         if (!(lambda > 0) || !std::isfinite(lambda)) fail("validity: wavelength must be > 0 nm, got {}", lambda);
-    require_valid_criteria(study.criteria, "tolerance", "bin_deg", "max_reference_stderr");
-    require_thread_count(study.threads, "threads");
-    require_list_size(study.wavelengths_nm.size(), "wavelengths_nm");
+    require_valid_criteria(study.criteria, study.option_names);
+    require_thread_count(study.threads, study.option_names.threads.c_str());
+    require_list_size(study.wavelengths_nm.size(), study.option_names.wavelength.c_str());
     require_list_size(study.theta_i_deg.size(), "theta_i_deg");
     require_list_size(study.phi_i_deg.size(), "phi_i_deg");
     const heightmap::HeightMap& first = surface.maps.front();
@@ -308,7 +308,8 @@ std::vector<MapCase> map_validity(const MapSurface& surface, const material::Con
                 for (std::size_t m = 0; m < mc.models.size(); ++m)
                     mc.models[m].comparison = compare_curves(b.theta_o_rad, b.reference, b.reference_stderr,
                                                              b.models[m], study.criteria);
-                mc.verdict = decide(mc.models, study.criteria, reference_problem(mc.reference_validity, sum));
+                mc.verdict = decide(mc.models, study.criteria, reference_problem(mc.reference_validity, sum),
+                                    study.option_names);
                 cases.push_back(std::move(mc));
             }
     progress.finish();

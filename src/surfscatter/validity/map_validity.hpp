@@ -86,6 +86,8 @@ struct MapStudy {
     Criteria criteria;
     int threads = 0;
     bool progress = false;        // one bar over cases x maps, with ETA
+    // As the caller spells them (criteria, threads, wavelengths); realizations empty for a measured map (one map).
+    reference::OptionNames option_names;
 };
 
 // Square bins of the lattice (header), in row order; models[m][b] is model m's mean over bin b.
