@@ -205,7 +205,7 @@ def test_messages_name_the_argument_given_and_what_to_do(tmp_path):
     (dict(realizations=-1), "realizations must be at least 2, got -1"),
     (dict(realizations=1.5), "realizations must be a whole number, got 1.5"),
     (dict(realizations=2**70), "realizations is beyond the 64-bit range"),
-    (dict(realizations=None, target_stderr_pct="5"), "target_stderr_pct must be"),
+    (dict(realizations=None, target_stderr_pct="5"), "target_stderr_pct must hold real numbers"),
     (dict(realizations=None, max_realizations="5"), "max_realizations must be a whole number, got '5'"),
 ])
 def test_validity_names_a_wrong_count_or_type(keywords, expected):

@@ -315,7 +315,7 @@ void check_options(const Profile& profile, const material::Conductor& conductor,
     // argument 0+0i", naming neither the material nor the wavelength).
     if (!conductor.is_perfect() && conductor.ior(o.lambda_nm) == Complex(0.0, 0.0))
         fail("{} {}: the refractive index at {} nm is n = k = 0, which no medium has (check its table at that "
-             "wavelength)", names.material, printable(conductor.name()), o.lambda_nm);
+             "wavelength)", names.material, printable(conductor.name(), kShownPathChars), o.lambda_nm);
     const double k = kTwoPi / (o.lambda_nm * 1e-3);
     const double kgc = k * o.beam_width_um * std::cos(o.theta_i_rad);
     const double correction = (1.0 + 2.0 * std::pow(std::tan(o.theta_i_rad), 2)) / (2.0 * kgc * kgc);
