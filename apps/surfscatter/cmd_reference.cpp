@@ -197,6 +197,7 @@ void run_kirchhoff(const KirchhoffArgs& a) {
     o.subarea_um = a.subarea ? *a.subarea : 0.25 * std::min(map.width(), map.height());
     o.max_theta_o_rad = a.max_theta_o * kDegree;
     o.threads = a.threads;
+    o.option_names = {.wavelength = "--wavelength", .threads = "--threads", .subarea = "--subarea-um"};
     o.progress = true;
     install_interrupt_handler();
     const auto r = reference::kirchhoff_brdf(map, conductor, o);

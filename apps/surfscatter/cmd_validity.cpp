@@ -286,7 +286,8 @@ const reference::OptionNames kOptionNames = {.length = "--length-um",
                                              .realizations = "--realizations",
                                              .tolerance = "--tolerance",
                                              .bin_deg = "--bin-deg",
-                                             .max_reference_stderr = "--max-reference-stderr"};
+                                             .max_reference_stderr = "--max-reference-stderr",
+                                             .subarea = "--subarea-um"};
 
 void check_criteria(const ValidityArgs& a) {
     require_thread_count(a.threads, kOptionNames.threads.c_str());
@@ -447,10 +448,6 @@ void run_map_validity(const ValidityArgs& a) {
     }
     const auto conductor = material::Conductor::from_name(a.material);
     const validity::MapSurface surface = validity::map_surface(map_surface_options(a), a.material, synthesis);
-    for (const std::string& note : surface.notes) print_note("", note);
-    for (const std::string& why : surface.refused)
-        std::fprintf(stderr, "surfscatter: not compared: %s\n", why.c_str());
-
     validity::MapStudy study;
     study.wavelengths_nm = a.wavelengths;
     study.theta_i_deg = a.theta_i;
@@ -462,6 +459,10 @@ void run_map_validity(const ValidityArgs& a) {
     study.option_names = kOptionNames;
     if (!a.map_size) study.option_names.realizations.clear();  // a measured map: one realization
     study.progress = true;
+    validity::check_map_study(surface, study);  // a refusal before the notes is one line
+    for (const std::string& note : surface.notes) print_note("", note);
+    for (const std::string& why : surface.refused)
+        std::fprintf(stderr, "surfscatter: not compared: %s\n", why.c_str());
     install_interrupt_handler();
     const auto cases = validity::map_validity(surface, conductor, study);
     const std::size_t asked = a.wavelengths.size() * a.theta_i.size() * study.phi_i_deg.size();

@@ -34,7 +34,8 @@ const reference::OptionNames kOptionNames = {.length = "length_um",
                                              .realizations = "realizations",
                                              .tolerance = "tolerance",
                                              .bin_deg = "bin_deg",
-                                             .max_reference_stderr = "max_reference_stderr"};
+                                             .max_reference_stderr = "max_reference_stderr",
+                                             .subarea = "subarea_um"};
 
 py::dict row_dict(const validity::TableRow& row) {
     py::dict d;

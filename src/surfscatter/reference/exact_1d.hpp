@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "surfscatter/material/conductor.hpp"
+#include "surfscatter/reference/option_names.hpp"
 #include "surfscatter/reference/profile.hpp"
 
 namespace surfscatter::reference {
@@ -23,23 +24,6 @@ enum class Polarisation { s, p };  // s (TE): E along y; p (TM): H along y
 // no convergence).
 enum class Exact1dSolver { automatic, dense, iterative };
 inline constexpr std::size_t kIterativeFromUnknowns = 500;
-
-// How the caller's interface spells the options of exact-1d and of the validity studies built on the reference
-// solvers, for every message that names one (a bad value, the node bound, the memory refusal and their remedies):
-// the CLI commands pass their option names (`surfscatter validity` says --wavelengths, `reference exact-1d`
-// --wavelength), Python its keywords; the defaults are plain words. An empty name is a setting the caller does not
-// offer (Python's fixed points per wavelength): a remedy leaves it out.
-struct OptionNames {
-    std::string length = "profile";
-    std::string wavelength = "wavelength";
-    std::string points_per_wavelength = "points per wavelength";
-    std::string threads = "threads";
-    std::string beam_width = "beam width";
-    std::string material = "material";
-    std::string realizations = "realizations";
-    // validity's criteria (validity::require_valid_criteria)
-    std::string tolerance = "tolerance", bin_deg = "bin width", max_reference_stderr = "reference's largest standard error";
-};
 
 struct Exact1dOptions {
     double lambda_nm = 0.0;

@@ -108,6 +108,12 @@ struct MapCase {
     Verdict verdict;
 };
 
+// The sub-area side the study uses: study.subarea_um, or a quarter of the first map's shorter side.
+double map_subarea_um(const MapSurface& surface, const MapStudy& study);
+// The study's lists, criteria, threads and sub-area on every map, named by study.option_names: map_validity's first
+// step, which a front end calls before it prints the surface's notes (so that a refusal is one line).
+void check_map_study(const MapSurface& surface, const MapStudy& study);
+
 // Every (wavelength, theta_i, phi_i), in that nesting order. Stops between cases, or inside one, when
 // interrupt_requested(): the cases completed are returned. Throws Error for bad input.
 std::vector<MapCase> map_validity(const MapSurface& surface, const material::Conductor& conductor,
