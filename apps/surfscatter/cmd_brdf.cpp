@@ -382,6 +382,7 @@ void export_rgl_file(const BrdfArgs& a) {
     o.tolerance_percent = a.tolerance_percent;
     if (model->isotropic() && given(a, "phi_i_count")) fail("--phi-i-count applies to anisotropic surfaces only");
     if (o.rgb && (given(a, "lambda_step"))) fail("--lambda-step applies to --format rgl-spectral only");
+    bsdf::check_rgl_export_options(o, model->isotropic());  // counts, step and memory before any work
     // The delta part: its reflectance over incidence and wavelength.
     std::vector<double> thetas, lambdas;
     for (int t = 0; t <= 89; ++t) thetas.push_back(t);
@@ -393,7 +394,7 @@ void export_rgl_file(const BrdfArgs& a) {
     const bsdf::Bsdf& tabulated = with_lobe ? static_cast<const bsdf::Bsdf&>(*with_lobe) : *model;
     if (with_lobe) o.mirror_exclusion_rad = with_lobe->core_rad();
     // The size before the work: an anisotropic spectral file over the full circle of azimuths reaches gigabytes.
-    const std::size_t most = o.tolerance_percent > 0 ? std::max<std::size_t>(64, std::size_t(o.theta_i_count))
+    const std::size_t most = o.tolerance_percent > 0 ? std::max(bsdf::kMaxRglRefinedIncidences, std::size_t(o.theta_i_count))
                                                      : std::size_t(o.theta_i_count);
     std::printf("writing %s: %.0f MB at %d incidences%s (docs/PERFORMANCE.md \"RGL export\")\n",
                 printable_path(a.output).c_str(), bsdf::rgl_export_bytes(o, model->isotropic(), std::size_t(o.theta_i_count)) / 1e6,

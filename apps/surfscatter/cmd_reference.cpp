@@ -113,8 +113,13 @@ void run_exact_1d(const Exact1dArgs& a, const CLI::App& sub) {
     options.polarisation = a.polarisation == "s" ? reference::Polarisation::s : reference::Polarisation::p;
     options.beam_width_um = a.beam_width;
     options.points_per_wavelength = a.points_per_wavelength;
-    options.option_names = {a.surface.psd ? "--length-um" : "the profile in --profile", "--wavelength",
-                            "--points-per-wavelength", "--threads"};
+    options.option_names = {.length = a.surface.psd ? "--length-um" : "profile in --profile",
+                            .wavelength = "--wavelength",
+                            .points_per_wavelength = "--points-per-wavelength",
+                            .threads = "--threads",
+                            .beam_width = "--beam-width",
+                            .material = "--material",
+                            .realizations = "--realizations"};
     if (!a.surface.psd) {
         if (a.profile.empty()) fail("give --profile FILE.csv or the statistical mode --psd kc|gaussian");
         const reference::Profile profile = reference::read_profile_csv(a.profile);
@@ -192,6 +197,7 @@ void run_kirchhoff(const KirchhoffArgs& a) {
     o.subarea_um = a.subarea ? *a.subarea : 0.25 * std::min(map.width(), map.height());
     o.max_theta_o_rad = a.max_theta_o * kDegree;
     o.threads = a.threads;
+    o.option_names = {.wavelength = "--wavelength", .threads = "--threads", .subarea = "--subarea-um"};
     o.progress = true;
     install_interrupt_handler();
     const auto r = reference::kirchhoff_brdf(map, conductor, o);
@@ -280,6 +286,7 @@ void run_models_1d(const Models1dArgs& a, const CLI::App& sub) {
     options.renormalization = !a.no_renormalization;
     const auto polarisation = bsdf::parse_profile_polarisation(a.polarisation, "--polarisation");
     const auto theta_o = bsdf::uniform_theta_grid(reference::kFarFieldSteps);
+    bsdf::require_profile_wavelength(a.wavelength, "--wavelength");
 
     std::string header = "theta_o_deg";
     std::vector<bsdf::ProfileLobe> lobes;

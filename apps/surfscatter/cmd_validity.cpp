@@ -276,9 +276,22 @@ void print_written(const ValidityArgs& a) {
                 out.c_str());
 }
 
+// How validity's messages name its options (the library's checks and remedies take them from here).
+const reference::OptionNames kOptionNames = {.length = "--length-um",
+                                             .wavelength = "--wavelengths",
+                                             .points_per_wavelength = "--points-per-wavelength",
+                                             .threads = "--threads",
+                                             .beam_width = "--beam-width",
+                                             .material = "--material",
+                                             .realizations = "--realizations",
+                                             .tolerance = "--tolerance",
+                                             .bin_deg = "--bin-deg",
+                                             .max_reference_stderr = "--max-reference-stderr",
+                                             .subarea = "--subarea-um"};
+
 void check_criteria(const ValidityArgs& a) {
-    require_thread_count(a.threads, "--threads");
-    validity::require_valid_criteria(criteria_from(a), "--tolerance", "--bin-deg", "--max-reference-stderr");
+    require_thread_count(a.threads, kOptionNames.threads.c_str());
+    validity::require_valid_criteria(criteria_from(a), kOptionNames);
 }
 
 void run_profile_validity(const ValidityArgs& a) {
@@ -313,7 +326,7 @@ void run_profile_validity(const ValidityArgs& a) {
         study.polarisations = {bsdf::parse_profile_polarisation(a.polarisation, "--polarisation")};
     study.beam_width_um = a.beam_width;
     study.points_per_wavelength = a.points_per_wavelength;
-    study.option_names = {"--length-um", "--wavelengths", "--points-per-wavelength", "--threads"};
+    study.option_names = kOptionNames;
     study.statistical.length_um = a.length;
     study.statistical.realizations = static_cast<std::size_t>(a.realizations ? *a.realizations : cap);
     study.target_rel_stderr = target / 100;
@@ -435,10 +448,6 @@ void run_map_validity(const ValidityArgs& a) {
     }
     const auto conductor = material::Conductor::from_name(a.material);
     const validity::MapSurface surface = validity::map_surface(map_surface_options(a), a.material, synthesis);
-    for (const std::string& note : surface.notes) print_note("", note);
-    for (const std::string& why : surface.refused)
-        std::fprintf(stderr, "surfscatter: not compared: %s\n", why.c_str());
-
     validity::MapStudy study;
     study.wavelengths_nm = a.wavelengths;
     study.theta_i_deg = a.theta_i;
@@ -447,7 +456,13 @@ void run_map_validity(const ValidityArgs& a) {
     study.max_theta_o_deg = a.max_theta_o;
     study.criteria = criteria_from(a);
     study.threads = a.threads;
+    study.option_names = kOptionNames;
+    if (!a.map_size) study.option_names.realizations.clear();  // a measured map: one realization
     study.progress = true;
+    validity::check_map_study(surface, study);  // a refusal before the notes is one line
+    for (const std::string& note : surface.notes) print_note("", note);
+    for (const std::string& why : surface.refused)
+        std::fprintf(stderr, "surfscatter: not compared: %s\n", why.c_str());
     install_interrupt_handler();
     const auto cases = validity::map_validity(surface, conductor, study);
     const std::size_t asked = a.wavelengths.size() * a.theta_i.size() * study.phi_i_deg.size();

@@ -117,6 +117,16 @@ std::string text_option(py::handle value, const char* name) {
     return value.cast<std::string>();
 }
 
+long long integer_option(py::handle value, const char* name, long long least) {
+    if (!py::isinstance<py::int_>(value) || py::isinstance<py::bool_>(value))
+        fail("{} must be a whole number, got {}", name, py::repr(value).cast<std::string>());
+    int overflow = 0;
+    const long long v = PyLong_AsLongLongAndOverflow(value.ptr(), &overflow);
+    if (overflow != 0) fail("{} is beyond the 64-bit range, got {}", name, py::repr(value).cast<std::string>());
+    if (v < least) fail("{} must be at least {}, got {}", name, least, v);
+    return v;
+}
+
 bool bool_option(py::handle value, const char* name) {
     if (!py::isinstance<py::bool_>(value)) fail("{} must be True or False, got {}", name, py::repr(value).cast<std::string>());
     return value.cast<bool>();

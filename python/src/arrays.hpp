@@ -84,6 +84,9 @@ double real_scalar(py::handle value, const char* name, Domain domain = Domain::a
 // A str or a bool argument; Error naming `name` for any other type (pybind11's own cast gave RuntimeError "Unable to
 // cast Python instance to C++ type").
 std::string text_option(py::handle value, const char* name);
+// A Python int (not a bool) of at least `least`; Error naming `name` for another type, a value beyond the 64-bit
+// range or below `least` (a negative count cast to an unsigned one wrapped around).
+long long integer_option(py::handle value, const char* name, long long least);
 bool bool_option(py::handle value, const char* name);
 
 // A nesting index (lambda_s_um, lambda_c_um) as the CLI and XML take it: a number (um) as its text, or a string

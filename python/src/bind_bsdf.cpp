@@ -427,7 +427,7 @@ void bind_bsdf(py::module_& m) {
             if (b.model->isotropic() && phi_i_count) fail("phi_i_count applies to anisotropic surfaces only");
             if (format == "rgl-rgb" && lambda_step_nm) fail("lambda_step_nm applies to format rgl-spectral only");
             bsdf::RglExportOptions o;
-            o.names = {"theta_i_count", "phi_i_count", "ndf_resolution", "sample_resolution"};
+            o.names = {"theta_i_count", "phi_i_count", "ndf_resolution", "sample_resolution", "lambda_step_nm"};
             o.rgb = format == "rgl-rgb";
             o.theta_i_count = theta_i_count, o.phi_i_count = phi_i_count.value_or(o.phi_i_count);
             o.sample_resolution = sample_resolution, o.ndf_resolution = ndf_resolution;

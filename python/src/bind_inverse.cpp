@@ -67,6 +67,7 @@ py::dict fit_brdf(const py::handle& data, const std::string& material, const std
                   const std::optional<std::vector<double>>& wavelengths_nm, const std::optional<std::string>& profile) {
     const inverse::BrdfData brdf = data_of(data, wavelengths_nm);
     inverse::FitOptions options;
+    options.names = {.fix = "fix", .psd = "psd", .anisotropic = "anisotropic", .profile = "profile"};
     options.material = material;
     options.psd = bsdf::parse_psd(psd, "psd");
     options.anisotropic = anisotropic;

@@ -43,6 +43,7 @@ py::dict profile_models(const surface::RadialStatistics& surface, const std::str
         const RealArray degrees = real_array(theta_o_deg, "theta_o_deg");
         for (py::ssize_t j = 0; j < degrees.size(); ++j) theta_o.push_back(degrees.data()[j] * kDegree);
     }
+    bsdf::require_profile_wavelength(wavelength_nm, "wavelength_nm");
     std::vector<bsdf::ProfileLobe> lobes;
     {
         const py::gil_scoped_release release;

@@ -1,4 +1,5 @@
 // surfscatter.validity: which model to trust for a surface (validity/validity.hpp), as `surfscatter validity`.
+#include <limits>
 #include <optional>
 #include <string>
 #include <utility>
@@ -22,6 +23,19 @@ namespace surfscatter::python {
 using namespace pybind11::literals;
 
 namespace {
+
+// How the library's checks and remedies name validity's arguments (points per wavelength: fixed at 10 here).
+const reference::OptionNames kOptionNames = {.length = "length_um",
+                                             .wavelength = "wavelengths_nm",
+                                             .points_per_wavelength = "",
+                                             .threads = "threads",
+                                             .beam_width = "beam_width_um",
+                                             .material = "material",
+                                             .realizations = "realizations",
+                                             .tolerance = "tolerance",
+                                             .bin_deg = "bin_deg",
+                                             .max_reference_stderr = "max_reference_stderr",
+                                             .subarea = "subarea_um"};
 
 py::dict row_dict(const validity::TableRow& row) {
     py::dict d;
@@ -65,14 +79,14 @@ py::dict validity(py::handle surface_arg, const std::string& material,
         fail("realizations and target_stderr_pct: give one (a fixed count of profiles, or profiles until the "
              "reference's standard error reaches the target)");
     const double target = realizations.is_none()
-                              ? (target_stderr_pct.is_none() ? 2.0 : target_stderr_pct.cast<double>())
+                              ? (target_stderr_pct.is_none() ? 2.0 : real_scalar(target_stderr_pct, "target_stderr_pct"))
                               : 0.0;
     if (realizations.is_none() && !(target > 0 && target < 100))
         fail("target_stderr_pct must be in (0, 100) percent, got {}", target);
     if (!realizations.is_none() && !max_realizations_arg.is_none())
         fail("max_realizations caps target_stderr_pct's profiles; realizations is a fixed count");
     const long long max_realizations =
-        max_realizations_arg.is_none() ? 1000 : max_realizations_arg.cast<long long>();
+        max_realizations_arg.is_none() ? 1000 : integer_option(max_realizations_arg, "max_realizations", std::numeric_limits<long long>::min());
     if (realizations.is_none() && !(max_realizations >= 2 && max_realizations <= 1000000))
         fail("max_realizations must be in [2, 1000000], got {}", max_realizations);
     if (!py::isinstance<surface::KCorrelation>(surface_arg) && !py::isinstance<surface::GaussianAcv>(surface_arg))
@@ -91,10 +105,10 @@ py::dict validity(py::handle surface_arg, const std::string& material,
     for (const auto& p : polarisations)
         study.polarisations.push_back(bsdf::parse_profile_polarisation(p, "polarisations"));
     study.beam_width_um = beam_width_um;
-    study.option_names = {"length_um", "wavelengths_nm", "the points per wavelength (10)", "threads"};
+    study.option_names = kOptionNames;
     study.statistical.length_um = length_um;
     study.statistical.realizations = realizations.is_none() ? static_cast<std::size_t>(max_realizations)
-                                                            : realizations.cast<std::size_t>();
+                                                            : static_cast<std::size_t>(integer_option(realizations, "realizations", 2));
     study.target_rel_stderr = target / 100;
     study.statistical.seed = seed;
     study.statistical.threads = threads;
@@ -206,6 +220,9 @@ py::dict validity_map(py::handle surface_arg, const std::string& material, const
     study.criteria.tolerance = tolerance;
     study.criteria.max_reference_stderr = max_reference_stderr;
     study.threads = threads;
+    study.option_names = kOptionNames;
+    if (measured) study.option_names.realizations.clear();  // one map
+    validity::require_valid_criteria(study.criteria, kOptionNames);  // before the maps are made
     std::vector<validity::MapCase> cases;
     validity::MapSurface surface;
     {

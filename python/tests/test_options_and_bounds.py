@@ -67,7 +67,7 @@ def test_validity_map_bounds_its_synthesis_before_starting(keywords, expected):
 
 def test_validity_bounds_the_realizations_before_allocating():
     refused(lambda: ss.validity(KC, "perfect", [550], [0], length_um=24, beam_width_um=4, realizations=10**12),
-            "the done flags of 1000000000000 realizations needs")
+            "realizations 1000000000000 (a done flag each) needs")
 
 
 @pytest.mark.parametrize("keywords, expected", [
@@ -166,3 +166,48 @@ def test_an_argument_given_is_given_and_named_as_python_names_it(call, expected)
     message = str(raised.value)
     assert expected in message, message
     assert "--" not in message, message
+
+
+GHS = ss.bsdf("ghs", surface=KC, material="Au")
+
+
+@pytest.mark.parametrize("keywords, expected", [
+    (dict(lambda_step_nm=1e-300), "lambda_step_nm must be in [0.1, 640] nm, got 1e-300"),
+    (dict(lambda_step_nm=1e300), "lambda_step_nm must be in [0.1, 640] nm"),
+    (dict(lambda_step_nm=0.1, sample_resolution=512, theta_i_count=256),
+     "available: use a smaller sample_resolution or theta_i_count or a larger lambda_step_nm"),
+])
+def test_export_rgl_bounds_its_tables_before_allocating(tmp_path, keywords, expected):
+    path = tmp_path / "x.bsdf"
+    refused(lambda: ss.export_rgl(GHS, str(path), **keywords), expected)
+    assert not path.exists()
+
+
+def test_messages_name_the_argument_given_and_what_to_do(tmp_path):
+    """Class 4: the library's refusals name Python's arguments with their values, never a derived one."""
+    refused(lambda: ss.validity(KC, "perfect", [550], [0], length_um=1e6, beam_width_um=4, realizations=2),
+            "use a shorter length_um (now 1e+06 um) or a longer wavelengths_nm (now 550 nm)")
+    refused(lambda: ss.validity(KC, "perfect", [1e-300], [0], **PROFILES),
+            "wavelengths_nm must be between 0.1 and 100000000 nm, got 1e-300")
+    zero = tmp_path / "zero.csv"
+    zero.write_text("wavelength_nm,n,k\n400,0,0\n700,0,0\n")
+    refused(lambda: ss.validity(KC, str(zero), [550], [0], **PROFILES),
+            f"material {zero}: the refractive index at 550 nm is n = k = 0")
+    refused(lambda: ss.validity_map(MAP, "perfect", [550], [0], form="bogus"),
+            "form must be none, plane, poly2, poly3 or poly4, got 'bogus'")
+    refused(lambda: ss.validity_map(KC, "perfect", [550], [0], map_size_um=16, tolerance=2),
+            "tolerance must be in (0, 1), got 2")
+    refused(lambda: ss.profile_models(KC, "perfect", 1e-300, 10, "s"),
+            "wavelength_nm must be between 0.1 and 100000000 nm, got 1e-300")
+
+
+@pytest.mark.parametrize("keywords, expected", [
+    (dict(realizations=-1), "realizations must be at least 2, got -1"),
+    (dict(realizations=1.5), "realizations must be a whole number, got 1.5"),
+    (dict(realizations=2**70), "realizations is beyond the 64-bit range"),
+    (dict(realizations=None, target_stderr_pct="5"), "target_stderr_pct must hold real numbers"),
+    (dict(realizations=None, max_realizations="5"), "max_realizations must be a whole number, got '5'"),
+])
+def test_validity_names_a_wrong_count_or_type(keywords, expected):
+    """Class 3: a count cast by pybind11 was TypeError "Unable to cast" naming no argument (-1 or 1.5 realizations)."""
+    refused(lambda: ss.validity(KC, "perfect", [550], [0], **{**PROFILES, **keywords}), expected)

@@ -88,16 +88,17 @@ TEST(CliFitBrdf, BadOptionsAreErrors) {
     for (const auto& [extra, needle] :
          std::vector<std::pair<std::vector<std::string>, std::string>>{
              {{"--fix", "gamma"}, "--fix must be NAME=VALUE"},
-             {{"--fix", "roughness=2"}, "fix roughness: not a parameter"},
-             {{"--fix", "lay_angle_deg=10"}, "applies to an anisotropic fit only"},
-             {{"--psd", "gaussian", "--fix", "gamma=3"}, "fix gamma applies to psd kc only"},
+             {{"--fix", "roughness=2"}, "--fix roughness: not a parameter"},
+             {{"--fix", "lay_angle_deg=10"}, "--fix lay_angle_deg applies to an anisotropic fit only (--anisotropic)"},
+             {{"--psd", "gaussian", "--fix", "gamma=3"}, "--fix gamma applies to --psd kc only"},
              {{"--psd", "file"}, "--psd must be kc or gaussian"},
              {{"--model", "phong"}, "--model must be one of"},
              {{"--wavelengths", "550"}, "--wavelengths applies to RGL .bsdf data only"},
              {{"--profile", "x"}, "--profile must be"},
              {{"--profile", "s"}, "phi_o_deg must be 0 or 180 for profile data"},
              {{"--profile", "s", "--model", "two_scale"}, "two_scale has no 1-D form"},
-             {{"--profile", "p", "--anisotropic"}, "anisotropic does not apply"}}) {
+             {{"--profile", "p", "--anisotropic"}, "--profile data are a cut through isotropic statistics: "
+                                                   "--anisotropic does not apply"}}) {
         std::vector<std::string> args = {"fit-brdf", "--data", kExample, "--material", "Au", "-o",
                                          (dir / "opt").string()};
         args.insert(args.end(), extra.begin(), extra.end());

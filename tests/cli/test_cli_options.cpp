@@ -76,6 +76,12 @@ std::vector<std::string> validity(const std::vector<std::string>& extra) {
                   extra);
 }
 
+std::vector<std::string> brdf_export(const std::vector<std::string>& extra) {
+    return concat({"brdf", "export", "--model", "ghs", "--material", "Au", "--sigma", "0.1", "--corr-length", "2",
+                   "--gamma", "3", "--format", "rgl-spectral", "-o", (dir() / "x.bsdf").string()},
+                  extra);
+}
+
 const std::vector<std::string> kProfilesRoute = {"--psd", "kc", "--sigma", "0.01", "--corr-length", "1", "--gamma", "3",
                                                  "--length-um", "24", "--beam-width", "4", "--realizations", "2"};
 const std::vector<std::string> kSynthesised = {"--psd", "kc", "--sigma", "0.01", "--corr-length", "1", "--gamma", "3",
@@ -172,15 +178,82 @@ TEST(CliOptions, WorkIsBoundedBeforeAllocating) {
           (dir() / "w.csv").string()},
          "solver nodes at 1e-300 nm"},
         {"Exact1dRealizations1e12", random_profiles({"--realizations", "1000000000000"}),
-         "the done flags of 1000000000000 realizations needs"},
+         "--realizations 1000000000000 (a done flag each) needs"},
         {"Exact1dRealizationsInt64Max", random_profiles({"--realizations", "9223372036854775807"}),
-         "the done flags of 9223372036854775807 realizations needs"},
+         "--realizations 9223372036854775807 (a done flag each) needs"},
         {"ValidityMapPixels1e6", validity(concat(kSynthesised, {"--map-pixels", "1000000"})),
          "--map-pixels must be in [8, 8192], got 1000000"},
         {"ValidityMaps1e6", validity(concat(kSynthesised, {"--realizations", "1000000"})),
          "--realizations must be in [1, 1000] maps, got 1000000"},
+        // RGL export: the spectral step and the tables' size before anything is allocated (a step of 1e-300 nm
+        // crashed, 512 samples at 256 incidences gave std::bad_alloc, 1e300 nm failed on the temporary file).
+        {"BrdfExportLambdaStep1e-300", brdf_export({"--lambda-step", "1e-300"}),
+         "--lambda-step must be in [0.1, 640] nm, got 1e-300"},
+        {"BrdfExportLambdaStep0p05", brdf_export({"--lambda-step", "0.05"}), "--lambda-step must be in [0.1, 640] nm"},
+        {"BrdfExportLambdaStep1e300", brdf_export({"--lambda-step", "1e300"}), "--lambda-step must be in [0.1, 640] nm"},
+        {"BrdfExportTablesBeyondMemory",
+         brdf_export({"--lambda-step", "0.1", "--sample-resolution", "512", "--theta-i-count", "256"}),
+         "available: use a smaller --sample-resolution or --theta-i-count or a larger --lambda-step"},
     };
     expect_refused(cases);
+    EXPECT_FALSE(fs::exists(dir() / "x.bsdf"));
+}
+
+// Class 4: a message names the option the user gave, not a value derived from it, and says what to do.
+TEST(CliOptions, MessagesNameTheOptionGiven) {
+    const std::string flat = profile("flat_m.csv", 81, 0.5);
+    const fs::path zero = dir() / "zero.csv";
+    std::ofstream(zero) << "wavelength_nm,n,k\n400,0,0\n700,0,0\n";
+    const auto one_profile = [&](const std::string& material, const std::string& wavelength) {
+        return std::vector<std::string>{"reference", "exact-1d", "--profile", flat, "--material", material,
+                                        "--wavelength", wavelength, "--theta-i", "10", "--polarisation", "s",
+                                        "--beam-width", "5", "-o", (dir() / "e.csv").string()};
+    };
+    const auto profiles_route = [&](const std::string& material, const std::string& wavelength) {
+        return concat({"validity", "--material", material, "--wavelengths", wavelength, "--theta-i", "0", "-o",
+                       (dir() / "v").string()},
+                      kProfilesRoute);
+    };
+    const std::vector<Case> cases = {
+        {"Exact1dTinyWavelength", one_profile("perfect", "1e-300"),
+         "use fewer --points-per-wavelength (now 10), a shorter profile in --profile (now 40 um) or a longer "
+         "--wavelength (now 1e-300 nm)"},
+        {"Exact1dLongProfiles",
+         {"reference", "exact-1d", "--psd", "kc", "--sigma", "0.01", "--corr-length", "1", "--gamma", "3", "--length-um",
+          "1e9", "--realizations", "2", "--material", "perfect", "--wavelength", "550", "--theta-i", "10",
+          "--polarisation", "s", "--beam-width", "5", "-o", (dir() / "r.csv").string()},
+         "a shorter --length-um (now 1e+09 um)"},
+        {"Exact1dIndexZero", one_profile(zero.string(), "550"),
+         "--material " + zero.string() + ": the refractive index at 550 nm is n = k = 0"},
+        {"Exact1dNarrowBeam", one_profile("perfect", "1e300"), "use a wider --beam-width or a shorter --wavelength"},
+        {"ValidityTinyWavelength", profiles_route("perfect", "1e-300"),
+         "--wavelengths must be between 0.1 and 100000000 nm, got 1e-300"},
+        {"ValidityLongProfiles",
+         {"validity", "--material", "perfect", "--wavelengths", "550", "--theta-i", "0", "-o", (dir() / "v").string(),
+          "--psd", "kc", "--sigma", "0.01", "--corr-length", "1", "--gamma", "3", "--length-um", "1e6", "--beam-width",
+          "4", "--realizations", "2"},
+         "use fewer --points-per-wavelength (now 10), a shorter --length-um (now 1e+06 um) or a longer --wavelengths "
+         "(now 550 nm)"},
+        {"ValidityIndexZero", profiles_route(zero.string(), "550"),
+         "--material " + zero.string() + ": the refractive index at 550 nm is n = k = 0"},
+        {"ValidityFormBogus", validity({"--surface-file", kMap, "--form", "bogus"}),
+         "--form must be none, plane, poly2, poly3 or poly4, got 'bogus'"},
+        {"ValidityTolerance", validity(concat(kSynthesised, {"--tolerance", "2"})), "--tolerance must be in (0, 1), got 2"},
+        {"ValiditySubareaTiny", validity({"--surface-file", kMap, "--subarea-um", "1e-300"}),
+         "--subarea-um 1e-300 um is 0 pixels of 0.5 um along x: at least 16 are needed"},
+        {"KirchhoffSubareaHuge",
+         {"reference", "kirchhoff", "--surface", kMap, "--material", "perfect", "--wavelength", "550", "--theta-i", "10",
+          "-o", (dir() / "k.csv").string(), "--subarea-um", "1e300"},
+         "--subarea-um 1e+300 um is larger than the map along x"},
+        {"ValidityModelsWavelength", profiles_route("perfect", "0.05"),
+         "--wavelengths must be between 0.1 and 100000000 nm, got 0.05"},
+        {"Models1dTinyWavelength",
+         {"reference", "models-1d", "--psd", "kc", "--sigma", "0.1", "--corr-length", "2", "--gamma", "3", "--theta-i",
+          "10", "--polarisation", "s", "--material", "perfect", "--wavelength", "1e-300", "-o", (dir() / "m.csv").string()},
+         "--wavelength must be between 0.1 and 100000000 nm, got 1e-300"},
+    };
+    expect_refused(cases);
+    EXPECT_FALSE(fs::exists(dir() / "e.csv"));
 }
 
 }  // namespace

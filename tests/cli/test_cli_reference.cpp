@@ -122,7 +122,7 @@ TEST(CliReference, BadInputIsOneLine) {
                      ":4: x = 3 um breaks the uniform step");
     expect_bad_input(with({"--profile", profile, "--theta-i", "10", "--beam-width", "5", "--points-per-wavelength",
                            "2"}),
-                     "points per wavelength (--points-per-wavelength) must be between 4 and 1000");
+                     "--points-per-wavelength must be between 4 and 1000, got 2");
 }
 
 // A profile whose solve needs twice the memory available now (about 5 KB per node at 550 nm; 11 samples far apart,
@@ -138,7 +138,7 @@ TEST(CliReference, MoreNodesThanMemoryIsOneLine) {
     expect_bad_input({"reference", "exact-1d", "--profile", write_temp_file(csv, ".csv"), "--material", "perfect",
                       "--wavelength", "550", "--theta-i", "0", "--polarisation", "s", "--beam-width", "10", "-o",
                       "/tmp/surfscatter_ref_unused.csv"},
-                     "reduce the profile in --profile, raise --wavelength or lower --points-per-wavelength");
+                     "use fewer --points-per-wavelength (now 10), a shorter profile in --profile (now ");
 }
 
 // reference models-1d: the CSV on exact-1d's grid (GHS's coherent fraction plus its lobe is 1 for a perfect

@@ -54,7 +54,7 @@ TEST(CliReferenceKirchhoff, WritesTheLatticeAndAPlot) {
 TEST(CliReferenceKirchhoff, BadInputIsOneLine) {
     expect_bad_input({"--theta-i", "95"}, "--theta-i must be in [0, 90) degrees, got 95");
     expect_bad_input({"--wavelength", "-1"}, "--wavelength");
-    expect_bad_input({"--subarea-um", "4"}, "sub-area side 4 um is 8 pixels of 0.5 um along x: at least 16");
+    expect_bad_input({"--subarea-um", "4"}, "--subarea-um 4 um is 8 pixels of 0.5 um along x: at least 16");
     expect_bad_input({"--subarea-um", "40"}, "at least 2 are needed");
     expect_bad_input({"--wavelength", "40"}, "sampling too coarse for 40 nm");
     expect_bad_input({"--form", "cubic"}, "--form");

@@ -105,6 +105,22 @@ TEST(OutputFiles, TwoOutputsNeverShareAFileAndInputsThatDoNotExistAreSkipped) {
                   " are the same file: name another output");
 }
 
+// Outputs a later step writes into folders it makes (a study's jobs): the same rule against inputs and each other,
+// their folders not yet there.
+TEST(OutputFiles, PlannedOutputsFollowTheSameRuleBeforeTheirFoldersExist) {
+    const fs::path dir = scratch("planned");
+    std::ofstream(dir / "map.gsf") << "x";
+    OutputFiles files;
+    files.input(dir / "map.gsf", "'map.gsf' of job a");
+    EXPECT_NO_THROW(files.plan(dir / "renders" / "a.png", "job a's output"));
+    EXPECT_EQ(error_of([&] { files.plan(dir / "renders" / ".." / "renders" / "a.png", "job b's output"); }),
+              "job b's output " + (dir / "renders" / ".." / "renders" / "a.png").string() + " and job a's output " +
+                  (dir / "renders" / "a.png").string() + " are the same file: name another output");
+    EXPECT_NE(error_of([&] { files.plan(dir / "map.gsf", "job c's output"); }).find("would replace the input 'map.gsf' of job a"),
+              std::string::npos);
+    EXPECT_FALSE(fs::exists(dir / "renders"));
+}
+
 TEST(OutputFiles, RefusesFoldersDevicesAndMissingFoldersBeforeAnyWork) {
     const fs::path dir = scratch("where");
     OutputFiles files;

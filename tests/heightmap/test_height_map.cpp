@@ -195,14 +195,15 @@ TEST(HeightMap, UndeterminedFormsAreErrors) {
     EXPECT_NO_THROW(hm::remove_form(map, hm::Form::plane));
     EXPECT_EQ(error_of([&] { hm::remove_form(map, hm::Form::poly2); }),
               "rows.x3p: the valid points do not determine a poly2 form (they lie on too few rows or columns); "
-              "choose a lower --form");
+              "choose a lower form (--form, Python form=): plane or none");
     std::vector<std::uint8_t> few(400, 0);
     for (std::size_t i = 0; i < 30; ++i) few[i * 13] = 1;
     EXPECT_EQ(error_of([&] {
                   hm::remove_form(hm::HeightMap(20, 20, 1.0, 1.0, std::vector<double>(400), few, "few.x3p"),
                                   hm::Form::poly4);
               }),
-              "few.x3p: 30 valid points cannot determine a poly4 form (15 coefficients)");
+              "few.x3p: 30 valid points cannot determine a poly4 form (15 coefficients need 60); choose a lower form "
+              "(--form, Python form=): poly3, poly2, plane or none");
 }
 
 TEST(HeightMap, ParsesFormNames) {

@@ -100,14 +100,15 @@ TEST(Exact1dMemory, RefusesBeyondTheAvailableMemory) {
         std::printf("%s\n", what.c_str());
         EXPECT_EQ(what.find('\n'), std::string::npos);
         if (length < 0.055 * sr::kMaxExact1dNodes) {
-            EXPECT_NE(what.find("reduce the profile's length, raise the wavelength or lower the points per wavelength"),
+            EXPECT_NE(what.find("use fewer points per wavelength (now 10), a shorter profile (now "),
                       std::string::npos) << what;
         }
     }
     // Two threads of a statistical run whose one solve fits but whose two do not, with validity's option names.
     const double half = 0.6 * static_cast<double>(surfscatter::available_memory_bytes()) / per_node * 0.055;
     if (half < 0.055 * sr::kMaxExact1dNodes) {
-        o.option_names = {"--length-um", "--wavelengths", "--points-per-wavelength", "--threads"};
+        o.option_names = {.length = "--length-um", .wavelength = "--wavelengths",
+                          .points_per_wavelength = "--points-per-wavelength", .threads = "--threads"};
         const auto fits = sr::flat_profile(o, half);
         EXPECT_NO_THROW(sr::require_exact_1d_memory(fits, sm::Conductor::perfect(), o, 1));
         try {
@@ -116,7 +117,9 @@ TEST(Exact1dMemory, RefusesBeyondTheAvailableMemory) {
         } catch (const surfscatter::Error& e) {
             const std::string what = e.what();
             std::printf("%s\n", what.c_str());
-            EXPECT_NE(what.find("reduce --length-um, raise --wavelengths or lower --points-per-wavelength, or --threads"),
+            EXPECT_NE(what.find("use fewer --points-per-wavelength (now 10), a shorter --length-um (now "), std::string::npos)
+                << what;
+            EXPECT_NE(what.find(" or a longer --wavelengths (now 550 nm), or fewer --threads (now 2 at once)"),
                       std::string::npos) << what;
         }
     }

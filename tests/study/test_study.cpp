@@ -212,6 +212,44 @@ TEST(StudyJobs, ExpandsViewsModelsSurfacesLampsAndWavelengths) {
     EXPECT_EQ(plot.parameters["labels"], (nlohmann::json{{"ggx", "GGX"}, {"ghs", "ghs"}, {"ssa", "SSA GHS"}}));
 }
 
+// Issue 36, class 1: a job's outputs never replace a file the study loads or another job's output
+// (core/output_files.hpp's rule), refused when the study is expanded, before any job runs.
+TEST(StudyJobs, OutputsThatWouldReplaceAnInputOrEachOtherAreRefused) {
+    const auto expand_error = [](const Study& s) {
+        try {
+            expand(s);
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    // A model named "overview" renders onto the view's overview image.
+    std::string text = study_text();
+    text.replace(text.find(R"("name": "ghs")"), 13, R"("name": "overview")");
+    const std::string both = expand_error(parse_study(text, "/base", "s.json"));
+    EXPECT_NE(both.find("job overview/kc/warm/view1's output /base/renders/kc/warm/view1/overview.png and job "
+                        "render/kc/warm/view1/overview's output /base/renders/kc/warm/view1/overview.png are the same file"),
+              std::string::npos) << both;
+    // A wavelength given twice makes two slices of one name.
+    text = study_text();
+    text.replace(text.find(R"("wavelengths": [450, 650.5])"), 27, R"("wavelengths": [450, 450.0])");
+    const std::string twice = expand_error(parse_study(text, "/base", "s.json"));
+    EXPECT_NE(twice.find("/base/brdf/kc/slice_450nm_ggx.csv are the same file: name another output"), std::string::npos)
+        << twice;
+    // A material table the study reads, where a BRDF job would write its slice.
+    const fs::path folder = scratch("collision");
+    fs::create_directories(folder / "brdf");
+    { std::ofstream(folder / "brdf" / "slice_550nm_ghs.csv") << "wavelength_nm,n,k\n400,0.2,3\n700,0.2,4\n"; }
+    const std::string brdf_only = R"({"parameters": {"material": "brdf/slice_550nm_ghs.csv", "sigma": 0.1,
+        "corr_length": 2, "gamma": 3}, "models": [{"name": "ghs", "model": "ghs"}], "wavelengths": [550],
+        "brdf_slices": {"theta_i": [0]}})";
+    const std::string input = expand_error(parse_study(brdf_only, folder, "s.json"));
+    EXPECT_NE(input.find("job slice/550nm/ghs's output " + (folder / "brdf/slice_550nm_ghs.csv").string() +
+                         " would replace the input 'brdf/slice_550nm_ghs.csv' of job slice/550nm/ghs"),
+              std::string::npos) << input;
+    EXPECT_EQ(input.find('\n'), std::string::npos);
+}
+
 TEST(StudyJobs, SheetColumnsFollowThePanelCountAndUncroppedSheetsCropToTheSample) {
     EXPECT_EQ(sheet_columns(1, 0), 1);
     EXPECT_EQ(sheet_columns(3, 0), 3);

@@ -222,12 +222,15 @@ std::vector<double> uniform_theta_grid(int steps) {
     return grid;
 }
 
+void require_profile_wavelength(double lambda_nm, const std::string& name) {
+    if (!(lambda_nm >= kMinWavelengthNm && lambda_nm <= kMaxWavelengthNm))
+        fail("{} must be between {} and {} nm, got {}", name, kMinWavelengthNm, kMaxWavelengthNm, lambda_nm);
+}
+
 namespace {
 
 void check_lobe_input(double lambda_nm, double theta_i_rad, const std::vector<double>& theta_o_rad) {
-    require_finite(lambda_nm, "wavelength (nm)");
-    if (lambda_nm < kMinWavelengthNm || lambda_nm > kMaxWavelengthNm)
-        fail("wavelength must be between {} and {} nm, got {}", kMinWavelengthNm, kMaxWavelengthNm, lambda_nm);
+    require_profile_wavelength(lambda_nm, "wavelength");
     require_finite(theta_i_rad, "theta_i");
     if (theta_i_rad < 0 || theta_i_rad >= kPi / 2)
         fail("theta_i must be in [0, 90) degrees, got {}", theta_i_rad * 180 / kPi);

@@ -94,6 +94,10 @@ double profile_relevant_roughness(const surface::RadialStatistics& statistics, d
 // of exact-1d's far field, value for value.
 std::vector<double> uniform_theta_grid(int steps);
 
+// Throws Error naming `name` (the caller's option: --wavelength, wavelength_nm) unless lambda_nm is within the 1-D
+// models' range, 0.1 nm to 1e8 nm (as the 2-D models'); every lobe below checks it under the plain word.
+void require_profile_wavelength(double lambda_nm, const std::string& name);
+
 // The lobe at each theta_o_rad (in [-pi/2, pi/2]).
 ProfileLobe profile_lobe(const surface::RadialStatistics& statistics, const material::Conductor& conductor,
                          double lambda_nm, double theta_i_rad, ProfilePolarisation polarisation,

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/resources.hpp"
 #include "surfscatter/math/marginal_2d.hpp"
 #include "surfscatter/math/quadrature.hpp"
 #include "surfscatter/spectrum/cie.hpp"
@@ -330,17 +331,16 @@ void tabulate(const Bsdf& model, const RglExportOptions& o, const Marginal2D& nd
 // Adds incidences (theta_i nodes) at the midpoint of every interval where the file, tabulated at its first, reference
 // and last wavelengths, misses the model there by more than o.tolerance_percent: where the lobe changes shape faster
 // with theta_i (toward grazing incidence, narrow spikes) than interpolation between slices follows. Up to
-// kMaxIncidences nodes, in rounds that halve the intervals still failing.
+// kMaxRglRefinedIncidences nodes, in rounds that halve the intervals still failing.
 void refine_incidences(const Bsdf& model, const RglExportOptions& o, const Marginal2D& ndf, const Marginal2D& sigma,
                        const std::vector<double>& lambda, RglData& d) {
-    constexpr std::size_t kMaxIncidences = 64;
     std::vector<double> check{lambda.front(), o.reference_lambda_nm, lambda.back()};
     std::sort(check.begin(), check.end());
     check.erase(std::unique(check.begin(), check.end()), check.end());
     std::vector<double> azimuths{0.0};
     if (!d.isotropic())
         for (int k = 1; k < 4; ++k) azimuths.push_back(-kPi + kTwoPi * (k + 0.5) / 4);
-    while (d.theta_i.size() < kMaxIncidences) {
+    while (d.theta_i.size() < kMaxRglRefinedIncidences) {
         RglData trial = d;
         trial.rgb = false;
         trial.wavelengths = check;
@@ -350,7 +350,7 @@ void refine_incidences(const Bsdf& model, const RglExportOptions& o, const Margi
         std::vector<double> nodes;
         for (std::size_t k = 0; k < d.theta_i.size(); ++k) {
             nodes.push_back(d.theta_i[k]);
-            if (k + 1 == d.theta_i.size() || nodes.size() + (d.theta_i.size() - k) > kMaxIncidences) continue;
+            if (k + 1 == d.theta_i.size() || nodes.size() + (d.theta_i.size() - k) > kMaxRglRefinedIncidences) continue;
             const double mid = 0.5 * (d.theta_i[k] + d.theta_i[k + 1]);
             double worst = 0;
             for (double phi : azimuths) worst = std::max(worst, probe.compare(spherical_direction(mid, phi)));
@@ -378,14 +378,35 @@ double rgl_export_bytes(const RglExportOptions& o, bool isotropic, std::size_t i
     return 4 * (slices * ((channels + 1) * ns * ns + nt * nt) + 2 * np * nt) + slices * ns * ns / 8;
 }
 
-RglData export_rgl(const Bsdf& model, const RglExportOptions& o, const std::string& description) {
+void check_rgl_export_options(const RglExportOptions& o, bool isotropic) {
     check(o.theta_i_count >= 2 && o.theta_i_count <= 256, o.names.theta_i_count, "2..256");
     check(o.theta_i_max_deg > 0 && o.theta_i_max_deg < 90, "theta_i_max_deg", "(0, 90) degrees");
     check(o.phi_i_count >= 3 && o.phi_i_count <= 256, o.names.phi_i_count, "3..256");  // 2 reads as isotropic
     check(o.ndf_resolution >= 8 && o.ndf_resolution <= 1024, o.names.ndf_resolution, "8..1024");
     check(o.sample_resolution >= 4 && o.sample_resolution <= 512, o.names.sample_resolution, "4..512");
-    if (!(o.lambda_step_nm > 0 && o.lambda_min_nm > 0 && o.lambda_max_nm > o.lambda_min_nm))
-        fail("the spectral grid needs 0 < lambda_min < lambda_max and a step > 0");
+    if (!(o.lambda_min_nm > 0 && o.lambda_max_nm > o.lambda_min_nm && std::isfinite(o.lambda_max_nm)))
+        fail("the spectral grid needs 0 < lambda_min < lambda_max, got {} and {} nm", o.lambda_min_nm, o.lambda_max_nm);
+    if (!o.rgb && !(o.lambda_step_nm >= kMinRglLambdaStepNm && o.lambda_step_nm <= o.lambda_max_nm - o.lambda_min_nm))
+        fail("{} must be in [{}, {}] nm, got {}", o.names.lambda_step, kMinRglLambdaStepNm,
+             o.lambda_max_nm - o.lambda_min_nm, o.lambda_step_nm);
+    const std::size_t most = o.tolerance_percent > 0
+                                 ? std::max(kMaxRglRefinedIncidences, static_cast<std::size_t>(o.theta_i_count))
+                                 : static_cast<std::size_t>(o.theta_i_count);
+    // The tables in double (twice the file), the refinement's trial copy of them, and the file read back.
+    const double file = rgl_export_bytes(o, isotropic, most), bytes = file * (o.tolerance_percent > 0 ? 5 : 3);
+    const double available = static_cast<double>(available_memory_bytes());
+    if (bytes > available)
+        fail("brdf export: a file of {} ({} incidences{}, {} x {} samples, {} channels) needs {} of memory, more than "
+             "the {} available: use a smaller {} or {}{}{}",
+             format_bytes(file), most, isotropic ? "" : fmt::format(" x {} azimuths", o.phi_i_count),
+             o.sample_resolution, o.sample_resolution, o.rgb ? 3 : rgl_export_wavelengths(o).size(),
+             format_bytes(bytes), format_bytes(available), o.names.sample_resolution, o.names.theta_i_count,
+             isotropic ? "" : fmt::format(", {}", o.names.phi_i_count),
+             o.rgb ? "" : fmt::format(" or a larger {}", o.names.lambda_step));
+}
+
+RglData export_rgl(const Bsdf& model, const RglExportOptions& o, const std::string& description) {
+    check_rgl_export_options(o, model.isotropic());
     const bool iso = model.isotropic();
     RglData d;
     d.description = description;

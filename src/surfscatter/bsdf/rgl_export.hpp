@@ -26,7 +26,7 @@ namespace surfscatter::bsdf {
 // every library check that names a caller's argument takes the name from the caller (docs/RELIABILITY.md).
 struct RglExportNames {
     std::string theta_i_count = "--theta-i-count", phi_i_count = "--phi-i-count", ndf_resolution = "--ndf-resolution",
-                sample_resolution = "--sample-resolution";
+                sample_resolution = "--sample-resolution", lambda_step = "--lambda-step";
 };
 
 struct RglExportOptions {
@@ -54,7 +54,18 @@ std::vector<double> rgl_export_wavelengths(const RglExportOptions& o);
 // that a caller can say how large it will be before the work.
 double rgl_export_bytes(const RglExportOptions& o, bool isotropic, std::size_t incidences);
 
-// Throws Error on an option out of range (each named by options.names) or a model the material cannot evaluate
+// The finest spectral step of a file (nm): 6,401 wavelengths over 360-1000 nm, far beyond any measured index table.
+inline constexpr double kMinRglLambdaStepNm = 0.1;
+// The most incidences the refinement adds up to (tolerance_percent > 0).
+inline constexpr std::size_t kMaxRglRefinedIncidences = 64;
+
+// Throws Error, one line naming the option (options.names), for a count, resolution or spectral step out of range
+// (the step at least kMinRglLambdaStepNm), or tables that would not fit in the memory available now: the tables in
+// double (twice the file), the refinement's trial copy of them, and the file read back for the accuracy check, at
+// the most incidences the refinement may reach. Called before anything is allocated, by export_rgl and by the front ends before their other work.
+void check_rgl_export_options(const RglExportOptions& options, bool isotropic);
+
+// Throws Error on an option out of range (check_rgl_export_options) or a model the material cannot evaluate
 // over the wavelengths (its own message).
 RglData export_rgl(const Bsdf& model, const RglExportOptions& options, const std::string& description);
 

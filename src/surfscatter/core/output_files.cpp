@@ -81,7 +81,7 @@ void OutputFiles::input(const fs::path& path, const std::string& what) {
     entries_.push_back({path, resolved(path), {}, what, true, false});
 }
 
-void OutputFiles::output(const fs::path& path, const std::string& what) {
+fs::path OutputFiles::refuse_collisions(const fs::path& path, const std::string& what) const {
     if (path.empty()) fail("{} is empty: name a file", what);
     const fs::path destination = resolved(path);
     for (const Entry& e : entries_)
@@ -90,6 +90,15 @@ void OutputFiles::output(const fs::path& path, const std::string& what) {
                 fail("{} {} would replace the input {} {}: name another output", what, printable_path(path), e.what, printable_path(e.given));
             fail("{} {} and {} {} are the same file: name another output", what, printable_path(path), e.what, printable_path(e.given));
         }
+    return destination;
+}
+
+void OutputFiles::plan(const fs::path& path, const std::string& what) {
+    entries_.push_back({path, refuse_collisions(path, what), {}, what, false, false});
+}
+
+void OutputFiles::output(const fs::path& path, const std::string& what) {
+    const fs::path destination = refuse_collisions(path, what);
     std::error_code ec;
     const fs::file_status status = fs::status(destination, ec);
     if (fs::is_directory(status)) fail("{} {} is a folder: name a file in it", what, printable_path(path));

@@ -36,6 +36,11 @@ public:
     // --plot"). Every file a command writes is declared, derived names too.
     void output(const std::filesystem::path& path, const std::string& what);
 
+    // Declares a file that a later step writes, into folders it may create (a study's job outputs, checked when
+    // the study is expanded): refused, as output() refuses, if it resolves to an input or to a file planned or
+    // declared before; its folder is not checked (the step that writes it declares it again, with output()).
+    void plan(const std::filesystem::path& path, const std::string& what);
+
     // Writes a declared output's contents to its temporary file, checked and synced to disk.
     void write(const std::filesystem::path& path, const std::string& text);
     // The same through `writer(temporary path)` (a library writer, a plot script): the file it leaves is synced
@@ -60,6 +65,8 @@ private:
         std::string what;
         bool input = false, written = false;
     };
+    // The resolved path, after the Error naming both if it is one file with an entry before.
+    std::filesystem::path refuse_collisions(const std::filesystem::path& path, const std::string& what) const;
     Entry& find_output(const std::filesystem::path& path);
     const Entry& find_output(const std::filesystem::path& path) const;
     std::vector<Entry> entries_;

@@ -42,12 +42,24 @@ std::vector<Term> terms_of(int degree) {
     return terms;
 }
 
+// "choose a lower form: poly2, plane or none" (the advice when the valid points cannot determine `form`); the CLI's
+// --form and Python's form= take the same names.
+std::string lower_forms_advice(Form form) {
+    std::string lower;
+    for (int d = form_degree(form) - 1; d >= 0; --d) {
+        lower += to_string(static_cast<Form>(d));
+        lower += d == 1 ? " or " : d > 1 ? ", " : "";
+    }
+    return lower.empty() ? std::string("the map has too few valid points for any form")
+                         : "choose a lower form (--form, Python form=): " + lower;
+}
+
 }  // namespace
 
 Form parse_form(const std::string& name, const std::string& where) {
     for (Form form : {Form::none, Form::plane, Form::poly2, Form::poly3, Form::poly4})
         if (name == to_string(form)) return form;
-    fail("{} must be none, plane, poly2, poly3 or poly4, got '{}'", where, name);
+    fail("{} must be none, plane, poly2, poly3 or poly4, got '{}'", where, printable(name));
 }
 
 std::string to_string(Form form) {
@@ -80,8 +92,8 @@ HeightMap remove_form(const HeightMap& map, Form form) {
     const auto px = legendre_table(nx, degree), py = legendre_table(ny, degree);
     const std::string origin = map.origin();
     if (map.valid_count() < 4 * terms.size())
-        fail("{}: {} valid points cannot determine a {} form ({} coefficients)", origin, map.valid_count(),
-             to_string(form), terms.size());
+        fail("{}: {} valid points cannot determine a {} form ({} coefficients need {}); {}", origin, map.valid_count(),
+             to_string(form), terms.size(), 4 * terms.size(), lower_forms_advice(form));
 
     // Normal equations sum_p b_a(p) b_b(p) c_b = sum_p b_a(p) h(p), with b_(i,j) = P_i(u) P_j(v): per row, the x
     // sums S_ii' = sum P_i P_i' and R_i = sum P_i h over the row's valid points, then weighted by P_j P_j'.
@@ -115,9 +127,8 @@ HeightMap remove_form(const HeightMap& map, Form form) {
     const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(normal, Eigen::EigenvaluesOnly);
     const double smallest = eigen.eigenvalues().minCoeff(), largest = eigen.eigenvalues().maxCoeff();
     if (!(smallest > 1e-10 * largest))
-        fail("{}: the valid points do not determine a {} form (they lie on too few rows or columns); choose a "
-             "lower --form",
-             origin, to_string(form));
+        fail("{}: the valid points do not determine a {} form (they lie on too few rows or columns); {}", origin,
+             to_string(form), lower_forms_advice(form));
     const Eigen::VectorXd c = normal.ldlt().solve(rhs);
 
     std::vector<double> residual(map.size(), 0.0);

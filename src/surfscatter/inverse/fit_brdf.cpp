@@ -129,7 +129,7 @@ public:
                 continue;
             }
             if (!(fixed->second >= bounds_[p].lo && fixed->second <= bounds_[p].hi))
-                fail("fix {}={}: the {} fit takes {} in [{}, {}]", kParameterNames[p], fixed->second,
+                fail("{} {}={}: the {} fit takes {} in [{}, {}]", options.names.fix, kParameterNames[p], fixed->second,
                      bsdf::to_string(model), kParameterNames[p], bounds_[p].lo, bounds_[p].hi);
             value_[p] = fixed->second;
         }
@@ -522,12 +522,13 @@ FitResult fit_brdf(const BrdfData& data, const FitOptions& options) {
     validate(data);
     if (options.models.empty()) fail("give at least one model to fit");
     if (options.psd != bsdf::PsdKind::kc && options.psd != bsdf::PsdKind::gaussian)
-        fail("psd must be kc or gaussian for a fit, got {}", bsdf::to_string(options.psd));
+        fail("{} must be kc or gaussian for a fit, got {}", options.names.psd, bsdf::to_string(options.psd));
     if (options.starts < 1 || options.starts > 3) fail("starts must be 1, 2 or 3, got {}", options.starts);
     if (options.refined < 1 || options.refined > options.starts)
         fail("refined must be between 1 and starts ({}), got {}", options.starts, options.refined);
     if (options.profile && options.anisotropic)
-        fail("profile data are a cut through isotropic statistics: anisotropic does not apply");
+        fail("{} data are a cut through isotropic statistics: {} does not apply", options.names.profile,
+             options.names.anisotropic);
     if (options.max_evaluations_per_start < 1)
         fail("max_evaluations_per_start must be >= 1, got {}", options.max_evaluations_per_start);
     for (const auto& fixed : options.fixed) {
@@ -535,12 +536,13 @@ FitResult fit_brdf(const BrdfData& data, const FitOptions& options) {
         const auto* end = std::end(kParameterNames);
         // By the pair, not the binding: clang 14 (the fuzz and sanitizer builds) cannot capture a structured binding.
         if (std::find_if(std::begin(kParameterNames), end, [&](const char* n) { return fixed.first == n; }) == end)
-            fail("fix {}: not a parameter; the parameters are sigma_um, corr_length_um, gamma, corr_length_v_um, "
-                 "lay_angle_deg", name);
-        if (!std::isfinite(value)) fail("fix {}={}: the value must be finite", name, value);
-        if (name == "gamma" && options.psd != bsdf::PsdKind::kc) fail("fix gamma applies to psd kc only (gaussian has no gamma)");
+            fail("{} {}: not a parameter; the parameters are sigma_um, corr_length_um, gamma, corr_length_v_um, "
+                 "lay_angle_deg", options.names.fix, printable(name));
+        if (!std::isfinite(value)) fail("{} {}={}: the value must be finite", options.names.fix, name, value);
+        if (name == "gamma" && options.psd != bsdf::PsdKind::kc)
+            fail("{} gamma applies to {} kc only (gaussian has no gamma)", options.names.fix, options.names.psd);
         if ((name == "corr_length_v_um" || name == "lay_angle_deg") && !options.anisotropic)
-            fail("fix {} applies to an anisotropic fit only", name);
+            fail("{} {} applies to an anisotropic fit only ({})", options.names.fix, name, options.names.anisotropic);
     }
     // Hundreds of one-off surfaces: their tables are not worth the disk cache (core/table_cache.hpp).
     const TableCacheWritesPaused paused;

@@ -20,6 +20,12 @@ namespace surfscatter::inverse {
 inline constexpr const char* kParameterNames[] = {"sigma_um", "corr_length_um", "gamma", "corr_length_v_um",
                                                   "lay_angle_deg"};
 
+// How messages name the fit's options: the CLI's, unless a front end passes its own (Python's keywords), as every
+// library check that names a caller's argument takes the name from the caller (docs/RELIABILITY.md).
+struct FitOptionNames {
+    std::string fix = "--fix", psd = "--psd", anisotropic = "--anisotropic", profile = "--profile";
+};
+
 struct FitOptions {
     std::vector<bsdf::ModelKind> models = {bsdf::ModelKind::ghs, bsdf::ModelKind::ghs_ssa, bsdf::ModelKind::ggx,
                                            bsdf::ModelKind::two_scale};
@@ -35,6 +41,7 @@ struct FitOptions {
     int starts = 3;                          // sigma starts at g0 = 3, 0.5, 15 (the first `starts` of them)
     int refined = 1;                         // the solver runs from the `refined` starts of smallest misfit
     int max_evaluations_per_start = 30;      // model evaluations of the residuals per start (Jacobians apart)
+    FitOptionNames names;
 };
 
 struct ParameterEstimate {

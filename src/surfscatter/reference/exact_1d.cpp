@@ -289,35 +289,47 @@ Eigen::MatrixXcd banded_right_solve(const BandedMatrix& lu, const Eigen::MatrixX
     return w;
 }
 
+// The profile's length in um.
+double profile_length(const Profile& profile) {
+    return profile.spacing_um * static_cast<double>(profile.h_um.size() - 1);
+}
+
 // Solver nodes of the profile at the options' sampling (a double: cannot wrap around).
 double node_count(const Profile& profile, const Exact1dOptions& o) {
     return static_cast<double>(profile.h_um.size() - 1) * subdivisions_of(profile, o.lambda_nm * 1e-3, o.points_per_wavelength) + 1;
 }
 
-void check_options(const Profile& profile, const Exact1dOptions& o) {
+void check_options(const Profile& profile, const material::Conductor& conductor, const Exact1dOptions& o) {
+    const OptionNames& names = o.option_names;
     require_valid_profile(profile, "profile");
-    require_positive(o.lambda_nm, "wavelength (nm)");
+    require_positive(o.lambda_nm, fmt::format("{} (nm)", names.wavelength).c_str());
     require_finite(o.theta_i_rad, "theta_i");
     if (!(o.theta_i_rad >= 0 && o.theta_i_rad < 0.5 * kPi))
         fail("theta_i must be in [0, 90) degrees, got {} deg", o.theta_i_rad / kDegree);
-    require_positive(o.beam_width_um, "beam width (um)");
+    require_positive(o.beam_width_um, fmt::format("{} (um)", names.beam_width).c_str());
     if (!(o.points_per_wavelength >= 4 && o.points_per_wavelength <= 1000))
-        fail("points per wavelength (--points-per-wavelength) must be between 4 and 1000, got {}", o.points_per_wavelength);
+        fail("{} must be between 4 and 1000, got {}", names.points_per_wavelength, o.points_per_wavelength);
     if (!(o.interior_reach >= 10 && o.interior_reach <= 100))
         fail("interior reach must be between 10 and 100 decay lengths, got {}", o.interior_reach);
+    // A medium of index 0 has no wave number inside: its Hankel functions have no argument (was "Hankel function
+    // argument 0+0i", naming neither the material nor the wavelength).
+    if (!conductor.is_perfect() && conductor.ior(o.lambda_nm) == Complex(0.0, 0.0))
+        fail("{} {}: the refractive index at {} nm is n = k = 0, which no medium has (check its table at that "
+             "wavelength)", names.material, printable(conductor.name(), kShownPathChars), o.lambda_nm);
     const double k = kTwoPi / (o.lambda_nm * 1e-3);
     const double kgc = k * o.beam_width_um * std::cos(o.theta_i_rad);
     const double correction = (1.0 + 2.0 * std::pow(std::tan(o.theta_i_rad), 2)) / (2.0 * kgc * kgc);
     // Thorsos' beam solves the wave equation only to O(1/(k g cos)^2): beyond 1e-2 its power formula misleads.
     if (correction > 1e-2)
-        fail("beam width {} um is too narrow for theta_i = {} deg at {} nm: (1 + 2 tan^2) / (2 (k g cos)^2) = {:.3g} "
-             "> 0.01 (Thorsos' beam no longer solves the wave equation)",
-             o.beam_width_um, o.theta_i_rad / kDegree, o.lambda_nm, correction);
+        fail("{} {} um is too narrow for theta_i = {} deg at {} nm: (1 + 2 tan^2) / (2 (k g cos)^2) = {:.3g} > 0.01 "
+             "(Thorsos' beam no longer solves the wave equation): use a wider {} or a shorter {}",
+             names.beam_width, o.beam_width_um, o.theta_i_rad / kDegree, o.lambda_nm, correction, names.beam_width,
+             names.wavelength);
     const double nodes = node_count(profile, o);
     if (!(nodes <= kMaxExact1dNodes))
-        fail("a profile of {} samples {} um apart needs {:.3g} solver nodes at {} nm ({} per wavelength), more than "
-             "{:.0e}: a shorter profile, a finer sampling or a longer wavelength",
-             profile.h_um.size(), profile.spacing_um, nodes, o.lambda_nm, o.points_per_wavelength, kMaxExact1dNodes);
+        fail("exact-1d: a profile of {} samples {} um apart needs {:.3g} solver nodes at {} nm, more than {:.0e}: {}",
+             profile.h_um.size(), profile.spacing_um, nodes, o.lambda_nm, kMaxExact1dNodes,
+             exact_1d_remedy(o, profile_length(profile)));
     const double margin = kProfileBeamMargin * o.beam_width_um;
     if (profile.x0_um > -margin || profile.x_end_um() < margin)
         fail("profile x from {} to {} um does not hold the beam: it must reach from -{} to {} um ({} beam widths "
@@ -529,13 +541,11 @@ void require_solve_memory(double bytes, std::size_t nodes, const Profile& profil
     const auto available = static_cast<double>(available_memory_bytes());
     const double total = bytes * static_cast<double>(concurrent);
     if (total <= available) return;
-    const Exact1dOptionNames& names = o.option_names;
     fail("exact-1d: {} solver nodes (a {:.4g} um profile at {} nm, {} points per wavelength){} need {} of memory, more "
-         "than the {} available: reduce {}, raise {} or lower {}{}",
-         nodes, profile.spacing_um * static_cast<double>(profile.h_um.size() - 1), o.lambda_nm,
-         o.points_per_wavelength, concurrent > 1 ? fmt::format(" on {} threads", concurrent) : std::string(),
-         format_bytes(total), format_bytes(available), names.length, names.wavelength, names.points_per_wavelength,
-         concurrent > 1 ? fmt::format(", or {}", names.threads) : std::string());
+         "than the {} available: {}",
+         nodes, profile_length(profile), o.lambda_nm, o.points_per_wavelength,
+         concurrent > 1 ? fmt::format(" on {} threads", concurrent) : std::string(), format_bytes(total),
+         format_bytes(available), exact_1d_remedy(o, profile_length(profile), concurrent));
 }
 
 // A flat surface of n nodes `step` apart.
@@ -640,8 +650,23 @@ std::optional<Densities> solve_iterative_route(const Surface& surface, double k,
 
 }  // namespace
 
+std::string exact_1d_remedy(const Exact1dOptions& o, double length_um, std::size_t concurrent) {
+    const OptionNames& names = o.option_names;
+    std::vector<std::string> ways;
+    if (!names.points_per_wavelength.empty())
+        ways.push_back(fmt::format("fewer {} (now {})", names.points_per_wavelength, o.points_per_wavelength));
+    if (!names.length.empty()) ways.push_back(fmt::format("a shorter {} (now {:.4g} um)", names.length, length_um));
+    if (!names.wavelength.empty()) ways.push_back(fmt::format("a longer {} (now {} nm)", names.wavelength, o.lambda_nm));
+    std::string out = "use ";
+    for (std::size_t i = 0; i < ways.size(); ++i)
+        out += (i == 0 ? "" : i + 1 == ways.size() ? " or " : ", ") + ways[i];
+    if (concurrent > 1 && !names.threads.empty())
+        out += fmt::format(", or fewer {} (now {} at once)", names.threads, concurrent);
+    return out;
+}
+
 double exact_1d_solve_bytes(const Profile& profile, const material::Conductor& conductor, const Exact1dOptions& options) {
-    check_options(profile, options);
+    check_options(profile, conductor, options);
     const double lambda_um = options.lambda_nm * 1e-3, k = kTwoPi / lambda_um;
     const Surface surface = solver_surface(profile, lambda_um, options.points_per_wavelength);
     const RoutePlan plan = plan_route(surface, k, lambda_um, conductor, options);
@@ -650,13 +675,13 @@ double exact_1d_solve_bytes(const Profile& profile, const material::Conductor& c
 
 void require_exact_1d_memory(const Profile& profile, const material::Conductor& conductor,
                              const Exact1dOptions& options, std::size_t concurrent_solves) {
-    check_options(profile, options);
+    check_options(profile, conductor, options);
     require_solve_memory(exact_1d_solve_bytes(profile, conductor, options),
                          static_cast<std::size_t>(node_count(profile, options)), profile, options, concurrent_solves);
 }
 
 FarField solve_exact_1d(const Profile& profile, const material::Conductor& conductor, const Exact1dOptions& options) {
-    check_options(profile, options);
+    check_options(profile, conductor, options);
     const double lambda_um = options.lambda_nm * 1e-3, k = kTwoPi / lambda_um;
     const double theta_i = options.theta_i_rad, g = options.beam_width_um;
     // The nodes' own arrays checked before they exist; the route's once it is planned (docs/REFERENCE.md, "Memory").

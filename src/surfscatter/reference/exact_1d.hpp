@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "surfscatter/material/conductor.hpp"
+#include "surfscatter/reference/option_names.hpp"
 #include "surfscatter/reference/profile.hpp"
 
 namespace surfscatter::reference {
@@ -24,16 +25,6 @@ enum class Polarisation { s, p };  // s (TE): E along y; p (TM): H along y
 enum class Exact1dSolver { automatic, dense, iterative };
 inline constexpr std::size_t kIterativeFromUnknowns = 500;
 
-// How the caller's interface spells the settings that fix the node count, for the memory refusal to name them: the
-// CLI commands pass their option names (`surfscatter validity` says --wavelengths, `reference exact-1d` --wavelength);
-// the defaults are plain words.
-struct Exact1dOptionNames {
-    std::string length = "the profile's length";
-    std::string wavelength = "the wavelength";
-    std::string points_per_wavelength = "the points per wavelength";
-    std::string threads = "the threads";
-};
-
 struct Exact1dOptions {
     double lambda_nm = 0.0;
     double theta_i_rad = 0.0;          // in [0, pi/2)
@@ -44,7 +35,7 @@ struct Exact1dOptions {
     // exp(-interior_reach) of the nearest ones): 10..100.
     double interior_reach = 30;
     Exact1dSolver solver = Exact1dSolver::automatic;
-    Exact1dOptionNames option_names;
+    OptionNames option_names;
 };
 
 // The scattered far field on the grid theta_o = -90, -89.9, ..., 90 deg: amplitude[j] with |amplitude|^2 the
@@ -77,8 +68,14 @@ inline constexpr double kProfileBeamMargin = 2.0;
 // is allocated, a profile too long or too coarse for the wavelength is refused (docs/RELIABILITY.md).
 inline constexpr double kMaxExact1dNodes = 1e7;
 
-// Throws Error naming the value for a bad wavelength, angle, beam width or sampling, a profile that does not
-// hold the beam (its ends within 2 g of x = 0), or one that needs more than kMaxExact1dNodes nodes.
+// What to do when the node count or the memory is too large, naming the caller's options with their values: "use
+// fewer --points-per-wavelength (now 10), a shorter --length-um (now 1e+05 um) or a longer --wavelength (now 550 nm)"
+// and, for `concurrent` > 1 solves at once, "or fewer --threads (now 8)".
+std::string exact_1d_remedy(const Exact1dOptions& options, double length_um, std::size_t concurrent = 1);
+
+// Throws Error naming the value (and options.option_names' option) for a bad wavelength, angle, beam width or
+// sampling, a refractive index of 0 (n = k = 0) at the wavelength, a profile that does not hold the beam (its ends
+// within 2 g of x = 0), or one that needs more than kMaxExact1dNodes nodes (with exact_1d_remedy).
 FarField solve_exact_1d(const Profile& profile, const material::Conductor& conductor, const Exact1dOptions& options);
 
 // The bytes one solve holds at its peak (docs/REFERENCE.md, "Memory"): every buffer that scales with the node count
@@ -87,8 +84,7 @@ FarField solve_exact_1d(const Profile& profile, const material::Conductor& condu
 // (tests/reference/test_exact_1d_memory.cpp). solve_exact_1d checks it against the available memory before it
 // allocates; this builds the nodes (O(N)) to plan the route.
 double exact_1d_solve_bytes(const Profile& profile, const material::Conductor& conductor, const Exact1dOptions& options);
-// Throws Error (one line naming options.option_names' length, wavelength, points per wavelength and, for more than
-// one solve at once, threads) when `concurrent_solves` such solves exceed the memory available now.
+// Throws Error (one line with exact_1d_remedy) when `concurrent_solves` such solves exceed the memory available now.
 void require_exact_1d_memory(const Profile& profile, const material::Conductor& conductor,
                              const Exact1dOptions& options, std::size_t concurrent_solves);
 

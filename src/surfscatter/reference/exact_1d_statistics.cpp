@@ -205,14 +205,21 @@ StatisticalResult estimates(const Moments& moments, const KirchhoffControl& cont
 
 }  // namespace
 
-Profile flat_profile(const Exact1dOptions& options, double length_um) {
-    require_positive(length_um, "profile length (um)");
-    require_positive(options.lambda_nm, "wavelength (nm)");
+std::size_t profile_samples(const Exact1dOptions& options, double length_um) {
+    const OptionNames& names = options.option_names;
+    require_positive(length_um, fmt::format("{} (um)", names.length).c_str());
+    require_positive(options.lambda_nm, fmt::format("{} (nm)", names.wavelength).c_str());
     const double spacing = options.lambda_nm * 1e-3 / options.points_per_wavelength;
     const double samples = std::ceil(length_um / spacing) + 1;
     if (!(samples <= kMaxExact1dNodes))
-        fail("profile length {} um needs {:.3g} samples, more than {:.0e}", length_um, samples, kMaxExact1dNodes);
-    const auto n = static_cast<std::size_t>(samples);
+        fail("exact-1d: a profile of {} um at {} nm needs {:.3g} samples, more than {:.0e}: {}", length_um,
+             options.lambda_nm, samples, kMaxExact1dNodes, exact_1d_remedy(options, length_um));
+    return static_cast<std::size_t>(samples);
+}
+
+Profile flat_profile(const Exact1dOptions& options, double length_um) {
+    const std::size_t n = profile_samples(options, length_um);
+    const double spacing = options.lambda_nm * 1e-3 / options.points_per_wavelength;
     Profile profile;
     profile.spacing_um = spacing;
     profile.x0_um = -0.5 * spacing * static_cast<double>(n - 1);
@@ -231,12 +238,14 @@ Profile random_profile(const surface::RadialStatistics& statistics, const Exact1
 StatisticalResult solve_exact_1d_statistics(const surface::RadialStatistics& statistics,
                                             const material::Conductor& conductor, const Exact1dOptions& options,
                                             const StatisticalOptions& st) {
-    if (st.realizations < 2) fail("realizations must be at least 2 (for a standard error), got {}", st.realizations);
+    if (st.realizations < 2)
+        fail("{} must be at least 2 (for a standard error), got {}", options.option_names.realizations, st.realizations);
     if (st.more && st.first_round < 2) fail("the first round must be at least 2 realizations, got {}", st.first_round);
     // The first profile is made before any thread starts, so that bad statistics or lengths fail at once.
     const Profile first = random_profile(statistics, options, st.length_um, st.seed);
     // run_parallel_jobs keeps a done flag per realization: bounded before allocating.
-    require_memory(static_cast<double>(st.realizations), fmt::format("the done flags of {} realizations", st.realizations));
+    require_memory(static_cast<double>(st.realizations),
+                   fmt::format("{} {} (a done flag each)", options.option_names.realizations, st.realizations));
     // Each thread solves one profile at a time: their buffers together, checked before any thread starts (the
     // profiles share the first's length and statistics, so its planned route stands for theirs).
     const std::size_t concurrent = std::min<std::size_t>(

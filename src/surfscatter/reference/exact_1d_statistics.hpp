@@ -51,6 +51,10 @@ struct StatisticalOptions {
     std::size_t first_round = kMinControlledRealizations;  // a smaller one is judged by the plain estimates
 };
 
+// The samples of a profile of length_um at lambda / points_per_wavelength, checked without allocating: Error (naming
+// options.option_names' options, with exact_1d_remedy) for a length or wavelength <= 0 or more than kMaxExact1dNodes.
+std::size_t profile_samples(const Exact1dOptions& options, double length_um);
+
 // The flat profile (every height 0) sampled at lambda / points_per_wavelength over length_um, centred on x = 0: the
 // grid of every random profile. Throws Error for a length or wavelength <= 0 or more than kMaxExact1dNodes samples.
 Profile flat_profile(const Exact1dOptions& options, double length_um);

@@ -173,25 +173,26 @@ std::vector<Complex> tile_amplitudes(const heightmap::HeightMap& map, const Tile
 }
 
 void check_options(const KirchhoffOptions& o) {
-    require_positive(o.lambda_nm, "wavelength");
+    require_positive(o.lambda_nm, o.option_names.wavelength.c_str());
     require_finite(o.theta_i_rad, "theta_i");
     if (o.theta_i_rad < 0 || o.theta_i_rad >= kPi / 2)
         fail("theta_i must be in [0, 90) degrees, got {}", o.theta_i_rad / kDegree);
     require_finite(o.phi_i_rad, "phi_i");
-    require_positive(o.subarea_um, "sub-area side");
+    require_positive(o.subarea_um, o.option_names.subarea.c_str());
     require_finite(o.max_theta_o_rad, "max theta_o");
     if (o.max_theta_o_rad <= 0 || o.max_theta_o_rad >= kPi / 2)
         fail("max theta_o must be in (0, 90) degrees, got {}", o.max_theta_o_rad / kDegree);
-    require_thread_count(o.threads, "threads");
+    require_thread_count(o.threads, o.option_names.threads.c_str());
 }
 
-std::size_t subarea_pixels(double side_um, double spacing_um, std::size_t map_pixels, char axis) {
+std::size_t subarea_pixels(double side_um, double spacing_um, std::size_t map_pixels, char axis,
+                           const std::string& name) {
     const double pixels = std::round(side_um / spacing_um);
     if (pixels < static_cast<double>(kMinSubareaPixels))
-        fail("sub-area side {} um is {} pixels of {} um along {}: at least {} are needed", side_um, pixels, spacing_um,
+        fail("{} {} um is {} pixels of {} um along {}: at least {} are needed", name, side_um, pixels, spacing_um,
              axis, kMinSubareaPixels);
     if (pixels > static_cast<double>(map_pixels))
-        fail("sub-area side {} um is larger than the map along {} ({} pixels of {} um)", side_um, axis, map_pixels,
+        fail("{} {} um is larger than the map along {} ({} pixels of {} um)", name, side_um, axis, map_pixels,
              spacing_um);
     return static_cast<std::size_t>(pixels);
 }
@@ -344,6 +345,12 @@ void reduce(const Geometry& g, const std::vector<std::vector<Complex>>& amplitud
 
 }  // namespace
 
+void require_kirchhoff_subarea(const heightmap::HeightMap& map, const KirchhoffOptions& o) {
+    require_positive(o.subarea_um, o.option_names.subarea.c_str());
+    subarea_pixels(o.subarea_um, map.spacing_x(), map.nx(), 'x', o.option_names.subarea);
+    subarea_pixels(o.subarea_um, map.spacing_y(), map.ny(), 'y', o.option_names.subarea);
+}
+
 KirchhoffResult kirchhoff_brdf(const heightmap::HeightMap& map, const material::Conductor& conductor,
                                const KirchhoffOptions& o) {
     check_options(o);
@@ -352,8 +359,8 @@ KirchhoffResult kirchhoff_brdf(const heightmap::HeightMap& map, const material::
     g.dx = map.spacing_x();
     g.dy = map.spacing_y();
     g.k = kTwoPi / (o.lambda_nm * 1e-3);
-    g.nx = subarea_pixels(o.subarea_um, g.dx, map.nx(), 'x');
-    g.ny = subarea_pixels(o.subarea_um, g.dy, map.ny(), 'y');
+    g.nx = subarea_pixels(o.subarea_um, g.dx, map.nx(), 'x', o.option_names.subarea);
+    g.ny = subarea_pixels(o.subarea_um, g.dy, map.ny(), 'y', o.option_names.subarea);
     const std::vector<double> wx = hann_window(g.nx), wy = hann_window(g.ny);
     g.window.resize(g.nx * g.ny);
     double window_square = 0;

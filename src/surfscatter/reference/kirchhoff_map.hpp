@@ -41,6 +41,7 @@
 
 #include "surfscatter/material/conductor.hpp"
 #include "surfscatter/heightmap/height_map.hpp"
+#include "surfscatter/reference/option_names.hpp"
 
 namespace surfscatter::reference {
 
@@ -52,7 +53,12 @@ struct KirchhoffOptions {
     double max_theta_o_rad = 85.0 * 3.14159265358979323846 / 180.0;  // directions kept: theta_o <= this, (0, pi/2)
     int threads = 0;           // sub-areas evaluated at once, 0 = all cores
     bool progress = false;     // progress bar with ETA on stderr
+    OptionNames option_names;  // as the caller spells them (wavelength, sub-area side, threads)
 };
+
+// Throws Error naming options.option_names.subarea unless the sub-area side holds at least kMinSubareaPixels pixels
+// of `map` and at most the map along each axis: validity checks its maps before its progress starts.
+void require_kirchhoff_subarea(const heightmap::HeightMap& map, const KirchhoffOptions& options);
 
 struct KirchhoffResult {
     // One entry per lattice direction kept, row by row (m_y, then m_x increasing).

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "surfscatter/core/error.hpp"
+#include "surfscatter/core/output_files.hpp"
 #include "surfscatter/study/sheet_caption.hpp"
 
 namespace surfscatter::study {
@@ -32,6 +33,33 @@ Parameters merged(std::initializer_list<const Parameters*> maps) {
     for (const Parameters* m : maps)
         for (const auto& [k, v] : *m) out[k] = v;
     return out;
+}
+
+// Every file a job's parameters may name: each text value taken as a path against the study's folder and against
+// the scene's (where the scene resolves its -D values); OutputFiles::input passes over those that name nothing.
+void declare_parameter_files(OutputFiles& files, const Study& s, const json& parameters, const std::string& id) {
+    if (parameters.is_object() || parameters.is_array()) {
+        for (const json& value : parameters) declare_parameter_files(files, s, value, id);
+        return;
+    }
+    if (!parameters.is_string()) return;
+    const std::string value = parameters.get<std::string>();
+    const std::string what = fmt::format("'{}' of job {}", printable(value), id);
+    files.input(s.resolve(value), what);
+    if (s.render) files.input(s.resolve(s.scene).parent_path() / value, what);
+}
+
+// A job's outputs never replace a file the study loads (its scene, maps, materials, profiles) or another job's
+// output (core/output_files.hpp's rule), checked before any job runs: a model named "overview" wrote over the
+// view's overview, and surface "a_b" with lamp "c" over surface "a" with lamp "b_c"'s sheet.
+void refuse_output_collisions(const Study& s, const std::vector<Job>& jobs) {
+    OutputFiles files;
+    if (s.render) files.input(s.resolve(s.scene), "the study's scene");
+    for (const Job& job : jobs)  // sheets and plots name only other jobs' outputs (and titles)
+        if (job.kind != JobKind::sheet && job.kind != JobKind::slice_plot && job.kind != JobKind::albedo_plot)
+            declare_parameter_files(files, s, job.parameters, job.id);
+    for (const Job& job : jobs)
+        for (const std::string& output : job.outputs) files.plan(s.folder / output, fmt::format("job {}'s output", job.id));
 }
 
 class Expander {
@@ -68,6 +96,7 @@ public:
             index[i] = static_cast<int>(jobs.size());
             jobs.push_back(std::move(j));
         }
+        refuse_output_collisions(s_, jobs);
         return jobs;
     }
 

@@ -7,6 +7,9 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -120,6 +123,7 @@ private:
     template <typename Write>
     void write_outputs(const std::vector<fs::path>& paths, Write&& write) {
         OutputFiles files;
+        for (const auto& [path, what] : inputs_) files.input(path, what);
         for (const fs::path& path : paths) {
             fs::create_directories(path.parent_path());
             files.output(path, "the study's output");
@@ -132,6 +136,10 @@ private:
         const fs::path path = s_.resolve(job_.parameters["scene"].get<std::string>());
         auto scene = render::load_scene(path, render::implied_scene_parameters(path, defines_json.get<Parameters>()));
         for (const std::string& note : scene->notes) notes_.push_back(note);
+        // What the scene loads (meshes, textures, maps, index tables, through -D values too) its outputs must not
+        // replace; the study's expansion checked the files its parameters name.
+        inputs_.emplace_back(path, "the study's scene");
+        for (const render::Scene::LoadedFile& file : scene->loaded_files) inputs_.emplace_back(file.path, file.named_by);
         return scene;
     }
 
@@ -227,8 +235,7 @@ private:
         else
             bsdf::write_albedo_csv(text, p["name"], *model, theta_i, bsdf::albedo_azimuths(*model, p["phi_i"].get<double>()),
                                    p["wavelength"].get<double>(), true);
-        fs::create_directories(output(0).parent_path());
-        write_file_atomically(output(0), text.str());
+        write_outputs({output(0)}, [&](const std::vector<fs::path>& tmp) { write_file_atomically(tmp[0], text.str()); });
     }
 
     // A failed render leaves no image (run() removes it): its panel stays empty, captioned as missing.
@@ -283,6 +290,7 @@ private:
     const JobContext& context_;
     bool interrupted_ = false;
     std::vector<std::string> notes_;
+    std::vector<std::pair<fs::path, std::string>> inputs_;  // files the job loaded, named as their loader names them
 };
 
 }  // namespace

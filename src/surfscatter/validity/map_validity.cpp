@@ -238,8 +238,12 @@ MapSurface map_surface(const bsdf::SurfaceOptions& surface, const std::string& m
     return out;
 }
 
-std::vector<MapCase> map_validity(const MapSurface& surface, const material::Conductor& conductor,
-                                  const MapStudy& study) {
+double map_subarea_um(const MapSurface& surface, const MapStudy& study) {
+    const heightmap::HeightMap& first = surface.maps.front();
+    return study.subarea_um > 0 ? study.subarea_um : 0.25 * std::min(first.width(), first.height());
+}
+
+void check_map_study(const MapSurface& surface, const MapStudy& study) {
     if (surface.maps.empty()) fail("validity: no height map");
     if (surface.models.empty()) fail("validity: the factory makes no model for this surface");
     if (study.wavelengths_nm.empty()) fail("validity: no wavelengths given");
@@ -250,13 +254,22 @@ std::vector<MapCase> map_validity(const MapSurface& surface, const material::Con
     for (const double phi : study.phi_i_deg) require_finite(phi, "phi_i");
     for (const double lambda : study.wavelengths_nm)
         if (!(lambda > 0) || !std::isfinite(lambda)) fail("validity: wavelength must be > 0 nm, got {}", lambda);
-    require_valid_criteria(study.criteria, "tolerance", "bin_deg", "max_reference_stderr");
-    require_thread_count(study.threads, "threads");
-    require_list_size(study.wavelengths_nm.size(), "wavelengths_nm");
+    require_valid_criteria(study.criteria, study.option_names);
+    require_thread_count(study.threads, study.option_names.threads.c_str());
+    require_list_size(study.wavelengths_nm.size(), study.option_names.wavelength.c_str());
     require_list_size(study.theta_i_deg.size(), "theta_i_deg");
     require_list_size(study.phi_i_deg.size(), "phi_i_deg");
+    reference::KirchhoffOptions checked;
+    checked.subarea_um = map_subarea_um(surface, study);
+    checked.option_names = study.option_names;
+    for (const heightmap::HeightMap& map : surface.maps) reference::require_kirchhoff_subarea(map, checked);
+}
+
+std::vector<MapCase> map_validity(const MapSurface& surface, const material::Conductor& conductor,
+                                  const MapStudy& study) {
+    check_map_study(surface, study);
     const heightmap::HeightMap& first = surface.maps.front();
-    const double subarea = study.subarea_um > 0 ? study.subarea_um : 0.25 * std::min(first.width(), first.height());
+    const double subarea = map_subarea_um(surface, study);
 
     const std::size_t total =
         study.wavelengths_nm.size() * study.theta_i_deg.size() * study.phi_i_deg.size() * surface.maps.size();
@@ -278,6 +291,7 @@ std::vector<MapCase> map_validity(const MapSurface& surface, const material::Con
                 options.subarea_um = subarea;
                 options.max_theta_o_rad = study.max_theta_o_deg * kDegree;
                 options.threads = study.threads;
+                options.option_names = study.option_names;
                 const auto reference = mean_reference(surface.maps, conductor, options, progress);
                 if (!reference) return cases;  // interrupted
                 const MapsReference& sum = *reference;
@@ -308,7 +322,8 @@ std::vector<MapCase> map_validity(const MapSurface& surface, const material::Con
                 for (std::size_t m = 0; m < mc.models.size(); ++m)
                     mc.models[m].comparison = compare_curves(b.theta_o_rad, b.reference, b.reference_stderr,
                                                              b.models[m], study.criteria);
-                mc.verdict = decide(mc.models, study.criteria, reference_problem(mc.reference_validity, sum));
+                mc.verdict = decide(mc.models, study.criteria, reference_problem(mc.reference_validity, sum),
+                                    study.option_names);
                 cases.push_back(std::move(mc));
             }
     progress.finish();

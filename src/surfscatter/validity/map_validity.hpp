@@ -86,6 +86,8 @@ struct MapStudy {
     Criteria criteria;
     int threads = 0;
     bool progress = false;        // one bar over cases x maps, with ETA
+    // As the caller spells them (criteria, threads, wavelengths); realizations empty for a measured map (one map).
+    reference::OptionNames option_names;
 };
 
 // Square bins of the lattice (header), in row order; models[m][b] is model m's mean over bin b.
@@ -105,6 +107,12 @@ struct MapCase {
     std::vector<ModelResult> models;     // incoherent_per_rad empty: the curves are in `binned`
     Verdict verdict;
 };
+
+// The sub-area side the study uses: study.subarea_um, or a quarter of the first map's shorter side.
+double map_subarea_um(const MapSurface& surface, const MapStudy& study);
+// The study's lists, criteria, threads and sub-area on every map, named by study.option_names: map_validity's first
+// step, which a front end calls before it prints the surface's notes (so that a refusal is one line).
+void check_map_study(const MapSurface& surface, const MapStudy& study);
 
 // Every (wavelength, theta_i, phi_i), in that nesting order. Stops between cases, or inside one, when
 // interrupt_requested(): the cases completed are returned. Throws Error for bad input.

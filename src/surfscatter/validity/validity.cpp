@@ -160,7 +160,11 @@ double lead_uncertainty(const ModelResult& a, const ModelResult& b) {
                      b.own_rel_uncertainty * b.own_rel_uncertainty);
 }
 
-Verdict decide(const std::vector<ModelResult>& models, const Criteria& criteria, const std::string& problem) {
+Verdict decide(const std::vector<ModelResult>& models, const Criteria& criteria, const std::string& problem,
+               const reference::OptionNames& names) {
+    const std::string remedy = names.realizations.empty()
+                                   ? fmt::format("use a wider {} or measure a larger area", names.bin_deg)
+                                   : fmt::format("use more {} or a wider {}", names.realizations, names.bin_deg);
     Verdict v;
     if (models.empty()) fail("decide: no models to compare");
     const CurveComparison& c = models.front().comparison;  // the same reference directions for every model
@@ -173,12 +177,11 @@ Verdict decide(const std::vector<ModelResult>& models, const Criteria& criteria,
         v.reference_problem = problem;
     else if (c.directions_used == 0)
         v.reference_problem = fmt::format("no direction has a reference with a standard error within {} of its value "
-                                          "({} excluded): use more realizations",
-                                          percent(criteria.max_reference_stderr), c.directions_excluded);
+                                          "({} excluded): {}",
+                                          percent(criteria.max_reference_stderr), c.directions_excluded, remedy);
     else if (c.reference_median_rel_stderr > criteria.tolerance)
-        v.reference_problem = fmt::format("the reference's median standard error {} exceeds the tolerance {}: use "
-                                          "more realizations",
-                                          percent(c.reference_median_rel_stderr), percent(criteria.tolerance));
+        v.reference_problem = fmt::format("the reference's median standard error {} exceeds the tolerance {}: {}",
+                                          percent(c.reference_median_rel_stderr), percent(criteria.tolerance), remedy);
     if (!v.reference_problem.empty()) {
         v.text = "nothing can be concluded and no model is ruled out: the reference is outside its validity (" +
                  v.reference_problem + ")";
@@ -544,19 +547,18 @@ std::vector<double> edge_diffraction(const material::Conductor& conductor, const
 
 }  // namespace
 
-void require_valid_criteria(const Criteria& c, const char* tolerance_name, const char* bin_name,
-                            const char* stderr_name) {
-    if (!(c.tolerance > 0 && c.tolerance < 1)) fail("{} must be in (0, 1), got {}", tolerance_name, c.tolerance);
-    if (!(c.bin_deg >= 0 && c.bin_deg <= 30)) fail("{} must be in [0, 30] degrees, got {}", bin_name, c.bin_deg);
+void require_valid_criteria(const Criteria& c, const reference::OptionNames& names) {
+    if (!(c.tolerance > 0 && c.tolerance < 1)) fail("{} must be in (0, 1), got {}", names.tolerance, c.tolerance);
+    if (!(c.bin_deg >= 0 && c.bin_deg <= 30)) fail("{} must be in [0, 30] degrees, got {}", names.bin_deg, c.bin_deg);
     if (!(c.max_reference_stderr > 0 && c.max_reference_stderr <= 1))
-        fail("{} must be in (0, 1], got {}", stderr_name, c.max_reference_stderr);
+        fail("{} must be in (0, 1], got {}", names.max_reference_stderr, c.max_reference_stderr);
 }
 
 std::vector<ProfileCase> profile_validity(const surface::RadialStatistics& statistics,
                                           const material::Conductor& conductor, const ProfileStudy& study) {
-    require_valid_criteria(study.criteria, "tolerance", "bin_deg", "max_reference_stderr");
-    require_thread_count(study.statistical.threads, "threads");
-    require_list_size(study.wavelengths_nm.size(), "wavelengths_nm");
+    require_valid_criteria(study.criteria, study.option_names);
+    require_thread_count(study.statistical.threads, study.option_names.threads.c_str());
+    require_list_size(study.wavelengths_nm.size(), study.option_names.wavelength.c_str());
     require_list_size(study.theta_i_deg.size(), "theta_i_deg");
     if (study.wavelengths_nm.empty()) fail("validity: no wavelengths given");
     if (study.theta_i_deg.empty()) fail("validity: no angles of incidence given");
@@ -569,6 +571,26 @@ std::vector<ProfileCase> profile_validity(const surface::RadialStatistics& stati
         fail("validity: the target standard error must be in [0, 1), got {}", study.target_rel_stderr);
     const std::vector<bsdf::ProfileModel> model_kinds{bsdf::ProfileModel::ghs, bsdf::ProfileModel::ghs_ssa,
                                                       bsdf::ProfileModel::kirchhoff};
+    const auto case_options = [&](double lambda, double theta_i, bsdf::ProfilePolarisation polarisation) {
+        reference::Exact1dOptions options;
+        options.lambda_nm = lambda;
+        options.theta_i_rad = theta_i * kDegree;
+        options.polarisation = polarisation == bsdf::ProfilePolarisation::s ? reference::Polarisation::s
+                                                                            : reference::Polarisation::p;
+        options.beam_width_um = study.beam_width_um;
+        options.points_per_wavelength = study.points_per_wavelength;
+        options.option_names = study.option_names;
+        return options;
+    };
+    // Every case's sampling, beam, material and one solve's memory before the first starts (a case refused half-way
+    // through the run named a derived value after the progress had begun).
+    for (const double lambda : study.wavelengths_nm)
+        for (const double theta_i : study.theta_i_deg) {
+            bsdf::require_profile_wavelength(lambda, study.option_names.wavelength);  // the models' range
+            const auto options = case_options(lambda, theta_i, study.polarisations.front());
+            reference::require_exact_1d_memory(reference::flat_profile(options, study.statistical.length_um), conductor,
+                                               options, 1);
+        }
     const std::size_t total = study.wavelengths_nm.size() * study.theta_i_deg.size() * study.polarisations.size();
     Progress progress("validity", total, study.progress);
     std::vector<ProfileCase> cases;
@@ -576,14 +598,7 @@ std::vector<ProfileCase> profile_validity(const surface::RadialStatistics& stati
         for (const double theta_i : study.theta_i_deg)
             for (const auto polarisation : study.polarisations) {
                 if (interrupt_requested()) return cases;
-                reference::Exact1dOptions options;
-                options.lambda_nm = lambda;
-                options.theta_i_rad = theta_i * kDegree;
-                options.polarisation = polarisation == bsdf::ProfilePolarisation::s ? reference::Polarisation::s
-                                                                                    : reference::Polarisation::p;
-                options.beam_width_um = study.beam_width_um;
-                options.points_per_wavelength = study.points_per_wavelength;
-                options.option_names = study.option_names;
+                const reference::Exact1dOptions options = case_options(lambda, theta_i, polarisation);
                 ProfileCase pc;
                 pc.wavelength_nm = lambda;
                 pc.theta_i_deg = theta_i;
@@ -662,15 +677,16 @@ std::vector<ProfileCase> profile_validity(const surface::RadialStatistics& stati
                     pc.edge_rel_error > study.criteria.tolerance
                         ? fmt::format("the profile's ends, {:.3g} beam widths either side of the beam centre, "
                                       "diffract {} of the reference's median in the bins used, above the tolerance "
-                                      "{}: use a longer --length-um or a narrower --beam-width",
+                                      "{}: use a longer {} or a narrower {}",
                                       0.5 * study.statistical.length_um / study.beam_width_um,
-                                      percent(pc.edge_rel_error), percent(study.criteria.tolerance))
+                                      percent(pc.edge_rel_error), percent(study.criteria.tolerance),
+                                      study.option_names.length, study.option_names.beam_width)
                         : std::string();
-                pc.verdict = decide(pc.models, study.criteria, problem);
+                pc.verdict = decide(pc.models, study.criteria, problem, study.option_names);
                 std::vector<ModelResult> render;
                 for (const ModelResult& m : pc.models)
                     if (m.model != "kirchhoff") render.push_back(m);
-                pc.render_verdict = decide(render, study.criteria, problem);
+                pc.render_verdict = decide(render, study.criteria, problem, study.option_names);
                 cases.push_back(std::move(pc));
                 progress.advance();
             }

@@ -51,10 +51,10 @@ struct Criteria {
     double bin_deg = 3.0;               // theta_o bins the curves are averaged over before comparing; 0: none
 };
 
-// Throws Error naming the front end's spelling of the bad value unless tolerance is in (0, 1), bin_deg in [0, 30] and
-// max_reference_stderr in (0, 1]; profile_validity and map_validity check them too (under the Python names).
-void require_valid_criteria(const Criteria& criteria, const char* tolerance_name, const char* bin_name,
-                            const char* stderr_name);
+// Throws Error naming the front end's spelling of the bad value (names.tolerance, bin_deg, max_reference_stderr:
+// the CLI's options, Python's keywords) unless tolerance is in (0, 1), bin_deg in [0, 30] and max_reference_stderr in
+// (0, 1]; profile_validity and map_validity check them with their study's option_names.
+void require_valid_criteria(const Criteria& criteria, const reference::OptionNames& names);
 
 // Curves averaged over theta_o bins of `bin_rad` from -90 deg (the last bin takes the remainder): the speckle of
 // a finite number of random profiles is averaged out over the bin. `theta_o_rad` becomes the bins' mean angles.
@@ -154,9 +154,11 @@ struct Verdict {
     std::string text;               // one plain sentence
 };
 
-// `reference_problem`: why the route's reference is outside its validity here (empty when it is not known to be).
+// `reference_problem`: why the route's reference is outside its validity here (empty when it is not known to be);
+// `names`: the caller's options, for the remedy when the reference's standard error is too large (more realizations,
+// where the route takes them - an empty names.realizations says it does not - or wider bins).
 Verdict decide(const std::vector<ModelResult>& models, const Criteria& criteria,
-               const std::string& reference_problem = {});
+               const std::string& reference_problem = {}, const reference::OptionNames& names = {});
 
 struct ProfileCase {
     double wavelength_nm = 0, theta_i_deg = 0;
@@ -184,7 +186,7 @@ struct ProfileStudy {
     std::vector<bsdf::ProfilePolarisation> polarisations;
     double beam_width_um = 0;
     double points_per_wavelength = 10;
-    reference::Exact1dOptionNames option_names;  // as the caller spells them (exact-1d's memory refusal)
+    reference::OptionNames option_names;  // as the caller spells them (criteria, exact-1d's bounds and remedies)
     // length, realizations (a fixed count; with a target, the cap), seed, threads (progress: per case)
     reference::StatisticalOptions statistical;
     // > 0: realizations run until the reference's median relative standard error over the bins used reaches it
