@@ -322,8 +322,11 @@ TEST(StudyRun, AlbedoOfAnAnisotropicModelOverIncidenceAzimuths) {
         "wavelengths": [550], "albedo": {"theta_i": [30, 60], "phi_i": 10}})",
                                 dir, "s.json");
     const JobContext context{1, false, "testhost"};
-    for (const Job& job : expand(s))
-        if (job.kind == JobKind::albedo) ASSERT_EQ(run_job(s, job, context)["status"], "done") << job.id;
+    for (const Job& job : expand(s)) {
+        if (job.kind == JobKind::albedo) {
+            ASSERT_EQ(run_job(s, job, context)["status"], "done") << job.id;
+        }
+    }
     const auto rows = [&](const std::string& model) {
         std::ifstream in(dir / ("brdf/albedo_550nm_" + model + ".csv"));
         std::string line;
