@@ -15,10 +15,23 @@
 
 namespace surfscatter::test {
 
-// A per-suite scratch directory under the system temp directory (created if missing).
+// The scratch directories this process made, removed when it exits.
+struct ScratchDirectories {
+    std::vector<std::filesystem::path> made;
+    ~ScratchDirectories() {
+        std::error_code ignored;  // a folder a test still holds open stays behind in the temp directory
+        for (const auto& dir : made) std::filesystem::remove_all(dir, ignored);
+    }
+};
+inline ScratchDirectories scratch_directories;
+
+// A per-suite scratch directory under the system temp directory (created if missing), one per process: ctest runs
+// every case in its own process, two at a time, and a suite that empties its folder in SetUpTestSuite emptied the
+// other's under it (gtest then reported the case skipped, which ctest counts as no failure).
 inline std::filesystem::path scratch_directory(const std::string& name) {
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() / name;
-    std::filesystem::create_directories(dir);
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / (name + "_" + std::to_string(::getpid()));
+    if (std::filesystem::create_directories(dir)) scratch_directories.made.push_back(dir);
     return dir;
 }
 
